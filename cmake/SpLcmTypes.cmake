@@ -1,0 +1,48 @@
+# Runs lcm-gen on .lcm files at build time. Generated code goes to the build
+# tree only (never into git): C++ headers for the programs and a jar for
+# lcm-spy. One custom command per output set, rerun when a .lcm changes.
+find_program(LCM_GEN_EXECUTABLE lcm-gen REQUIRED)
+set(SP_LCM_JAR_SYSTEM /usr/share/java/lcm.jar CACHE FILEPATH "LCM's Java jar (liblcm-java)")
+
+function(sp_lcm_types)
+  cmake_parse_arguments(ARG "" "CPP_TARGET;JAR_TARGET;PACKAGE" "SOURCES" ${ARGN})
+  set(cpp_dir ${CMAKE_CURRENT_BINARY_DIR}/cpp)
+  set(java_dir ${CMAKE_CURRENT_BINARY_DIR}/java)
+  set(headers "")
+  set(java_sources "")
+  foreach(lcm_file ${ARG_SOURCES})
+    get_filename_component(type_name ${lcm_file} NAME_WE)
+    list(APPEND headers ${cpp_dir}/${ARG_PACKAGE}/${type_name}.hpp)
+    list(APPEND java_sources ${java_dir}/${ARG_PACKAGE}/${type_name}.java)
+  endforeach()
+  list(TRANSFORM ARG_SOURCES PREPEND ${CMAKE_CURRENT_SOURCE_DIR}/ OUTPUT_VARIABLE abs_sources)
+
+  add_custom_command(
+    OUTPUT ${headers}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${cpp_dir}
+    COMMAND ${LCM_GEN_EXECUTABLE} --cpp --cpp-std c++11 --cpp-hpath ${cpp_dir} ${abs_sources}
+    DEPENDS ${abs_sources}
+    COMMENT "lcm-gen: C++ headers for ${ARG_PACKAGE}"
+    VERBATIM)
+  add_custom_target(${ARG_CPP_TARGET}_gen DEPENDS ${headers})
+  add_library(${ARG_CPP_TARGET} INTERFACE)
+  add_dependencies(${ARG_CPP_TARGET} ${ARG_CPP_TARGET}_gen)
+  target_include_directories(${ARG_CPP_TARGET} SYSTEM INTERFACE ${cpp_dir})
+  target_link_libraries(${ARG_CPP_TARGET} INTERFACE PkgConfig::LCM)
+
+  set(jar ${CMAKE_CURRENT_BINARY_DIR}/${ARG_JAR_TARGET}.jar)
+  set(classes ${CMAKE_CURRENT_BINARY_DIR}/classes)
+  add_custom_command(
+    OUTPUT ${jar}
+    COMMAND ${CMAKE_COMMAND} -E rm -rf ${java_dir} ${classes}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${java_dir} ${classes}
+    COMMAND ${LCM_GEN_EXECUTABLE} --java --jpath ${java_dir} ${abs_sources}
+    COMMAND ${Java_JAVAC_EXECUTABLE} -nowarn -encoding UTF-8 -cp ${SP_LCM_JAR_SYSTEM}
+            -d ${classes} ${java_sources}
+    COMMAND ${Java_JAR_EXECUTABLE} cf ${jar} -C ${classes} .
+    DEPENDS ${abs_sources}
+    COMMENT "lcm-gen + javac: ${ARG_JAR_TARGET}.jar for lcm-spy"
+    VERBATIM)
+  add_custom_target(${ARG_JAR_TARGET} ALL DEPENDS ${jar})
+  set_property(TARGET ${ARG_JAR_TARGET} PROPERTY JAR_FILE ${jar})
+endfunction()

@@ -1,0 +1,195 @@
+// The parameters of a run: `key=value` lines in parameters.txt (the
+// original's keys plus ours), any key overridden on the command line as
+// --key=value. One struct for the whole system: every process reads the keys
+// that apply to it, and every process refuses a key nobody knows.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "simpartner/diagnostic.h"
+
+namespace simpartner {
+
+inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
+inline constexpr const char* kDefaultParametersFile = "parameters.txt";
+
+struct Parameters {
+  // Database logging (logger).
+  std::string dbname = "simpartner";
+  std::string dbserver;  // "" = the private server the scripts start
+  bool log = true;
+  bool logEveryStep = true;
+  int logInterval = 10;
+
+  // World.
+  std::string environment = "models/worlds/flat_ground.xml";
+
+  // Stepping.
+  double stepsize = 0.001;
+  std::string stepper = "accurate";
+  int quickStepIterations = 20;
+  double quickStepW = 1.3;
+  double globalERP = 0.2;
+  double globalCFM = 1e-5;
+  double contactMaxCorrectingVel = 0.2;
+  double contactSurfaceLayer = 0.0;
+  bool autoDisableFlag = false;
+  int maxContacts = 8;
+
+  // Default contact material (used where the world names none).
+  double contactMu = 1.0;
+  double contactBounce = 0.0;
+  double contactBounceVelocity = 0.1;
+  double contactSoftERP = 0.2;
+  double contactSoftCFM = 1e-5;
+  double rollingFriction = 0.0;
+
+  // Running.
+  double speed = 1.0;
+  double duration = 0.0;
+  bool startPaused = false;
+  int stateEvery = 1;
+  double modelPeriod = 1.0;
+  double statusPeriod = 1.0;
+  double maxLinearVelocity = 1000.0;
+  double maxAngularVelocity = 10000.0;
+
+  // Transport.
+  std::string lcmUrl = kDefaultLcmUrl;
+
+  // Lists every key with its type, range and documentation. The visitor has
+  // Section(title), Bool, Int, Double, String, Path and Choice members.
+  template <class Visitor>
+  void Visit(Visitor& v) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    v.Section("Database logging (simpartner-logger)");
+    v.String("dbname", dbname, "database (schema) name");
+    v.String("dbserver", dbserver,
+             "server as host[:port] or a unix socket path; empty = the "
+             "private server scripts/run starts");
+    v.Bool("log", log, "write the run into the database");
+    v.Bool("logEveryStep", logEveryStep,
+           "log every step; when 0, log every logInterval-th step");
+    v.Int("logInterval", logInterval, 1, 1000000,
+          "steps between logged rows when logEveryStep=0");
+
+    v.Section("World");
+    v.Path("environment", environment,
+           "world XML file (relative paths are relative to the file that "
+           "sets them)");
+
+    v.Section("Stepping (ODE)");
+    v.Double("stepsize", stepsize, 1e-5, 0.1,
+             "fixed step [s]; stable range roughly 0.001 to 0.02");
+    v.Choice("stepper", stepper, {"accurate", "quick"},
+             "accurate = dWorldStep (exact LCP, slow), quick = "
+             "dWorldQuickStep (iterative)");
+    v.Int("quickStepIterations", quickStepIterations, 1, 100000,
+          "iterations of dWorldQuickStep");
+    v.Double("quickStepW", quickStepW, 0.01, 2.0,
+             "successive over-relaxation factor of dWorldQuickStep");
+    v.Double("globalERP", globalERP, 0.0, 1.0,
+             "error reduction parameter (common 0.1 to 0.8)");
+    v.Double("globalCFM", globalCFM, 0.0, 1.0, "constraint force mixing");
+    v.Double("contactMaxCorrectingVel", contactMaxCorrectingVel, 0.0, kInf,
+             "[m/s] largest velocity a contact may use to correct penetration");
+    v.Double("contactSurfaceLayer", contactSurfaceLayer, 0.0, 1.0,
+             "[m] depth of penetration allowed before correction");
+    v.Bool("autoDisableFlag", autoDisableFlag,
+           "let ODE disable bodies at rest (off keeps runs comparable)");
+    v.Int("maxContacts", maxContacts, 1, 256,
+          "most contact points generated per touching pair of geoms");
+
+    v.Section("Default contact material");
+    v.Double("contactMu", contactMu, 0.0, kInf, "Coulomb friction coefficient");
+    v.Double("contactBounce", contactBounce, 0.0, 1.0, "restitution");
+    v.Double("contactBounceVelocity", contactBounceVelocity, 0.0, kInf,
+             "[m/s] least impact speed that bounces");
+    v.Double("contactSoftERP", contactSoftERP, 0.0, 1.0, "contact ERP");
+    v.Double("contactSoftCFM", contactSoftCFM, 0.0, 1.0, "contact CFM");
+    v.Double("rollingFriction", rollingFriction, 0.0, 1.0,
+             "[m] rolling resistance length (0 = none, as the original)");
+
+    v.Section("Running");
+    v.Double("speed", speed, 0.0, 1000.0,
+             "real-time factor; 0 = as fast as possible");
+    v.Double("duration", duration, 0.0, kInf,
+             "[s] simulated time after which the sim quits; 0 = run until told");
+    v.Bool("startPaused", startPaused, "start paused (resume over SIM_CONTROL)");
+    v.Int("stateEvery", stateEvery, 1, 1000000,
+          "publish SIM_STATE every N-th step");
+    v.Double("modelPeriod", modelPeriod, 0.05, 3600.0,
+             "[s] wall time between SIM_MODEL announcements");
+    v.Double("statusPeriod", statusPeriod, 0.05, 3600.0,
+             "[s] wall time between SIM_STATUS messages");
+    v.Double("maxLinearVelocity", maxLinearVelocity, 0.0, kInf,
+             "[m/s] a body faster than this is an explosion: the sim pauses");
+    v.Double("maxAngularVelocity", maxAngularVelocity, 0.0, kInf,
+             "[rad/s] likewise for rotation");
+
+    v.Section("Transport");
+    v.String("lcmUrl", lcmUrl,
+             "LCM URL (also --lcm-url); ttl=0 keeps traffic on this host");
+  }
+};
+
+// Where each parameter value came from, so a later error can point at it.
+struct ParameterOrigin {
+  std::string file;  // parameters file, or "command line"
+  int line = 0;
+};
+
+// The parsed command line of a SimPartner program: its own flags and the
+// parameter overrides.
+struct CommandLine {
+  std::string program;
+  std::string params_file = kDefaultParametersFile;
+  bool params_file_given = false;
+  std::vector<std::string> flags;  // process flags seen, without "--"
+  std::vector<std::pair<std::string, std::string>> flag_values;  // --flag VALUE
+  std::vector<std::pair<std::string, std::string>> overrides;  // --key=value
+  std::vector<std::string> positional;
+
+  bool Has(const std::string& flag) const;
+  // Value of a process flag that takes one, or fallback.
+  std::string Value(const std::string& flag, const std::string& fallback) const;
+};
+
+// Describes the process flags a program accepts besides parameters.
+struct FlagSpec {
+  std::string name;   // without "--"
+  bool takes_value;   // "--name VALUE" or "--name=VALUE"
+  std::string help;
+};
+
+// Splits argv into process flags, --params FILE and --key=value overrides.
+// Throws ConfigError for a flag it cannot read ("command line: argument N").
+CommandLine ParseCommandLine(int argc, const char* const* argv,
+                             const std::vector<FlagSpec>& process_flags);
+
+// Parses `key=value` text into params. Problems go to diagnostics with file
+// and line; the fields named by bad lines keep their previous values.
+void ParseParametersText(const std::string& text, const std::string& file_name,
+                         Parameters* params, DiagnosticList* diagnostics);
+
+// Loads defaults, then the parameters file (the default one only if it
+// exists), then the command-line overrides. Throws ConfigError listing every
+// problem.
+Parameters LoadParameters(const CommandLine& command_line);
+
+// Effective parameters as `key=value` lines, in the documented order.
+std::string FormatParameters(const Parameters& params);
+
+// Documentation of every key (type, range, default, meaning) for --help and
+// for checking that parameters.txt documents every key.
+std::string DescribeParameters();
+std::vector<std::string> ParameterKeys();
+
+// Usage text of a program: its flags, then the parameter keys.
+std::string FormatUsage(const std::string& program, const std::string& summary,
+                        const std::vector<FlagSpec>& process_flags);
+
+}  // namespace simpartner

@@ -1,0 +1,426 @@
+#include "simpartner/parameters.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+namespace simpartner {
+namespace {
+
+constexpr const char* kCommandLine = "command line";
+
+std::string Trim(const std::string& s) {
+  const char* ws = " \t\r\n";
+  const size_t begin = s.find_first_not_of(ws);
+  if (begin == std::string::npos) return "";
+  const size_t end = s.find_last_not_of(ws);
+  return s.substr(begin, end - begin + 1);
+}
+
+std::string FormatDouble(double value) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  // Shortest form that reads back the same value.
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::ostringstream candidate;
+    candidate.precision(precision);
+    candidate << value;
+    if (std::strtod(candidate.str().c_str(), nullptr) == value)
+      return candidate.str();
+  }
+  return out.str();
+}
+
+// One key of Parameters: how to set it from text and how to show it.
+struct Entry {
+  std::string key;
+  std::string type;     // "bool", "int", "real", "string", "path", "choice"
+  std::string range;    // human-readable allowed values
+  std::string doc;
+  std::string section;
+  // Returns "" on success or the reason the text is not acceptable.
+  std::function<std::string(const std::string& text, const std::string& base_dir)>
+      set;
+  std::function<std::string()> get;
+};
+
+// Visitor that turns Parameters::Visit into a table of Entries bound to one
+// Parameters object.
+class EntryBinder {
+ public:
+  std::vector<Entry> entries;
+
+  void Section(const char* title) { section_ = title; }
+
+  void Bool(const char* key, bool& field, const char* doc) {
+    Add(key, "bool", "0 or 1 (also true/false, yes/no, on/off)", doc,
+        [&field](const std::string& text, const std::string&) -> std::string {
+          static const std::map<std::string, bool> kWords = {
+              {"0", false}, {"1", true},     {"false", false}, {"true", true},
+              {"no", false}, {"yes", true},  {"off", false},   {"on", true}};
+          const auto it = kWords.find(text);
+          if (it == kWords.end()) return "is not a boolean";
+          field = it->second;
+          return "";
+        },
+        [&field] { return std::string(field ? "1" : "0"); });
+  }
+
+  void Int(const char* key, int& field, long long min, long long max,
+           const char* doc) {
+    const std::string range =
+        "integer " + std::to_string(min) + " to " + std::to_string(max);
+    Add(key, "int", range, doc,
+        [&field, min, max, range](const std::string& text,
+                                  const std::string&) -> std::string {
+          errno = 0;
+          char* end = nullptr;
+          const long long value = std::strtoll(text.c_str(), &end, 10);
+          if (text.empty() || end == text.c_str() || *end != '\0')
+            return "is not an integer";
+          if (errno == ERANGE || value < min || value > max)
+            return "is out of range (allowed: " + range + ")";
+          field = static_cast<int>(value);
+          return "";
+        },
+        [&field] { return std::to_string(field); });
+  }
+
+  void Double(const char* key, double& field, double min, double max,
+              const char* doc) {
+    const std::string range = "number " + FormatDouble(min) + " to " + FormatDouble(max);
+    Add(key, "real", range, doc,
+        [&field, min, max, range](const std::string& text,
+                                  const std::string&) -> std::string {
+          errno = 0;
+          char* end = nullptr;
+          const double value = std::strtod(text.c_str(), &end);
+          if (text.empty() || end == text.c_str() || *end != '\0')
+            return "is not a number";
+          if (!std::isfinite(value)) return "is not a finite number";
+          if (value < min || value > max)
+            return "is out of range (allowed: " + range + ")";
+          field = value;
+          return "";
+        },
+        [&field] { return FormatDouble(field); });
+  }
+
+  void String(const char* key, std::string& field, const char* doc) {
+    Add(key, "string", "any text", doc,
+        [&field](const std::string& text, const std::string&) -> std::string {
+          field = text;
+          return "";
+        },
+        [&field] { return field; });
+  }
+
+  void Path(const char* key, std::string& field, const char* doc) {
+    Add(key, "path", "file path", doc,
+        [&field](const std::string& text, const std::string& base_dir) -> std::string {
+          if (text.empty()) return "is empty (a file path is needed)";
+          const std::filesystem::path path(text);
+          field = (path.is_relative() && !base_dir.empty())
+                      ? (std::filesystem::path(base_dir) / path).lexically_normal().string()
+                      : text;
+          return "";
+        },
+        [&field] { return field; });
+  }
+
+  void Choice(const char* key, std::string& field,
+              const std::vector<std::string>& choices, const char* doc) {
+    std::string range = "one of";
+    for (const std::string& c : choices) range += " " + c;
+    Add(key, "choice", range, doc,
+        [&field, choices, range](const std::string& text,
+                                 const std::string&) -> std::string {
+          for (const std::string& c : choices) {
+            if (c == text) {
+              field = text;
+              return "";
+            }
+          }
+          return "is not allowed (" + range + ")";
+        },
+        [&field] { return field; });
+  }
+
+ private:
+  void Add(const char* key, const char* type, std::string range,
+           const char* doc, decltype(Entry::set) set, decltype(Entry::get) get) {
+    entries.push_back(Entry{key, type, std::move(range), doc, section_,
+                            std::move(set), std::move(get)});
+  }
+  std::string section_;
+};
+
+std::vector<Entry> BindEntries(Parameters* params) {
+  EntryBinder binder;
+  params->Visit(binder);
+  return std::move(binder.entries);
+}
+
+const Entry* FindEntry(const std::vector<Entry>& entries, const std::string& key) {
+  for (const Entry& e : entries)
+    if (e.key == key) return &e;
+  return nullptr;
+}
+
+// Closest known key, for "did you mean" hints on typos.
+std::string ClosestKey(const std::vector<Entry>& entries, const std::string& key) {
+  auto distance = [](const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+      size_t diagonal = row[0];
+      row[0] = i;
+      for (size_t j = 1; j <= b.size(); ++j) {
+        const size_t above = row[j];
+        const bool same = std::tolower(a[i - 1]) == std::tolower(b[j - 1]);
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+        diagonal = above;
+      }
+    }
+    return row[b.size()];
+  };
+  std::string best;
+  size_t best_distance = 4;  // suggest only close matches
+  for (const Entry& e : entries) {
+    const size_t d = distance(key, e.key);
+    if (d < best_distance) {
+      best_distance = d;
+      best = e.key;
+    }
+  }
+  return best;
+}
+
+void SetValue(const std::vector<Entry>& entries, const std::string& key,
+              const std::string& value, const std::string& base_dir,
+              const ParameterOrigin& origin, DiagnosticList* diagnostics) {
+  const Entry* entry = FindEntry(entries, key);
+  if (entry == nullptr) {
+    std::string message = "unknown key '" + key + "'";
+    const std::string hint = ClosestKey(entries, key);
+    if (!hint.empty()) message += " (did you mean '" + hint + "'?)";
+    diagnostics->Add(origin.file, origin.line, key, message);
+    return;
+  }
+  const std::string problem = entry->set(value, base_dir);
+  if (!problem.empty()) {
+    diagnostics->Add(origin.file, origin.line, key,
+                     "value '" + value + "' " + problem);
+  }
+}
+
+std::string DirectoryOf(const std::string& file) {
+  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+  return parent.empty() ? std::string(".") : parent.string();
+}
+
+}  // namespace
+
+bool CommandLine::Has(const std::string& flag) const {
+  for (const std::string& f : flags)
+    if (f == flag) return true;
+  for (const auto& fv : flag_values)
+    if (fv.first == flag) return true;
+  return false;
+}
+
+std::string CommandLine::Value(const std::string& flag,
+                               const std::string& fallback) const {
+  for (auto it = flag_values.rbegin(); it != flag_values.rend(); ++it)
+    if (it->first == flag) return it->second;
+  return fallback;
+}
+
+CommandLine ParseCommandLine(int argc, const char* const* argv,
+                             const std::vector<FlagSpec>& process_flags) {
+  CommandLine result;
+  result.program = argc > 0 ? argv[0] : "simpartner";
+  DiagnosticList diagnostics;
+  auto find_flag = [&](const std::string& name) -> const FlagSpec* {
+    for (const FlagSpec& f : process_flags)
+      if (f.name == name) return &f;
+    return nullptr;
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const std::string where = "argument " + std::to_string(i) + " '" + arg + "'";
+    if (arg.rfind("--", 0) != 0 || arg.size() == 2) {
+      result.positional.push_back(arg);
+      continue;
+    }
+    const size_t eq = arg.find('=');
+    const std::string name = arg.substr(2, eq == std::string::npos ? std::string::npos : eq - 2);
+    const bool has_inline_value = eq != std::string::npos;
+    const std::string inline_value = has_inline_value ? arg.substr(eq + 1) : "";
+
+    // "--params FILE" and "--lcm-url URL" are common to every program.
+    if (name == "params" || name == "lcm-url") {
+      std::string value = inline_value;
+      if (!has_inline_value) {
+        if (i + 1 >= argc) {
+          diagnostics.Add(kCommandLine, 0, "--" + name, where + ": needs a value");
+          continue;
+        }
+        value = argv[++i];
+      }
+      if (name == "params") {
+        result.params_file = value;
+        result.params_file_given = true;
+      } else {
+        result.overrides.emplace_back("lcmUrl", value);
+      }
+      continue;
+    }
+    if (name == "help" && !has_inline_value) {
+      result.flags.push_back("help");
+      continue;
+    }
+    if (const FlagSpec* flag = find_flag(name)) {
+      if (flag->takes_value) {
+        std::string value = inline_value;
+        if (!has_inline_value) {
+          if (i + 1 >= argc) {
+            diagnostics.Add(kCommandLine, 0, "--" + name, where + ": needs a value");
+            continue;
+          }
+          value = argv[++i];
+        }
+        result.flag_values.emplace_back(name, value);
+      } else if (has_inline_value) {
+        diagnostics.Add(kCommandLine, 0, "--" + name, where + ": takes no value");
+      } else {
+        result.flags.push_back(name);
+      }
+      continue;
+    }
+    if (!has_inline_value) {
+      diagnostics.Add(kCommandLine, 0, "--" + name,
+                      where + ": unknown option (parameters are given as --key=value)");
+      continue;
+    }
+    result.overrides.emplace_back(name, inline_value);
+  }
+  if (!diagnostics.empty()) throw ConfigError(diagnostics);
+  return result;
+}
+
+void ParseParametersText(const std::string& text, const std::string& file_name,
+                         Parameters* params, DiagnosticList* diagnostics) {
+  const std::vector<Entry> entries = BindEntries(params);
+  const std::string base_dir = DirectoryOf(file_name);
+  std::map<std::string, int> line_of_key;
+  std::istringstream in(text);
+  std::string raw;
+  int line_number = 0;
+  while (std::getline(in, raw)) {
+    ++line_number;
+    const size_t hash = raw.find('#');
+    const std::string line = Trim(hash == std::string::npos ? raw : raw.substr(0, hash));
+    if (line.empty()) continue;
+    const size_t eq = line.find('=');
+    if (eq == std::string::npos) {
+      diagnostics->Add(file_name, line_number, "",
+                       "expected key=value, found '" + line + "'");
+      continue;
+    }
+    const std::string key = Trim(line.substr(0, eq));
+    const std::string value = Trim(line.substr(eq + 1));
+    if (key.empty()) {
+      diagnostics->Add(file_name, line_number, "", "missing key before '='");
+      continue;
+    }
+    const auto previous = line_of_key.find(key);
+    if (previous != line_of_key.end()) {
+      diagnostics->Add(file_name, line_number, key,
+                       "set twice (first at line " +
+                           std::to_string(previous->second) + ")");
+      continue;
+    }
+    line_of_key[key] = line_number;
+    SetValue(entries, key, value, base_dir, ParameterOrigin{file_name, line_number},
+             diagnostics);
+  }
+}
+
+Parameters LoadParameters(const CommandLine& command_line) {
+  Parameters params;
+  DiagnosticList diagnostics;
+  const std::string& file = command_line.params_file;
+  std::ifstream in(file, std::ios::binary);
+  if (in) {
+    std::ostringstream text;
+    text << in.rdbuf();
+    ParseParametersText(text.str(), file, &params, &diagnostics);
+  } else if (command_line.params_file_given) {
+    diagnostics.Add(file, 0, "", "cannot open parameters file");
+  }
+  const std::vector<Entry> entries = BindEntries(&params);
+  for (const auto& [key, value] : command_line.overrides) {
+    SetValue(entries, key, value, "", ParameterOrigin{kCommandLine, 0},
+             &diagnostics);
+  }
+  if (!diagnostics.empty()) throw ConfigError(diagnostics);
+  return params;
+}
+
+std::string FormatParameters(const Parameters& params) {
+  Parameters copy = params;
+  std::string out;
+  for (const Entry& e : BindEntries(&copy)) out += e.key + "=" + e.get() + "\n";
+  return out;
+}
+
+std::vector<std::string> ParameterKeys() {
+  Parameters params;
+  std::vector<std::string> keys;
+  for (const Entry& e : BindEntries(&params)) keys.push_back(e.key);
+  return keys;
+}
+
+std::string DescribeParameters() {
+  Parameters params;
+  std::string out;
+  std::string section;
+  for (const Entry& e : BindEntries(&params)) {
+    if (e.section != section) {
+      section = e.section;
+      out += "\n  " + section + ":\n";
+    }
+    out += "    " + e.key + "=" + e.get() + "\n        " + e.doc + " [" + e.range + "]\n";
+  }
+  return out;
+}
+
+std::string FormatUsage(const std::string& program, const std::string& summary,
+                        const std::vector<FlagSpec>& process_flags) {
+  std::string out = "Usage: " + program + " [options] [--key=value ...]\n\n" + summary +
+                    "\n\nOptions:\n";
+  auto line = [&out](const std::string& left, const std::string& help) {
+    std::string padded = "  " + left;
+    if (padded.size() < 28) padded.resize(28, ' ');
+    else padded += "  ";
+    out += padded + help + "\n";
+  };
+  line("--params FILE", "parameters file (default ./parameters.txt if it exists)");
+  line("--lcm-url URL", std::string("LCM URL (default ") + kDefaultLcmUrl + ")");
+  for (const FlagSpec& f : process_flags)
+    line("--" + f.name + (f.takes_value ? " VALUE" : ""), f.help);
+  line("--help", "show this text");
+  out += "\nParameters (key=default, in parameters.txt or as --key=value):\n";
+  out += DescribeParameters();
+  return out;
+}
+
+}  // namespace simpartner

@@ -1,0 +1,56 @@
+// Loads world and robot XML files: DTD validation (libxml2) first, then the
+// physics checks the DTD cannot express. Every problem is reported with
+// file, line and element; the loader keeps going to report all of them.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "simpartner/diagnostic.h"
+#include "simpartner/model/model.h"
+
+namespace simpartner::model {
+
+// Reads a file's bytes; returns false when it cannot. Injected so that tests
+// and fuzzers can load worlds whose robot files live in memory.
+using FileReader = std::function<bool(const std::string& path, std::string* contents)>;
+
+// Reads from the file system.
+bool ReadFileFromDisk(const std::string& path, std::string* contents);
+
+struct RobotLoadResult {
+  std::optional<Robot> robot;      // set only when there were no errors
+  DiagnosticList diagnostics;
+};
+
+struct WorldLoadResult {
+  std::optional<World> world;      // set only when there were no errors
+  DiagnosticList diagnostics;
+};
+
+// Parses robot XML text; file_name is used in messages.
+RobotLoadResult ParseRobot(const std::string& xml, const std::string& file_name);
+RobotLoadResult LoadRobotFile(const std::string& path,
+                              const FileReader& reader = ReadFileFromDisk);
+
+// Parses world XML text; robot files are resolved relative to file_name's
+// directory and read through reader.
+WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
+                           const FileReader& reader = ReadFileFromDisk);
+WorldLoadResult LoadWorldFile(const std::string& path,
+                              const FileReader& reader = ReadFileFromDisk);
+
+// Throwing forms for programs: ModelError lists every diagnostic.
+World LoadWorldOrThrow(const std::string& path);
+Robot LoadRobotOrThrow(const std::string& path);
+
+// The DTD texts built into the library (from models/dtd/).
+const std::string& WorldDtd();
+const std::string& RobotDtd();
+
+// Human summary of a world: per robot its bodies, joints, sensors,
+// actuators and total mass; the objects of the world.
+std::string DescribeWorld(const World& world);
+
+}  // namespace simpartner::model

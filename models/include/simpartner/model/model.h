@@ -1,0 +1,172 @@
+// The description of a world and its robots as loaded from XML: what the
+// files say, validated, in SI units. The physics process builds ODE objects
+// from it; nothing here changes while the simulation runs.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace simpartner::model {
+
+// Where an element was written, for messages that point at it later.
+struct SourceLocation {
+  std::string file;
+  int line = 0;
+};
+
+enum class GeometryKind { kNone, kBox, kSphere, kCylinder, kCapsule };
+enum class JointKind { kFixed, kHinge, kSlider, kBall, kUniversal, kHinge2 };
+enum class SensorKind { kEcho, kPosition, kScanner, kVelocity, kForceTorque };
+enum class ActuatorKind { kJointVelocity, kAngle, kLinearMotor };
+enum class CollisionSpaceKind { kSimple, kHash, kQuadTree };
+
+const char* ToString(GeometryKind kind);  // the XML type names: "Box", ...
+const char* ToString(JointKind kind);
+const char* ToString(SensorKind kind);
+const char* ToString(ActuatorKind kind);
+const char* ToString(CollisionSpaceKind kind);
+
+// Axes a joint kind can be driven along (0 for fixed and ball joints).
+int AxisCount(JointKind kind);
+
+struct Geometry {
+  GeometryKind kind = GeometryKind::kNone;
+  // Box: lx, ly, lz. Sphere: radius, 0, 0. Cylinder/Capsule: radius, length, 0.
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+};
+
+struct Material {
+  std::string name;
+  double mu = 1.0;                 // Coulomb friction
+  double bounce = 0.0;             // restitution 0..1
+  double bounce_velocity = 0.1;    // [m/s]
+  double soft_erp = 0.2;
+  double soft_cfm = 1e-5;
+  double rolling_friction = 0.0;   // [m]
+  SourceLocation where;
+};
+
+struct Body {
+  std::string name;
+  Geometry geometry;
+  std::string material;            // "" = default material
+  bool is_static = false;          // world objects only
+  double mass = 0.0;               // [kg]
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();  // [m] in the body frame
+  // [kg m^2] about the com, body axes; from the geometry when not given.
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  bool inertia_given = false;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // in the parent frame
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // [m/s]
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // [rad/s]
+  SourceLocation where;
+};
+
+struct Joint {
+  std::string name;
+  JointKind kind = JointKind::kFixed;
+  std::string body1;               // body name; "world" for the static world
+  std::string body2;
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();  // [m] in the parent frame
+  Eigen::Vector3d axis[2] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()};
+  // Stops per axis [rad] or [m]; infinite when free.
+  double lo_stop[3];
+  double hi_stop[3];
+  SourceLocation where;
+  Joint();
+};
+
+struct Sensor {
+  std::string name;
+  SensorKind kind = SensorKind::kEcho;
+  std::string body;                // mounting body ("" for a joint sensor)
+  std::string joint;               // force/torque: the measured joint
+  int port = 0;                    // legacy port (> 1024), 0 if none
+  Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  // in the body frame
+  double rate = 0.0;               // [Hz] readings on the bus; 0 = on request
+  // Scanner: rays, half-span [rad], range [m].
+  int rays = 11;
+  double half_span = 0.1;
+  double range = 10.0;
+  SourceLocation where;
+};
+
+struct Actuator {
+  std::string name;
+  ActuatorKind kind = ActuatorKind::kJointVelocity;
+  std::string joint;
+  int port = 0;
+  SourceLocation where;
+};
+
+// A robot as its file describes it, in the robot frame.
+struct Robot {
+  std::string model_name;          // the robot element's name attribute
+  std::string file;
+  std::string description;
+  std::vector<Material> materials;
+  std::vector<Body> bodies;
+  std::vector<Joint> joints;
+  std::vector<Sensor> sensors;
+  std::vector<Actuator> actuators;
+
+  double TotalMass() const;
+  const Body* FindBody(const std::string& name) const;
+  const Joint* FindJoint(const std::string& name) const;
+};
+
+// A robot placed in a world.
+struct RobotInstance {
+  std::string name;                // instance name (e.g. "WorkPartner")
+  std::string file;                // as written in the world file
+  std::string resolved_file;       // path the loader opened
+  Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
+  Robot robot;
+  SourceLocation where;
+};
+
+struct Heightfield {
+  int rows = 0;                    // samples along depth (z in a y-up world)
+  int columns = 0;                 // samples along width (x)
+  double width = 0.0;              // [m]
+  double depth = 0.0;              // [m]
+  double scale = 1.0;
+  double offset = 0.0;             // [m]
+  double thickness = 1.0;          // [m]
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  std::string material;
+  std::vector<double> samples;     // row-major, rows * columns
+  SourceLocation where;
+
+  // Height at (x, z) in the field's frame, linearly interpolated; clamped
+  // at the borders.
+  double HeightAt(double x, double z) const;
+};
+
+struct World {
+  std::string name;
+  std::string file;
+  std::string description;
+  Eigen::Vector3d gravity{0.0, -9.81, 0.0};
+  bool has_plane = false;
+  Eigen::Vector4d plane{0.0, 1.0, 0.0, 0.0};  // a, b, c (unit), d
+  std::string plane_material;
+  CollisionSpaceKind collision_space = CollisionSpaceKind::kHash;
+  std::vector<Material> materials;
+  std::optional<Heightfield> heightfield;
+  std::vector<Body> objects;
+  std::vector<Joint> joints;
+  std::vector<RobotInstance> robots;
+
+  // Unit vector opposite to gravity (+y when there is no gravity).
+  Eigen::Vector3d Up() const;
+  const Material* FindMaterial(const std::string& name) const;
+};
+
+// Inertia tensor of a uniform solid of the geometry's shape about its centre.
+// A point mass (kNone) gets the inertia of a solid sphere of radius 0.1 m.
+Eigen::Matrix3d SolidInertia(const Geometry& geometry, double mass);
+
+}  // namespace simpartner::model

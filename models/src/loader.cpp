@@ -1,0 +1,1025 @@
+#include "simpartner/model/loader.h"
+
+#include <Eigen/Eigenvalues>
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+#include <libxml/valid.h>
+#include <libxml/xmlerror.h>
+
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+
+#include "dtd_texts.h"  // generated: kWorldDtdText, kRobotDtdText
+
+namespace simpartner::model {
+namespace {
+
+constexpr double kOrthonormalTolerance = 1e-4;
+constexpr const char* kWorldBodyName = "world";
+
+std::string Trim(const std::string& s) {
+  const char* ws = " \t\r\n";
+  const size_t begin = s.find_first_not_of(ws);
+  if (begin == std::string::npos) return "";
+  return s.substr(begin, s.find_last_not_of(ws) - begin + 1);
+}
+
+std::string FormatNumber(double value) {
+  std::ostringstream out;
+  out.precision(10);
+  out << value;
+  return out.str();
+}
+
+// libxml2 reports parse and validation errors through a callback; while a
+// ScopedXmlErrors lives they go into a DiagnosticList instead of stderr.
+// libxml2 keeps the handler per thread, and the destructor restores it.
+class ScopedXmlErrors {
+ public:
+  ScopedXmlErrors(const std::string& file_name, DiagnosticList* diagnostics)
+      : file_name_(file_name), diagnostics_(diagnostics) {
+    xmlSetStructuredErrorFunc(this, &ScopedXmlErrors::OnError);
+    xmlSetGenericErrorFunc(this, &ScopedXmlErrors::OnGenericError);
+  }
+  ~ScopedXmlErrors() {
+    xmlSetStructuredErrorFunc(nullptr, nullptr);
+    xmlSetGenericErrorFunc(nullptr, nullptr);
+  }
+  ScopedXmlErrors(const ScopedXmlErrors&) = delete;
+  ScopedXmlErrors& operator=(const ScopedXmlErrors&) = delete;
+
+ private:
+  static void OnError(void* self_ptr, xmlErrorPtr error) {
+    auto* self = static_cast<ScopedXmlErrors*>(self_ptr);
+    if (error == nullptr || error->level == XML_ERR_WARNING) return;
+    std::string message = Trim(error->message != nullptr ? error->message : "XML error");
+    std::string element;
+    if (error->node != nullptr) {
+      const auto* node = static_cast<const xmlNode*>(error->node);
+      if (node->type == XML_ELEMENT_NODE && node->name != nullptr)
+        element = reinterpret_cast<const char*>(node->name);
+    }
+    self->diagnostics_->Add(self->file_name_, error->line, element, message);
+  }
+  // Messages without structure (rare); kept so nothing reaches stderr.
+  static void OnGenericError(void*, const char*, ...) {}
+
+  std::string file_name_;
+  DiagnosticList* diagnostics_;
+};
+
+struct XmlDocFree {
+  void operator()(xmlDoc* doc) const { xmlFreeDoc(doc); }
+};
+struct XmlDtdFree {
+  void operator()(xmlDtd* dtd) const { xmlFreeDtd(dtd); }
+};
+struct XmlValidCtxtFree {
+  void operator()(xmlValidCtxt* ctxt) const { xmlFreeValidCtxt(ctxt); }
+};
+using XmlDocPtr = std::unique_ptr<xmlDoc, XmlDocFree>;
+
+// Parses xml and validates it against dtd_text. Returns null (with
+// diagnostics) when the text is not well-formed or not valid.
+XmlDocPtr ParseAndValidate(const std::string& xml, const std::string& file_name,
+                           const std::string& dtd_text, const char* root_name,
+                           DiagnosticList* diagnostics) {
+  ScopedXmlErrors capture(file_name, diagnostics);
+  if (xml.size() > static_cast<size_t>(INT_MAX)) {
+    diagnostics->Add(file_name, 0, "", "file is too large");
+    return nullptr;
+  }
+  // NONET: never fetch anything; no DTDLOAD/NOENT: a file cannot pull in
+  // other files or expand entities.
+  XmlDocPtr doc(xmlReadMemory(xml.data(), static_cast<int>(xml.size()), file_name.c_str(),
+                              nullptr, XML_PARSE_NONET | XML_PARSE_BIG_LINES));
+  if (doc == nullptr) {
+    if (diagnostics->empty()) diagnostics->Add(file_name, 0, "", "not a well-formed XML file");
+    return nullptr;
+  }
+  const xmlNode* root = xmlDocGetRootElement(doc.get());
+  if (root == nullptr) {
+    diagnostics->Add(file_name, 0, "", "no root element");
+    return nullptr;
+  }
+  if (std::string(reinterpret_cast<const char*>(root->name)) != root_name) {
+    diagnostics->Add(file_name, xmlGetLineNo(root), reinterpret_cast<const char*>(root->name),
+                     std::string("root element must be <") + root_name + ">");
+    return nullptr;
+  }
+  // Declarations in the file itself would change what the DTD allows.
+  if (doc->intSubset != nullptr && doc->intSubset->children != nullptr) {
+    diagnostics->Add(file_name, 0, "DOCTYPE",
+                     "declarations inside the file are not allowed; files are "
+                     "validated against SimPartner's own DTD");
+    return nullptr;
+  }
+  xmlParserInputBufferPtr buffer = xmlParserInputBufferCreateMem(
+      dtd_text.data(), static_cast<int>(dtd_text.size()), XML_CHAR_ENCODING_NONE);
+  std::unique_ptr<xmlDtd, XmlDtdFree> dtd(
+      xmlIOParseDTD(nullptr, buffer, XML_CHAR_ENCODING_NONE));  // takes buffer
+  if (dtd == nullptr) {
+    diagnostics->Add(file_name, 0, "", "internal error: the built-in DTD does not parse");
+    return nullptr;
+  }
+  std::unique_ptr<xmlValidCtxt, XmlValidCtxtFree> validation(xmlNewValidCtxt());
+  const size_t before = diagnostics->size();
+  const int valid = xmlValidateDtd(validation.get(), doc.get(), dtd.get());
+  if (!valid) {
+    if (diagnostics->size() == before)
+      diagnostics->Add(file_name, 0, "", "does not follow the DTD");
+    return nullptr;
+  }
+  return doc;
+}
+
+// Walks a validated document and reports semantic problems with lines.
+class Reader {
+ public:
+  Reader(std::string file_name, DiagnosticList* diagnostics)
+      : file_(std::move(file_name)), diagnostics_(diagnostics) {}
+
+  const std::string& file() const { return file_; }
+  SourceLocation Where(const xmlNode* node) const {
+    return SourceLocation{file_, node ? static_cast<int>(xmlGetLineNo(node)) : 0};
+  }
+  void Error(const xmlNode* node, const std::string& message) {
+    diagnostics_->Add(file_, node ? static_cast<int>(xmlGetLineNo(node)) : 0,
+                      node ? Name(node) : std::string(), message);
+  }
+  void ErrorAt(const SourceLocation& where, const std::string& element,
+               const std::string& message) {
+    diagnostics_->Add(where.file, where.line, element, message);
+  }
+  size_t ErrorCount() const { return diagnostics_->size(); }
+
+  static std::string Name(const xmlNode* node) {
+    return node && node->name ? reinterpret_cast<const char*>(node->name) : "";
+  }
+  static const xmlNode* Child(const xmlNode* parent, const char* name) {
+    if (parent == nullptr) return nullptr;
+    for (const xmlNode* n = parent->children; n != nullptr; n = n->next)
+      if (n->type == XML_ELEMENT_NODE && Name(n) == name) return n;
+    return nullptr;
+  }
+  static std::vector<const xmlNode*> Children(const xmlNode* parent, const char* name) {
+    std::vector<const xmlNode*> out;
+    if (parent == nullptr) return out;
+    for (const xmlNode* n = parent->children; n != nullptr; n = n->next)
+      if (n->type == XML_ELEMENT_NODE && (name == nullptr || Name(n) == name)) out.push_back(n);
+    return out;
+  }
+  static std::string Text(const xmlNode* node) {
+    if (node == nullptr) return "";
+    xmlChar* content = xmlNodeGetContent(node);
+    std::string text = content ? reinterpret_cast<const char*>(content) : "";
+    xmlFree(content);
+    return Trim(text);
+  }
+  static std::optional<std::string> Attribute(const xmlNode* node, const char* name) {
+    if (node == nullptr) return std::nullopt;
+    xmlChar* value = xmlGetProp(node, reinterpret_cast<const xmlChar*>(name));
+    if (value == nullptr) return std::nullopt;
+    std::string text = reinterpret_cast<const char*>(value);
+    xmlFree(value);
+    return text;
+  }
+
+  // A finite number from the element's text; reports and returns nullopt
+  // otherwise. what names the quantity for the message.
+  std::optional<double> Number(const xmlNode* node, const std::string& what) {
+    if (node == nullptr) return std::nullopt;
+    const std::string text = Text(node);
+    char* end = nullptr;
+    errno = 0;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || end == text.c_str() || *end != '\0') {
+      Error(node, what + ": '" + text + "' is not a number");
+      return std::nullopt;
+    }
+    if (!std::isfinite(value)) {
+      Error(node, what + ": '" + text + "' is not a finite number");
+      return std::nullopt;
+    }
+    return value;
+  }
+
+  // Number of child `name`, or fallback when the child is absent.
+  double NumberOr(const xmlNode* parent, const char* name, double fallback,
+                  const std::string& what, bool* ok) {
+    const xmlNode* child = Child(parent, name);
+    if (child == nullptr) return fallback;
+    const auto value = Number(child, what + " " + name);
+    if (!value) {
+      *ok = false;
+      return fallback;
+    }
+    return *value;
+  }
+
+  std::optional<Eigen::Vector3d> Vector(const xmlNode* node, const char* cx, const char* cy,
+                                        const char* cz, const std::string& what) {
+    if (node == nullptr) return std::nullopt;
+    const auto x = Number(Child(node, cx), what + " " + cx);
+    const auto y = Number(Child(node, cy), what + " " + cy);
+    const auto z = Number(Child(node, cz), what + " " + cz);
+    if (!x || !y || !z) return std::nullopt;
+    return Eigen::Vector3d(*x, *y, *z);
+  }
+  std::optional<Eigen::Vector3d> Vector(const xmlNode* node, const std::string& what) {
+    return Vector(node, "x", "y", "z", what);
+  }
+
+  // The original's 3x4 transformation; the rotation part must be a proper
+  // rotation (orthonormal, det +1) within kOrthonormalTolerance, and is
+  // re-orthonormalised so that rounded values in files do not shear bodies.
+  std::optional<Eigen::Isometry3d> Transformation(const xmlNode* node, const std::string& what) {
+    if (node == nullptr) return std::nullopt;
+    Eigen::Matrix<double, 3, 4> t;
+    bool ok = true;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        const std::string tag = "T" + std::to_string(r) + std::to_string(c);
+        const auto value = Number(Child(node, tag.c_str()), what + " " + tag);
+        if (!value) {
+          ok = false;
+          continue;
+        }
+        t(r, c) = *value;
+      }
+    }
+    if (!ok) return std::nullopt;
+    const Eigen::Matrix3d rotation = t.leftCols<3>();
+    const double error = (rotation.transpose() * rotation - Eigen::Matrix3d::Identity())
+                             .cwiseAbs().maxCoeff();
+    if (error > kOrthonormalTolerance || rotation.determinant() < 0) {
+      std::ostringstream message;
+      message << what << ": rotation part T00..T22 is not a rotation matrix "
+              << "(|R^T R - I| = " << FormatNumber(error) << ", det = "
+              << FormatNumber(rotation.determinant()) << ")";
+      Error(node, message.str());
+      return std::nullopt;
+    }
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = Eigen::Quaterniond(rotation).normalized().toRotationMatrix();
+    pose.translation() = t.col(3);
+    return pose;
+  }
+
+ private:
+  std::string file_;
+  DiagnosticList* diagnostics_;
+};
+
+std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node) {
+  Material m;
+  m.name = Reader::Attribute(node, "name").value_or("");
+  m.where = reader.Where(node);
+  const std::string what = "material '" + m.name + "'";
+  bool ok = true;
+  m.mu = reader.NumberOr(node, "mu", m.mu, what, &ok);
+  m.bounce = reader.NumberOr(node, "bounce", m.bounce, what, &ok);
+  m.bounce_velocity = reader.NumberOr(node, "bounceVelocity", m.bounce_velocity, what, &ok);
+  m.soft_erp = reader.NumberOr(node, "softERP", m.soft_erp, what, &ok);
+  m.soft_cfm = reader.NumberOr(node, "softCFM", m.soft_cfm, what, &ok);
+  m.rolling_friction = reader.NumberOr(node, "rollingFriction", m.rolling_friction, what, &ok);
+  auto range = [&](double value, double lo, double hi, const char* field) {
+    if (value < lo || value > hi) {
+      reader.Error(Reader::Child(node, field) ? Reader::Child(node, field) : node,
+                   what + ": " + field + " " + FormatNumber(value) + " is out of range [" +
+                       FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
+      ok = false;
+    }
+  };
+  range(m.mu, 0.0, 1e6, "mu");
+  range(m.bounce, 0.0, 1.0, "bounce");
+  range(m.bounce_velocity, 0.0, 1e6, "bounceVelocity");
+  range(m.soft_erp, 0.0, 1.0, "softERP");
+  range(m.soft_cfm, 0.0, 1.0, "softCFM");
+  range(m.rolling_friction, 0.0, 1.0, "rollingFriction");
+  if (!ok) return std::nullopt;
+  return m;
+}
+
+GeometryKind ParseGeometryKind(const std::string& type) {
+  if (type == "Box") return GeometryKind::kBox;
+  if (type == "Sphere") return GeometryKind::kSphere;
+  if (type == "Cylinder") return GeometryKind::kCylinder;
+  if (type == "Capsule") return GeometryKind::kCapsule;
+  return GeometryKind::kNone;
+}
+
+// Reads <body> (robot) or <object> (world). Returns nullopt after
+// reporting when anything is wrong.
+std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* kind_word) {
+  Body body;
+  body.name = Reader::Attribute(node, "name").value_or("");
+  body.where = reader.Where(node);
+  body.material = Reader::Attribute(node, "material").value_or("");
+  body.is_static = Reader::Attribute(node, "static").value_or("false") == "true";
+  body.geometry.kind = ParseGeometryKind(Reader::Attribute(node, "type").value_or("Body"));
+  const std::string what = std::string(kind_word) + " '" + body.name + "'";
+  const size_t errors_before = reader.ErrorCount();
+
+  if (body.name == kWorldBodyName)
+    reader.Error(node, what + ": the name 'world' is reserved for the static world");
+
+  const xmlNode* mass = Reader::Child(node, "mass");
+  if (mass != nullptr) {
+    if (const auto m = reader.Number(mass, what + " mass")) {
+      if (*m <= 0.0)
+        reader.Error(mass, what + ": mass must be positive, got " + FormatNumber(*m));
+      body.mass = *m;
+    }
+  } else if (!body.is_static) {
+    reader.Error(node, what + ": a moving body needs <mass>");
+  }
+
+  // Geometry dimensions by kind.
+  const xmlNode* size = Reader::Child(node, "size");
+  const xmlNode* radius = Reader::Child(node, "radius");
+  const xmlNode* length = Reader::Child(node, "length");
+  auto positive = [&](const xmlNode* n, const std::string& field) -> double {
+    const auto v = reader.Number(n, what + " " + field);
+    if (!v) return 0.0;
+    if (*v <= 0.0)
+      reader.Error(n, what + ": " + field + " must be positive, got " + FormatNumber(*v));
+    return *v;
+  };
+  auto forbid = [&](const xmlNode* n, const char* field) {
+    if (n != nullptr)
+      reader.Error(n, what + ": a " + ToString(body.geometry.kind) + " has no <" + field + ">");
+  };
+  switch (body.geometry.kind) {
+    case GeometryKind::kNone:
+      forbid(size, "size");
+      forbid(radius, "radius");
+      forbid(length, "length");
+      if (body.is_static) reader.Error(node, what + ": a static object needs a shape");
+      break;
+    case GeometryKind::kBox:
+      if (size == nullptr) {
+        reader.Error(node, what + ": a Box needs <size>");
+      } else if (const auto s = reader.Vector(size, what + " size")) {
+        for (int i = 0; i < 3; ++i) {
+          if ((*s)[i] <= 0.0)
+            reader.Error(size, what + ": size " + "xyz"[i] + " must be positive, got " +
+                                   FormatNumber((*s)[i]));
+        }
+        body.geometry.size = *s;
+      }
+      forbid(radius, "radius");
+      forbid(length, "length");
+      break;
+    case GeometryKind::kSphere:
+      if (radius == nullptr) reader.Error(node, what + ": a Sphere needs <radius>");
+      else body.geometry.size.x() = positive(radius, "radius");
+      forbid(size, "size");
+      forbid(length, "length");
+      break;
+    case GeometryKind::kCylinder:
+    case GeometryKind::kCapsule:
+      if (radius == nullptr || length == nullptr) {
+        reader.Error(node, what + ": a " + ToString(body.geometry.kind) +
+                               " needs <radius> and <length>");
+      } else {
+        body.geometry.size.x() = positive(radius, "radius");
+        body.geometry.size.y() = positive(length, "length");
+      }
+      forbid(size, "size");
+      break;
+  }
+
+  if (const xmlNode* com = Reader::Child(node, "centerOfMass")) {
+    if (const auto c = reader.Vector(com, what + " centerOfMass")) body.com = *c;
+  }
+  if (const xmlNode* inertia = Reader::Child(node, "inertia")) {
+    bool ok = true;
+    const double ixx = reader.NumberOr(inertia, "Ixx", 0.0, what + " inertia", &ok);
+    const double iyy = reader.NumberOr(inertia, "Iyy", 0.0, what + " inertia", &ok);
+    const double izz = reader.NumberOr(inertia, "Izz", 0.0, what + " inertia", &ok);
+    const double ixy = reader.NumberOr(inertia, "Ixy", 0.0, what + " inertia", &ok);
+    const double ixz = reader.NumberOr(inertia, "Ixz", 0.0, what + " inertia", &ok);
+    const double iyz = reader.NumberOr(inertia, "Iyz", 0.0, what + " inertia", &ok);
+    if (ok) {
+      body.inertia << ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz;
+      body.inertia_given = true;
+      // A physical inertia tensor is positive definite and its principal
+      // moments obey the triangle inequality.
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(body.inertia);
+      const Eigen::Vector3d p = solver.eigenvalues();
+      const double tolerance = 1e-9 * p.cwiseAbs().maxCoeff();
+      if (p.minCoeff() <= 0.0) {
+        reader.Error(inertia, what + ": inertia is not positive definite (principal moments " +
+                                  FormatNumber(p[0]) + ", " + FormatNumber(p[1]) + ", " +
+                                  FormatNumber(p[2]) + ")");
+      } else if (p[0] + p[1] < p[2] - tolerance) {
+        reader.Error(inertia, what + ": principal moments " + FormatNumber(p[0]) + ", " +
+                                  FormatNumber(p[1]) + ", " + FormatNumber(p[2]) +
+                                  " break the triangle inequality (no real body has them)");
+      }
+    }
+  }
+  if (const auto pose = reader.Transformation(Reader::Child(node, "transformation"),
+                                              what + " transformation")) {
+    body.pose = *pose;
+  }
+  if (const xmlNode* v = Reader::Child(node, "translationalVelocity")) {
+    if (const auto value = reader.Vector(v, "vx", "vy", "vz", what + " translationalVelocity"))
+      body.linear_velocity = *value;
+  }
+  if (const xmlNode* w = Reader::Child(node, "rotationalVelocity")) {
+    if (const auto value =
+            reader.Vector(w, "omegax", "omegay", "omegaz", what + " rotationalVelocity"))
+      body.angular_velocity = *value;
+  }
+  if (reader.ErrorCount() != errors_before) return std::nullopt;
+  if (!body.inertia_given) body.inertia = SolidInertia(body.geometry, body.mass);
+  return body;
+}
+
+JointKind ParseJointKind(const std::string& type) {
+  if (type == "Hinge") return JointKind::kHinge;
+  if (type == "Slider") return JointKind::kSlider;
+  if (type == "Ball") return JointKind::kBall;
+  if (type == "Universal") return JointKind::kUniversal;
+  if (type == "Hinge2") return JointKind::kHinge2;
+  return JointKind::kFixed;
+}
+
+// Reads a joint; body_exists says whether a name is a body it may join
+// (the world file allows "world").
+std::optional<Joint> ReadJoint(Reader& reader, const xmlNode* node,
+                               const std::function<bool(const std::string&)>& body_exists,
+                               const std::string& owner) {
+  Joint joint;
+  joint.name = Reader::Attribute(node, "name").value_or("");
+  joint.kind = ParseJointKind(Reader::Attribute(node, "type").value_or("Fixed"));
+  joint.where = reader.Where(node);
+  const std::string what = "joint '" + joint.name + "'";
+  const size_t errors_before = reader.ErrorCount();
+
+  const xmlNode* b1 = Reader::Child(node, "body1");
+  const xmlNode* b2 = Reader::Child(node, "body2");
+  joint.body1 = Reader::Text(b1);
+  joint.body2 = Reader::Text(b2);
+  if (!body_exists(joint.body1))
+    reader.Error(b1, what + ": body1 '" + joint.body1 + "' is not a body of " + owner);
+  if (!body_exists(joint.body2))
+    reader.Error(b2, what + ": body2 '" + joint.body2 + "' is not a body of " + owner);
+  if (joint.body1 == joint.body2)
+    reader.Error(b2, what + ": joins body '" + joint.body1 +
+                         "' to itself (a joint joins exactly two bodies)");
+
+  const int axes = AxisCount(joint.kind);
+  const xmlNode* anchor = Reader::Child(node, "anchor");
+  const bool needs_anchor = joint.kind != JointKind::kFixed && joint.kind != JointKind::kSlider;
+  if (anchor != nullptr) {
+    if (const auto a = reader.Vector(anchor, what + " anchor")) joint.anchor = *a;
+  } else if (needs_anchor) {
+    reader.Error(node, what + ": a " + ToString(joint.kind) + " joint needs <anchor>");
+  }
+  const char* axis_tags[2] = {"axis1", "axis2"};
+  for (int i = 0; i < 2; ++i) {
+    const xmlNode* axis = Reader::Child(node, axis_tags[i]);
+    if (i < axes) {
+      if (axis == nullptr) {
+        reader.Error(node, what + ": a " + ToString(joint.kind) + " joint needs <" +
+                               axis_tags[i] + ">");
+        continue;
+      }
+      if (const auto a = reader.Vector(axis, what + " " + axis_tags[i])) {
+        if (a->norm() < 1e-9) {
+          reader.Error(axis, what + ": " + axis_tags[i] + " has zero length");
+        } else {
+          joint.axis[i] = a->normalized();
+        }
+      }
+    } else if (axis != nullptr) {
+      reader.Error(axis, what + ": a " + ToString(joint.kind) + " joint has no <" +
+                             axis_tags[i] + ">");
+    }
+  }
+  if (axes == 2 && reader.ErrorCount() == errors_before &&
+      std::abs(joint.axis[0].dot(joint.axis[1])) > 1.0 - 1e-6) {
+    reader.Error(Reader::Child(node, "axis2"), what + ": axis1 and axis2 are parallel");
+  }
+  for (const xmlNode* limits : Reader::Children(node, "limits")) {
+    const int axis = std::atoi(Reader::Attribute(limits, "axis").value_or("1").c_str());
+    if (axis < 1 || axis > axes) {
+      reader.Error(limits, what + ": a " + ToString(joint.kind) + " joint has no axis " +
+                               std::to_string(axis) + " to limit");
+      continue;
+    }
+    const auto lo = reader.Number(Reader::Child(limits, "lo"), what + " limits lo");
+    const auto hi = reader.Number(Reader::Child(limits, "hi"), what + " limits hi");
+    if (!lo || !hi) continue;
+    if (*lo > *hi) {
+      reader.Error(limits, what + ": limits lo " + FormatNumber(*lo) + " > hi " +
+                               FormatNumber(*hi));
+      continue;
+    }
+    // ODE's angular stops only work within [-pi, pi].
+    const bool angular = joint.kind != JointKind::kSlider;
+    if (angular && (*lo < -M_PI || *hi > M_PI)) {
+      reader.Error(limits, what + ": angular limits [" + FormatNumber(*lo) + ", " +
+                               FormatNumber(*hi) + "] must lie within [-pi, pi]");
+      continue;
+    }
+    joint.lo_stop[axis - 1] = *lo;
+    joint.hi_stop[axis - 1] = *hi;
+  }
+  if (reader.ErrorCount() != errors_before) return std::nullopt;
+  return joint;
+}
+
+// Legacy port attribute: integer in (1024, 65535].
+std::optional<int> ReadPort(Reader& reader, const xmlNode* node, const std::string& what) {
+  const auto text = Reader::Attribute(node, "port");
+  if (!text) return 0;
+  char* end = nullptr;
+  errno = 0;
+  const long value = std::strtol(text->c_str(), &end, 10);
+  if (text->empty() || *end != '\0' || errno == ERANGE) {
+    reader.Error(node, what + ": port '" + *text + "' is not an integer");
+    return std::nullopt;
+  }
+  if (value <= 1024 || value > 65535) {
+    reader.Error(node, what + ": port " + *text + " is out of range (1025 to 65535)");
+    return std::nullopt;
+  }
+  return static_cast<int>(value);
+}
+
+SensorKind ParseSensorKind(const std::string& type) {
+  if (type == "Position") return SensorKind::kPosition;
+  if (type == "Scanner") return SensorKind::kScanner;
+  if (type == "Velocity") return SensorKind::kVelocity;
+  if (type == "ForceTorque") return SensorKind::kForceTorque;
+  return SensorKind::kEcho;
+}
+
+std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robot& robot) {
+  Sensor sensor;
+  sensor.name = Reader::Attribute(node, "name").value_or("");
+  sensor.kind = ParseSensorKind(Reader::Attribute(node, "type").value_or("Echo"));
+  sensor.where = reader.Where(node);
+  const std::string what = "sensor '" + sensor.name + "'";
+  const size_t errors_before = reader.ErrorCount();
+  if (const auto port = ReadPort(reader, node, what)) sensor.port = *port;
+
+  const xmlNode* body_ref = Reader::Child(node, "bodyRef");
+  const xmlNode* joint_ref = Reader::Child(node, "jointRef");
+  if (sensor.kind == SensorKind::kForceTorque) {
+    if (joint_ref == nullptr) {
+      reader.Error(node, what + ": a ForceTorque sensor measures a joint: it needs <jointRef>");
+    } else {
+      sensor.joint = Reader::Text(joint_ref);
+      const Joint* joint = robot.FindJoint(sensor.joint);
+      if (joint == nullptr) {
+        reader.Error(joint_ref, what + ": '" + sensor.joint + "' is not a joint of robot '" +
+                                    robot.model_name + "'");
+      } else {
+        sensor.body = joint->body2;
+      }
+    }
+  } else if (body_ref == nullptr) {
+    reader.Error(node, what + ": a " + ToString(sensor.kind) + " sensor needs <bodyRef>");
+  } else {
+    sensor.body = Reader::Text(body_ref);
+    if (robot.FindBody(sensor.body) == nullptr)
+      reader.Error(body_ref, what + ": '" + sensor.body + "' is not a body of robot '" +
+                                 robot.model_name + "'");
+  }
+  if (const xmlNode* t = Reader::Child(node, "transformation")) {
+    if (const auto mount = reader.Transformation(t, what + " transformation"))
+      sensor.mount = *mount;
+  }
+  if (const xmlNode* rate = Reader::Child(node, "rate")) {
+    if (const auto r = reader.Number(rate, what + " rate")) {
+      if (*r < 0.0 || *r > 10000.0)
+        reader.Error(rate, what + ": rate " + FormatNumber(*r) + " Hz is out of range [0, 10000]");
+      sensor.rate = *r;
+    }
+  }
+  std::set<std::string> seen;
+  for (const xmlNode* p : Reader::Children(node, "parameter")) {
+    const std::string name = Reader::Attribute(p, "name").value_or("");
+    if (sensor.kind != SensorKind::kScanner) {
+      reader.Error(p, what + ": a " + ToString(sensor.kind) + " sensor has no parameter '" +
+                          name + "'");
+      continue;
+    }
+    if (!seen.insert(name).second) {
+      reader.Error(p, what + ": parameter '" + name + "' is given twice");
+      continue;
+    }
+    const auto value = reader.Number(p, what + " parameter " + name);
+    if (!value) continue;
+    if (name == "rays") {
+      if (*value < 1 || *value > 10000 || *value != std::floor(*value))
+        reader.Error(p, what + ": rays must be a whole number from 1 to 10000, got " +
+                            FormatNumber(*value));
+      else
+        sensor.rays = static_cast<int>(*value);
+    } else if (name == "halfSpan") {
+      if (*value < 0.0 || *value > M_PI)
+        reader.Error(p, what + ": halfSpan " + FormatNumber(*value) +
+                            " rad is out of range [0, pi]");
+      else
+        sensor.half_span = *value;
+    } else if (name == "range") {
+      if (*value <= 0.0 || *value > 1e4)
+        reader.Error(p, what + ": range " + FormatNumber(*value) +
+                            " m is out of range (0, 10000]");
+      else
+        sensor.range = *value;
+    }
+  }
+  if (reader.ErrorCount() != errors_before) return std::nullopt;
+  return sensor;
+}
+
+ActuatorKind ParseActuatorKind(const std::string& type) {
+  if (type == "AngleController") return ActuatorKind::kAngle;
+  if (type == "LinearMotor") return ActuatorKind::kLinearMotor;
+  return ActuatorKind::kJointVelocity;
+}
+
+std::optional<Actuator> ReadActuator(Reader& reader, const xmlNode* node, const Robot& robot) {
+  Actuator actuator;
+  actuator.name = Reader::Attribute(node, "name").value_or("");
+  actuator.kind = ParseActuatorKind(Reader::Attribute(node, "type").value_or(""));
+  actuator.where = reader.Where(node);
+  const std::string what = "actuator '" + actuator.name + "'";
+  const size_t errors_before = reader.ErrorCount();
+  if (const auto port = ReadPort(reader, node, what)) actuator.port = *port;
+  const xmlNode* joint_ref = Reader::Child(node, "jointRef");
+  actuator.joint = Reader::Text(joint_ref);
+  const Joint* joint = robot.FindJoint(actuator.joint);
+  if (joint == nullptr) {
+    reader.Error(joint_ref, what + ": '" + actuator.joint + "' is not a joint of robot '" +
+                                robot.model_name + "'");
+  } else {
+    const bool rotational = joint->kind == JointKind::kHinge ||
+                            joint->kind == JointKind::kUniversal ||
+                            joint->kind == JointKind::kHinge2;
+    const bool fits = actuator.kind == ActuatorKind::kLinearMotor
+                          ? joint->kind == JointKind::kSlider
+                          : (actuator.kind == ActuatorKind::kAngle
+                                 ? rotational
+                                 : (rotational || joint->kind == JointKind::kSlider));
+    if (!fits)
+      reader.Error(joint_ref, what + ": a " + ToString(actuator.kind) + " cannot drive " +
+                                  ToString(joint->kind) + " joint '" + actuator.joint + "'");
+  }
+  if (reader.ErrorCount() != errors_before) return std::nullopt;
+  return actuator;
+}
+
+// Bodies not reachable from the first body through joints.
+void CheckConnected(Reader& reader, const Robot& robot) {
+  if (robot.bodies.empty()) return;
+  std::map<std::string, std::vector<std::string>> neighbours;
+  for (const Joint& j : robot.joints) {
+    neighbours[j.body1].push_back(j.body2);
+    neighbours[j.body2].push_back(j.body1);
+  }
+  std::set<std::string> reached = {robot.bodies.front().name};
+  std::vector<std::string> frontier = {robot.bodies.front().name};
+  while (!frontier.empty()) {
+    const std::string name = frontier.back();
+    frontier.pop_back();
+    for (const std::string& next : neighbours[name])
+      if (reached.insert(next).second) frontier.push_back(next);
+  }
+  for (const Body& b : robot.bodies) {
+    if (reached.count(b.name) == 0)
+      reader.ErrorAt(b.where, "body",
+                     "body '" + b.name + "' is not connected to '" + robot.bodies.front().name +
+                         "' by any chain of joints (a robot is one connected graph)");
+  }
+}
+
+void CheckUniquePorts(Reader& reader, const Robot& robot, std::map<int, std::string>* used,
+                      const std::string& prefix) {
+  auto check = [&](int port, const std::string& name, const SourceLocation& where,
+                   const char* element) {
+    if (port == 0) return;
+    const auto [it, inserted] = used->emplace(port, prefix + name);
+    if (!inserted)
+      reader.ErrorAt(where, element,
+                     std::string(element) + " '" + name + "': port " + std::to_string(port) +
+                         " is already used by '" + it->second + "'");
+  };
+  for (const Sensor& s : robot.sensors) check(s.port, s.name, s.where, "sensor");
+  for (const Actuator& a : robot.actuators) check(a.port, a.name, a.where, "actuator");
+}
+
+void CheckMaterialNames(Reader& reader, const std::vector<Body>& bodies,
+                        const std::function<bool(const std::string&)>& exists,
+                        const std::string& where_defined) {
+  for (const Body& b : bodies) {
+    if (!b.material.empty() && !exists(b.material))
+      reader.ErrorAt(b.where, "body",
+                     "'" + b.name + "': material '" + b.material + "' is not defined in " +
+                         where_defined);
+  }
+}
+
+}  // namespace
+
+bool ReadFileFromDisk(const std::string& path, std::string* contents) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream text;
+  text << in.rdbuf();
+  *contents = text.str();
+  return !in.bad();
+}
+
+const std::string& WorldDtd() {
+  static const std::string kText(kWorldDtdText);
+  return kText;
+}
+
+const std::string& RobotDtd() {
+  static const std::string kText(kRobotDtdText);
+  return kText;
+}
+
+RobotLoadResult ParseRobot(const std::string& xml, const std::string& file_name) {
+  RobotLoadResult result;
+  const XmlDocPtr doc = ParseAndValidate(xml, file_name, RobotDtd(), "robot", &result.diagnostics);
+  if (doc == nullptr) return result;
+  Reader reader(file_name, &result.diagnostics);
+  const xmlNode* root = xmlDocGetRootElement(doc.get());
+  Robot robot;
+  robot.file = file_name;
+  robot.model_name = Reader::Attribute(root, "name").value_or("");
+  robot.description = Reader::Text(Reader::Child(root, "description"));
+  for (const xmlNode* n : Reader::Children(root, "material"))
+    if (auto m = ReadMaterial(reader, n)) robot.materials.push_back(*m);
+  for (const xmlNode* n : Reader::Children(root, "body"))
+    if (auto b = ReadBody(reader, n, "body")) robot.bodies.push_back(*b);
+  // Body names come from the DTD-validated ID attributes, so a joint that
+  // names a body which failed its own checks is judged against all names.
+  std::set<std::string> body_names;
+  for (const xmlNode* n : Reader::Children(root, "body"))
+    body_names.insert(Reader::Attribute(n, "name").value_or(""));
+  const std::string owner = "robot '" + robot.model_name + "'";
+  for (const xmlNode* n : Reader::Children(root, "joint")) {
+    auto joint = ReadJoint(reader, n,
+                           [&](const std::string& name) { return body_names.count(name) > 0; },
+                           owner);
+    if (joint) robot.joints.push_back(*joint);
+  }
+  for (const xmlNode* n : Reader::Children(root, "sensor"))
+    if (auto s = ReadSensor(reader, n, robot)) robot.sensors.push_back(*s);
+  for (const xmlNode* n : Reader::Children(root, "actuator"))
+    if (auto a = ReadActuator(reader, n, robot)) robot.actuators.push_back(*a);
+  if (result.diagnostics.empty()) CheckConnected(reader, robot);
+  std::map<int, std::string> ports;
+  CheckUniquePorts(reader, robot, &ports, "");
+  if (result.diagnostics.empty()) result.robot = std::move(robot);
+  return result;
+}
+
+RobotLoadResult LoadRobotFile(const std::string& path, const FileReader& read) {
+  std::string xml;
+  if (!read(path, &xml)) {
+    RobotLoadResult result;
+    result.diagnostics.Add(path, 0, "", "cannot read robot file");
+    return result;
+  }
+  return ParseRobot(xml, path);
+}
+
+WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
+                           const FileReader& read) {
+  WorldLoadResult result;
+  const XmlDocPtr doc = ParseAndValidate(xml, file_name, WorldDtd(), "world", &result.diagnostics);
+  if (doc == nullptr) return result;
+  Reader reader(file_name, &result.diagnostics);
+  const xmlNode* root = xmlDocGetRootElement(doc.get());
+  World world;
+  world.file = file_name;
+  world.name = Reader::Attribute(root, "name").value_or("");
+  world.description = Reader::Text(Reader::Child(root, "description"));
+
+  if (const xmlNode* g = Reader::Child(root, "gravity")) {
+    if (const auto gravity = reader.Vector(g, "gravity")) {
+      world.gravity = *gravity;
+      if (gravity->norm() > 1e4)
+        reader.Error(g, "gravity of magnitude " + FormatNumber(gravity->norm()) +
+                            " m/s^2 is not plausible (at most 10000)");
+    }
+  }
+  if (const xmlNode* s = Reader::Child(root, "surface")) {
+    const auto a = reader.Number(Reader::Child(s, "a"), "surface a");
+    const auto b = reader.Number(Reader::Child(s, "b"), "surface b");
+    const auto c = reader.Number(Reader::Child(s, "c"), "surface c");
+    const auto d = reader.Number(Reader::Child(s, "d"), "surface d");
+    if (a && b && c && d) {
+      const Eigen::Vector3d normal(*a, *b, *c);
+      if (normal.norm() < 1e-9) {
+        reader.Error(s, "surface normal (a, b, c) has zero length");
+      } else {
+        world.has_plane = true;
+        world.plane << normal / normal.norm(), *d / normal.norm();
+      }
+    }
+    world.plane_material = Reader::Attribute(s, "material").value_or("");
+  }
+  if (const xmlNode* space = Reader::Child(root, "collisionSpace")) {
+    const std::string type = Reader::Attribute(space, "type").value_or("hash");
+    world.collision_space = type == "simple"     ? CollisionSpaceKind::kSimple
+                            : type == "quadtree" ? CollisionSpaceKind::kQuadTree
+                                                 : CollisionSpaceKind::kHash;
+  }
+  for (const xmlNode* n : Reader::Children(root, "material"))
+    if (auto m = ReadMaterial(reader, n)) world.materials.push_back(*m);
+
+  if (const xmlNode* h = Reader::Child(root, "heightfield")) {
+    Heightfield field;
+    field.where = reader.Where(h);
+    field.material = Reader::Attribute(h, "material").value_or("");
+    const size_t errors_before = reader.ErrorCount();
+    auto count = [&](const char* attribute) -> int {
+      const std::string text = Reader::Attribute(h, attribute).value_or("");
+      char* end = nullptr;
+      const long value = std::strtol(text.c_str(), &end, 10);
+      if (text.empty() || *end != '\0' || value < 2 || value > 100000) {
+        reader.Error(h, std::string("heightfield ") + attribute + " '" + text +
+                            "' must be a whole number from 2 to 100000");
+        return 0;
+      }
+      return static_cast<int>(value);
+    };
+    field.rows = count("rows");
+    field.columns = count("columns");
+    auto positive = [&](const char* tag) -> double {
+      const auto v = reader.Number(Reader::Child(h, tag), std::string("heightfield ") + tag);
+      if (v && *v <= 0.0)
+        reader.Error(Reader::Child(h, tag), std::string("heightfield ") + tag +
+                                                " must be positive, got " + FormatNumber(*v));
+      return v.value_or(0.0);
+    };
+    field.width = positive("width");
+    field.depth = positive("depth");
+    bool ok = true;
+    field.scale = reader.NumberOr(h, "scale", 1.0, "heightfield", &ok);
+    field.offset = reader.NumberOr(h, "offset", 0.0, "heightfield", &ok);
+    field.thickness = reader.NumberOr(h, "thickness", 1.0, "heightfield", &ok);
+    if (field.thickness <= 0.0)
+      reader.Error(Reader::Child(h, "thickness"), "heightfield thickness must be positive");
+    if (const xmlNode* p = Reader::Child(h, "position")) {
+      if (const auto position = reader.Vector(p, "heightfield position")) field.position = *position;
+    }
+    const xmlNode* samples = Reader::Child(h, "samples");
+    std::istringstream in(Reader::Text(samples));
+    std::string token;
+    while (in >> token) {
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      if (*end != '\0' || !std::isfinite(value)) {
+        reader.Error(samples, "heightfield sample " + std::to_string(field.samples.size() + 1) +
+                                  " '" + token + "' is not a finite number");
+        break;
+      }
+      field.samples.push_back(value);
+    }
+    const size_t expected = static_cast<size_t>(field.rows) * static_cast<size_t>(field.columns);
+    if (reader.ErrorCount() == errors_before && field.samples.size() != expected) {
+      reader.Error(samples, "heightfield has " + std::to_string(field.samples.size()) +
+                                " samples; rows x columns = " + std::to_string(field.rows) +
+                                " x " + std::to_string(field.columns) + " needs " +
+                                std::to_string(expected));
+    }
+    if (reader.ErrorCount() == errors_before) world.heightfield = std::move(field);
+  }
+
+  for (const xmlNode* n : Reader::Children(root, "object"))
+    if (auto b = ReadBody(reader, n, "object")) world.objects.push_back(*b);
+  std::set<std::string> object_names;
+  for (const xmlNode* n : Reader::Children(root, "object"))
+    object_names.insert(Reader::Attribute(n, "name").value_or(""));
+  for (const xmlNode* n : Reader::Children(root, "joint")) {
+    auto joint = ReadJoint(reader, n,
+                           [&](const std::string& name) {
+                             return name == kWorldBodyName || object_names.count(name) > 0;
+                           },
+                           "the world (objects or 'world')");
+    if (joint) world.joints.push_back(*joint);
+  }
+
+  // Robots: each file is loaded and its diagnostics kept as they are
+  // (pointing into the robot file), plus one line at the placing element.
+  const std::filesystem::path base = std::filesystem::path(file_name).parent_path();
+  std::map<int, std::string> ports;
+  for (const xmlNode* n : Reader::Children(root, "robot")) {
+    RobotInstance instance;
+    instance.name = Reader::Attribute(n, "name").value_or("");
+    instance.file = Reader::Attribute(n, "file").value_or("");
+    instance.where = reader.Where(n);
+    const std::filesystem::path path(instance.file);
+    instance.resolved_file =
+        (path.is_relative() ? (base / path).lexically_normal() : path).string();
+    if (const xmlNode* t = Reader::Child(n, "transformation")) {
+      if (const auto placement =
+              reader.Transformation(t, "robot '" + instance.name + "' transformation"))
+        instance.placement = *placement;
+    }
+    RobotLoadResult loaded = LoadRobotFile(instance.resolved_file, read);
+    if (!loaded.robot) {
+      reader.Error(n, "robot '" + instance.name + "': cannot load '" + instance.file + "' (" +
+                          std::to_string(loaded.diagnostics.size()) + " problem" +
+                          (loaded.diagnostics.size() == 1 ? "" : "s") + ")");
+      result.diagnostics.Append(loaded.diagnostics);
+      continue;
+    }
+    instance.robot = std::move(*loaded.robot);
+    CheckUniquePorts(reader, instance.robot, &ports, instance.name + "/");
+    world.robots.push_back(std::move(instance));
+  }
+
+  // Materials: robots may define their own; the world's definitions win.
+  for (const RobotInstance& r : world.robots) {
+    for (const Material& m : r.robot.materials)
+      if (world.FindMaterial(m.name) == nullptr) world.materials.push_back(m);
+  }
+  auto material_exists = [&](const std::string& name) {
+    return world.FindMaterial(name) != nullptr;
+  };
+  CheckMaterialNames(reader, world.objects, material_exists, "the world");
+  for (const RobotInstance& r : world.robots)
+    CheckMaterialNames(reader, r.robot.bodies, material_exists, "the world or the robot");
+  if (!world.plane_material.empty() && !material_exists(world.plane_material))
+    reader.Error(Reader::Child(root, "surface"),
+                 "surface material '" + world.plane_material + "' is not defined");
+  if (world.heightfield && !world.heightfield->material.empty() &&
+      !material_exists(world.heightfield->material))
+    reader.Error(Reader::Child(root, "heightfield"),
+                 "heightfield material '" + world.heightfield->material + "' is not defined");
+
+  if (result.diagnostics.empty()) result.world = std::move(world);
+  return result;
+}
+
+WorldLoadResult LoadWorldFile(const std::string& path, const FileReader& read) {
+  std::string xml;
+  if (!read(path, &xml)) {
+    WorldLoadResult result;
+    result.diagnostics.Add(path, 0, "", "cannot read world file");
+    return result;
+  }
+  return ParseWorld(xml, path, read);
+}
+
+World LoadWorldOrThrow(const std::string& path) {
+  WorldLoadResult result = LoadWorldFile(path);
+  if (!result.world) throw ModelError(result.diagnostics);
+  return std::move(*result.world);
+}
+
+Robot LoadRobotOrThrow(const std::string& path) {
+  RobotLoadResult result = LoadRobotFile(path);
+  if (!result.robot) throw ModelError(result.diagnostics);
+  return std::move(*result.robot);
+}
+
+std::string DescribeWorld(const World& world) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(3);
+  out << "world '" << world.name << "' (" << world.file << ")\n";
+  out << "  gravity " << world.gravity.x() << " " << world.gravity.y() << " "
+      << world.gravity.z() << " m/s^2, collision space " << ToString(world.collision_space)
+      << (world.has_plane ? ", ground plane" : "")
+      << (world.heightfield ? ", heightfield " + std::to_string(world.heightfield->rows) + "x" +
+                                  std::to_string(world.heightfield->columns)
+                            : std::string())
+      << "\n";
+  double object_mass = 0.0;
+  for (const Body& b : world.objects) object_mass += b.mass;
+  out << "  objects: " << world.objects.size() << " (" << object_mass << " kg), joints: "
+      << world.joints.size() << ", materials: " << world.materials.size() << "\n";
+  for (const RobotInstance& r : world.robots) {
+    out << "  robot '" << r.name << "' = " << r.robot.model_name << " (" << r.resolved_file
+        << ")\n";
+    out << "    bodies: " << r.robot.bodies.size() << ", joints: " << r.robot.joints.size()
+        << ", sensors: " << r.robot.sensors.size() << ", actuators: "
+        << r.robot.actuators.size() << ", total mass: " << r.robot.TotalMass() << " kg\n";
+  }
+  return out.str();
+}
+
+}  // namespace simpartner::model

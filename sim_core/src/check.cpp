@@ -1,0 +1,20 @@
+#include "simpartner/sim/check.h"
+
+namespace simpartner::sim {
+
+const std::vector<FlagSpec>& SimFlags() {
+  static const std::vector<FlagSpec> kFlags = {
+      {"check", false,
+       "load and validate the parameters, the world and its robots, print a "
+       "summary and exit (0 = all good)"},
+  };
+  return kFlags;
+}
+
+const char* SimSummary() {
+  return "The SimPartner physics process: loads the parameters, the world "
+         "(parameter 'environment') and its robots, steps ODE at a fixed step "
+         "and serves the simulation over LCM.";
+}
+
+}  // namespace simpartner::sim
