@@ -1,5 +1,7 @@
 #include "simpartner/parameters.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -192,7 +194,8 @@ std::string ClosestKey(const std::vector<Entry>& entries, const std::string& key
     return row[b.size()];
   };
   std::string best;
-  size_t best_distance = 4;  // suggest only close matches
+  // Suggest only close matches: about one edit per three characters.
+  size_t best_distance = std::max<size_t>(2, key.size() / 3 + 1);
   for (const Entry& e : entries) {
     const size_t d = distance(key, e.key);
     if (d < best_distance) {

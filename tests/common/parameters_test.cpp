@@ -2,10 +2,208 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
 namespace simpartner {
 namespace {
 
-TEST(Parameters, Placeholder) { EXPECT_EQ(Parameters().stepsize, 0.001); }
+// Parses text and returns the diagnostics.
+DiagnosticList Parse(const std::string& text, Parameters* params) {
+  DiagnosticList diagnostics;
+  ParseParametersText(text, "p.txt", params, &diagnostics);
+  return diagnostics;
+}
+
+bool HasDiagnostic(const DiagnosticList& list, int line, const std::string& key,
+                   const std::string& text) {
+  for (const Diagnostic& d : list.items())
+    if (d.line == line && d.element == key && d.message.find(text) != std::string::npos)
+      return true;
+  return false;
+}
+
+TEST(Parameters, OriginalKeysAndValues) {
+  Parameters params;
+  const DiagnosticList d = Parse(
+      "# a comment\n"
+      "dbname=wp\n"
+      "dbserver = localhost\n"
+      "log=0\n"
+      "logEveryStep=1   # trailing comment\n"
+      "environment=worlds/maze.xml\n"
+      "stepsize=0.005\n"
+      "contactMaxCorrectingVel=0.3\n"
+      "contactSurfaceLayer=0.001\n"
+      "autoDisableFlag=1\n"
+      "globalERP=0.5\n"
+      "globalCFM=1e-6\n"
+      "stepper=quick\n",
+      &params);
+  ASSERT_TRUE(d.empty()) << d.Format();
+  EXPECT_EQ(params.dbname, "wp");
+  EXPECT_EQ(params.dbserver, "localhost");
+  EXPECT_FALSE(params.log);
+  EXPECT_TRUE(params.logEveryStep);
+  // Relative paths are relative to the parameters file ("p.txt" is in ".").
+  EXPECT_EQ(params.environment, "worlds/maze.xml");
+  EXPECT_DOUBLE_EQ(params.stepsize, 0.005);
+  EXPECT_DOUBLE_EQ(params.contactMaxCorrectingVel, 0.3);
+  EXPECT_DOUBLE_EQ(params.contactSurfaceLayer, 0.001);
+  EXPECT_TRUE(params.autoDisableFlag);
+  EXPECT_DOUBLE_EQ(params.globalERP, 0.5);
+  EXPECT_DOUBLE_EQ(params.globalCFM, 1e-6);
+  EXPECT_EQ(params.stepper, "quick");
+}
+
+TEST(Parameters, ErrorsNameFileLineKeyAndRange) {
+  Parameters params;
+  const DiagnosticList d = Parse(
+      "stepsize=0.5\n"         // out of range
+      "globalERP=abc\n"        // not a number
+      "stepSize=0.01\n"        // unknown (typo)
+      "log=maybe\n"            // not a boolean
+      "quickStepIterations=2.5\n"  // not an integer
+      "stepper=fast\n"         // not a choice
+      "just some words\n"      // no '='
+      "globalCFM=nan\n"        // not finite
+      "stepsize=0.002\n",      // set twice (first at line 1)
+      &params);
+  EXPECT_EQ(d.size(), 9u) << d.Format();
+  EXPECT_TRUE(HasDiagnostic(d, 1, "stepsize", "'0.5' is out of range (allowed: number 1e-05 to 0.1)"))
+      << d.Format();
+  EXPECT_TRUE(HasDiagnostic(d, 2, "globalERP", "'abc' is not a number")) << d.Format();
+  EXPECT_TRUE(HasDiagnostic(d, 3, "stepSize", "did you mean 'stepsize'")) << d.Format();
+  EXPECT_TRUE(HasDiagnostic(d, 4, "log", "not a boolean")) << d.Format();
+  EXPECT_TRUE(HasDiagnostic(d, 5, "quickStepIterations", "not an integer")) << d.Format();
+  EXPECT_TRUE(HasDiagnostic(d, 6, "stepper", "one of accurate quick")) << d.Format();
+  EXPECT_TRUE(HasDiagnostic(d, 7, "", "expected key=value")) << d.Format();
+  EXPECT_TRUE(HasDiagnostic(d, 8, "globalCFM", "not a finite number")) << d.Format();
+  EXPECT_TRUE(HasDiagnostic(d, 9, "stepsize", "set twice (first at line 1)")) << d.Format();
+  // Bad lines change nothing.
+  EXPECT_DOUBLE_EQ(params.stepsize, Parameters().stepsize);
+  EXPECT_DOUBLE_EQ(params.globalERP, Parameters().globalERP);
+  // The formatted message has the compiler-like location prefix.
+  EXPECT_EQ(d.items()[0].Format(),
+            "p.txt:1: stepsize: value '0.5' is out of range (allowed: number 1e-05 to 0.1)");
+}
+
+TEST(Parameters, RangeEdgesAreInclusive) {
+  Parameters params;
+  EXPECT_TRUE(Parse("globalERP=0\n", &params).empty());
+  EXPECT_TRUE(Parse("globalERP=1\n", &params).empty());
+  EXPECT_FALSE(Parse("globalERP=1.0000001\n", &params).empty());
+  EXPECT_FALSE(Parse("globalERP=-0.0000001\n", &params).empty());
+  EXPECT_FALSE(Parse("maxContacts=0\n", &params).empty());
+  EXPECT_FALSE(Parse("maxContacts=99999999999999999999\n", &params).empty());
+}
+
+class ParametersFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("sp_params_test_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_ / "conf");
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string Write(const std::string& name, const std::string& text) {
+    const std::filesystem::path path = dir_ / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(ParametersFiles, CommandLineOverridesFile) {
+  const std::string file = Write("conf/run.txt", "stepsize=0.002\nenvironment=../worlds/w.xml\n");
+  const char* argv[] = {"sim", "--params", file.c_str(), "--stepsize=0.004", "--check",
+                        "--lcm-url", "memq://"};
+  const CommandLine cl = ParseCommandLine(7, argv, {{"check", false, "check only"}});
+  EXPECT_TRUE(cl.Has("check"));
+  const Parameters params = LoadParameters(cl);
+  EXPECT_DOUBLE_EQ(params.stepsize, 0.004);
+  EXPECT_EQ(params.lcmUrl, "memq://");
+  // Resolved against the directory of the file that set it.
+  EXPECT_EQ(params.environment, (dir_ / "worlds/w.xml").lexically_normal().string());
+}
+
+TEST_F(ParametersFiles, MissingGivenFileIsAnError) {
+  const std::string missing = (dir_ / "nope.txt").string();
+  const char* argv[] = {"sim", "--params", missing.c_str()};
+  const CommandLine cl = ParseCommandLine(3, argv, {});
+  try {
+    LoadParameters(cl);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.diagnostics().items().at(0).file, missing);
+    EXPECT_NE(std::string(e.what()).find("cannot open parameters file"), std::string::npos);
+  }
+}
+
+TEST_F(ParametersFiles, FileAndCommandLineErrorsAreAllReported) {
+  const std::string file = Write("bad.txt", "\n\nglobalERP=2\n");
+  const char* argv[] = {"sim", "--params", file.c_str(), "--nokey=1", "--stepsize=x"};
+  const CommandLine cl = ParseCommandLine(5, argv, {});
+  try {
+    LoadParameters(cl);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    const DiagnosticList& d = e.diagnostics();
+    ASSERT_EQ(d.size(), 3u) << d.Format();
+    EXPECT_EQ(d.items()[0].file, file);
+    EXPECT_EQ(d.items()[0].line, 3);
+    EXPECT_EQ(d.items()[0].element, "globalERP");
+    EXPECT_EQ(d.items()[1].Format(), "command line: nokey: unknown key 'nokey'");
+    EXPECT_EQ(d.items()[2].element, "stepsize");
+  }
+}
+
+TEST(CommandLine, RejectsUnknownFlagsAndMissingValues) {
+  const char* unknown[] = {"sim", "--frobnicate"};
+  EXPECT_THROW(ParseCommandLine(2, unknown, {}), ConfigError);
+  const char* missing[] = {"sim", "--params"};
+  EXPECT_THROW(ParseCommandLine(2, missing, {}), ConfigError);
+  const char* value_on_switch[] = {"sim", "--check=1"};
+  EXPECT_THROW(ParseCommandLine(2, value_on_switch, {{"check", false, ""}}), ConfigError);
+  const char* help[] = {"sim", "--help"};
+  EXPECT_TRUE(ParseCommandLine(2, help, {}).Has("help"));
+}
+
+TEST(Parameters, FormatRoundTrips) {
+  Parameters params;
+  params.stepsize = 0.0025;
+  params.stepper = "quick";
+  params.dbname = "other";
+  Parameters parsed;
+  const DiagnosticList d = Parse(FormatParameters(params), &parsed);
+  ASSERT_TRUE(d.empty()) << d.Format();
+  EXPECT_EQ(FormatParameters(parsed), FormatParameters(params));
+}
+
+// The shipped parameters.txt documents every key and sets only valid values.
+TEST(Parameters, ShippedFileDocumentsEveryKey) {
+  const std::string path = std::string(SP_SOURCE_DIR) + "/parameters.txt";
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << path;
+  std::stringstream text;
+  text << in.rdbuf();
+  Parameters params;
+  DiagnosticList d;
+  ParseParametersText(text.str(), path, &params, &d);
+  EXPECT_TRUE(d.empty()) << d.Format();
+  std::set<std::string> mentioned;
+  std::string line;
+  std::istringstream lines(text.str());
+  while (std::getline(lines, line)) {
+    for (const std::string& key : ParameterKeys()) {
+      if (line.find(key + "=") != std::string::npos) mentioned.insert(key);
+    }
+  }
+  for (const std::string& key : ParameterKeys())
+    EXPECT_TRUE(mentioned.count(key)) << "parameters.txt does not mention '" << key << "'";
+}
 
 }  // namespace
 }  // namespace simpartner

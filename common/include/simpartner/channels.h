@@ -1,0 +1,15 @@
+// LCM channel names of SPEC 5b: the contract between processes.
+#pragma once
+
+namespace simpartner::channels {
+
+inline constexpr const char* kModel = "SIM_MODEL";                  // model_t
+inline constexpr const char* kModelRequest = "SIM_MODEL_REQUEST";   // model_request_t
+inline constexpr const char* kState = "SIM_STATE";                  // state_t
+inline constexpr const char* kCommand = "SIM_COMMAND";              // command_t
+inline constexpr const char* kCommandReply = "SIM_COMMAND_REPLY";   // command_reply_t
+inline constexpr const char* kSensor = "SIM_SENSOR";                // sensor_reading_t
+inline constexpr const char* kControl = "SIM_CONTROL";              // control_t
+inline constexpr const char* kStatus = "SIM_STATUS";                // status_t
+
+}  // namespace simpartner::channels

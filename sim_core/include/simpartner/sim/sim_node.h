@@ -1,0 +1,84 @@
+// The physics process on the bus: runs a Simulation against absolute
+// deadlines (or as fast as possible), publishes SIM_STATE, SIM_SENSOR,
+// SIM_COMMAND_REPLY, SIM_MODEL (at start, every modelPeriod and on request)
+// and SIM_STATUS (every statusPeriod and on every change), and obeys
+// SIM_COMMAND and SIM_CONTROL. Undecodable messages are counted and
+// reported, never acted on.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <string>
+
+#include "simpartner/sim/simulation.h"
+#include "simpartner/status_t.hpp"
+
+namespace simpartner::sim {
+
+class SimNode {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  // lcm must be good(); sim and lcm outlive the node.
+  SimNode(Simulation* sim, lcm::LCM* lcm);
+  SimNode(const SimNode&) = delete;
+  SimNode& operator=(const SimNode&) = delete;
+
+  // Runs until SIM_CONTROL quit or the duration parameter is reached.
+  // Returns the process exit status (0).
+  int Run();
+
+  // Pieces of Run for tests: handle what arrived (waiting at most
+  // timeout), then one step with its publications.
+  void HandleIncoming(Clock::duration timeout);
+  void StepAndPublish();
+  void PublishModel();
+  void PublishStatus();
+
+  bool quit_requested() const { return quit_; }
+  bool paused() const { return paused_; }
+  double speed() const { return speed_; }
+  int64_t bad_messages() const { return bad_messages_; }
+
+ private:
+  void OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnControl(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnModelRequest(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void ReportBadMessage(const std::string& channel, const std::string& what);
+  void PublishPending();
+  void CollectWarnings();
+
+  Simulation* sim_;
+  lcm::LCM* lcm_;
+  std::string host_;
+  bool quit_ = false;
+  bool paused_ = false;
+  bool model_requested_ = false;
+  bool status_changed_ = true;
+  int64_t steps_to_run_ = 0;     // >0: single-stepping while paused
+  double speed_ = 1.0;           // <= 0: as fast as possible
+  int64_t commands_accepted_ = 0;
+  int64_t commands_rejected_ = 0;
+  int64_t bad_messages_ = 0;
+  std::deque<warning_t> recent_warnings_;
+  // Pacing and figures.
+  Clock::time_point next_deadline_;
+  bool schedule_anchored_ = false;
+  Clock::time_point last_status_time_;
+  int64_t last_status_step_ = 0;
+  double real_time_factor_ = 0.0;
+  double step_cost_ = 0.0;
+  Clock::duration compute_time_{};
+  int64_t compute_steps_ = 0;
+};
+
+// "name@host:pid", the sender name of this process on the bus.
+std::string SenderName(const std::string& program);
+std::string HostName();
+// Microseconds of the wall clock (for utime fields).
+int64_t NowMicros();
+
+}  // namespace simpartner::sim

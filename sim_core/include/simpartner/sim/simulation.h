@@ -1,0 +1,113 @@
+// One simulated world: the ODE world, the actuator controllers, the sensors,
+// the step counter and the health check. No transport: the node feeds it
+// decoded commands and publishes what it returns, so tests drive it directly.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "simpartner/command_reply_t.hpp"
+#include "simpartner/command_t.hpp"
+#include "simpartner/model/model.h"
+#include "simpartner/model_t.hpp"
+#include "simpartner/parameters.h"
+#include "simpartner/sensor_reading_t.hpp"
+#include "simpartner/sim/controllers.h"
+#include "simpartner/sim/flat_model.h"
+#include "simpartner/sim/ode_world.h"
+#include "simpartner/state_t.hpp"
+#include "simpartner/warning_t.hpp"
+
+namespace simpartner::sim {
+
+class Simulation {
+ public:
+  Simulation(model::World world, Parameters params, int64_t simulation_id);
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  int64_t step() const { return step_; }
+  // Simulation time = step count x step size (never accumulated).
+  double time() const { return static_cast<double>(step_) * params_.stepsize; }
+  bool faulted() const { return faulted_; }
+  int64_t simulation_id() const { return simulation_id_; }
+  const FlatModel& flat() const { return flat_; }
+  const model::World& world() const { return world_; }
+  const Parameters& params() const { return params_; }
+  OdeWorld& ode() { return *ode_; }
+  const ActuatorController& controller(int actuator) const {
+    return controllers_[static_cast<size_t>(actuator)];
+  }
+
+  // Back to the initial state of the files with a new simulation id; pending
+  // commands are dropped and every actuator holds again.
+  void Reset(int64_t simulation_id);
+
+  // Checks a command now. A rejected one gets its reply at once (returned);
+  // an accepted one is queued for its step and replied to when applied.
+  std::optional<command_reply_t> Submit(const command_t& command);
+
+  // Applies the commands due, runs the controllers, steps ODE once and
+  // checks the state. Returns false (and takes no step) once faulted.
+  bool Step();
+
+  // What the last steps produced, for the node to publish.
+  std::vector<command_reply_t> TakeReplies();
+  std::vector<sensor_reading_t> TakeSensorReadings();
+  std::vector<warning_t> TakeWarnings();
+
+  void FillState(state_t* state) const;
+  void FillModel(model_t* model) const;
+  sensor_reading_t ReadSensor(int sensor);
+
+ private:
+  struct Pending {
+    int64_t step;                 // apply when step_ == step (before stepping)
+    uint64_t sequence;            // arrival order among equal steps
+    command_t command;
+    int actuator = -1;            // exactly one of actuator/sensor is set
+    int sensor = -1;
+    ParsedCommand parsed;         // actuators
+    std::vector<double> values;   // sensors
+  };
+  struct SensorState {
+    double rate = 0.0;
+    int rays = 11;
+    double half_span = 0.1;
+    double range = 10.0;
+    std::string echo_text;
+    int64_t period_steps = 0;     // 0 = on request only
+  };
+
+  void Build();
+  command_reply_t Reply(const command_t& command, bool accepted, const std::string& reason) const;
+  void ApplyPending(const Pending& pending);
+  void CheckHealth();
+  void AddWarning(int8_t severity, const std::string& source, const std::string& message,
+                  std::vector<std::string> bodies = {});
+
+  model::World world_;
+  Parameters params_;
+  FlatModel flat_;
+  int64_t simulation_id_;
+  std::unique_ptr<OdeWorld> ode_;
+  std::vector<ActuatorController> controllers_;
+  std::vector<SensorState> sensors_;
+  std::vector<Pending> pending_;  // sorted by (step, sequence)
+  uint64_t next_sequence_ = 0;
+  int64_t step_ = 0;
+  bool faulted_ = false;
+  std::vector<command_reply_t> replies_;
+  std::vector<sensor_reading_t> readings_;
+  std::vector<int> read_requests_;
+  std::vector<warning_t> warnings_;
+};
+
+// Human-readable name of a body for messages: "robot/body" or "body".
+std::string QualifiedBodyName(const FlatModel& model, int body);
+
+}  // namespace simpartner::sim

@@ -1,0 +1,479 @@
+#include "simpartner/sim/ode_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+
+#include "simpartner/check.h"
+
+namespace simpartner::sim {
+namespace {
+
+constexpr size_t kFeedbackChunk = 1024;
+
+// ODE reports problems through process-wide handlers. They write into the
+// sink of the OdeWorld stepping on this thread (set only during Step), and
+// to stderr otherwise, so nothing passes silently.
+thread_local std::vector<std::string>* t_message_sink = nullptr;
+
+void OdeMessage(int number, const char* format, va_list args) {
+  char text[512];
+  std::vsnprintf(text, sizeof text, format, args);
+  std::string message = "ODE message " + std::to_string(number) + ": " + text;
+  if (t_message_sink != nullptr) {
+    t_message_sink->push_back(std::move(message));
+  } else {
+    std::fprintf(stderr, "%s\n", message.c_str());
+  }
+}
+
+void InitOdeOnce() {
+  static const bool initialized = [] {
+    dInitODE2(0);
+    dSetMessageHandler(&OdeMessage);
+    return true;
+  }();
+  (void)initialized;
+}
+
+void ToOde(const Eigen::Matrix3d& r, dMatrix3 out) {
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) out[i * 4 + j] = r(i, j);
+    out[i * 4 + 3] = 0.0;
+  }
+}
+
+Eigen::Vector3d FromOde(const dReal* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+
+}  // namespace
+
+OdeWorld::OdeWorld(const FlatModel& model, const Parameters& params)
+    : model_(model), params_(params) {
+  InitOdeOnce();
+  // dWorldQuickStep may reorder constraints with ODE's random generator:
+  // seeding it makes every run of the same inputs identical.
+  dRandSetSeed(0);
+  const model::World& world = *model.world;
+  world_ = dWorldCreate();
+  dWorldSetGravity(world_, world.gravity.x(), world.gravity.y(), world.gravity.z());
+  dWorldSetERP(world_, params.globalERP);
+  dWorldSetCFM(world_, params.globalCFM);
+  dWorldSetContactMaxCorrectingVel(world_, params.contactMaxCorrectingVel);
+  dWorldSetContactSurfaceLayer(world_, params.contactSurfaceLayer);
+  dWorldSetAutoDisableFlag(world_, params.autoDisableFlag ? 1 : 0);
+  dWorldSetQuickStepNumIterations(world_, params.quickStepIterations);
+  dWorldSetQuickStepW(world_, params.quickStepW);
+
+  switch (world.collision_space) {
+    case model::CollisionSpaceKind::kSimple:
+      space_ = dSimpleSpaceCreate(nullptr);
+      break;
+    case model::CollisionSpaceKind::kHash:
+      space_ = dHashSpaceCreate(nullptr);
+      break;
+    case model::CollisionSpaceKind::kQuadTree: {
+      const dVector3 center = {0, 0, 0, 0};
+      const dVector3 extents = {500, 500, 500, 0};
+      space_ = dQuadTreeSpaceCreate(nullptr, center, extents, 6);
+      break;
+    }
+  }
+  contacts_ = dJointGroupCreate(0);
+  contact_buffer_.resize(static_cast<size_t>(params.maxContacts));
+
+  auto add_geom_info = [this](dGeomID geom, int body, int owner, const std::string& material) {
+    geom_info_.push_back(GeomInfo{body, owner, Surface(material)});
+    dGeomSetData(geom, reinterpret_cast<void*>(static_cast<uintptr_t>(geom_info_.size())));
+  };
+
+  if (world.has_plane) {
+    const dGeomID plane =
+        dCreatePlane(space_, world.plane[0], world.plane[1], world.plane[2], world.plane[3]);
+    add_geom_info(plane, -1, -1, world.plane_material);
+  }
+  if (world.heightfield) {
+    const model::Heightfield& h = *world.heightfield;
+    heightfield_data_ = dGeomHeightfieldDataCreate();
+    dGeomHeightfieldDataBuildDouble(heightfield_data_, h.samples.data(), 1, h.width, h.depth,
+                                    h.columns, h.rows, h.scale, h.offset, h.thickness, 0);
+    const dGeomID field = dCreateHeightfield(space_, heightfield_data_, 1);
+    dGeomSetPosition(field, h.position.x(), h.position.y(), h.position.z());
+    // ODE's heightfield is y-up; turn it so that its y follows "up".
+    const Eigen::Matrix3d r =
+        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), world.Up()).toRotationMatrix();
+    dMatrix3 rotation;
+    ToOde(r, rotation);
+    dGeomSetRotation(field, rotation);
+    add_geom_info(field, -1, -1, h.material);
+  }
+
+  // Bodies: ODE puts the body origin at the centre of mass, so the geometry
+  // is offset by -com in the body frame.
+  bodies_.resize(model.bodies.size());
+  for (size_t i = 0; i < model.bodies.size(); ++i) {
+    const FlatBody& flat = model.bodies[i];
+    const model::Body& src = *flat.source;
+    Body& body = bodies_[i];
+    body.com = src.com;
+    const model::Geometry& g = src.geometry;
+    switch (g.kind) {
+      case model::GeometryKind::kNone: break;
+      case model::GeometryKind::kBox:
+        body.geom = dCreateBox(space_, g.size.x(), g.size.y(), g.size.z());
+        break;
+      case model::GeometryKind::kSphere: body.geom = dCreateSphere(space_, g.size.x()); break;
+      case model::GeometryKind::kCylinder:
+        body.geom = dCreateCylinder(space_, g.size.x(), g.size.y());
+        break;
+      case model::GeometryKind::kCapsule:
+        body.geom = dCreateCapsule(space_, g.size.x(), g.size.y());
+        break;
+    }
+    dMatrix3 rotation;
+    ToOde(flat.pose.linear(), rotation);
+    if (src.is_static) {
+      SP_CHECK(body.geom != nullptr);
+      dGeomSetPosition(body.geom, flat.pose.translation().x(), flat.pose.translation().y(),
+                       flat.pose.translation().z());
+      dGeomSetRotation(body.geom, rotation);
+      add_geom_info(body.geom, -1, static_cast<int>(i), src.material);
+      continue;
+    }
+    body.body = dBodyCreate(world_);
+    dMass mass;
+    const Eigen::Matrix3d& inertia = src.inertia;
+    dMassSetParameters(&mass, src.mass, 0, 0, 0, inertia(0, 0), inertia(1, 1), inertia(2, 2),
+                       inertia(0, 1), inertia(0, 2), inertia(1, 2));
+    dBodySetMass(body.body, &mass);
+    const Eigen::Vector3d com_world = flat.pose * src.com;
+    dBodySetPosition(body.body, com_world.x(), com_world.y(), com_world.z());
+    dBodySetRotation(body.body, rotation);
+    // Velocities in files are of the body frame origin; ODE's are of the com.
+    const Eigen::Vector3d v_com =
+        flat.linear_velocity + flat.angular_velocity.cross(com_world - flat.pose.translation());
+    dBodySetLinearVel(body.body, v_com.x(), v_com.y(), v_com.z());
+    dBodySetAngularVel(body.body, flat.angular_velocity.x(), flat.angular_velocity.y(),
+                       flat.angular_velocity.z());
+    dBodySetData(body.body, reinterpret_cast<void*>(static_cast<uintptr_t>(i + 1)));
+    if (body.geom != nullptr) {
+      dGeomSetBody(body.geom, body.body);
+      if (!src.com.isZero()) dGeomSetOffsetPosition(body.geom, -src.com.x(), -src.com.y(), -src.com.z());
+      add_geom_info(body.geom, static_cast<int>(i), static_cast<int>(i), src.material);
+    }
+  }
+
+  // Joints, created in the initial pose so that ODE's zero angles are the
+  // pose of the files.
+  for (size_t j = 0; j < model.joints.size(); ++j) {
+    const FlatJoint& flat = model.joints[j];
+    auto joint = std::make_unique<Joint>();
+    joint->kind = flat.source->kind;
+    dJointID id = nullptr;
+    switch (joint->kind) {
+      case model::JointKind::kFixed: id = dJointCreateFixed(world_, nullptr); break;
+      case model::JointKind::kHinge: id = dJointCreateHinge(world_, nullptr); break;
+      case model::JointKind::kSlider: id = dJointCreateSlider(world_, nullptr); break;
+      case model::JointKind::kBall: id = dJointCreateBall(world_, nullptr); break;
+      case model::JointKind::kUniversal: id = dJointCreateUniversal(world_, nullptr); break;
+      case model::JointKind::kHinge2: id = dJointCreateHinge2(world_, nullptr); break;
+    }
+    auto body_of = [this](int index) -> dBodyID {
+      return index < 0 ? nullptr : bodies_[static_cast<size_t>(index)].body;
+    };
+    dJointAttach(id, body_of(flat.body1), body_of(flat.body2));
+    const Eigen::Vector3d& a = flat.anchor;
+    const Eigen::Vector3d& x1 = flat.axis[0];
+    const Eigen::Vector3d& x2 = flat.axis[1];
+    switch (joint->kind) {
+      case model::JointKind::kFixed: dJointSetFixed(id); break;
+      case model::JointKind::kHinge:
+        dJointSetHingeAnchor(id, a.x(), a.y(), a.z());
+        dJointSetHingeAxis(id, x1.x(), x1.y(), x1.z());
+        break;
+      case model::JointKind::kSlider: dJointSetSliderAxis(id, x1.x(), x1.y(), x1.z()); break;
+      case model::JointKind::kBall: dJointSetBallAnchor(id, a.x(), a.y(), a.z()); break;
+      case model::JointKind::kUniversal:
+        dJointSetUniversalAnchor(id, a.x(), a.y(), a.z());
+        dJointSetUniversalAxis1(id, x1.x(), x1.y(), x1.z());
+        dJointSetUniversalAxis2(id, x2.x(), x2.y(), x2.z());
+        break;
+      case model::JointKind::kHinge2: {
+        dJointSetHinge2Anchor(id, a.x(), a.y(), a.z());
+        const dReal axis1[3] = {x1.x(), x1.y(), x1.z()};
+        const dReal axis2[3] = {x2.x(), x2.y(), x2.z()};
+        dJointSetHinge2Axes(id, axis1, axis2);
+        break;
+      }
+    }
+    joint->joint = id;
+    dJointSetFeedback(id, &joint->feedback);
+    joints_.push_back(std::move(joint));
+    for (int axis = 0; axis < flat.num_axes; ++axis) {
+      const double lo = flat.source->lo_stop[axis];
+      const double hi = flat.source->hi_stop[axis];
+      if (std::isfinite(lo) || std::isfinite(hi)) SetStops(static_cast<int>(j), axis, lo, hi);
+    }
+  }
+  contact_force_.assign(bodies_.size(), Eigen::Vector3d::Zero());
+  contact_torque_.assign(bodies_.size(), Eigen::Vector3d::Zero());
+  ray_ = dCreateRay(nullptr, 1.0);
+}
+
+OdeWorld::~OdeWorld() {
+  if (ray_ != nullptr) dGeomDestroy(ray_);
+  dJointGroupDestroy(contacts_);
+  dSpaceDestroy(space_);  // destroys the geoms it holds (cleanup mode on)
+  dWorldDestroy(world_);  // destroys bodies and joints
+  if (heightfield_data_ != nullptr) dGeomHeightfieldDataDestroy(heightfield_data_);
+}
+
+SurfaceProperties OdeWorld::Surface(const std::string& material) const {
+  SurfaceProperties s;
+  s.mu = params_.contactMu;
+  s.bounce = params_.contactBounce;
+  s.bounce_velocity = params_.contactBounceVelocity;
+  s.soft_erp = params_.contactSoftERP;
+  s.soft_cfm = params_.contactSoftCFM;
+  s.rolling_friction = params_.rollingFriction;
+  if (material.empty()) return s;
+  const model::Material* m = model_.world->FindMaterial(material);
+  SP_CHECK_MSG(m != nullptr, "material '" + material + "' was not checked by the loader");
+  s.mu = m->mu;
+  s.bounce = m->bounce;
+  s.bounce_velocity = m->bounce_velocity;
+  s.soft_erp = m->soft_erp;
+  s.soft_cfm = m->soft_cfm;
+  s.rolling_friction = m->rolling_friction;
+  return s;
+}
+
+dJointFeedback* OdeWorld::NextFeedback() {
+  const size_t chunk = feedback_used_ / kFeedbackChunk;
+  if (chunk == feedback_chunks_.size())
+    feedback_chunks_.push_back(std::make_unique<dJointFeedback[]>(kFeedbackChunk));
+  dJointFeedback* feedback = &feedback_chunks_[chunk][feedback_used_ % kFeedbackChunk];
+  ++feedback_used_;
+  return feedback;
+}
+
+void OdeWorld::NearCallback(void* data, dGeomID o1, dGeomID o2) {
+  static_cast<OdeWorld*>(data)->Collide(o1, o2);
+}
+
+void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
+  const dBodyID b1 = dGeomGetBody(o1);
+  const dBodyID b2 = dGeomGetBody(o2);
+  if (b1 == nullptr && b2 == nullptr) return;  // static against static
+  if (b1 != nullptr && b2 != nullptr && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
+  const int n = dCollide(o1, o2, static_cast<int>(contact_buffer_.size()),
+                         &contact_buffer_[0].geom, sizeof(dContact));
+  if (n <= 0) return;
+  const GeomInfo& g1 = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(o1)) - 1];
+  const GeomInfo& g2 = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(o2)) - 1];
+  // Friction and rolling resistance: the smaller; bounce: the larger;
+  // softness: the softer of the two.
+  const SurfaceProperties& s1 = g1.surface;
+  const SurfaceProperties& s2 = g2.surface;
+  dSurfaceParameters surface{};
+  surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+  surface.mu = std::min(s1.mu, s2.mu);
+  surface.soft_erp = std::min(s1.soft_erp, s2.soft_erp);
+  surface.soft_cfm = std::max(s1.soft_cfm, s2.soft_cfm);
+  const double bounce = std::max(s1.bounce, s2.bounce);
+  if (bounce > 0.0) {
+    surface.mode |= dContactBounce;
+    surface.bounce = bounce;
+    surface.bounce_vel = std::max(s1.bounce_velocity, s2.bounce_velocity);
+  }
+  const double rolling = std::min(s1.rolling_friction, s2.rolling_friction);
+  if (rolling > 0.0) {
+    surface.mode |= dContactRolling;
+    surface.rho = rolling;
+    surface.rho2 = rolling;
+    surface.rhoN = 0.0;
+  }
+  for (int i = 0; i < n; ++i) {
+    dContact& contact = contact_buffer_[static_cast<size_t>(i)];
+    contact.surface = surface;
+    const dJointID joint = dJointCreateContact(world_, contacts_, &contact);
+    dJointAttach(joint, b1, b2);
+    dJointFeedback* feedback = NextFeedback();
+    dJointSetFeedback(joint, feedback);
+    contact_records_.push_back(ContactRecord{g1.body, g2.body, feedback});
+  }
+  contact_count_ += n;
+}
+
+void OdeWorld::Step() {
+  messages_.clear();
+  contact_records_.clear();
+  feedback_used_ = 0;
+  contact_count_ = 0;
+  t_message_sink = &messages_;
+  dSpaceCollide(space_, this, &OdeWorld::NearCallback);
+  if (params_.stepper == "quick") {
+    dWorldQuickStep(world_, params_.stepsize);
+  } else {
+    dWorldStep(world_, params_.stepsize);
+  }
+  t_message_sink = nullptr;
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    contact_force_[i].setZero();
+    contact_torque_[i].setZero();
+  }
+  for (const ContactRecord& record : contact_records_) {
+    if (record.body1 >= 0) {
+      contact_force_[record.body1] += FromOde(record.feedback->f1);
+      contact_torque_[record.body1] += FromOde(record.feedback->t1);
+    }
+    if (record.body2 >= 0) {
+      contact_force_[record.body2] += FromOde(record.feedback->f2);
+      contact_torque_[record.body2] += FromOde(record.feedback->t2);
+    }
+  }
+  dJointGroupEmpty(contacts_);
+}
+
+BodyReadout OdeWorld::ReadBody(int index) const {
+  const Body& body = bodies_[static_cast<size_t>(index)];
+  BodyReadout out;
+  out.contact_force = contact_force_[static_cast<size_t>(index)];
+  out.contact_torque = contact_torque_[static_cast<size_t>(index)];
+  if (body.body == nullptr) {
+    const FlatBody& flat = model_.bodies[static_cast<size_t>(index)];
+    out.position = flat.pose.translation();
+    out.orientation = Eigen::Quaterniond(flat.pose.linear());
+    out.linear_velocity.setZero();
+    out.angular_velocity.setZero();
+    return out;
+  }
+  const dReal* q = dBodyGetQuaternion(body.body);
+  out.orientation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+  const Eigen::Vector3d com_world = FromOde(dBodyGetPosition(body.body));
+  const Eigen::Vector3d offset = out.orientation * body.com;
+  out.position = com_world - offset;
+  out.angular_velocity = FromOde(dBodyGetAngularVel(body.body));
+  out.linear_velocity = FromOde(dBodyGetLinearVel(body.body)) - out.angular_velocity.cross(offset);
+  return out;
+}
+
+double OdeWorld::JointPosition(int joint, int axis) const {
+  const dJointID id = joints_[static_cast<size_t>(joint)]->joint;
+  switch (joints_[static_cast<size_t>(joint)]->kind) {
+    case model::JointKind::kHinge: return dJointGetHingeAngle(id);
+    case model::JointKind::kSlider: return dJointGetSliderPosition(id);
+    case model::JointKind::kUniversal:
+      return axis == 0 ? dJointGetUniversalAngle1(id) : dJointGetUniversalAngle2(id);
+    case model::JointKind::kHinge2:
+      return axis == 0 ? dJointGetHinge2Angle1(id) : dJointGetHinge2Angle2(id);
+    default: return 0.0;
+  }
+}
+
+double OdeWorld::JointRate(int joint, int axis) const {
+  const dJointID id = joints_[static_cast<size_t>(joint)]->joint;
+  switch (joints_[static_cast<size_t>(joint)]->kind) {
+    case model::JointKind::kHinge: return dJointGetHingeAngleRate(id);
+    case model::JointKind::kSlider: return dJointGetSliderPositionRate(id);
+    case model::JointKind::kUniversal:
+      return axis == 0 ? dJointGetUniversalAngle1Rate(id) : dJointGetUniversalAngle2Rate(id);
+    case model::JointKind::kHinge2:
+      return axis == 0 ? dJointGetHinge2Angle1Rate(id) : dJointGetHinge2Angle2Rate(id);
+    default: return 0.0;
+  }
+}
+
+JointReadout OdeWorld::ReadJoint(int index) const {
+  const Joint& joint = *joints_[static_cast<size_t>(index)];
+  const int axes = model_.joints[static_cast<size_t>(index)].num_axes;
+  JointReadout out;
+  for (int a = 0; a < axes; ++a) {
+    out.position[a] = JointPosition(index, a);
+    out.rate[a] = JointRate(index, a);
+  }
+  dVector3 anchor = {0, 0, 0, 0};
+  switch (joint.kind) {
+    case model::JointKind::kHinge: dJointGetHingeAnchor(joint.joint, anchor); break;
+    case model::JointKind::kBall: dJointGetBallAnchor(joint.joint, anchor); break;
+    case model::JointKind::kUniversal: dJointGetUniversalAnchor(joint.joint, anchor); break;
+    case model::JointKind::kHinge2: dJointGetHinge2Anchor(joint.joint, anchor); break;
+    case model::JointKind::kFixed:
+    case model::JointKind::kSlider: {
+      const dBodyID b = dJointGetBody(joint.joint, 0);
+      if (b != nullptr) {
+        const dReal* p = dBodyGetPosition(b);
+        anchor[0] = p[0];
+        anchor[1] = p[1];
+        anchor[2] = p[2];
+      }
+      break;
+    }
+  }
+  out.anchor = FromOde(anchor);
+  out.force1 = FromOde(joint.feedback.f1);
+  out.torque1 = FromOde(joint.feedback.t1);
+  out.force2 = FromOde(joint.feedback.f2);
+  out.torque2 = FromOde(joint.feedback.t2);
+  return out;
+}
+
+void OdeWorld::SetJointParam(int joint, int parameter, double value) {
+  const dJointID id = joints_[static_cast<size_t>(joint)]->joint;
+  switch (joints_[static_cast<size_t>(joint)]->kind) {
+    case model::JointKind::kHinge: dJointSetHingeParam(id, parameter, value); break;
+    case model::JointKind::kSlider: dJointSetSliderParam(id, parameter, value); break;
+    case model::JointKind::kUniversal: dJointSetUniversalParam(id, parameter, value); break;
+    case model::JointKind::kHinge2: dJointSetHinge2Param(id, parameter, value); break;
+    default: SP_CHECK_MSG(false, "joint kind has no motor or stops");
+  }
+}
+
+double OdeWorld::GetJointParam(int joint, int parameter) const {
+  const dJointID id = joints_[static_cast<size_t>(joint)]->joint;
+  switch (joints_[static_cast<size_t>(joint)]->kind) {
+    case model::JointKind::kHinge: return dJointGetHingeParam(id, parameter);
+    case model::JointKind::kSlider: return dJointGetSliderParam(id, parameter);
+    case model::JointKind::kUniversal: return dJointGetUniversalParam(id, parameter);
+    case model::JointKind::kHinge2: return dJointGetHinge2Param(id, parameter);
+    default: return 0.0;
+  }
+}
+
+void OdeWorld::SetMotor(int joint, int axis, double velocity, double max_force) {
+  SetJointParam(joint, dParamVel + dParamGroup * axis, velocity);
+  SetJointParam(joint, dParamFMax + dParamGroup * axis, max_force);
+}
+
+void OdeWorld::SetStops(int joint, int axis, double lo, double hi) {
+  // ODE ignores a low stop above the high one, so open both first.
+  const double inf = dInfinity;
+  SetJointParam(joint, dParamLoStop + dParamGroup * axis, -inf);
+  SetJointParam(joint, dParamHiStop + dParamGroup * axis, inf);
+  SetJointParam(joint, dParamHiStop + dParamGroup * axis, std::isfinite(hi) ? hi : inf);
+  SetJointParam(joint, dParamLoStop + dParamGroup * axis, std::isfinite(lo) ? lo : -inf);
+}
+
+double OdeWorld::CastRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                         double range, int exclude_body) {
+  dGeomRaySetLength(ray_, range);
+  dGeomRaySet(ray_, origin.x(), origin.y(), origin.z(), direction.x(), direction.y(),
+              direction.z());
+  ray_exclude_body_ = exclude_body;
+  ray_hit_ = range;
+  dSpaceCollide2(
+      ray_, reinterpret_cast<dGeomID>(space_), this, [](void* data, dGeomID a, dGeomID b) {
+        auto* self = static_cast<OdeWorld*>(data);
+        const dGeomID other = a == self->ray_ ? b : a;
+        const GeomInfo& info = self->geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(other)) - 1];
+        if (info.owner_body >= 0 && info.owner_body == self->ray_exclude_body_) return;
+        dContactGeom hit;
+        if (dCollide(self->ray_, other, 1, &hit, sizeof(dContactGeom)) > 0)
+          self->ray_hit_ = std::min(self->ray_hit_, static_cast<double>(hit.depth));
+      });
+  return ray_hit_;
+}
+
+}  // namespace simpartner::sim

@@ -1,0 +1,303 @@
+#include "simpartner/sim/sim_node.h"
+
+#include <sys/select.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+#include "simpartner/channels.h"
+#include "simpartner/control_t.hpp"
+#include "simpartner/model_request_t.hpp"
+
+namespace simpartner::sim {
+namespace {
+
+constexpr size_t kRecentWarnings = 16;
+// When the sim falls this far behind its schedule (a slow machine, a
+// debugger), it re-anchors instead of racing to catch up.
+constexpr auto kMaxLag = std::chrono::milliseconds(100);
+
+}  // namespace
+
+int64_t NowMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string HostName() {
+  char name[256] = {0};
+  if (::gethostname(name, sizeof name - 1) != 0) return "unknown";
+  return name;
+}
+
+std::string SenderName(const std::string& program) {
+  return program + "@" + HostName() + ":" + std::to_string(::getpid());
+}
+
+SimNode::SimNode(Simulation* sim, lcm::LCM* lcm)
+    : sim_(sim), lcm_(lcm), host_(HostName()) {
+  paused_ = sim->params().startPaused;
+  speed_ = sim->params().speed;
+  lcm_->subscribe(channels::kCommand, &SimNode::OnCommand, this)->setQueueCapacity(1000);
+  lcm_->subscribe(channels::kControl, &SimNode::OnControl, this)->setQueueCapacity(100);
+  lcm_->subscribe(channels::kModelRequest, &SimNode::OnModelRequest, this)->setQueueCapacity(100);
+  last_status_time_ = Clock::now();
+}
+
+void SimNode::ReportBadMessage(const std::string& channel, const std::string& what) {
+  ++bad_messages_;
+  warning_t w{};
+  w.step = sim_->step();
+  w.severity = warning_t::SEVERITY_WARNING;
+  w.source = "bus";
+  w.message = channel + ": " + what;
+  std::cerr << "simpartner-sim: step " << w.step << ": " << w.message << "\n";
+  recent_warnings_.push_back(w);
+  if (recent_warnings_.size() > kRecentWarnings) recent_warnings_.pop_front();
+  status_changed_ = true;
+}
+
+void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  command_t command;
+  if (command.decode(buffer->data, 0, static_cast<int>(buffer->data_size)) < 0) {
+    ReportBadMessage(channel, "message of " + std::to_string(buffer->data_size) +
+                                  " bytes is not a simpartner.command_t (wrong type or "
+                                  "truncated); ignored");
+    return;
+  }
+  if (auto rejection = sim_->Submit(command)) {
+    ++commands_rejected_;
+    std::cerr << "simpartner-sim: step " << sim_->step() << ": command " << command.request_id
+              << " from '" << command.sender << "' rejected: " << rejection->reason << "\n";
+    lcm_->publish(channels::kCommandReply, &*rejection);
+  }
+}
+
+void SimNode::OnControl(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  control_t control;
+  if (control.decode(buffer->data, 0, static_cast<int>(buffer->data_size)) < 0) {
+    ReportBadMessage(channel, "message of " + std::to_string(buffer->data_size) +
+                                  " bytes is not a simpartner.control_t; ignored");
+    return;
+  }
+  status_changed_ = true;
+  switch (control.action) {
+    case control_t::ACTION_PAUSE:
+      paused_ = true;
+      steps_to_run_ = 0;
+      break;
+    case control_t::ACTION_RESUME:
+      paused_ = false;
+      schedule_anchored_ = false;
+      break;
+    case control_t::ACTION_STEP:
+      if (control.steps < 1 || control.steps > 100000000) {
+        ReportBadMessage(channel, "step count " + std::to_string(control.steps) +
+                                      " is out of range [1, 1e8]; ignored");
+        return;
+      }
+      paused_ = true;
+      steps_to_run_ = control.steps;
+      break;
+    case control_t::ACTION_RESET:
+      sim_->Reset(NowMicros());
+      steps_to_run_ = 0;
+      schedule_anchored_ = false;
+      model_requested_ = true;
+      break;
+    case control_t::ACTION_SET_SPEED:
+      if (!std::isfinite(control.speed) || control.speed > 1000.0) {
+        ReportBadMessage(channel, "speed " + std::to_string(control.speed) +
+                                      " is out of range (<= 0 for as fast as possible, or up "
+                                      "to 1000); ignored");
+        return;
+      }
+      speed_ = control.speed;
+      schedule_anchored_ = false;
+      break;
+    case control_t::ACTION_QUIT:
+      quit_ = true;
+      break;
+    default:
+      ReportBadMessage(channel, "unknown action " + std::to_string(control.action) + "; ignored");
+      return;
+  }
+}
+
+void SimNode::OnModelRequest(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  model_request_t request;
+  if (request.decode(buffer->data, 0, static_cast<int>(buffer->data_size)) < 0) {
+    ReportBadMessage(channel, "message is not a simpartner.model_request_t; ignored");
+    return;
+  }
+  model_requested_ = true;
+}
+
+void SimNode::HandleIncoming(Clock::duration timeout) {
+  const int fd = lcm_->getFileno();
+  auto remaining = timeout;
+  const auto end = Clock::now() + timeout;
+  // Handle everything already there, then wait for more until the timeout.
+  while (true) {
+    fd_set fds;
+    FD_ZERO(&fds);
+    FD_SET(fd, &fds);
+    const auto micros =
+        std::max<int64_t>(0, std::chrono::duration_cast<std::chrono::microseconds>(remaining).count());
+    timeval tv{static_cast<time_t>(micros / 1000000), static_cast<suseconds_t>(micros % 1000000)};
+    const int ready = ::select(fd + 1, &fds, nullptr, nullptr, &tv);
+    if (ready > 0) {
+      lcm_->handle();
+    } else {
+      return;  // timeout (or EINTR)
+    }
+    remaining = end - Clock::now();
+    if (remaining <= Clock::duration::zero()) remaining = Clock::duration::zero();
+    if (quit_) return;
+  }
+}
+
+void SimNode::CollectWarnings() {
+  for (warning_t& w : sim_->TakeWarnings()) {
+    std::cerr << "simpartner-sim: step " << w.step << ": " << w.source << ": " << w.message
+              << "\n";
+    recent_warnings_.push_back(std::move(w));
+    if (recent_warnings_.size() > kRecentWarnings) recent_warnings_.pop_front();
+    status_changed_ = true;
+  }
+}
+
+void SimNode::PublishPending() {
+  for (const command_reply_t& reply : sim_->TakeReplies()) {
+    ++commands_accepted_;
+    lcm_->publish(channels::kCommandReply, &reply);
+  }
+  for (const sensor_reading_t& reading : sim_->TakeSensorReadings())
+    lcm_->publish(channels::kSensor, &reading);
+  CollectWarnings();
+}
+
+void SimNode::StepAndPublish() {
+  const auto start = Clock::now();
+  const bool ok = sim_->Step();
+  compute_time_ += Clock::now() - start;
+  ++compute_steps_;
+  if (ok) {
+    if (sim_->step() % sim_->params().stateEvery == 0) {
+      state_t state;
+      sim_->FillState(&state);
+      lcm_->publish(channels::kState, &state);
+    }
+  } else {
+    paused_ = true;
+    steps_to_run_ = 0;
+    status_changed_ = true;
+  }
+  PublishPending();
+}
+
+void SimNode::PublishModel() {
+  model_t model;
+  sim_->FillModel(&model);
+  model.host = host_;
+  lcm_->publish(channels::kModel, &model);
+}
+
+void SimNode::PublishStatus() {
+  const auto now = Clock::now();
+  const double wall = std::chrono::duration<double>(now - last_status_time_).count();
+  if (wall > 0.05) {
+    real_time_factor_ = static_cast<double>(sim_->step() - last_status_step_) *
+                        sim_->params().stepsize / wall;
+    if (real_time_factor_ < 0) real_time_factor_ = 0;  // after a reset
+    last_status_time_ = now;
+    last_status_step_ = sim_->step();
+  }
+  if (compute_steps_ > 0) {
+    step_cost_ = std::chrono::duration<double>(compute_time_).count() / compute_steps_;
+    compute_time_ = {};
+    compute_steps_ = 0;
+  }
+  status_t status{};
+  status.utime = NowMicros();
+  status.simulation_id = sim_->simulation_id();
+  status.host = host_;
+  status.run_state = quit_             ? status_t::RUN_STOPPED
+                     : sim_->faulted() ? status_t::RUN_FAULTED
+                     : paused_         ? status_t::RUN_PAUSED
+                                       : status_t::RUN_RUNNING;
+  status.step = sim_->step();
+  status.sim_time = sim_->time();
+  status.real_time_factor = real_time_factor_;
+  status.target_speed = speed_;
+  status.step_cost = step_cost_;
+  status.commands_accepted = commands_accepted_;
+  status.commands_rejected = commands_rejected_;
+  status.bad_messages = bad_messages_;
+  status.warnings.assign(recent_warnings_.begin(), recent_warnings_.end());
+  status.num_warnings = static_cast<int16_t>(status.warnings.size());
+  lcm_->publish(channels::kStatus, &status);
+  status_changed_ = false;
+}
+
+int SimNode::Run() {
+  const Parameters& params = sim_->params();
+  const int64_t last_step =
+      params.duration > 0 ? static_cast<int64_t>(std::llround(params.duration / params.stepsize))
+                          : -1;
+  const auto model_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(params.modelPeriod));
+  const auto status_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(params.statusPeriod));
+  auto next_model = Clock::now();
+  auto next_status = Clock::now();
+  PublishModel();
+
+  while (!quit_) {
+    const bool stepping = !sim_->faulted() && (!paused_ || steps_to_run_ > 0);
+    if (stepping && speed_ > 0 && !paused_) {
+      // Real-time (or N x) pacing against absolute deadlines: the n-th step
+      // is due at anchor + n * stepsize / speed, so waiting never drifts.
+      const auto step_period = std::chrono::duration_cast<Clock::duration>(
+          std::chrono::duration<double>(params.stepsize / speed_));
+      auto now = Clock::now();
+      if (!schedule_anchored_ || now - next_deadline_ > kMaxLag) {
+        next_deadline_ = now;
+        schedule_anchored_ = true;
+      }
+      if (next_deadline_ > now) HandleIncoming(next_deadline_ - now);
+      else HandleIncoming(Clock::duration::zero());
+      next_deadline_ += step_period;
+    } else if (stepping) {
+      HandleIncoming(Clock::duration::zero());
+    } else {
+      HandleIncoming(std::chrono::milliseconds(10));
+    }
+    if (quit_) break;
+    const bool still_stepping = !sim_->faulted() && (!paused_ || steps_to_run_ > 0);
+    if (still_stepping) {
+      StepAndPublish();
+      if (steps_to_run_ > 0 && --steps_to_run_ == 0) status_changed_ = true;
+      if (last_step >= 0 && sim_->step() >= last_step) quit_ = true;
+    } else {
+      PublishPending();
+    }
+    const auto now = Clock::now();
+    if (model_requested_ || now >= next_model) {
+      PublishModel();
+      model_requested_ = false;
+      next_model = now + model_period;
+    }
+    if (status_changed_ || now >= next_status) {
+      PublishStatus();
+      next_status = now + status_period;
+    }
+  }
+  PublishStatus();  // RUN_STOPPED
+  return 0;
+}
+
+}  // namespace simpartner::sim
