@@ -442,6 +442,11 @@ double OdeWorld::GetJointParam(int joint, int parameter) const {
   }
 }
 
+void OdeWorld::AddForce(int body, const Eigen::Vector3d& force) {
+  const dBodyID id = bodies_[static_cast<size_t>(body)].body;
+  if (id != nullptr) dBodyAddForce(id, force.x(), force.y(), force.z());
+}
+
 void OdeWorld::SetMotor(int joint, int axis, double velocity, double max_force) {
   SetJointParam(joint, dParamVel + dParamGroup * axis, velocity);
   SetJointParam(joint, dParamFMax + dParamGroup * axis, max_force);

@@ -194,9 +194,13 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
                   " has passed (the sim is at step " + std::to_string(step_) + ")");
   pending.step = command.apply_at_step >= 0 ? command.apply_at_step : step_;
 
+  // Numbers come from values[] or, when it is empty, the original's text
+  // form; an echo sensor's text is not numbers.
   std::vector<double> values;
   std::string error;
-  if (!CommandValues(command.values, command.text, &values, &error)) return reject(error);
+  const bool echo_text = pending.sensor >= 0 && command.action != command_t::ACTION_SENSOR_PARAMS;
+  if (!echo_text && !CommandValues(command.values, command.text, &values, &error))
+    return reject(error);
 
   if (pending.actuator >= 0) {
     const FlatActuator& actuator = flat_.actuators[static_cast<size_t>(pending.actuator)];

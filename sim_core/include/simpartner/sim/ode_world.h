@@ -58,6 +58,10 @@ class OdeWorld {
   double JointPosition(int joint, int axis) const;
   double JointRate(int joint, int axis) const;
 
+  // Adds a force [N] at the centre of mass for the coming step (ODE clears
+  // accumulated forces after each step).
+  void AddForce(int body, const Eigen::Vector3d& force);
+
   // Velocity motor of one joint axis (ODE's built-in joint motor).
   void SetMotor(int joint, int axis, double velocity, double max_force);
   void SetStops(int joint, int axis, double lo, double hi);
