@@ -1,0 +1,337 @@
+// simpartner-sim as a real process on real LCM multicast (udpm, ttl=0): a
+// late subscriber rebuilds the model, bad messages and commands on the bus
+// are refused while stepping goes on, run control works, and the state
+// stream is the same at any speed.
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "simpartner/channels.h"
+#include "simpartner/command_reply_t.hpp"
+#include "simpartner/command_t.hpp"
+#include "simpartner/control_t.hpp"
+#include "simpartner/model_request_t.hpp"
+#include "simpartner/model_t.hpp"
+#include "simpartner/state_t.hpp"
+#include "simpartner/status_t.hpp"
+#include "../sim_core/test_worlds.h"
+
+extern char** environ;
+
+namespace simpartner {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A port of its own for every test process, so ctest -j does not mix them.
+std::string UniqueUrl(int offset) {
+  const int port = 20000 + (static_cast<int>(::getpid()) * 7 + offset) % 20000;
+  return "udpm://239.255.76.67:" + std::to_string(port) +
+         "?ttl=0&recv_buf_size=4194304";
+}
+
+class SimProcess {
+ public:
+  SimProcess(const std::vector<std::string>& args, const std::string& log) {
+    std::vector<char*> argv;
+    std::string binary = std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim";
+    argv.push_back(binary.data());
+    std::vector<std::string> copy = args;
+    for (std::string& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    EXPECT_EQ(posix_spawn(&pid_, binary.c_str(), &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+  }
+  ~SimProcess() {
+    if (pid_ > 0 && !exited_) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+  // Exit status, or -1 if still running after timeout.
+  int Wait(std::chrono::seconds timeout) {
+    const auto end = Clock::now() + timeout;
+    while (Clock::now() < end) {
+      int status = 0;
+      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+        exited_ = true;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  bool exited_ = false;
+};
+
+// Test-side bus: collects what the sim publishes.
+class Listener {
+ public:
+  explicit Listener(const std::string& url) : lcm_(url) {
+    EXPECT_TRUE(lcm_.good());
+    lcm_.subscribe(channels::kState, &Listener::OnState, this)->setQueueCapacity(100000);
+    lcm_.subscribe(channels::kModel, &Listener::OnModel, this);
+    lcm_.subscribe(channels::kStatus, &Listener::OnStatus, this)->setQueueCapacity(1000);
+    lcm_.subscribe(channels::kCommandReply, &Listener::OnReply, this)->setQueueCapacity(1000);
+  }
+  lcm::LCM& lcm() { return lcm_; }
+
+  // Handles messages until pred() or timeout; returns pred().
+  bool Until(const std::function<bool()>& pred, double seconds) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (!pred() && Clock::now() < end) lcm_.handleTimeout(10);
+    return pred();
+  }
+
+  std::map<int64_t, std::vector<uint8_t>> states;  // step -> physics bytes
+  int64_t last_step = -1;
+  int64_t last_state_simulation = 0;
+  std::vector<model_t> models;
+  std::vector<status_t> statuses;
+  std::vector<command_reply_t> replies;
+
+ private:
+  void OnState(const lcm::ReceiveBuffer*, const std::string&, const state_t* s) {
+    state_t copy = *s;
+    last_step = s->step;
+    last_state_simulation = s->simulation_id;
+    copy.utime = 0;
+    copy.simulation_id = 0;
+    std::vector<uint8_t> bytes(copy.getEncodedSize());
+    copy.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    states[s->step] = std::move(bytes);
+  }
+  void OnModel(const lcm::ReceiveBuffer*, const std::string&, const model_t* m) {
+    models.push_back(*m);
+  }
+  void OnStatus(const lcm::ReceiveBuffer*, const std::string&, const status_t* s) {
+    statuses.push_back(*s);
+  }
+  void OnReply(const lcm::ReceiveBuffer*, const std::string&, const command_reply_t* r) {
+    replies.push_back(*r);
+  }
+  lcm::LCM lcm_;
+};
+
+class SimProcessTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("sp_sim_process_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+    std::ofstream(dir_ / "world.xml") << sim::testing::ArmWorld();
+    std::ofstream(dir_ / "arm.xml") << sim::testing::ArmRobot();
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::vector<std::string> Args(const std::string& url, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"--params", "/dev/null",
+                                     "--environment=" + (dir_ / "world.xml").string(),
+                                     "--lcm-url", url};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
+  std::string Log() const { return (dir_ / "sim.log").string(); }
+  std::string LogText() const {
+    std::ifstream in(Log());
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  std::filesystem::path dir_;
+};
+
+command_t MakeCommand(const std::string& target, int8_t action, std::vector<double> values,
+                      int64_t request_id, int64_t step = -1) {
+  command_t c = sim::testing::Command(target, action, std::move(values), step);
+  c.request_id = request_id;
+  return c;
+}
+
+void Control(lcm::LCM& lcm, int8_t action, int64_t steps = 0, double speed = 0) {
+  control_t c{};
+  c.action = action;
+  c.steps = steps;
+  c.speed = speed;
+  c.sender = "test";
+  lcm.publish(channels::kControl, &c);
+}
+
+TEST_F(SimProcessTest, LateSubscriberRebuildsTheModel) {
+  const std::string url = UniqueUrl(1);
+  SimProcess sim(Args(url, {"--duration=20"}), Log());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // started well before us
+  Listener bus(url);
+  // Ask instead of waiting for the periodic announcement.
+  model_request_t request{};
+  request.sender = "late-test";
+  bus.lcm().publish(channels::kModelRequest, &request);
+  ASSERT_TRUE(bus.Until([&] { return !bus.models.empty() && bus.last_step > 0; }, 5.0))
+      << LogText();
+  const model_t& m = bus.models.front();
+  ASSERT_EQ(m.num_bodies, 3);
+  EXPECT_EQ(m.bodies[1].name, "Arm");
+  EXPECT_EQ(m.robots.at(0).name, "Bot");
+  EXPECT_EQ(m.simulation_id, bus.last_state_simulation);
+  // Every state indexes the model's bodies and joints.
+  state_t s;
+  s.decode(bus.states.rbegin()->second.data(), 0,
+           static_cast<int>(bus.states.rbegin()->second.size()));
+  EXPECT_EQ(s.num_bodies, m.num_bodies);
+  EXPECT_EQ(s.num_joints, m.num_joints);
+  // The periodic announcement also arrives without asking (modelPeriod 1 s).
+  const size_t seen = bus.models.size();
+  EXPECT_TRUE(bus.Until([&] { return bus.models.size() > seen; }, 2.5));
+  Control(bus.lcm(), control_t::ACTION_QUIT);
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
+}
+
+TEST_F(SimProcessTest, BadInputOnTheBusIsRefusedAndSteppingGoesOn) {
+  const std::string url = UniqueUrl(2);
+  SimProcess sim(Args(url, {"--duration=30"}), Log());
+  Listener bus(url);
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > 100; }, 5.0)) << LogText();
+  // Garbage and a message of another type on SIM_COMMAND and SIM_CONTROL.
+  const uint8_t garbage[5] = {1, 2, 3, 4, 5};
+  bus.lcm().publish(channels::kCommand, garbage, sizeof garbage);
+  control_t wrong_type{};
+  bus.lcm().publish(channels::kCommand, &wrong_type);
+  bus.lcm().publish(channels::kControl, garbage, sizeof garbage);
+  // Malformed commands.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  command_t c = MakeCommand("Ghost", command_t::ACTION_SET, {1, 1}, 11);
+  bus.lcm().publish(channels::kCommand, &c);
+  c = MakeCommand("Spin", command_t::ACTION_SET, {1000, nan}, 12);
+  bus.lcm().publish(channels::kCommand, &c);
+  c = MakeCommand("Spin", command_t::ACTION_SET, {-1, 1}, 13);
+  bus.lcm().publish(channels::kCommand, &c);
+  c = MakeCommand("Spin", command_t::ACTION_SET_STOPS, {-5, 5}, 14);
+  bus.lcm().publish(channels::kCommand, &c);
+  c = MakeCommand("Spin", command_t::ACTION_SET, {1, 2, 3}, 15);
+  bus.lcm().publish(channels::kCommand, &c);
+  // And one good one.
+  c = MakeCommand("Spin", command_t::ACTION_SET, {1000, 2.0}, 16);
+  bus.lcm().publish(channels::kCommand, &c);
+  ASSERT_TRUE(bus.Until([&] { return bus.replies.size() >= 6; }, 5.0)) << LogText();
+  std::map<int64_t, command_reply_t> by_id;
+  for (const auto& r : bus.replies) by_id[r.request_id] = r;
+  EXPECT_NE(by_id[11].reason.find("target 'Ghost'"), std::string::npos) << by_id[11].reason;
+  EXPECT_NE(by_id[12].reason.find("values[1] = nan"), std::string::npos) << by_id[12].reason;
+  EXPECT_NE(by_id[13].reason.find("values[0] (max force) = -1"), std::string::npos);
+  EXPECT_NE(by_id[14].reason.find("values[0] (low stop) = -5"), std::string::npos);
+  EXPECT_NE(by_id[15].reason.find("got 3"), std::string::npos);
+  for (int64_t id = 11; id <= 15; ++id) EXPECT_FALSE(by_id[id].accepted) << id;
+  EXPECT_TRUE(by_id[16].accepted);
+  // Stepping went on, and the status counts what was refused.
+  const int64_t step_then = bus.last_step;
+  ASSERT_TRUE(bus.Until(
+      [&] {
+        return !bus.statuses.empty() && bus.statuses.back().bad_messages >= 3 &&
+               bus.last_step > step_then + 200;
+      },
+      5.0));
+  EXPECT_GE(bus.statuses.back().commands_rejected, 5);
+  const std::string log = LogText();
+  EXPECT_NE(log.find("SIM_COMMAND: message of 5 bytes is not a simpartner.command_t"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("SIM_CONTROL"), std::string::npos) << log;
+  Control(bus.lcm(), control_t::ACTION_QUIT);
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
+}
+
+TEST_F(SimProcessTest, PauseStepResetQuit) {
+  const std::string url = UniqueUrl(3);
+  SimProcess sim(Args(url, {"--duration=60"}), Log());
+  Listener bus(url);
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > 50; }, 5.0)) << LogText();
+  Control(bus.lcm(), control_t::ACTION_PAUSE);
+  ASSERT_TRUE(bus.Until(
+      [&] { return !bus.statuses.empty() && bus.statuses.back().run_state == status_t::RUN_PAUSED; },
+      3.0));
+  bus.Until([] { return false; }, 0.3);  // drain
+  const int64_t paused_at = bus.last_step;
+  bus.Until([] { return false; }, 0.5);
+  EXPECT_EQ(bus.last_step, paused_at);  // no steps while paused
+  Control(bus.lcm(), control_t::ACTION_STEP, 10);
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step == paused_at + 10; }, 3.0));
+  bus.Until([] { return false; }, 0.3);
+  EXPECT_EQ(bus.last_step, paused_at + 10);
+  const int64_t old_id = bus.last_state_simulation;
+  Control(bus.lcm(), control_t::ACTION_RESET);
+  Control(bus.lcm(), control_t::ACTION_STEP, 5);
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step == 5; }, 3.0));
+  EXPECT_NE(bus.last_state_simulation, old_id);
+  // A new SIM_MODEL with the new id follows a reset.
+  EXPECT_TRUE(bus.Until([&] { return bus.models.back().simulation_id == bus.last_state_simulation; }, 3.0));
+  Control(bus.lcm(), control_t::ACTION_QUIT);
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
+  EXPECT_EQ(bus.Until([&] { return bus.statuses.back().run_state == status_t::RUN_STOPPED; }, 2.0),
+            true);
+}
+
+// The same timed commands give the same SIM_STATE stream at real time and
+// as fast as possible.
+TEST_F(SimProcessTest, SameStreamAtAnySpeed) {
+  auto record = [&](const std::string& speed, int offset) {
+    const std::string url = UniqueUrl(10 + offset);
+    Listener bus(url);
+    SimProcess sim(Args(url, {"--startPaused=1", "--speed=" + speed, "--duration=1.5",
+                              "--stateEvery=5"}),
+                   Log());
+    EXPECT_TRUE(bus.Until([&] { return !bus.models.empty(); }, 5.0)) << LogText();
+    command_t c = MakeCommand("Spin", command_t::ACTION_SET, {1000, 5.0}, 1, 100);
+    bus.lcm().publish(channels::kCommand, &c);
+    c = MakeCommand("ArmMotor", command_t::ACTION_SET, {50, 1.0, 4, 1, 0.1}, 2, 400);
+    bus.lcm().publish(channels::kCommand, &c);
+    c = MakeCommand("ArmMotor", command_t::ACTION_SET, {50, -1.0, 4, 1, 0.1}, 3, 1000);
+    bus.lcm().publish(channels::kCommand, &c);
+    bus.Until([] { return false; }, 0.2);
+    Control(bus.lcm(), control_t::ACTION_RESUME);
+    EXPECT_TRUE(bus.Until([&] { return bus.last_step >= 1500; }, 20.0)) << LogText();
+    EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
+    return bus.states;
+  };
+  const auto real_time = record("1", 0);
+  const auto fast = record("0", 1);
+  ASSERT_EQ(real_time.size(), 300u);  // every 5th of 1500 steps, none lost
+  ASSERT_EQ(fast.size(), 300u);
+  for (const auto& [step, bytes] : real_time) {
+    ASSERT_TRUE(fast.count(step)) << step;
+    ASSERT_TRUE(fast.at(step) == bytes) << "states differ at step " << step;
+  }
+}
+
+TEST_F(SimProcessTest, BadParametersStopBeforeAnything) {
+  SimProcess sim({"--params", "/dev/null", "--stepsize=7", "--environment=/nonexistent.xml"},
+                 Log());
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 2);
+  EXPECT_NE(LogText().find("command line: stepsize: value '7' is out of range"), std::string::npos)
+      << LogText();
+  SimProcess missing({"--params", "/dev/null", "--environment=/nonexistent.xml"}, Log());
+  EXPECT_EQ(missing.Wait(std::chrono::seconds(5)), 2);
+  EXPECT_NE(LogText().find("/nonexistent.xml: cannot read world file"), std::string::npos)
+      << LogText();
+}
+
+}  // namespace
+}  // namespace simpartner
