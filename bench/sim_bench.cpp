@@ -1,0 +1,158 @@
+// Microseconds per step of the physics process, next to bare ODE stepping of
+// the same world in the same run, so our overhead is a ratio:
+//   bare      dSpaceCollide + dWorldStep/QuickStep + dJointGroupEmpty only
+//   sim       Simulation::Step (commands, controllers, step, health check)
+//   sim+pub   the same plus SIM_STATE filled, encoded and published on LCM
+// for each world given (default: the WorkPartner worlds), each stepper
+// setting, as fast as possible. Also peak resident memory.
+//   bench/sim_bench [--steps N] [--lcm-url URL] [world.xml ...]
+#include <lcm/lcm-cpp.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "simpartner/channels.h"
+#include "simpartner/model/loader.h"
+#include "simpartner/sim/simulation.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using namespace simpartner;
+
+// Peak resident set size of this process [MB] (VmHWM).
+double PeakRssMb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  }
+  return 0.0;
+}
+
+// The bare loop: the same ODE world, a near callback with fixed contact
+// parameters and nothing else.
+struct Bare {
+  dWorldID world;
+  dJointGroupID group;
+  int max_contacts;
+  double mu;
+  static void Near(void* data, dGeomID a, dGeomID b) {
+    auto* self = static_cast<Bare*>(data);
+    dBodyID b1 = dGeomGetBody(a), b2 = dGeomGetBody(b);
+    if (!b1 && !b2) return;
+    if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
+    dContact contacts[64];
+    const int n = dCollide(a, b, self->max_contacts, &contacts[0].geom, sizeof(dContact));
+    for (int i = 0; i < n; ++i) {
+      contacts[i].surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+      contacts[i].surface.mu = self->mu;
+      contacts[i].surface.soft_erp = 0.2;
+      contacts[i].surface.soft_cfm = 1e-5;
+      dJointAttach(dJointCreateContact(self->world, self->group, &contacts[i]), b1, b2);
+    }
+  }
+};
+
+double MicrosPerStep(Clock::duration d, int steps) {
+  return std::chrono::duration<double, std::micro>(d).count() / steps;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int steps = 5000;
+  std::string url = "udpm://239.255.76.67:7667?ttl=0";
+  std::vector<std::string> worlds;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--steps" && i + 1 < argc) steps = std::stoi(argv[++i]);
+    else if (a == "--lcm-url" && i + 1 < argc) url = argv[++i];
+    else if (a == "--help") {
+      std::cout << "usage: sim_bench [--steps N] [--lcm-url URL] [world.xml ...]\n";
+      return 0;
+    } else worlds.push_back(a);
+  }
+  if (worlds.empty()) {
+    for (const char* w : {"gen1_flat.xml", "flat_ground_gen2.xml", "flat_ground.xml", "gen4_flat.xml"})
+      worlds.push_back(std::string(SP_SOURCE_DIR) + "/models/worlds/" + w);
+  }
+  lcm::LCM bus(url);
+  if (!bus.good()) {
+    std::cerr << "sim_bench: cannot open LCM at " << url << "\n";
+    return 1;
+  }
+  struct Setting {
+    const char* name;
+    const char* stepper;
+    int iterations;
+  };
+  const Setting settings[] = {{"dWorldStep", "accurate", 20},
+                              {"QuickStep 20", "quick", 20},
+                              {"QuickStep 50", "quick", 50},
+                              {"QuickStep 100", "quick", 100}};
+  std::printf("%-28s %-14s %6s %10s %10s %10s %8s %8s %9s\n", "world", "stepper", "bodies",
+              "bare us", "sim us", "sim+pub us", "sim/bare", "pub/bare", "x realtime");
+  for (const std::string& path : worlds) {
+    model::WorldLoadResult loaded = model::LoadWorldFile(path);
+    if (!loaded.world) {
+      std::cerr << loaded.diagnostics.Format() << "\n";
+      return 2;
+    }
+    for (const Setting& setting : settings) {
+      Parameters params;
+      params.stepper = setting.stepper;
+      params.quickStepIterations = setting.iterations;
+      // Bare ODE on the same built world.
+      double bare_us = 0;
+      {
+        sim::Simulation sim(*loaded.world, params, 1);
+        Bare bare{sim.ode().world(), dJointGroupCreate(0), params.maxContacts, params.contactMu};
+        const auto start = Clock::now();
+        for (int n = 0; n < steps; ++n) {
+          dSpaceCollide(sim.ode().space(), &bare, &Bare::Near);
+          if (params.stepper == "quick") dWorldQuickStep(bare.world, params.stepsize);
+          else dWorldStep(bare.world, params.stepsize);
+          dJointGroupEmpty(bare.group);
+        }
+        bare_us = MicrosPerStep(Clock::now() - start, steps);
+        dJointGroupDestroy(bare.group);
+      }
+      double sim_us = 0, pub_us = 0;
+      bool faulted = false;
+      size_t bodies = 0;
+      {
+        sim::Simulation sim(*loaded.world, params, 1);
+        bodies = sim.flat().bodies.size();
+        const auto start = Clock::now();
+        for (int n = 0; n < steps; ++n) faulted |= !sim.Step();
+        sim_us = MicrosPerStep(Clock::now() - start, steps);
+      }
+      {
+        sim::Simulation sim(*loaded.world, params, 1);
+        state_t state;
+        const auto start = Clock::now();
+        for (int n = 0; n < steps; ++n) {
+          faulted |= !sim.Step();
+          sim.FillState(&state);
+          bus.publish(channels::kState, &state);
+        }
+        pub_us = MicrosPerStep(Clock::now() - start, steps);
+      }
+      std::string name = std::filesystem::path(path).filename().string();
+      std::printf("%-28s %-14s %6zu %10.1f %10.1f %10.1f %8.3f %8.3f %9.1f%s\n", name.c_str(),
+                  setting.name, bodies, bare_us, sim_us, pub_us, sim_us / bare_us,
+                  pub_us / bare_us, params.stepsize * 1e6 / pub_us,
+                  faulted ? "  FAULTED (unstable)" : "");
+      std::fflush(stdout);
+    }
+  }
+  std::printf("peak resident memory: %.1f MB\n", PeakRssMb());
+  return 0;
+}
