@@ -1,6 +1,7 @@
 #include "simpartner/sim/ode_world.h"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <cstdarg>
 #include <cstdint>
@@ -264,9 +265,13 @@ void OdeWorld::NearCallback(void* data, dGeomID o1, dGeomID o2) {
 }
 
 void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
+  // The moving body goes first: ODE would store a joint attached to
+  // (null, body) swapped, with that body's feedback in f1, so keeping the
+  // order explicit keeps the feedback bookkeeping simple.
+  if (dGeomGetBody(o1) == nullptr) std::swap(o1, o2);
   const dBodyID b1 = dGeomGetBody(o1);
   const dBodyID b2 = dGeomGetBody(o2);
-  if (b1 == nullptr && b2 == nullptr) return;  // static against static
+  if (b1 == nullptr) return;  // static against static
   if (b1 != nullptr && b2 != nullptr && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
   const int n = dCollide(o1, o2, static_cast<int>(contact_buffer_.size()),
                          &contact_buffer_[0].geom, sizeof(dContact));
@@ -413,10 +418,18 @@ JointReadout OdeWorld::ReadJoint(int index) const {
     }
   }
   out.anchor = FromOde(anchor);
-  out.force1 = FromOde(joint.feedback.f1);
-  out.torque1 = FromOde(joint.feedback.t1);
-  out.force2 = FromOde(joint.feedback.f2);
-  out.torque2 = FromOde(joint.feedback.t2);
+  const FlatJoint& flat = model_.joints[static_cast<size_t>(index)];
+  if (flat.body1 < 0 && flat.body2 >= 0) {
+    // Attached as (world, body): ODE swapped it to (body, world), so the
+    // force on body2 is in f1/t1 and the world takes the rest.
+    out.force2 = FromOde(joint.feedback.f1);
+    out.torque2 = FromOde(joint.feedback.t1);
+  } else {
+    out.force1 = FromOde(joint.feedback.f1);
+    out.torque1 = FromOde(joint.feedback.t1);
+    out.force2 = FromOde(joint.feedback.f2);
+    out.torque2 = FromOde(joint.feedback.t2);
+  }
   return out;
 }
 

@@ -83,6 +83,50 @@ TEST(Contacts, RestingSphereContactForceEqualsWeight) {
   EXPECT_NEAR(b.position.y(), 0.5, 2e-3);
 }
 
+// Whatever order the collision space pairs a body with the ground or a
+// static object (ODE swaps a joint attached to (null, body)), each sphere's
+// contact force carries its weight.
+TEST(Contacts, ContactForceOnEveryBodyWhateverThePairOrder) {
+  std::string world =
+      "<world><surface><a>0</a><b>1</b><c>0</c><d>0</d></surface>"
+      "<collisionSpace type=\"hash\"/>";
+  for (int k = 0; k < 4; ++k) {
+    const double x = 3.0 * k;
+    world += "<object type=\"Box\" name=\"Table" + std::to_string(k) +
+             "\" static=\"true\"><size><x>1</x><y>1</y><z>1</z></size>" +
+             Transform(x, 0.5, 5) + "</object>";
+    world += "<object type=\"Sphere\" name=\"OnTable" + std::to_string(k) +
+             "\"><mass>" + std::to_string(k + 1) + "</mass><radius>0.25</radius>" +
+             Transform(x, 1.25, 5) + "</object>";
+    world += "<object type=\"Sphere\" name=\"OnGround" + std::to_string(k) +
+             "\"><mass>" + std::to_string(k + 1) + "</mass><radius>0.25</radius>" +
+             Transform(x, 0.25, 0) + "</object>";
+  }
+  world += "</world>";
+  auto sim = MakeSim(world);
+  for (int n = 0; n < 2000; ++n) ASSERT_TRUE(sim->Step());
+  for (int i = 0; i < static_cast<int>(sim->flat().bodies.size()); ++i) {
+    if (sim->flat().bodies[i].source->is_static) continue;
+    const double weight = sim->flat().bodies[i].source->mass * 9.81;
+    EXPECT_NEAR(sim->ode().ReadBody(i).contact_force.y(), weight, 1e-3 * weight)
+        << sim->flat().bodies[i].name;
+  }
+}
+
+// A joint to "world" reports the force on its body (ODE stores it swapped).
+TEST(Joints, WorldJointFeedbackIsOnTheBody) {
+  const std::string world =
+      "<world><object type=\"Sphere\" name=\"Bob\"><mass>2</mass><radius>0.1</radius>" +
+      Transform(0, 1, 0) +
+      "</object><joint type=\"Ball\" name=\"Pin\"><body1>world</body1><body2>Bob</body2>"
+      "<anchor><x>0</x><y>2</y><z>0</z></anchor></joint></world>";
+  auto sim = MakeSim(world);
+  for (int n = 0; n < 500; ++n) ASSERT_TRUE(sim->Step());
+  const JointReadout j = sim->ode().ReadJoint(0);
+  EXPECT_NEAR(j.force2.y(), 2 * 9.81, 1e-3);  // holds the hanging bob up
+  EXPECT_NEAR(j.force1.norm(), 0.0, 1e-12);
+}
+
 // Rolling friction (beyond the original): a rolling sphere comes to rest.
 TEST(Contacts, RollingFrictionStopsARollingSphere) {
   auto rolling_speed_after = [](double rolling) {
