@@ -5,10 +5,6 @@
 // actuator, and prints p50 / p99 / max against the target of one step + 1 ms.
 //   bench/latency_bench [--count N] [--lcm-url URL] [world.xml]
 #include <lcm/lcm-cpp.hpp>
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <chrono>
@@ -21,13 +17,12 @@
 #include <vector>
 
 #include "simpartner/channels.h"
+#include "simpartner/child_process.h"
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_t.hpp"
 #include "simpartner/sim/sim_node.h"
-
-extern char** environ;
 
 int main(int argc, char** argv) {
   using namespace simpartner;
@@ -41,19 +36,8 @@ int main(int argc, char** argv) {
     else world = a;
   }
   std::string binary = std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim";
-  std::vector<std::string> args = {binary, "--params", "/dev/null", "--environment=" + world,
-                                   "--lcm-url", url};
-  std::vector<char*> cargs;
-  for (std::string& a : args) cargs.push_back(a.data());
-  cargs.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  if (posix_spawn(&pid, binary.c_str(), &actions, nullptr, cargs.data(), environ) != 0) {
-    std::cerr << "latency_bench: cannot start " << binary << "\n";
-    return 1;
-  }
+  ChildProcess sim({binary, "--params", "/dev/null", "--environment=" + world, "--lcm-url", url},
+                   "/dev/null");
   lcm::LCM bus(url);
   model_t model;
   bool have_model = false;
@@ -79,7 +63,6 @@ int main(int argc, char** argv) {
   while (!have_model && std::chrono::steady_clock::now() < deadline) bus.handleTimeout(50);
   if (!have_model || model.num_actuators == 0) {
     std::cerr << "latency_bench: no SIM_MODEL with an actuator from the sim\n";
-    ::kill(pid, SIGKILL);
     return 1;
   }
   const actuator_t& target = model.actuators[0];
@@ -103,7 +86,7 @@ int main(int argc, char** argv) {
   control_t quit{};
   quit.action = control_t::ACTION_QUIT;
   bus.publish(channels::kControl, &quit);
-  ::waitpid(pid, nullptr, 0);
+  if (!sim.Wait(std::chrono::seconds(5))) std::cerr << "latency_bench: the sim did not quit\n";
   std::sort(latencies_ms.begin(), latencies_ms.end());
   if (latencies_ms.empty()) {
     std::cerr << "latency_bench: no replies\n";
