@@ -19,6 +19,12 @@ constexpr size_t kRecentWarnings = 16;
 // debugger), it re-anchors instead of racing to catch up.
 constexpr auto kMaxLag = std::chrono::milliseconds(100);
 
+std::string FormatMs(double ms) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", ms);
+  return text;
+}
+
 }  // namespace
 
 int64_t NowMicros() {
@@ -47,17 +53,21 @@ SimNode::SimNode(Simulation* sim, lcm::LCM* lcm)
   last_status_time_ = Clock::now();
 }
 
-void SimNode::ReportBadMessage(const std::string& channel, const std::string& what) {
-  ++bad_messages_;
+void SimNode::Warn(int8_t severity, const std::string& source, const std::string& message) {
   warning_t w{};
   w.step = sim_->step();
-  w.severity = warning_t::SEVERITY_WARNING;
-  w.source = "bus";
-  w.message = channel + ": " + what;
-  std::cerr << "simpartner-sim: step " << w.step << ": " << w.message << "\n";
-  recent_warnings_.push_back(w);
+  w.severity = severity;
+  w.source = source;
+  w.message = message;
+  std::cerr << "simpartner-sim: step " << w.step << ": " << source << ": " << message << "\n";
+  recent_warnings_.push_back(std::move(w));
   if (recent_warnings_.size() > kRecentWarnings) recent_warnings_.pop_front();
   status_changed_ = true;
+}
+
+void SimNode::ReportBadMessage(const std::string& channel, const std::string& what) {
+  ++bad_messages_;
+  Warn(warning_t::SEVERITY_WARNING, "bus", channel + ": " + what);
 }
 
 void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
@@ -265,6 +275,16 @@ int SimNode::Run() {
           std::chrono::duration<double>(params.stepsize / speed_));
       auto now = Clock::now();
       if (!schedule_anchored_ || now - next_deadline_ > kMaxLag) {
+        if (schedule_anchored_) {
+          // Sim time now lags wall time for good by this much: say so, since
+          // anyone comparing the two (a logger, a real-robot log) must know.
+          const double behind_ms =
+              std::chrono::duration<double, std::milli>(now - next_deadline_).count();
+          Warn(warning_t::SEVERITY_WARNING, "realtime",
+               "fell " + FormatMs(behind_ms) +
+                   " ms behind real time (machine too slow or stalled); re-anchored, sim "
+                   "time now lags wall time by that much more");
+        }
         next_deadline_ = now;
         schedule_anchored_ = true;
       }

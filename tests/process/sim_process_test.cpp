@@ -4,10 +4,7 @@
 // stream is the same at any speed.
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -19,6 +16,7 @@
 #include <thread>
 
 #include "simpartner/channels.h"
+#include "simpartner/child_process.h"
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
@@ -27,8 +25,6 @@
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "../sim_core/test_worlds.h"
-
-extern char** environ;
 
 namespace simpartner {
 namespace {
@@ -42,45 +38,21 @@ std::string UniqueUrl(int offset) {
          "?ttl=0&recv_buf_size=4194304";
 }
 
+// simpartner-sim of this build, killed and reaped if a test ends early.
 class SimProcess {
  public:
-  SimProcess(const std::vector<std::string>& args, const std::string& log) {
-    std::vector<char*> argv;
-    std::string binary = std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim";
-    argv.push_back(binary.data());
-    std::vector<std::string> copy = args;
-    for (std::string& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    EXPECT_EQ(posix_spawn(&pid_, binary.c_str(), &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  ~SimProcess() {
-    if (pid_ > 0 && !exited_) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-  }
+  SimProcess(std::vector<std::string> args, const std::string& log)
+      : child_(WithBinary(std::move(args)), log) {}
   // Exit status, or -1 if still running after timeout.
-  int Wait(std::chrono::seconds timeout) {
-    const auto end = Clock::now() + timeout;
-    while (Clock::now() < end) {
-      int status = 0;
-      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-        exited_ = true;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return -1;
-  }
+  int Wait(std::chrono::seconds timeout) { return child_.Wait(timeout).value_or(-1); }
+  void Signal(int signal) { child_.Signal(signal); }
 
  private:
-  pid_t pid_ = -1;
-  bool exited_ = false;
+  static std::vector<std::string> WithBinary(std::vector<std::string> args) {
+    args.insert(args.begin(), std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim");
+    return args;
+  }
+  ChildProcess child_;
 };
 
 // Test-side bus: collects what the sim publishes.
@@ -201,6 +173,38 @@ TEST_F(SimProcessTest, LateSubscriberRebuildsTheModel) {
   // The periodic announcement also arrives without asking (modelPeriod 1 s).
   const size_t seen = bus.models.size();
   EXPECT_TRUE(bus.Until([&] { return bus.models.size() > seen; }, 2.5));
+  Control(bus.lcm(), control_t::ACTION_QUIT);
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
+}
+
+// A sim that is stopped for 0.4 s (a debugger, an overloaded machine) does
+// not race through the missed steps: it re-anchors its schedule, says on
+// SIM_STATUS how far it fell behind, and loses no step of the stream.
+TEST_F(SimProcessTest, StalledSimSaysItFellBehindAndKeepsEveryStep) {
+  const std::string url = UniqueUrl(6);
+  SimProcess sim(Args(url, {"--duration=30"}), Log());
+  Listener bus(url);
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > 200; }, 10.0)) << LogText();
+  sim.Signal(SIGSTOP);
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  sim.Signal(SIGCONT);
+  const warning_t* behind = nullptr;
+  auto find_warning = [&] {
+    for (const status_t& status : bus.statuses)
+      for (const warning_t& w : status.warnings)
+        if (w.source == "realtime") behind = &w;
+    return behind != nullptr;
+  };
+  ASSERT_TRUE(bus.Until(find_warning, 5.0)) << LogText();
+  EXPECT_NE(behind->message.find("behind real time"), std::string::npos) << behind->message;
+  // "fell N ms behind": at least the 400 ms it was stopped, less one step.
+  const double behind_ms = std::stod(behind->message.substr(5));
+  EXPECT_GE(behind_ms, 399.0) << behind->message;
+  const int64_t resumed_at = bus.last_step;
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > resumed_at + 200; }, 5.0));
+  // Every step from the first one received to the last is there once.
+  const int64_t first = bus.states.begin()->first, last = bus.states.rbegin()->first;
+  EXPECT_EQ(static_cast<int64_t>(bus.states.size()), last - first + 1);
   Control(bus.lcm(), control_t::ACTION_QUIT);
   EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
 }

@@ -50,6 +50,8 @@ class SimNode {
   void ReportBadMessage(const std::string& channel, const std::string& what);
   void PublishPending();
   void CollectWarnings();
+  // Reports on stderr and in the next SIM_STATUS.
+  void Warn(int8_t severity, const std::string& source, const std::string& message);
 
   Simulation* sim_;
   lcm::LCM* lcm_;
