@@ -8,6 +8,8 @@
 //   bench/drift_bench [--seconds N (600)] [--lcm-url URL] [world.xml]
 #include <lcm/lcm-cpp.hpp>
 
+#include <signal.h>
+
 #include <algorithm>
 #include <set>
 #include <chrono>
@@ -24,6 +26,11 @@
 #include "simpartner/status_t.hpp"
 
 namespace {
+
+// Set by SIGINT/SIGTERM so that an interrupted run still quits its sim and
+// prints what it measured (the only state a signal handler may touch).
+volatile sig_atomic_t g_interrupted = 0;
+void OnSignal(int) { g_interrupted = 1; }
 
 using Clock = std::chrono::steady_clock;
 
@@ -93,6 +100,8 @@ int main(int argc, char** argv) {
   ChildProcess sim({std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim", "--params",
                     "/dev/null", "--environment=" + world, "--lcm-url", url},
                    "/dev/null");
+  ::signal(SIGINT, OnSignal);
+  ::signal(SIGTERM, OnSignal);
   const Clock::time_point start = Clock::now();
   Clock::time_point next_report = start + std::chrono::seconds(60);
   double step_ms = 0;
@@ -103,8 +112,8 @@ int main(int argc, char** argv) {
       std::cerr << "drift_bench: the sim ended early\n";
       return 1;
     }
-    if (receiver.have_first &&
-        std::chrono::duration<double>(now - receiver.first_wall).count() >= seconds)
+    if (g_interrupted || (receiver.have_first && std::chrono::duration<double>(
+                                                     now - receiver.first_wall).count() >= seconds))
       break;
     if (now >= next_report && receiver.have_first) {
       next_report += std::chrono::seconds(60);
@@ -119,8 +128,12 @@ int main(int argc, char** argv) {
   quit.action = control_t::ACTION_QUIT;
   bus.publish(channels::kControl, &quit);
   sim.Wait(std::chrono::seconds(5));
-  if (receiver.received > 1)
-    step_ms = 1e3 * seconds / static_cast<double>(receiver.last_step);  // approximate
+  if (receiver.received < 2) {
+    std::cerr << "drift_bench: no states received\n";
+    return 1;
+  }
+  seconds = std::chrono::duration<double>(Clock::now() - receiver.first_wall).count();
+  step_ms = 1e3 * seconds / static_cast<double>(receiver.last_step);  // approximate
   std::vector<double> sorted = receiver.drifts_ms;
   std::sort(sorted.begin(), sorted.end());
   auto pct = [&](double p) {
