@@ -6,6 +6,8 @@
 #include <libxml/valid.h>
 #include <libxml/xmlerror.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -60,7 +62,17 @@ class ScopedXmlErrors {
   static void OnError(void* self_ptr, xmlErrorPtr error) {
     auto* self = static_cast<ScopedXmlErrors*>(self_ptr);
     if (error == nullptr || error->level == XML_ERR_WARNING) return;
+    // libxml2 parses on after a fatal error, but what it reports further
+    // down is guesswork about a document it has already misread (say, a
+    // tag mismatch at </world> because it dropped a start tag): keep what
+    // it says about the line of the first fatal error only.
+    if (self->first_fatal_line_ > 0 && error->line > self->first_fatal_line_) return;
+    if (error->level == XML_ERR_FATAL && self->first_fatal_line_ == 0 && error->line > 0)
+      self->first_fatal_line_ = error->line;
+    // Some messages span lines ("...indicate encoding !\nBytes: 0xE9 ...");
+    // a diagnostic is one line.
     std::string message = Trim(error->message != nullptr ? error->message : "XML error");
+    std::replace(message.begin(), message.end(), '\n', ' ');
     std::string element;
     if (error->node != nullptr) {
       const auto* node = static_cast<const xmlNode*>(error->node);
@@ -74,6 +86,7 @@ class ScopedXmlErrors {
 
   std::string file_name_;
   DiagnosticList* diagnostics_;
+  int first_fatal_line_ = 0;
 };
 
 struct XmlDocFree {
@@ -117,7 +130,12 @@ XmlDocPtr ParseAndValidate(const std::string& xml, const std::string& file_name,
   }
   // Declarations in the file itself would change what the DTD allows.
   if (doc->intSubset != nullptr && doc->intSubset->children != nullptr) {
-    diagnostics->Add(file_name, 0, "DOCTYPE",
+    // libxml2 keeps no line for the DTD node; the text has it.
+    const size_t at = xml.find("<!DOCTYPE");
+    const int line = at == std::string::npos
+                         ? 0
+                         : 1 + static_cast<int>(std::count(xml.begin(), xml.begin() + at, '\n'));
+    diagnostics->Add(file_name, line, "DOCTYPE",
                      "declarations inside the file are not allowed; files are "
                      "validated against SimPartner's own DTD");
     return nullptr;
@@ -177,12 +195,14 @@ class Reader {
       if (n->type == XML_ELEMENT_NODE && (name == nullptr || Name(n) == name)) out.push_back(n);
     return out;
   }
-  static std::string Text(const xmlNode* node) {
+  static std::string Text(const xmlNode* node) { return Trim(RawText(node)); }
+  // The element's text as written, whitespace and line breaks included.
+  static std::string RawText(const xmlNode* node) {
     if (node == nullptr) return "";
     xmlChar* content = xmlNodeGetContent(node);
     std::string text = content ? reinterpret_cast<const char*>(content) : "";
     xmlFree(content);
-    return Trim(text);
+    return text;
   }
   static std::optional<std::string> Attribute(const xmlNode* node, const char* name) {
     if (node == nullptr) return std::nullopt;
@@ -567,7 +587,16 @@ SensorKind ParseSensorKind(const std::string& type) {
   return SensorKind::kEcho;
 }
 
-std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robot& robot) {
+// Names the robot file declares (the DTD's ID attributes), whether or not
+// the element passed its own checks: a reference to a body or joint that is
+// there but wrong is not reported a second time as missing.
+struct DeclaredNames {
+  std::set<std::string> bodies;
+  std::set<std::string> joints;
+};
+
+std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robot& robot,
+                                 const DeclaredNames& declared) {
   Sensor sensor;
   sensor.name = Reader::Attribute(node, "name").value_or("");
   sensor.kind = ParseSensorKind(Reader::Attribute(node, "type").value_or("Echo"));
@@ -584,10 +613,10 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
     } else {
       sensor.joint = Reader::Text(joint_ref);
       const Joint* joint = robot.FindJoint(sensor.joint);
-      if (joint == nullptr) {
+      if (joint == nullptr && declared.joints.count(sensor.joint) == 0) {
         reader.Error(joint_ref, what + ": '" + sensor.joint + "' is not a joint of robot '" +
                                     robot.model_name + "'");
-      } else {
+      } else if (joint != nullptr) {
         sensor.body = joint->body2;
       }
     }
@@ -595,7 +624,7 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
     reader.Error(node, what + ": a " + ToString(sensor.kind) + " sensor needs <bodyRef>");
   } else {
     sensor.body = Reader::Text(body_ref);
-    if (robot.FindBody(sensor.body) == nullptr)
+    if (robot.FindBody(sensor.body) == nullptr && declared.bodies.count(sensor.body) == 0)
       reader.Error(body_ref, what + ": '" + sensor.body + "' is not a body of robot '" +
                                  robot.model_name + "'");
   }
@@ -654,7 +683,8 @@ ActuatorKind ParseActuatorKind(const std::string& type) {
   return ActuatorKind::kJointVelocity;
 }
 
-std::optional<Actuator> ReadActuator(Reader& reader, const xmlNode* node, const Robot& robot) {
+std::optional<Actuator> ReadActuator(Reader& reader, const xmlNode* node, const Robot& robot,
+                                     const DeclaredNames& declared) {
   Actuator actuator;
   actuator.name = Reader::Attribute(node, "name").value_or("");
   actuator.kind = ParseActuatorKind(Reader::Attribute(node, "type").value_or(""));
@@ -666,8 +696,9 @@ std::optional<Actuator> ReadActuator(Reader& reader, const xmlNode* node, const 
   actuator.joint = Reader::Text(joint_ref);
   const Joint* joint = robot.FindJoint(actuator.joint);
   if (joint == nullptr) {
-    reader.Error(joint_ref, what + ": '" + actuator.joint + "' is not a joint of robot '" +
-                                robot.model_name + "'");
+    if (declared.joints.count(actuator.joint) == 0)
+      reader.Error(joint_ref, what + ": '" + actuator.joint + "' is not a joint of robot '" +
+                                  robot.model_name + "'");
   } else {
     const bool rotational = joint->kind == JointKind::kHinge ||
                             joint->kind == JointKind::kUniversal ||
@@ -685,53 +716,74 @@ std::optional<Actuator> ReadActuator(Reader& reader, const xmlNode* node, const 
   return actuator;
 }
 
-// Bodies not reachable from the first body through joints.
-void CheckConnected(Reader& reader, const Robot& robot) {
-  if (robot.bodies.empty()) return;
+// Bodies that no chain of joints reaches from the first body. Judged on
+// what the file declares, so that it is reported along with any other
+// problem; except when a joint names a body that does not exist or joins a
+// body to itself (reported already): then the graph the file means is
+// unknown.
+void CheckConnected(Reader& reader, const xmlNode* root) {
+  const std::vector<const xmlNode*> bodies = Reader::Children(root, "body");
+  if (bodies.empty()) return;
+  std::set<std::string> names;
+  for (const xmlNode* b : bodies) names.insert(Reader::Attribute(b, "name").value_or(""));
   std::map<std::string, std::vector<std::string>> neighbours;
-  for (const Joint& j : robot.joints) {
-    neighbours[j.body1].push_back(j.body2);
-    neighbours[j.body2].push_back(j.body1);
+  for (const xmlNode* j : Reader::Children(root, "joint")) {
+    const std::string body1 = Reader::Text(Reader::Child(j, "body1"));
+    const std::string body2 = Reader::Text(Reader::Child(j, "body2"));
+    if (names.count(body1) == 0 || names.count(body2) == 0 || body1 == body2) return;
+    neighbours[body1].push_back(body2);
+    neighbours[body2].push_back(body1);
   }
-  std::set<std::string> reached = {robot.bodies.front().name};
-  std::vector<std::string> frontier = {robot.bodies.front().name};
+  const std::string first = Reader::Attribute(bodies.front(), "name").value_or("");
+  std::set<std::string> reached = {first};
+  std::vector<std::string> frontier = {first};
   while (!frontier.empty()) {
     const std::string name = frontier.back();
     frontier.pop_back();
     for (const std::string& next : neighbours[name])
       if (reached.insert(next).second) frontier.push_back(next);
   }
-  for (const Body& b : robot.bodies) {
-    if (reached.count(b.name) == 0)
-      reader.ErrorAt(b.where, "body",
-                     "body '" + b.name + "' is not connected to '" + robot.bodies.front().name +
-                         "' by any chain of joints (a robot is one connected graph)");
+  for (const xmlNode* b : bodies) {
+    const std::string name = Reader::Attribute(b, "name").value_or("");
+    if (reached.count(name) == 0)
+      reader.Error(b, "body '" + name + "' is not connected to '" + first +
+                          "' by any chain of joints (a robot is one connected graph)");
   }
 }
 
+// Legacy ports are TCP ports of one machine: unique within a robot and over
+// all robots of a world. used maps each port to its owner. Within a robot
+// file (placement null) a clash is reported at the second user; between
+// robots (the files are fine each) at the world's <robot> that placed the
+// second one.
 void CheckUniquePorts(Reader& reader, const Robot& robot, std::map<int, std::string>* used,
-                      const std::string& prefix) {
+                      const xmlNode* placement, const std::string& instance) {
   auto check = [&](int port, const std::string& name, const SourceLocation& where,
                    const char* element) {
     if (port == 0) return;
-    const auto [it, inserted] = used->emplace(port, prefix + name);
-    if (!inserted)
-      reader.ErrorAt(where, element,
-                     std::string(element) + " '" + name + "': port " + std::to_string(port) +
-                         " is already used by '" + it->second + "'");
+    const auto [it, inserted] =
+        used->emplace(port, placement == nullptr ? name : instance + "/" + name);
+    if (inserted) return;
+    const std::string what = std::string(element) + " '" + name + "'";
+    const std::string clash =
+        "port " + std::to_string(port) + " is already used by '" + it->second + "'";
+    if (placement == nullptr)
+      reader.ErrorAt(where, element, what + ": " + clash);
+    else
+      reader.Error(placement, "robot '" + instance + "': " + what + " " + clash);
   };
   for (const Sensor& s : robot.sensors) check(s.port, s.name, s.where, "sensor");
   for (const Actuator& a : robot.actuators) check(a.port, a.name, a.where, "actuator");
 }
 
-void CheckMaterialNames(Reader& reader, const std::vector<Body>& bodies,
+void CheckMaterialNames(Reader& reader, const std::vector<Body>& bodies, const char* element,
                         const std::function<bool(const std::string&)>& exists,
                         const std::string& where_defined) {
   for (const Body& b : bodies) {
     if (!b.material.empty() && !exists(b.material))
-      reader.ErrorAt(b.where, "body",
-                     "'" + b.name + "': material '" + b.material + "' is not defined in " +
-                         where_defined);
+      reader.ErrorAt(b.where, element,
+                     std::string(element) + " '" + b.name + "': material '" + b.material +
+                         "' is not defined in " + where_defined);
   }
 }
 
@@ -782,13 +834,17 @@ RobotLoadResult ParseRobot(const std::string& xml, const std::string& file_name)
                            owner);
     if (joint) robot.joints.push_back(*joint);
   }
+  DeclaredNames declared;
+  declared.bodies = body_names;
+  for (const xmlNode* n : Reader::Children(root, "joint"))
+    declared.joints.insert(Reader::Attribute(n, "name").value_or(""));
   for (const xmlNode* n : Reader::Children(root, "sensor"))
-    if (auto s = ReadSensor(reader, n, robot)) robot.sensors.push_back(*s);
+    if (auto s = ReadSensor(reader, n, robot, declared)) robot.sensors.push_back(*s);
   for (const xmlNode* n : Reader::Children(root, "actuator"))
-    if (auto a = ReadActuator(reader, n, robot)) robot.actuators.push_back(*a);
-  if (result.diagnostics.empty()) CheckConnected(reader, robot);
+    if (auto a = ReadActuator(reader, n, robot, declared)) robot.actuators.push_back(*a);
+  CheckConnected(reader, root);
   std::map<int, std::string> ports;
-  CheckUniquePorts(reader, robot, &ports, "");
+  CheckUniquePorts(reader, robot, &ports, nullptr, "");
   if (result.diagnostics.empty()) result.robot = std::move(robot);
   return result;
 }
@@ -880,22 +936,48 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     field.offset = reader.NumberOr(h, "offset", 0.0, "heightfield", &ok);
     field.thickness = reader.NumberOr(h, "thickness", 1.0, "heightfield", &ok);
     if (field.thickness <= 0.0)
-      reader.Error(Reader::Child(h, "thickness"), "heightfield thickness must be positive");
+      reader.Error(Reader::Child(h, "thickness"), "heightfield thickness must be positive, got " +
+                                                      FormatNumber(field.thickness));
     if (const xmlNode* p = Reader::Child(h, "position")) {
       if (const auto position = reader.Vector(p, "heightfield position")) field.position = *position;
     }
+    // Samples fill many lines (with comments between rows): a bad one is
+    // reported at its own line, counted from <samples> through the text and
+    // the comments, with its row and column.
     const xmlNode* samples = Reader::Child(h, "samples");
-    std::istringstream in(Reader::Text(samples));
-    std::string token;
-    while (in >> token) {
-      char* end = nullptr;
-      const double value = std::strtod(token.c_str(), &end);
-      if (*end != '\0' || !std::isfinite(value)) {
-        reader.Error(samples, "heightfield sample " + std::to_string(field.samples.size() + 1) +
-                                  " '" + token + "' is not a finite number");
-        break;
+    int line = reader.Where(samples).line;
+    bool bad_sample = false;
+    for (const xmlNode* part = samples->children; part != nullptr && !bad_sample;
+         part = part->next) {
+      const std::string text = Reader::RawText(part);
+      if (part->type != XML_TEXT_NODE && part->type != XML_CDATA_SECTION_NODE) {
+        line += static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+        continue;
       }
-      field.samples.push_back(value);
+      for (size_t i = 0; i < text.size();) {
+        if (std::isspace(static_cast<unsigned char>(text[i]))) {
+          if (text[i++] == '\n') ++line;
+          continue;
+        }
+        const size_t start = i;
+        while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+        const std::string token = text.substr(start, i - start);
+        char* end = nullptr;
+        const double value = std::strtod(token.c_str(), &end);
+        if (*end != '\0' || !std::isfinite(value)) {
+          const size_t index = field.samples.size();
+          const std::string place =
+              field.columns > 0 ? " (row " + std::to_string(index / field.columns + 1) +
+                                      ", column " + std::to_string(index % field.columns + 1) + ")"
+                                : "";
+          reader.ErrorAt(SourceLocation{reader.file(), line}, "samples",
+                         "heightfield sample " + std::to_string(index + 1) + place + " '" +
+                             token + "' is not a finite number");
+          bad_sample = true;
+          break;
+        }
+        field.samples.push_back(value);
+      }
     }
     const size_t expected = static_cast<size_t>(field.rows) * static_cast<size_t>(field.columns);
     if (reader.ErrorCount() == errors_before && field.samples.size() != expected) {
@@ -947,7 +1029,7 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
       continue;
     }
     instance.robot = std::move(*loaded.robot);
-    CheckUniquePorts(reader, instance.robot, &ports, instance.name + "/");
+    CheckUniquePorts(reader, instance.robot, &ports, n, instance.name);
     world.robots.push_back(std::move(instance));
   }
 
@@ -956,12 +1038,16 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     for (const Material& m : r.robot.materials)
       if (world.FindMaterial(m.name) == nullptr) world.materials.push_back(m);
   }
+  // A material whose values are wrong is reported as such, not as missing.
+  std::set<std::string> declared_materials;
+  for (const xmlNode* n : Reader::Children(root, "material"))
+    declared_materials.insert(Reader::Attribute(n, "name").value_or(""));
   auto material_exists = [&](const std::string& name) {
-    return world.FindMaterial(name) != nullptr;
+    return world.FindMaterial(name) != nullptr || declared_materials.count(name) > 0;
   };
-  CheckMaterialNames(reader, world.objects, material_exists, "the world");
+  CheckMaterialNames(reader, world.objects, "object", material_exists, "the world");
   for (const RobotInstance& r : world.robots)
-    CheckMaterialNames(reader, r.robot.bodies, material_exists, "the world or the robot");
+    CheckMaterialNames(reader, r.robot.bodies, "body", material_exists, "the world or the robot");
   if (!world.plane_material.empty() && !material_exists(world.plane_material))
     reader.Error(Reader::Child(root, "surface"),
                  "surface material '" + world.plane_material + "' is not defined");
