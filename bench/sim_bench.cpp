@@ -36,8 +36,8 @@ double PeakRssMb() {
   return 0.0;
 }
 
-// The bare loop: the same ODE world, a near callback with fixed contact
-// parameters and nothing else.
+// The bare loop: the same ODE world with the actuated joints' motors set
+// once, a near callback with fixed contact parameters, and nothing else.
 struct Bare {
   dWorldID world;
   dJointGroupID group;
@@ -113,6 +113,13 @@ int main(int argc, char** argv) {
       double bare_us = 0;
       {
         sim::Simulation sim(*loaded.world, params, 1);
+        // The same constraint rows as the sim holding its pose: a motor
+        // (velocity 0, 1000 per axis) on every actuated joint.
+        for (const sim::FlatActuator& actuator : sim.flat().actuators) {
+          const int joint = actuator.joint;
+          for (int axis = 0; joint >= 0 && axis < sim.flat().joints[joint].num_axes; ++axis)
+            sim.ode().SetMotor(joint, axis, 0.0, 1000.0);
+        }
         Bare bare{sim.ode().world(), dJointGroupCreate(0), params.maxContacts, params.contactMu};
         const auto start = Clock::now();
         for (int n = 0; n < steps; ++n) {
