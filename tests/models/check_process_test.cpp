@@ -1,0 +1,140 @@
+// `simpartner-sim --check` as users run it: the real binary, its exit
+// status, the summary on stdout and every problem on stderr as
+// "file:line: element: message".
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace simpartner::model {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = SP_SOURCE_DIR;
+const fs::path kSim = fs::path(SP_BINARY_DIR) / "sim_core" / "simpartner-sim";
+
+struct SimRun {
+  int status = -1;  // exit status; 128 + signal if killed
+  std::string out;
+  std::string err;
+};
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs simpartner-sim with args, stdout and stderr to separate files of a
+// directory of its own; kills it if it takes longer than 30 s.
+SimRun RunSim(const std::vector<std::string>& args) {
+  SimRun run;
+  char dir_template[] = "/tmp/sp_check_test.XXXXXX";
+  const char* dir = mkdtemp(dir_template);
+  if (dir == nullptr) {
+    ADD_FAILURE() << "mkdtemp failed";
+    return run;
+  }
+  const fs::path out = fs::path(dir) / "stdout", err = fs::path(dir) / "stderr";
+  std::vector<std::string> argv_text = {kSim.string()};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  pid_t pid = -1;
+  const int spawned = posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  if (spawned != 0) {
+    ADD_FAILURE() << "cannot start " << kSim << ": " << std::strerror(spawned);
+    fs::remove_all(dir);
+    return run;
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  int wait_status = 0;
+  while (waitpid(pid, &wait_status, WNOHANG) == 0) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      ADD_FAILURE() << kSim << " --check did not finish in 30 s";
+      kill(pid, SIGKILL);
+      waitpid(pid, &wait_status, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  run.status = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : 128 + WTERMSIG(wait_status);
+  run.out = ReadText(out);
+  run.err = ReadText(err);
+  fs::remove_all(dir);
+  return run;
+}
+
+std::vector<std::string> Check(const fs::path& world) {
+  return {"--check", "--params", (kSource / "parameters.txt").string(),
+          "--environment=" + world.string()};
+}
+
+bool HasLine(const std::string& text, const std::string& line) {
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);)
+    if (l == line) return true;
+  return false;
+}
+
+TEST(CheckProcess, BrokenWorldExitsNonZeroWithFileLineElementMessage) {
+  const fs::path world = kSource / "tests/models/broken/physics_zero_mass.xml";
+  const SimRun run = RunSim(Check(world));
+  EXPECT_NE(run.status, 0);
+  EXPECT_TRUE(HasLine(run.err, world.string() +
+                                   ":6: mass: object 'Crate': mass must be positive, got 0"))
+      << "stderr:\n" << run.err;
+  EXPECT_EQ(run.out.find("objects:"), std::string::npos) << "no summary for a broken world";
+}
+
+TEST(CheckProcess, BrokenRobotIsReportedInBothFiles) {
+  const fs::path world = kSource / "tests/models/broken/robot_joint_missing_body.xml";
+  const fs::path robot = kSource / "tests/models/broken/robots/joint_missing_body.xml";
+  const SimRun run = RunSim(Check(world));
+  EXPECT_NE(run.status, 0);
+  EXPECT_TRUE(HasLine(run.err,
+                      world.string() + ":6: robot: robot 'TwoLink': cannot load "
+                                       "'robots/joint_missing_body.xml' (1 problem)"))
+      << "stderr:\n" << run.err;
+  EXPECT_TRUE(HasLine(run.err, robot.string() + ":25: body2: joint 'Axle': body2 'Wheels' is "
+                                                "not a body of robot 'TwoLink'"))
+      << "stderr:\n" << run.err;
+}
+
+TEST(CheckProcess, GoodWorldExitsZeroWithTheSummary) {
+  const fs::path world = kSource / "models/worlds/flat_ground.xml";
+  const SimRun run = RunSim(Check(world));
+  EXPECT_EQ(run.status, 0) << "stderr:\n" << run.err;
+  EXPECT_EQ(run.err, "");
+  // flat_ground places WorkPartner gen3: 202 kg (SPEC 7).
+  EXPECT_NE(run.out.find("robot 'WorkPartner' = WorkPartner gen3"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("total mass: 202.000 kg"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("bodies: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("actuators: "), std::string::npos) << run.out;
+}
+
+}  // namespace
+}  // namespace simpartner::model
