@@ -947,7 +947,7 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     const xmlNode* samples = Reader::Child(h, "samples");
     int line = reader.Where(samples).line;
     bool bad_sample = false;
-    for (const xmlNode* part = samples->children; part != nullptr && !bad_sample;
+    for (const xmlNode* part = samples ? samples->children : nullptr; part && !bad_sample;
          part = part->next) {
       const std::string text = Reader::RawText(part);
       if (part->type != XML_TEXT_NODE && part->type != XML_CDATA_SECTION_NODE) {
