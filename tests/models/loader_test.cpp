@@ -147,6 +147,25 @@ TEST(LoaderWorld, RoundedRotationIsAcceptedAndOrthonormalised) {
   EXPECT_NEAR(r(1, 0), std::sqrt(0.5), 1e-4);
 }
 
+// Three decimals (0.707) still load; two (0.71, |R^T R - I| = 8e-3) do not.
+TEST(LoaderWorld, ThreeDecimalRotationLoadsTwoDecimalsDoNot) {
+  auto world = [](const char* c) {
+    return std::string(R"(<world><object type="Sphere" name="Ball"><mass>1</mass>
+<radius>0.1</radius><transformation>
+<T00>)") + c + "</T00><T01>-" + c + "</T01><T02>0</T02><T03>0</T03><T10>" + c +
+           "</T10><T11>" + c + R"(</T11><T12>0</T12><T13>0</T13>
+<T20>0</T20><T21>0</T21><T22>1</T22><T23>0</T23></transformation></object></world>)";
+  };
+  const WorldLoadResult three = ParseWorld(world("0.707"), "three.xml");
+  ASSERT_TRUE(three.world) << three.diagnostics.Format();
+  EXPECT_NEAR(three.world->objects.at(0).pose.linear().determinant(), 1.0, 1e-12);
+  const WorldLoadResult two = ParseWorld(world("0.71"), "two.xml");
+  ASSERT_FALSE(two.world);
+  ASSERT_EQ(two.diagnostics.size(), 1u);
+  EXPECT_EQ(two.diagnostics.items()[0].line, 2);  // <transformation>
+  EXPECT_NE(two.diagnostics.items()[0].message.find("not a rotation matrix"), std::string::npos);
+}
+
 TEST(LoaderWorld, EachGeometryKindWithItsSolidInertia) {
   const std::string xml = "<world>"
       "<object type=\"Box\" name=\"Crate\"><mass>2</mass>"
