@@ -1,0 +1,118 @@
+// simpartner-logger: the receive loop (this thread) hands records to a
+// bounded queue that spills to the spool on disk; a writer thread takes
+// them in order and writes them into the database in batches, retrying for
+// as long as the server is away or refuses writes. Nothing received is
+// dropped: at shutdown what could not be written stays in the spool for the
+// next run.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "simpartner/logger/db.h"
+#include "simpartner/logger/receiver.h"
+#include "simpartner/logger/record_queue.h"
+#include "simpartner/logger/reporter.h"
+#include "simpartner/logger/spool.h"
+#include "simpartner/logger/writer.h"
+#include "simpartner/parameters.h"
+
+namespace simpartner::logger {
+
+struct LoggerOptions {
+  std::string lcm_url = kDefaultLcmUrl;
+  DbTarget db;
+  std::string spool_dir = "state/logger-spool";
+  int log_interval = 1;  // 1 = every step (logEveryStep=1), else logInterval
+  InsertMethod insert_method = InsertMethod::kMultiRowInsert;
+  uint64_t queue_bytes = 64u << 20;       // memory queue; beyond it records spill to disk
+  uint64_t spool_segment_bytes = 64u << 20;
+  double status_period = 10.0;  // [s] between status lines
+  double drain_timeout = 10.0;  // [s] writing on after a stop request
+  double retry_period = 1.0;    // [s] between attempts while the server fails
+  std::string sender;           // in SIM_MODEL_REQUEST
+};
+
+// Log-scale histogram of lags (about 2 % resolution) for percentiles.
+class LagHistogram {
+ public:
+  void Add(int64_t micros);
+  uint64_t count() const { return count_; }
+  // Microseconds below which the fraction p (0..1) of the lags lie.
+  double Percentile(double p) const;
+  int64_t max() const { return max_; }
+
+ private:
+  static constexpr int kBucketsPerDecade = 100;
+  std::vector<uint64_t> buckets_ = std::vector<uint64_t>(10 * kBucketsPerDecade + 1, 0);
+  uint64_t count_ = 0;
+  int64_t max_ = 0;
+};
+
+struct LoggerStats {
+  ReceiverStats receiver;
+  QueueStats queue;
+  uint64_t states_written = 0;
+  uint64_t states_present = 0;
+  uint64_t rows_written = 0;
+  uint64_t gaps = 0;
+  uint64_t missing_steps = 0;
+  uint64_t unwritable = 0;
+  uint64_t transactions = 0;
+  uint64_t write_failures = 0;
+  LagHistogram lag;        // step published -> its rows committed
+  bool db_failing = false;
+  std::string db_problem;  // last failure, while failing
+};
+
+// The URL with recv_buf_size=4194304 added for udpm when it has none, so a
+// burst does not overflow the socket buffer.
+std::string WithReceiveBuffer(const std::string& url);
+
+class Logger {
+ public:
+  // Opens the spool and the bus. Throws SpoolError, or Error when the bus
+  // cannot be opened.
+  Logger(LoggerOptions options, Reporter* reporter);
+  ~Logger();
+
+  // Receives until stop_fd is readable, then lets the writer finish (at
+  // most drain_timeout) and saves what is left into the spool. Returns the
+  // exit status: 0, or 1 if records could be saved neither to the database
+  // nor to the spool.
+  int Run(int stop_fd);
+  LoggerStats Stats() const;
+  // One line: what was received, written, waiting, lost.
+  std::string StatusLine() const;
+
+ private:
+  void WriterLoop();
+  void ReportFailure(const std::string& problem, const std::string& key);
+
+  LoggerOptions options_;
+  Reporter* reporter_;
+  std::unique_ptr<Spool> spool_;
+  std::unique_ptr<RecordQueue> queue_;
+  std::unique_ptr<lcm::LCM> lcm_;
+  std::unique_ptr<Receiver> receiver_;
+  std::thread writer_;
+  std::atomic<bool> stopping_{false};
+  std::atomic<bool> save_failed_{false};
+  std::chrono::steady_clock::time_point drain_deadline_{};
+  std::mutex wake_mutex_;
+  std::condition_variable wake_;
+  mutable std::mutex stats_mutex_;
+  LoggerStats stats_;  // writer's part
+  std::string last_failure_key_;
+  std::chrono::steady_clock::time_point last_failure_report_{};
+};
+
+}  // namespace simpartner::logger

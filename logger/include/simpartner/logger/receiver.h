@@ -1,0 +1,116 @@
+// The receive side of the logger: decodes and checks every message on its
+// channels, learns each simulation's model from SIM_MODEL (asking for it
+// with SIM_MODEL_REQUEST while messages of an unknown simulation wait), and
+// hands good records to the queue. It never waits for the database. A
+// message that does not decode, has bytes left over, or does not fit the
+// model (counts, indices, non-finite numbers, text the database cannot
+// store) is counted per channel, reported, and never written.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <mutex>
+#include <set>
+#include <string>
+
+#include "simpartner/logger/record_queue.h"
+#include "simpartner/logger/reporter.h"
+#include "simpartner/model_t.hpp"
+#include "simpartner/sensor_reading_t.hpp"
+#include "simpartner/state_t.hpp"
+
+namespace simpartner::logger {
+
+struct ReceiverOptions {
+  int log_interval = 1;           // keep states whose step is a multiple of this
+  std::string sender;             // sender name in SIM_MODEL_REQUEST
+  uint64_t max_waiting_bytes = 64u << 20;  // messages waiting for their model
+};
+
+struct ChannelCounts {
+  uint64_t received = 0;
+  uint64_t malformed = 0;  // did not decode as the channel's type (foreign, truncated, padded)
+  uint64_t invalid = 0;    // decoded but does not fit the model or the database
+};
+
+struct ReceiverStats {
+  std::map<std::string, ChannelCounts> channels;
+  uint64_t states_queued = 0;
+  uint64_t states_skipped = 0;     // between logged steps (logEveryStep=0)
+  uint64_t waiting = 0;            // messages waiting for their simulation's model
+  uint64_t dropped_no_model = 0;   // waited too long (more than max_waiting_bytes)
+  uint64_t lost_spool_failed = 0;  // neither memory nor disk could take them
+  uint64_t model_requests = 0;
+  int64_t simulation_id = 0;       // the simulation followed (latest model)
+  int64_t last_step = -1;          // its last state received
+  int64_t last_publish_us = 0;     // and when the sim published it
+  uint64_t BadMessages() const;
+};
+
+// Shape of a simulation's model that its other messages must fit.
+struct ModelShape {
+  int32_t bodies = 0;
+  int32_t joints = 0;
+  int32_t sensors = 0;
+  int32_t state_every = 1;
+};
+
+// Problems of a decoded message, or "" when it can be written. Each names
+// the field and value.
+std::string CheckModel(const model_t& model);
+std::string CheckState(const state_t& state, const ModelShape& shape);
+std::string CheckSensorReading(const sensor_reading_t& reading, const ModelShape& shape);
+ModelShape ShapeOf(const model_t& model);
+// Valid UTF-8 of at most max_bytes bytes (what a VARCHAR/TEXT column takes).
+bool FitsText(const std::string& text, size_t max_bytes);
+
+class Receiver {
+ public:
+  // lcm, queue and reporter outlive the receiver. Subscribes at once.
+  Receiver(lcm::LCM* lcm, RecordQueue* queue, ReceiverOptions options, Reporter* reporter);
+  Receiver(const Receiver&) = delete;
+  Receiver& operator=(const Receiver&) = delete;
+
+  // Asks the sim for SIM_MODEL now.
+  void RequestModel();
+  // Housekeeping between messages: asks for SIM_MODEL (at most 4 times a
+  // second) while messages wait for one.
+  void Tick();
+  ReceiverStats Stats() const;
+
+ private:
+  void OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnReply(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+
+  // Decodes into message; counts and reports if it does not decode exactly.
+  template <class Message>
+  bool Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel, Message* message);
+  void Invalid(const std::string& channel, const std::string& problem);
+  Record MakeRecord(RecordKind kind, int64_t simulation_id, const lcm::ReceiveBuffer* buffer) const;
+  // To the queue, or to the waiting list if the model is not known yet.
+  void Deliver(Record record);
+  void Push(Record record);
+  void Wait(Record record);
+
+  lcm::LCM* lcm_;
+  RecordQueue* queue_;
+  ReceiverOptions options_;
+  Reporter* reporter_;
+  std::map<int64_t, ModelShape> models_;  // by simulation id
+  std::set<int64_t> ended_;
+  std::deque<Record> waiting_;
+  uint64_t waiting_bytes_ = 0;
+  std::chrono::steady_clock::time_point last_request_{};
+  mutable std::mutex stats_mutex_;
+  ReceiverStats stats_;
+};
+
+}  // namespace simpartner::logger

@@ -1,0 +1,52 @@
+// What travels from the receive thread to the database writer, through the
+// memory queue or the spool on disk: the message as it came off the bus
+// (already checked by the receiver), with the simulation it belongs to.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace simpartner::logger {
+
+enum class RecordKind : uint8_t {
+  kModel = 1,            // payload: model_t as on the bus
+  kState = 2,            // payload: state_t
+  kSensor = 3,           // payload: sensor_reading_t
+  kCommand = 4,          // payload: command_t (simulation = the one followed)
+  kCommandReply = 5,     // payload: command_reply_t
+  kSimulationEnded = 6,  // payload: EndedPayload (the sim said it stopped)
+  kGap = 7,              // payload: GapPayload (steps that never arrived)
+};
+
+const char* RecordKindName(RecordKind kind);
+bool IsKnownRecordKind(uint8_t kind);
+
+struct Record {
+  RecordKind kind = RecordKind::kState;
+  int64_t simulation_id = 0;  // bus simulation id (model_t.simulation_id)
+  int64_t received_us = 0;    // wall clock when the logger received it
+  std::vector<uint8_t> payload;
+
+  size_t ByteSize() const { return payload.size() + 32; }
+};
+
+// Steps first_step..last_step (every `stride`-th) of a simulation never
+// reached the logger.
+struct GapPayload {
+  int64_t first_step = 0;
+  int64_t last_step = 0;
+  int64_t missing = 0;
+};
+
+struct EndedPayload {
+  int64_t last_step = 0;
+};
+
+Record MakeGapRecord(int64_t simulation_id, int64_t received_us, const GapPayload& gap);
+Record MakeEndedRecord(int64_t simulation_id, int64_t received_us, const EndedPayload& ended);
+// Throw std::runtime_error if the payload has the wrong size.
+GapPayload ReadGap(const Record& record);
+EndedPayload ReadEnded(const Record& record);
+
+}  // namespace simpartner::logger

@@ -1,0 +1,93 @@
+// Writes records into the database: a model becomes a Simulation with its
+// Robot, Body, Joint, Sensor, Actuator and RobotComponent rows; states
+// become SimulationRow, Pose, ForceAndTorque and JointPose rows, many steps
+// per transaction, as multi-row INSERTs or LOAD DATA LOCAL files. Every
+// write is idempotent, keyed by (simulation, step, body/joint): a step that
+// is already in the database is skipped, so after any failure the same
+// records can simply be written again (a replayed spool, a restarted
+// logger) without duplicate rows.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "simpartner/logger/db.h"
+#include "simpartner/logger/record.h"
+
+namespace simpartner::logger {
+
+enum class InsertMethod {
+  kMultiRowInsert,  // INSERT INTO t VALUES (...),(...) up to ~1 MB per statement
+  kLoadDataLocal,   // LOAD DATA LOCAL INFILE of a file written per table and batch
+};
+const char* InsertMethodName(InsertMethod method);
+
+struct WriterOptions {
+  InsertMethod method = InsertMethod::kMultiRowInsert;
+  std::string lcm_url;      // recorded in Simulation.lcmUrl
+  int log_interval = 1;     // recorded in Simulation.logInterval
+  std::string scratch_dir;  // where LOAD DATA files are written
+};
+
+struct WriteResult {
+  uint64_t states_written = 0;
+  uint64_t states_present = 0;  // already in the database: skipped
+  uint64_t rows_written = 0;    // all tables
+  uint64_t gaps = 0;            // LogGap rows
+  uint64_t missing_steps = 0;
+  uint64_t unwritable = 0;      // records of a simulation whose model never came
+  std::vector<int64_t> lags_us; // commit time minus publish time, per state written
+};
+
+class DbWriter {
+ public:
+  using Notice = std::function<void(const std::string&)>;
+  DbWriter(DbTarget target, WriterOptions options, Notice notice);
+  ~DbWriter();
+
+  // Writes the records in order: connects (bringing the schema up to date)
+  // if needed, then one transaction per model or end-of-simulation record
+  // and one for each run of state, sensor and command records between them.
+  // Throws DbError; the connection is dropped if it broke. Records already
+  // committed stay committed; writing the same records again is harmless.
+  WriteResult Write(const std::vector<Record>& records);
+
+  bool connected() const { return db_ != nullptr; }
+  void Connect();
+  void Disconnect();
+  const DbTarget& target() const { return target_; }
+
+ private:
+  struct SimInfo {
+    uint32_t id = 0;           // Simulation.simulationID
+    int64_t bus_id = 0;
+    int stride = 1;            // steps between logged states
+    int64_t last_step = -1;    // last step known in the database
+    std::vector<int64_t> robot_ids, body_ids, joint_ids, sensor_ids;
+  };
+  class RowSink;
+
+  void WriteModel(const Record& record, WriteResult* result);
+  void CloseSimulation(const Record& record);
+  // check_present: look up which steps are already there first. Without
+  // it, steps above the last one committed are taken as new, and a
+  // duplicate key (someone else wrote them) makes the caller retry with it.
+  void WriteRun(const std::vector<const Record*>& run, bool check_present, WriteResult* result);
+  SimInfo* FindSimulation(int64_t bus_id);
+  bool LoadSimulation(const std::string& where, SimInfo* info);
+  std::vector<int64_t> LoadIds(const char* table, const char* id_column, uint32_t simulation,
+                               size_t count);
+  void CloseOthers(const SimInfo& keep, const std::string& host, const std::string& reason);
+
+  DbTarget target_;
+  WriterOptions options_;
+  Notice notice_;
+  std::unique_ptr<DbConnection> db_;
+  std::map<int64_t, SimInfo> simulations_;  // by bus simulation id
+};
+
+}  // namespace simpartner::logger

@@ -1,0 +1,270 @@
+#include "simpartner/logger/logger.h"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace simpartner::logger {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr size_t kBatchRecords = 1000;
+constexpr uint64_t kBatchBytes = 16u << 20;
+// At real time a batch collects ~20 steps: a transaction per 20 ms.
+constexpr size_t kMinBatchRecords = 20;
+constexpr auto kLinger = std::chrono::milliseconds(20);
+constexpr auto kFailureReminder = std::chrono::seconds(30);
+
+std::string Megabytes(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MB", static_cast<double>(bytes) / 1e6);
+  return text;
+}
+
+std::string Ms(double micros) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f ms", micros / 1000.0);
+  return text;
+}
+
+Clock::duration Seconds(double s) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+}
+
+}  // namespace
+
+void LagHistogram::Add(int64_t micros) {
+  const double value = std::max<double>(1.0, static_cast<double>(micros));
+  const int bucket = std::min<int>(static_cast<int>(buckets_.size()) - 1,
+                                   static_cast<int>(std::log10(value) * kBucketsPerDecade));
+  ++buckets_[static_cast<size_t>(bucket)];
+  ++count_;
+  max_ = std::max(max_, micros);
+}
+
+double LagHistogram::Percentile(double p) const {
+  if (count_ == 0) return 0.0;
+  const double rank = p * static_cast<double>(count_);
+  uint64_t seen = 0;
+  for (size_t b = 0; b < buckets_.size(); ++b) {
+    seen += buckets_[b];
+    if (static_cast<double>(seen) >= rank)
+      return std::pow(10.0, static_cast<double>(b + 1) / kBucketsPerDecade);  // upper edge
+  }
+  return static_cast<double>(max_);
+}
+
+std::string WithReceiveBuffer(const std::string& url) {
+  if (url.rfind("udpm://", 0) != 0 || url.find("recv_buf_size=") != std::string::npos) return url;
+  return url + (url.find('?') == std::string::npos ? "?" : "&") + "recv_buf_size=4194304";
+}
+
+Logger::Logger(LoggerOptions options, Reporter* reporter)
+    : options_(std::move(options)), reporter_(reporter) {
+  options_.lcm_url = WithReceiveBuffer(options_.lcm_url);
+  spool_ = std::make_unique<Spool>(options_.spool_dir, options_.spool_segment_bytes,
+                                   [this](const std::string& text) { reporter_->Say(text); });
+  const uint64_t waiting = spool_->StoredBytes();
+  if (waiting > 0)
+    reporter_->Say("spool " + options_.spool_dir + " holds " + Megabytes(waiting) +
+                   " from an earlier run; writing that first");
+  queue_ = std::make_unique<RecordQueue>(options_.queue_bytes, spool_.get());
+  lcm_ = std::make_unique<lcm::LCM>(options_.lcm_url);
+  if (!lcm_->good()) throw Error("cannot open LCM at '" + options_.lcm_url + "'");
+  ReceiverOptions receiver_options;
+  receiver_options.log_interval = options_.log_interval;
+  receiver_options.sender = options_.sender;
+  receiver_ = std::make_unique<Receiver>(lcm_.get(), queue_.get(), receiver_options, reporter_);
+}
+
+Logger::~Logger() {
+  if (writer_.joinable()) {
+    stopping_ = true;
+    queue_->Wake();
+    wake_.notify_all();
+    writer_.join();
+  }
+}
+
+void Logger::ReportFailure(const std::string& problem, const std::string& key) {
+  const QueueStats q = queue_->Stats();
+  const auto now = Clock::now();
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_.db_failing = true;
+    stats_.db_problem = problem;
+    ++stats_.write_failures;
+  }
+  if (key == last_failure_key_ && now - last_failure_report_ < kFailureReminder) return;
+  last_failure_key_ = key;
+  last_failure_report_ = now;
+  char retry[32];
+  std::snprintf(retry, sizeof retry, "%g", options_.retry_period);
+  reporter_->Say(problem + "; keeping every record (" + Megabytes(q.memory_bytes) + " in memory, " +
+                 Megabytes(q.spool_stored_bytes) + " in the spool " + options_.spool_dir +
+                 "), retrying every " + retry + " s");
+}
+
+void Logger::WriterLoop() {
+  WriterOptions writer_options;
+  writer_options.method = options_.insert_method;
+  writer_options.lcm_url = options_.lcm_url;
+  writer_options.log_interval = options_.log_interval;
+  writer_options.scratch_dir = options_.spool_dir;
+  DbWriter writer(options_.db, writer_options,
+                  [this](const std::string& text) { reporter_->Say(text); });
+  Batch batch;
+  bool failing = false;
+  auto wait_retry = [this] {
+    std::unique_lock<std::mutex> lock(wake_mutex_);
+    wake_.wait_for(lock, Seconds(options_.retry_period), [this] {
+      return stopping_.load() && Clock::now() >= drain_deadline_;
+    });
+  };
+  while (true) {
+    if (stopping_ && Clock::now() >= drain_deadline_) break;
+    if (batch.empty()) {
+      if (stopping_ && queue_->Drained()) break;
+      batch = queue_->Take(kBatchRecords, kBatchBytes, std::chrono::milliseconds(50),
+                           stopping_ ? 1 : kMinBatchRecords, kLinger);
+      if (batch.empty() && writer.connected()) continue;
+    }
+    try {
+      if (batch.empty()) {
+        // Nothing to write yet: connect early so a bad server shows at once.
+        writer.Connect();
+      } else {
+        const WriteResult result = writer.Write(batch.records);
+        queue_->Commit(batch);
+        batch = Batch();
+        std::lock_guard<std::mutex> lock(stats_mutex_);
+        stats_.states_written += result.states_written;
+        stats_.states_present += result.states_present;
+        stats_.rows_written += result.rows_written;
+        stats_.gaps += result.gaps;
+        stats_.missing_steps += result.missing_steps;
+        stats_.unwritable += result.unwritable;
+        ++stats_.transactions;
+        for (int64_t lag : result.lags_us) stats_.lag.Add(lag);
+      }
+      if (failing) {
+        failing = false;
+        last_failure_key_.clear();
+        const QueueStats q = queue_->Stats();
+        reporter_->Say("database server " + writer.target().Server() + " takes writes again; " +
+                       "catching up (" + Megabytes(q.spool_stored_bytes) + " in the spool)");
+        std::lock_guard<std::mutex> lock(stats_mutex_);
+        stats_.db_failing = false;
+        stats_.db_problem.clear();
+      }
+    } catch (const DbError& e) {
+      failing = true;
+      std::string what;
+      switch (e.kind()) {
+        case DbErrorKind::kUnreachable:
+          what = "database server " + e.server() + " is unreachable: " + e.what();
+          break;
+        case DbErrorKind::kRefused:
+          what = "database server " + e.server() + " refuses writes: " + e.what();
+          break;
+        case DbErrorKind::kRetry:
+          continue;  // deadlock or lock wait: at once
+        case DbErrorKind::kOther:
+          what = "database server " + e.server() + " failed: " + e.what();
+          break;
+      }
+      ReportFailure(what, std::to_string(static_cast<int>(e.kind())) + "/" + std::to_string(e.code()));
+      wait_retry();
+    } catch (const std::exception& e) {
+      failing = true;
+      ReportFailure(std::string("writing to ") + writer.target().Server() + " failed: " + e.what(),
+                    "other");
+      wait_retry();
+    }
+  }
+  try {
+    if (!batch.empty() || !queue_->Drained()) {
+      const size_t saved = queue_->SaveUnwritten(batch);
+      const QueueStats q = queue_->Stats();
+      reporter_->Say("stopping with " + std::to_string(saved) + " records from memory saved to the spool " +
+                     options_.spool_dir + " (" + Megabytes(q.spool_stored_bytes) +
+                     " there in all); the next run writes them first");
+    }
+  } catch (const SpoolError& e) {
+    save_failed_ = true;
+    reporter_->Say(std::string("could not save the records left in memory: ") + e.what());
+  }
+  writer.Disconnect();
+  DbThreadEnd();
+}
+
+int Logger::Run(int stop_fd) {
+  writer_ = std::thread([this] { WriterLoop(); });
+  receiver_->RequestModel();
+  auto next_status = Clock::now() + Seconds(options_.status_period);
+  while (true) {
+    pollfd fds[2] = {{lcm_->getFileno(), POLLIN, 0}, {stop_fd, POLLIN, 0}};
+    const int ready = ::poll(fds, 2, 100);
+    if (ready > 0 && (fds[1].revents & (POLLIN | POLLHUP))) break;
+    if (ready > 0 && (fds[0].revents & POLLIN)) lcm_->handle();
+    receiver_->Tick();
+    if (Clock::now() >= next_status) {
+      reporter_->Say(StatusLine());
+      next_status = Clock::now() + Seconds(options_.status_period);
+    }
+  }
+  drain_deadline_ = Clock::now() + Seconds(options_.drain_timeout);
+  stopping_ = true;
+  queue_->Wake();
+  wake_.notify_all();
+  writer_.join();
+  reporter_->Say("stopped: " + StatusLine());
+  return save_failed_ ? 1 : 0;
+}
+
+LoggerStats Logger::Stats() const {
+  LoggerStats s;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    s = stats_;
+  }
+  s.receiver = receiver_->Stats();
+  s.queue = queue_->Stats();
+  return s;
+}
+
+std::string Logger::StatusLine() const {
+  const LoggerStats s = Stats();
+  std::string line;
+  if (s.receiver.simulation_id != 0)
+    line += "bus simulation " + std::to_string(s.receiver.simulation_id) + " at step " +
+            std::to_string(s.receiver.last_step) + "; ";
+  else
+    line += "no SIM_MODEL seen yet; ";
+  line += "written " + std::to_string(s.states_written) + " steps (" + std::to_string(s.rows_written) +
+          " rows";
+  if (s.states_present > 0) line += ", " + std::to_string(s.states_present) + " already there";
+  line += ")";
+  if (s.lag.count() > 0)
+    line += ", lag p50 " + Ms(s.lag.Percentile(0.5)) + " p99 " + Ms(s.lag.Percentile(0.99));
+  line += "; queue " + Megabytes(s.queue.memory_bytes) + ", spool " +
+          Megabytes(s.queue.spool_stored_bytes);
+  line += "; gaps " + std::to_string(s.gaps) + " (" + std::to_string(s.missing_steps) +
+          " steps never received)";
+  line += "; bad messages " + std::to_string(s.receiver.BadMessages());
+  for (const auto& [channel, c] : s.receiver.channels)
+    if (c.malformed + c.invalid > 0)
+      line += " [" + channel + ": " + std::to_string(c.malformed) + " malformed, " +
+              std::to_string(c.invalid) + " invalid]";
+  if (s.receiver.dropped_no_model > 0)
+    line += "; dropped " + std::to_string(s.receiver.dropped_no_model) + " without a model";
+  if (s.receiver.lost_spool_failed > 0)
+    line += "; LOST " + std::to_string(s.receiver.lost_spool_failed) + " (spool failed)";
+  if (s.db_failing) line += "; DATABASE FAILING: " + s.db_problem;
+  return line;
+}
+
+}  // namespace simpartner::logger

@@ -1,0 +1,477 @@
+#include "simpartner/logger/receiver.h"
+
+#include <cmath>
+
+#include "simpartner/channels.h"
+#include "simpartner/command_reply_t.hpp"
+#include "simpartner/command_t.hpp"
+#include "simpartner/model_request_t.hpp"
+#include "simpartner/status_t.hpp"
+
+namespace simpartner::logger {
+namespace {
+
+constexpr size_t kNameBytes = 255;    // VARCHAR(255)
+constexpr size_t kPathBytes = 1024;   // VARCHAR(1024)
+constexpr size_t kTextBytes = 65535;  // TEXT
+constexpr auto kModelRequestPeriod = std::chrono::milliseconds(250);
+
+int64_t NowMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string Num(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+// First non-finite value of an array, as "field[i] = value", or "".
+template <size_t N>
+std::string NonFinite(const double (&values)[N], const std::string& field) {
+  for (size_t i = 0; i < N; ++i)
+    if (!std::isfinite(values[i])) return field + "[" + std::to_string(i) + "] = " + Num(values[i]);
+  return "";
+}
+
+std::string CheckName(const std::string& text, const std::string& field, size_t max_bytes) {
+  if (!FitsText(text, max_bytes))
+    return field + " is not valid UTF-8 of at most " + std::to_string(max_bytes) + " bytes (" +
+           std::to_string(text.size()) + " bytes)";
+  return "";
+}
+
+bool InRange(int64_t index, int64_t size, bool none_allowed) {
+  return (none_allowed && index == -1) || (index >= 0 && index < size);
+}
+
+}  // namespace
+
+uint64_t ReceiverStats::BadMessages() const {
+  uint64_t n = 0;
+  for (const auto& [channel, c] : channels) n += c.malformed + c.invalid;
+  return n;
+}
+
+bool FitsText(const std::string& text, size_t max_bytes) {
+  if (text.size() > max_bytes) return false;
+  size_t i = 0;
+  const size_t n = text.size();
+  while (i < n) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    size_t extra;
+    uint32_t code;
+    if (c < 0x80) {
+      if (c == 0) return false;  // NUL ends C strings on the way
+      ++i;
+      continue;
+    } else if ((c & 0xE0) == 0xC0) {
+      extra = 1;
+      code = c & 0x1F;
+    } else if ((c & 0xF0) == 0xE0) {
+      extra = 2;
+      code = c & 0x0F;
+    } else if ((c & 0xF8) == 0xF0) {
+      extra = 3;
+      code = c & 0x07;
+    } else {
+      return false;
+    }
+    for (size_t k = 1; k <= extra; ++k) {
+      if (i + k >= n) return false;
+      const unsigned char cc = static_cast<unsigned char>(text[i + k]);
+      if ((cc & 0xC0) != 0x80) return false;
+      code = (code << 6) | (cc & 0x3F);
+    }
+    // Overlong forms, surrogates and values past U+10FFFF.
+    if ((extra == 1 && code < 0x80) || (extra == 2 && code < 0x800) ||
+        (extra == 3 && code < 0x10000) || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF))
+      return false;
+    i += extra + 1;
+  }
+  return true;
+}
+
+ModelShape ShapeOf(const model_t& model) {
+  return ModelShape{model.num_bodies, model.num_joints, model.num_sensors,
+                    std::max(1, model.state_every)};
+}
+
+std::string CheckModel(const model_t& m) {
+  std::string p;
+  if (m.state_every < 1) return "state_every = " + std::to_string(m.state_every) + " (must be >= 1)";
+  if (!std::isfinite(m.step_size) || m.step_size <= 0)
+    return "step_size = " + Num(m.step_size) + " (must be a positive number)";
+  if (!(p = NonFinite(m.gravity, "gravity")).empty()) return p;
+  if (!(p = CheckName(m.host, "host", kNameBytes)).empty()) return p;
+  if (!(p = CheckName(m.world_file, "world_file", kPathBytes)).empty()) return p;
+  if (!(p = CheckName(m.world_name, "world_name", kNameBytes)).empty()) return p;
+  if (!(p = CheckName(m.parameters, "parameters", kTextBytes)).empty()) return p;
+  const int64_t robots = m.num_robots, bodies = m.num_bodies, joints = m.num_joints;
+  for (size_t i = 0; i < m.robots.size(); ++i) {
+    const robot_t& r = m.robots[i];
+    const std::string f = "robots[" + std::to_string(i) + "]";
+    if (!(p = CheckName(r.name, f + ".name", kNameBytes)).empty()) return p;
+    if (!(p = CheckName(r.model, f + ".model", kNameBytes)).empty()) return p;
+    if (!(p = CheckName(r.file, f + ".file", kPathBytes)).empty()) return p;
+    if (!std::isfinite(r.total_mass)) return f + ".total_mass = " + Num(r.total_mass);
+  }
+  for (size_t i = 0; i < m.bodies.size(); ++i) {
+    const body_t& b = m.bodies[i];
+    const std::string f = "bodies[" + std::to_string(i) + "]";
+    if (!InRange(b.robot, robots, true)) return f + ".robot = " + std::to_string(b.robot) + " (no such robot)";
+    if (!(p = CheckName(b.name, f + ".name", kNameBytes)).empty()) return p;
+    if (!(p = CheckName(b.material, f + ".material", kNameBytes)).empty()) return p;
+    if (!std::isfinite(b.mass)) return f + ".mass = " + Num(b.mass);
+    if (!(p = NonFinite(b.geometry.size, f + ".geometry.size")).empty()) return p;
+    if (!(p = NonFinite(b.com, f + ".com")).empty()) return p;
+    if (!(p = NonFinite(b.inertia, f + ".inertia")).empty()) return p;
+  }
+  for (size_t i = 0; i < m.joints.size(); ++i) {
+    const joint_t& j = m.joints[i];
+    const std::string f = "joints[" + std::to_string(i) + "]";
+    if (!InRange(j.robot, robots, true)) return f + ".robot = " + std::to_string(j.robot) + " (no such robot)";
+    if (!InRange(j.body1, bodies, true)) return f + ".body1 = " + std::to_string(j.body1) + " (no such body)";
+    if (!InRange(j.body2, bodies, true)) return f + ".body2 = " + std::to_string(j.body2) + " (no such body)";
+    if (!(p = CheckName(j.name, f + ".name", kNameBytes)).empty()) return p;
+    if (!(p = NonFinite(j.anchor, f + ".anchor")).empty()) return p;
+    for (int a = 0; a < 3; ++a) {
+      if (!(p = NonFinite(j.axis[a], f + ".axis[" + std::to_string(a) + "]")).empty()) return p;
+      if (std::isnan(j.lo_stop[a]) || std::isnan(j.hi_stop[a]))
+        return f + ".lo_stop/hi_stop[" + std::to_string(a) + "] is NaN";
+    }
+  }
+  for (size_t i = 0; i < m.sensors.size(); ++i) {
+    const sensor_t& s = m.sensors[i];
+    const std::string f = "sensors[" + std::to_string(i) + "]";
+    if (!InRange(s.robot, robots, true)) return f + ".robot = " + std::to_string(s.robot) + " (no such robot)";
+    if (!InRange(s.body, bodies, true)) return f + ".body = " + std::to_string(s.body) + " (no such body)";
+    if (!InRange(s.joint, joints, true)) return f + ".joint = " + std::to_string(s.joint) + " (no such joint)";
+    if (!(p = CheckName(s.name, f + ".name", kNameBytes)).empty()) return p;
+    if (!std::isfinite(s.rate)) return f + ".rate = " + Num(s.rate);
+  }
+  for (size_t i = 0; i < m.actuators.size(); ++i) {
+    const actuator_t& a = m.actuators[i];
+    const std::string f = "actuators[" + std::to_string(i) + "]";
+    if (!InRange(a.robot, robots, true)) return f + ".robot = " + std::to_string(a.robot) + " (no such robot)";
+    if (!InRange(a.joint, joints, true)) return f + ".joint = " + std::to_string(a.joint) + " (no such joint)";
+    if (!(p = CheckName(a.name, f + ".name", kNameBytes)).empty()) return p;
+  }
+  return "";
+}
+
+std::string CheckState(const state_t& s, const ModelShape& shape) {
+  if (s.num_bodies != shape.bodies)
+    return "num_bodies = " + std::to_string(s.num_bodies) + " but the model of simulation " +
+           std::to_string(s.simulation_id) + " has " + std::to_string(shape.bodies);
+  if (s.num_joints != shape.joints)
+    return "num_joints = " + std::to_string(s.num_joints) + " but the model of simulation " +
+           std::to_string(s.simulation_id) + " has " + std::to_string(shape.joints);
+  if (s.step < 0) return "step = " + std::to_string(s.step) + " (negative)";
+  if (!std::isfinite(s.sim_time)) return "sim_time = " + Num(s.sim_time);
+  std::string p;
+  for (size_t i = 0; i < s.bodies.size(); ++i) {
+    const body_state_t& b = s.bodies[i];
+    const std::string f = "bodies[" + std::to_string(i) + "]";
+    if (!(p = NonFinite(b.position, f + ".position")).empty()) return p;
+    if (!(p = NonFinite(b.orientation, f + ".orientation")).empty()) return p;
+    if (!(p = NonFinite(b.contact_force, f + ".contact_force")).empty()) return p;
+    if (!(p = NonFinite(b.contact_torque, f + ".contact_torque")).empty()) return p;
+    const double norm = std::sqrt(b.orientation[0] * b.orientation[0] +
+                                  b.orientation[1] * b.orientation[1] +
+                                  b.orientation[2] * b.orientation[2] +
+                                  b.orientation[3] * b.orientation[3]);
+    if (std::abs(norm - 1.0) > 1e-3)
+      return f + ".orientation has length " + Num(norm) + " (a unit quaternion is needed)";
+  }
+  for (size_t j = 0; j < s.joints.size(); ++j) {
+    const joint_state_t& js = s.joints[j];
+    const std::string f = "joints[" + std::to_string(j) + "]";
+    if (!(p = NonFinite(js.position, f + ".position")).empty()) return p;
+    if (!(p = NonFinite(js.rate, f + ".rate")).empty()) return p;
+    if (!(p = NonFinite(js.anchor, f + ".anchor")).empty()) return p;
+    if (!(p = NonFinite(js.force1, f + ".force1")).empty()) return p;
+    if (!(p = NonFinite(js.torque1, f + ".torque1")).empty()) return p;
+  }
+  return "";
+}
+
+std::string CheckSensorReading(const sensor_reading_t& r, const ModelShape& shape) {
+  if (r.sensor < 0 || r.sensor >= shape.sensors)
+    return "sensor = " + std::to_string(r.sensor) + " but the model of simulation " +
+           std::to_string(r.simulation_id) + " has " + std::to_string(shape.sensors) + " sensors";
+  if (!std::isfinite(r.sim_time)) return "sim_time = " + Num(r.sim_time);
+  if (!FitsText(r.text, kTextBytes)) return "text is not valid UTF-8 of at most 65535 bytes";
+  return "";
+}
+
+Receiver::Receiver(lcm::LCM* lcm, RecordQueue* queue, ReceiverOptions options, Reporter* reporter)
+    : lcm_(lcm), queue_(queue), options_(std::move(options)), reporter_(reporter) {
+  // Every message counts: deep subscription queues (the socket buffer is
+  // raised in the URL).
+  lcm_->subscribe(channels::kModel, &Receiver::OnModel, this)->setQueueCapacity(1000);
+  lcm_->subscribe(channels::kState, &Receiver::OnState, this)->setQueueCapacity(100000);
+  lcm_->subscribe(channels::kSensor, &Receiver::OnSensor, this)->setQueueCapacity(100000);
+  lcm_->subscribe(channels::kCommand, &Receiver::OnCommand, this)->setQueueCapacity(10000);
+  lcm_->subscribe(channels::kCommandReply, &Receiver::OnReply, this)->setQueueCapacity(10000);
+  lcm_->subscribe(channels::kStatus, &Receiver::OnStatus, this)->setQueueCapacity(1000);
+}
+
+template <class Message>
+bool Receiver::Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel,
+                      Message* message) {
+  const int size = static_cast<int>(buffer->data_size);
+  const int used = message->decode(buffer->data, 0, size);
+  std::string problem;
+  if (used < 0)
+    problem = "message of " + std::to_string(size) + " bytes is not a simpartner." +
+              Message::getTypeName() + " (foreign type, truncated or damaged)";
+  else if (used != size)
+    problem = "message has " + std::to_string(size - used) + " bytes after the end of its simpartner." +
+              Message::getTypeName();
+  uint64_t count = 0;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ChannelCounts& c = stats_.channels[channel];
+    ++c.received;
+    if (!problem.empty()) count = ++c.malformed;
+  }
+  if (problem.empty()) return true;
+  reporter_->SayLimited(channel + "/malformed", channel + ": " + problem + "; not written (" +
+                                                   std::to_string(count) + " malformed so far)");
+  return false;
+}
+
+void Receiver::Invalid(const std::string& channel, const std::string& problem) {
+  uint64_t count = 0;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    count = ++stats_.channels[channel].invalid;
+  }
+  reporter_->SayLimited(channel + "/invalid", channel + ": " + problem + "; not written (" +
+                                                 std::to_string(count) + " invalid so far)");
+}
+
+Record Receiver::MakeRecord(RecordKind kind, int64_t simulation_id,
+                            const lcm::ReceiveBuffer* buffer) const {
+  Record r;
+  r.kind = kind;
+  r.simulation_id = simulation_id;
+  r.received_us = NowMicros();
+  const uint8_t* data = static_cast<const uint8_t*>(buffer->data);
+  r.payload.assign(data, data + buffer->data_size);
+  return r;
+}
+
+void Receiver::Push(Record record) {
+  const bool is_state = record.kind == RecordKind::kState;
+  try {
+    queue_->Push(std::move(record));
+  } catch (const SpoolError& e) {
+    uint64_t lost = 0;
+    {
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      lost = ++stats_.lost_spool_failed;
+    }
+    reporter_->SayLimited("spool", std::string("cannot keep a record: the memory queue is full and ") +
+                                       e.what() + " (" + std::to_string(lost) + " records lost)");
+    return;
+  }
+  if (is_state) {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++stats_.states_queued;
+  }
+}
+
+void Receiver::Wait(Record record) {
+  waiting_bytes_ += record.ByteSize();
+  waiting_.push_back(std::move(record));
+  uint64_t dropped = 0;
+  while (waiting_bytes_ > options_.max_waiting_bytes && !waiting_.empty()) {
+    waiting_bytes_ -= waiting_.front().ByteSize();
+    waiting_.pop_front();
+    ++dropped;
+  }
+  uint64_t dropped_total = 0;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_.waiting = waiting_.size();
+    stats_.dropped_no_model += dropped;
+    dropped_total = stats_.dropped_no_model;
+  }
+  if (dropped > 0)
+    reporter_->SayLimited("no model", "no SIM_MODEL came for the messages waiting for one; dropped " +
+                                          std::to_string(dropped_total) +
+                                          " so far (does the sim answer SIM_MODEL_REQUEST?)");
+  if (std::chrono::steady_clock::now() - last_request_ > kModelRequestPeriod) RequestModel();
+}
+
+void Receiver::RequestModel() {
+  model_request_t request;
+  request.utime = NowMicros();
+  request.sender = options_.sender;
+  lcm_->publish(channels::kModelRequest, &request);
+  last_request_ = std::chrono::steady_clock::now();
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  ++stats_.model_requests;
+}
+
+void Receiver::Tick() {
+  if (!waiting_.empty() && std::chrono::steady_clock::now() - last_request_ > kModelRequestPeriod)
+    RequestModel();
+}
+
+void Receiver::Deliver(Record record) {
+  const auto model = models_.find(record.simulation_id);
+  if (model == models_.end()) {
+    Wait(std::move(record));
+    return;
+  }
+  const ModelShape& shape = model->second;
+  // The checks that need the model.
+  if (record.kind == RecordKind::kState) {
+    state_t s;
+    s.decode(record.payload.data(), 0, static_cast<int>(record.payload.size()));
+    const std::string problem = CheckState(s, shape);
+    if (!problem.empty()) {
+      Invalid(channels::kState, problem);
+      return;
+    }
+    {
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      if (s.simulation_id == stats_.simulation_id) {
+        stats_.last_step = s.step;
+        stats_.last_publish_us = s.utime;
+      }
+      if (s.step % options_.log_interval != 0) {
+        ++stats_.states_skipped;
+        return;
+      }
+    }
+  } else if (record.kind == RecordKind::kSensor) {
+    sensor_reading_t r;
+    r.decode(record.payload.data(), 0, static_cast<int>(record.payload.size()));
+    const std::string problem = CheckSensorReading(r, shape);
+    if (!problem.empty()) {
+      Invalid(channels::kSensor, problem);
+      return;
+    }
+  }
+  Push(std::move(record));
+}
+
+void Receiver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  model_t model;
+  if (!Decode(buffer, channel, &model)) return;
+  const std::string problem = CheckModel(model);
+  if (!problem.empty()) {
+    Invalid(channel, "model of simulation " + std::to_string(model.simulation_id) + ": " + problem);
+    return;
+  }
+  const ModelShape shape = ShapeOf(model);
+  const auto known = models_.find(model.simulation_id);
+  if (known != models_.end()) {
+    const ModelShape& k = known->second;
+    if (k.bodies != shape.bodies || k.joints != shape.joints || k.sensors != shape.sensors)
+      Invalid(channel, "model of simulation " + std::to_string(model.simulation_id) +
+                           " changed its shape (" + std::to_string(shape.bodies) + " bodies, " +
+                           std::to_string(shape.joints) + " joints, " +
+                           std::to_string(shape.sensors) + " sensors instead of " +
+                           std::to_string(k.bodies) + ", " + std::to_string(k.joints) + ", " +
+                           std::to_string(k.sensors) + ")");
+    return;  // announced again
+  }
+  models_[model.simulation_id] = shape;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_.simulation_id = model.simulation_id;
+    stats_.last_step = -1;
+  }
+  Push(MakeRecord(RecordKind::kModel, model.simulation_id, buffer));
+  // What waited for this model, in arrival order; commands sent before any
+  // model belong to the first simulation.
+  std::deque<Record> still_waiting;
+  std::deque<Record> ready;
+  for (Record& r : waiting_) {
+    if (r.simulation_id == model.simulation_id ||
+        (r.kind == RecordKind::kCommand && r.simulation_id == 0)) {
+      r.simulation_id = model.simulation_id;
+      ready.push_back(std::move(r));
+    } else {
+      still_waiting.push_back(std::move(r));
+    }
+  }
+  waiting_ = std::move(still_waiting);
+  waiting_bytes_ = 0;
+  for (const Record& r : waiting_) waiting_bytes_ += r.ByteSize();
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_.waiting = waiting_.size();
+  }
+  for (Record& r : ready) Deliver(std::move(r));
+}
+
+void Receiver::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  state_t state;
+  if (!Decode(buffer, channel, &state)) return;
+  Deliver(MakeRecord(RecordKind::kState, state.simulation_id, buffer));
+}
+
+void Receiver::OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  sensor_reading_t reading;
+  if (!Decode(buffer, channel, &reading)) return;
+  Deliver(MakeRecord(RecordKind::kSensor, reading.simulation_id, buffer));
+}
+
+void Receiver::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  command_t command;
+  if (!Decode(buffer, channel, &command)) return;
+  std::string problem;
+  if (!FitsText(command.sender, kNameBytes)) problem = "sender";
+  else if (!FitsText(command.robot, kNameBytes)) problem = "robot";
+  else if (!FitsText(command.target, kNameBytes)) problem = "target";
+  else if (!FitsText(command.text, kTextBytes)) problem = "text";
+  if (!problem.empty()) {
+    Invalid(channel, problem + " is not valid UTF-8 that fits its column");
+    return;
+  }
+  int64_t simulation = 0;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    simulation = stats_.simulation_id;
+  }
+  Deliver(MakeRecord(RecordKind::kCommand, simulation, buffer));
+}
+
+void Receiver::OnReply(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  command_reply_t reply;
+  if (!Decode(buffer, channel, &reply)) return;
+  std::string problem;
+  if (!FitsText(reply.sender, kNameBytes)) problem = "sender";
+  else if (!FitsText(reply.target, kNameBytes)) problem = "target";
+  else if (!FitsText(reply.reason, kTextBytes)) problem = "reason";
+  else if (!FitsText(reply.previous_text, kTextBytes)) problem = "previous_text";
+  if (!problem.empty()) {
+    Invalid(channel, problem + " is not valid UTF-8 that fits its column");
+    return;
+  }
+  Deliver(MakeRecord(RecordKind::kCommandReply, reply.simulation_id, buffer));
+}
+
+void Receiver::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  status_t status;
+  if (!Decode(buffer, channel, &status)) return;
+  if (status.run_state != status_t::RUN_STOPPED) return;
+  if (models_.count(status.simulation_id) == 0 || ended_.count(status.simulation_id) > 0) return;
+  ended_.insert(status.simulation_id);
+  Push(MakeEndedRecord(status.simulation_id, NowMicros(), EndedPayload{status.step}));
+}
+
+ReceiverStats Receiver::Stats() const {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return stats_;
+}
+
+}  // namespace simpartner::logger

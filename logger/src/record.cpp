@@ -1,0 +1,76 @@
+#include "simpartner/logger/record.h"
+
+#include <cstring>
+#include <stdexcept>
+
+namespace simpartner::logger {
+namespace {
+
+void PutI64(std::vector<uint8_t>* out, int64_t value) {
+  uint8_t bytes[8];
+  std::memcpy(bytes, &value, 8);
+  out->insert(out->end(), bytes, bytes + 8);
+}
+
+int64_t GetI64(const std::vector<uint8_t>& in, size_t offset) {
+  int64_t value;
+  std::memcpy(&value, in.data() + offset, 8);
+  return value;
+}
+
+void CheckSize(const Record& record, size_t size) {
+  if (record.payload.size() != size)
+    throw std::runtime_error(std::string(RecordKindName(record.kind)) + " record has " +
+                             std::to_string(record.payload.size()) + " payload bytes, expected " +
+                             std::to_string(size));
+}
+
+}  // namespace
+
+const char* RecordKindName(RecordKind kind) {
+  switch (kind) {
+    case RecordKind::kModel: return "model";
+    case RecordKind::kState: return "state";
+    case RecordKind::kSensor: return "sensor reading";
+    case RecordKind::kCommand: return "command";
+    case RecordKind::kCommandReply: return "command reply";
+    case RecordKind::kSimulationEnded: return "simulation ended";
+    case RecordKind::kGap: return "gap";
+  }
+  return "unknown";
+}
+
+bool IsKnownRecordKind(uint8_t kind) { return kind >= 1 && kind <= 7; }
+
+Record MakeGapRecord(int64_t simulation_id, int64_t received_us, const GapPayload& gap) {
+  Record r;
+  r.kind = RecordKind::kGap;
+  r.simulation_id = simulation_id;
+  r.received_us = received_us;
+  PutI64(&r.payload, gap.first_step);
+  PutI64(&r.payload, gap.last_step);
+  PutI64(&r.payload, gap.missing);
+  return r;
+}
+
+Record MakeEndedRecord(int64_t simulation_id, int64_t received_us, const EndedPayload& ended) {
+  Record r;
+  r.kind = RecordKind::kSimulationEnded;
+  r.simulation_id = simulation_id;
+  r.received_us = received_us;
+  PutI64(&r.payload, ended.last_step);
+  return r;
+}
+
+GapPayload ReadGap(const Record& record) {
+  CheckSize(record, 24);
+  return GapPayload{GetI64(record.payload, 0), GetI64(record.payload, 8),
+                    GetI64(record.payload, 16)};
+}
+
+EndedPayload ReadEnded(const Record& record) {
+  CheckSize(record, 8);
+  return EndedPayload{GetI64(record.payload, 0)};
+}
+
+}  // namespace simpartner::logger

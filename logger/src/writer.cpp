@@ -1,0 +1,784 @@
+#include "simpartner/logger/writer.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <set>
+#include <unordered_map>
+
+#include <cppconn/exception.h>
+
+#include "simpartner/command_reply_t.hpp"
+#include "simpartner/command_t.hpp"
+#include "simpartner/logger/axis_angle.h"
+#include "simpartner/logger/schema.h"
+#include "simpartner/logger/sql_text.h"
+#include "simpartner/model_t.hpp"
+#include "simpartner/sensor_reading_t.hpp"
+#include "simpartner/state_t.hpp"
+
+namespace simpartner::logger {
+namespace {
+
+constexpr size_t kInsertStatementBytes = 1 << 20;
+constexpr size_t kLoadDataFileBytes = 16 << 20;
+constexpr int kDuplicateKey = 1062;  // ER_DUP_ENTRY
+
+int64_t NowMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+template <class Message>
+Message Decode(const Record& record) {
+  Message message;
+  if (message.decode(record.payload.data(), 0, static_cast<int>(record.payload.size())) < 0)
+    throw Error(std::string("a ") + RecordKindName(record.kind) +
+                " record does not decode (the receiver let it through: a bug)");
+  return message;
+}
+
+const char* GeometryName(int8_t kind) {
+  switch (kind) {
+    case 0: return "NONE";
+    case 1: return "BOX";
+    case 2: return "SPHERE";
+    case 3: return "CYLINDER";
+    case 4: return "CAPSULE";
+  }
+  return "UNKNOWN";
+}
+
+const char* JointName(int8_t kind) {
+  switch (kind) {
+    case 0: return "FIXED";
+    case 1: return "HINGE";
+    case 2: return "SLIDER";
+    case 3: return "BALL";
+    case 4: return "UNIVERSAL";
+    case 5: return "HINGE2";
+  }
+  return "UNKNOWN";
+}
+
+const char* SensorName(int8_t kind) {
+  switch (kind) {
+    case 0: return "ECHO";
+    case 1: return "POSITION";
+    case 2: return "SCANNER";
+    case 3: return "VELOCITY";
+    case 4: return "FORCE_TORQUE";
+  }
+  return "UNKNOWN";
+}
+
+const char* ActuatorName(int8_t kind) {
+  switch (kind) {
+    case 0: return "JOINT_VELOCITY";
+    case 1: return "ANGLE";
+    case 2: return "LINEAR_MOTOR";
+  }
+  return "UNKNOWN";
+}
+
+const char* ActionName(int8_t action) {
+  switch (action) {
+    case 0: return "SET";
+    case 1: return "HOLD";
+    case 2: return "SET_STOPS";
+    case 3: return "SENSOR_PARAMS";
+    case 4: return "READ";
+  }
+  return "UNKNOWN";
+}
+
+std::string JoinValues(const std::vector<double>& values) {
+  std::string out;
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (i > 0) out.push_back(',');
+    AppendDouble(&out, values[i]);
+  }
+  return out;
+}
+
+std::string UtcFromMicros(int64_t micros) {
+  return "FROM_UNIXTIME(" + std::to_string(micros / 1000000) + "." +
+         [&] {
+           char frac[8];
+           std::snprintf(frac, sizeof frac, "%06lld", static_cast<long long>(micros % 1000000));
+           return std::string(frac);
+         }() +
+         ")";
+}
+
+// Index -> database id, or NULL for -1 (the static world, no robot).
+void AppendId(std::string* out, const std::vector<int64_t>& ids, int64_t index) {
+  if (index < 0 || index >= static_cast<int64_t>(ids.size())) out->append("NULL");
+  else AppendInt(out, ids[static_cast<size_t>(index)]);
+}
+
+}  // namespace
+
+const char* InsertMethodName(InsertMethod method) {
+  return method == InsertMethod::kLoadDataLocal ? "LOAD DATA LOCAL" : "multi-row INSERT";
+}
+
+// Rows of one table, sent as multi-row INSERTs or LOAD DATA LOCAL files.
+class DbWriter::RowSink {
+ public:
+  RowSink(DbConnection* db, InsertMethod method, const std::string& scratch_dir,
+          std::string table, std::string columns, std::string on_duplicate = "")
+      : db_(db),
+        load_data_(method == InsertMethod::kLoadDataLocal),
+        scratch_path_(scratch_dir + "/loaddata-" + table + ".tsv"),
+        table_(std::move(table)),
+        columns_(std::move(columns)),
+        on_duplicate_(std::move(on_duplicate)) {
+    buffer_.reserve(load_data_ ? kLoadDataFileBytes + 65536 : kInsertStatementBytes + 65536);
+    Start();
+  }
+
+  void BeginRow() {
+    if (load_data_) {
+      first_field_ = true;
+    } else {
+      if (rows_in_buffer_ > 0) buffer_.push_back(',');
+      buffer_.push_back('(');
+      first_field_ = true;
+    }
+  }
+  void Double(double v) {
+    Separator();
+    if (load_data_ && !std::isfinite(v)) buffer_.append("\\N");
+    else AppendDouble(&buffer_, v);
+  }
+  void Int(int64_t v) {
+    Separator();
+    AppendInt(&buffer_, v);
+  }
+  void Id(const std::vector<int64_t>& ids, int64_t index) {
+    Separator();
+    if (load_data_ && (index < 0 || index >= static_cast<int64_t>(ids.size()))) buffer_.append("\\N");
+    else AppendId(&buffer_, ids, index);
+  }
+  void Text(std::string_view text) {
+    Separator();
+    if (load_data_) AppendTsvField(&buffer_, text);
+    else AppendQuoted(&buffer_, text);
+  }
+  // A literal SQL expression (multi-row INSERT only).
+  void Expression(const std::string& sql) {
+    Separator();
+    buffer_.append(sql);
+  }
+  void EndRow() {
+    buffer_.push_back(load_data_ ? '\n' : ')');
+    ++rows_in_buffer_;
+    ++rows_;
+    if (buffer_.size() >= (load_data_ ? kLoadDataFileBytes : kInsertStatementBytes)) Flush();
+  }
+  void Finish() { Flush(); }
+  uint64_t rows() const { return rows_; }
+
+ private:
+  void Start() {
+    buffer_.clear();
+    rows_in_buffer_ = 0;
+    if (!load_data_) buffer_ = "INSERT INTO " + table_ + " (" + columns_ + ") VALUES ";
+  }
+  void Separator() {
+    if (!first_field_) buffer_.push_back(load_data_ ? '\t' : ',');
+    first_field_ = false;
+  }
+  void Flush() {
+    if (rows_in_buffer_ == 0) return;
+    const std::string what = (load_data_ ? "LOAD DATA LOCAL INTO " : "INSERT INTO ") + table_ +
+                             " (" + std::to_string(rows_in_buffer_) + " rows)";
+    if (load_data_) {
+      WriteFile(what);
+      db_->Execute("LOAD DATA LOCAL INFILE " + Quoted(scratch_path_) + " INTO TABLE " + table_ +
+                       " CHARACTER SET utf8mb4 FIELDS TERMINATED BY '\\t' LINES TERMINATED BY "
+                       "'\\n' (" + columns_ + ")",
+                   what);
+    } else {
+      if (!on_duplicate_.empty()) buffer_ += " ON DUPLICATE KEY UPDATE " + on_duplicate_;
+      db_->Execute(buffer_, what);
+    }
+    Start();
+  }
+  void WriteFile(const std::string& what) {
+    const int fd = ::open(scratch_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (fd < 0)
+      throw Error(what + ": cannot write " + scratch_path_ + ": " + std::strerror(errno));
+    size_t done = 0;
+    while (done < buffer_.size()) {
+      const ssize_t n = ::write(fd, buffer_.data() + done, buffer_.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        const std::string cause = std::strerror(errno);
+        ::close(fd);
+        throw Error(what + ": cannot write " + scratch_path_ + ": " + cause);
+      }
+      done += static_cast<size_t>(n);
+    }
+    ::close(fd);
+  }
+
+  DbConnection* db_;
+  bool load_data_;
+  std::string scratch_path_;
+  std::string table_;
+  std::string columns_;
+  std::string on_duplicate_;
+  std::string buffer_;
+  bool first_field_ = true;
+  size_t rows_in_buffer_ = 0;
+  uint64_t rows_ = 0;
+};
+
+DbWriter::DbWriter(DbTarget target, WriterOptions options, Notice notice)
+    : target_(std::move(target)), options_(std::move(options)), notice_(std::move(notice)) {}
+
+DbWriter::~DbWriter() = default;
+
+void DbWriter::Connect() {
+  if (db_) return;
+  std::unique_ptr<DbConnection> db =
+      DbConnection::Open(target_, options_.method == InsertMethod::kLoadDataLocal);
+  MigrateSchema(db.get(), notice_);
+  db_ = std::move(db);
+}
+
+void DbWriter::Disconnect() { db_.reset(); }
+
+WriteResult DbWriter::Write(const std::vector<Record>& records) {
+  WriteResult result;
+  Connect();
+  try {
+    size_t i = 0;
+    while (i < records.size()) {
+      const Record& record = records[i];
+      if (record.kind == RecordKind::kModel) {
+        WriteModel(record, &result);
+        ++i;
+      } else if (record.kind == RecordKind::kSimulationEnded) {
+        CloseSimulation(record);
+        ++i;
+      } else {
+        std::vector<const Record*> run;
+        while (i < records.size() && records[i].kind != RecordKind::kModel &&
+               records[i].kind != RecordKind::kSimulationEnded) {
+          run.push_back(&records[i]);
+          ++i;
+        }
+        try {
+          WriteRun(run, false, &result);
+        } catch (const DbError& e) {
+          if (e.code() != kDuplicateKey) throw;
+          db_->Rollback();
+          WriteRun(run, true, &result);
+        }
+      }
+    }
+  } catch (const DbError& e) {
+    if (db_) db_->Rollback();
+    if (e.kind() == DbErrorKind::kUnreachable) db_.reset();
+    throw;
+  }
+  return result;
+}
+
+bool DbWriter::LoadSimulation(const std::string& where, SimInfo* info) {
+  std::unique_ptr<sql::ResultSet> rows = db_->Query(
+      "SELECT simulationID, busSimulationID, stateEvery, logInterval FROM Simulation WHERE " +
+          where + " ORDER BY simulationID DESC LIMIT 1",
+      "SELECT FROM Simulation");
+  try {
+    if (!rows->next()) return false;
+    info->id = rows->getUInt(1);
+    info->bus_id = rows->getInt64(2);
+    info->stride = std::lcm(std::max(1, rows->getInt(3)), std::max(1, rows->getInt(4)));
+  } catch (const sql::SQLException&) {
+    db_->Rethrow("read Simulation");
+  }
+  const std::string id = std::to_string(info->id);
+  info->last_step = db_->QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = " + id,
+                                  "SELECT MAX(step) FROM SimulationRow", -1);
+  const auto count = [&](const char* table) {
+    return static_cast<size_t>(db_->QueryInt(
+        std::string("SELECT COUNT(*) FROM ") + table + " WHERE simulationID = " + id,
+        std::string("SELECT COUNT(*) FROM ") + table, 0));
+  };
+  info->robot_ids = LoadIds("Robot", "robotID", info->id, count("Robot"));
+  info->body_ids = LoadIds("Body", "bodyID", info->id, count("Body"));
+  info->joint_ids = LoadIds("`Joint`", "jointID", info->id, count("`Joint`"));
+  info->sensor_ids = LoadIds("Sensor", "sensorID", info->id, count("Sensor"));
+  return true;
+}
+
+std::vector<int64_t> DbWriter::LoadIds(const char* table, const char* id_column,
+                                       uint32_t simulation, size_t count) {
+  std::vector<int64_t> ids(count, -1);
+  std::unique_ptr<sql::ResultSet> rows =
+      db_->Query(std::string("SELECT busIndex, ") + id_column + " FROM " + table +
+                     " WHERE simulationID = " + std::to_string(simulation),
+                 std::string("SELECT FROM ") + table);
+  try {
+    while (rows->next()) {
+      const int64_t index = rows->getInt64(1);
+      if (index >= 0 && index < static_cast<int64_t>(count))
+        ids[static_cast<size_t>(index)] = rows->getInt64(2);
+    }
+  } catch (const sql::SQLException&) {
+    db_->Rethrow(std::string("read ") + table);
+  }
+  return ids;
+}
+
+DbWriter::SimInfo* DbWriter::FindSimulation(int64_t bus_id) {
+  auto it = simulations_.find(bus_id);
+  if (it != simulations_.end()) return &it->second;
+  SimInfo info;
+  if (!LoadSimulation("busSimulationID = " + std::to_string(bus_id), &info)) return nullptr;
+  return &simulations_.emplace(bus_id, std::move(info)).first->second;
+}
+
+void DbWriter::CloseOthers(const SimInfo& keep, const std::string& host, const std::string& reason) {
+  std::vector<uint32_t> open;
+  std::unique_ptr<sql::ResultSet> rows = db_->Query(
+      "SELECT simulationID FROM Simulation WHERE endTime IS NULL AND host = " + Quoted(host) +
+          " AND lcmUrl = " + Quoted(options_.lcm_url) +
+          " AND simulationID <> " + std::to_string(keep.id),
+      "SELECT open simulations FROM Simulation");
+  try {
+    while (rows->next()) open.push_back(rows->getUInt(1));
+  } catch (const sql::SQLException&) {
+    db_->Rethrow("read Simulation");
+  }
+  for (uint32_t id : open) {
+    const std::string sid = std::to_string(id);
+    db_->Execute("UPDATE Simulation SET endTime = UTC_TIMESTAMP(6), endReason = " + Quoted(reason) +
+                     ", lastStep = (SELECT MAX(step) FROM SimulationRow WHERE simulationID = " +
+                     sid + ") WHERE simulationID = " + sid + " AND endTime IS NULL",
+                 "UPDATE Simulation (close " + sid + ")");
+    notice_("closed simulation " + sid + ": " + reason);
+  }
+}
+
+void DbWriter::WriteModel(const Record& record, WriteResult* /*result*/) {
+  const model_t model = Decode<model_t>(record);
+  auto cached = simulations_.find(model.simulation_id);
+  if (cached != simulations_.end()) return;  // announced again
+
+  SimInfo info;
+  db_->Begin();
+  const bool resumed = LoadSimulation("busSimulationID = " + std::to_string(model.simulation_id) +
+                                          " AND host = " + Quoted(model.host),
+                                      &info);
+  if (!resumed) {
+    const int stride = std::lcm(std::max(1, model.state_every), std::max(1, options_.log_interval));
+    std::string sql =
+        "INSERT INTO Simulation (busSimulationID, host, lcmUrl, startTime, worldFile, worldName, "
+        "parameters, stepSize, stateEvery, logInterval, gravityX, gravityY, gravityZ) VALUES (";
+    AppendInt(&sql, model.simulation_id);
+    sql += "," + Quoted(model.host) + "," + Quoted(options_.lcm_url) + "," +
+           UtcFromMicros(record.received_us) + "," + Quoted(model.world_file) + "," +
+           Quoted(model.world_name) + "," + Quoted(model.parameters) + ",";
+    AppendDouble(&sql, model.step_size);
+    sql += "," + std::to_string(model.state_every) + "," + std::to_string(options_.log_interval);
+    for (double g : model.gravity) {
+      sql += ",";
+      AppendDouble(&sql, g);
+    }
+    sql += ")";
+    db_->Execute(sql, "INSERT INTO Simulation");
+    info.id = static_cast<uint32_t>(
+        db_->QueryInt("SELECT LAST_INSERT_ID()", "SELECT LAST_INSERT_ID()", 0));
+    info.bus_id = model.simulation_id;
+    info.stride = stride;
+    info.last_step = -1;
+    const std::string sid = std::to_string(info.id);
+
+    if (!model.robots.empty()) {
+      RowSink robots(db_.get(), InsertMethod::kMultiRowInsert, "", "Robot",
+                     "simulationID,busIndex,name,model,file,totalMass");
+      for (size_t i = 0; i < model.robots.size(); ++i) {
+        const robot_t& r = model.robots[i];
+        robots.BeginRow();
+        robots.Int(info.id);
+        robots.Int(static_cast<int64_t>(i));
+        robots.Text(r.name);
+        robots.Text(r.model);
+        robots.Text(r.file);
+        robots.Double(r.total_mass);
+        robots.EndRow();
+      }
+      robots.Finish();
+    }
+    info.robot_ids = LoadIds("Robot", "robotID", info.id, model.robots.size());
+
+    if (!model.bodies.empty()) {
+      RowSink bodies(db_.get(), InsertMethod::kMultiRowInsert, "", "Body",
+                     "simulationID,robotID,busIndex,name,type,dimX,dimY,dimZ,mass,comX,comY,comZ,"
+                     "Ixx,Iyy,Izz,Ixy,Ixz,Iyz,material,isStatic");
+      for (size_t i = 0; i < model.bodies.size(); ++i) {
+        const body_t& b = model.bodies[i];
+        bodies.BeginRow();
+        bodies.Int(info.id);
+        bodies.Id(info.robot_ids, b.robot);
+        bodies.Int(static_cast<int64_t>(i));
+        bodies.Text(b.name);
+        bodies.Text(GeometryName(b.geometry.kind));
+        for (double d : b.geometry.size) bodies.Double(d);
+        bodies.Double(b.mass);
+        for (double c : b.com) bodies.Double(c);
+        for (double in : b.inertia) bodies.Double(in);
+        bodies.Text(b.material);
+        bodies.Int(b.is_static ? 1 : 0);
+        bodies.EndRow();
+      }
+      bodies.Finish();
+    }
+    info.body_ids = LoadIds("Body", "bodyID", info.id, model.bodies.size());
+
+    if (!model.joints.empty()) {
+      RowSink joints(db_.get(), InsertMethod::kMultiRowInsert, "", "`Joint`",
+                     "simulationID,robotID,busIndex,name,type,body1ID,body2ID,numAxes,anchorX,"
+                     "anchorY,anchorZ,axis1X,axis1Y,axis1Z,axis2X,axis2Y,axis2Z,axis3X,axis3Y,"
+                     "axis3Z,loStop1,hiStop1,loStop2,hiStop2,loStop3,hiStop3");
+      for (size_t i = 0; i < model.joints.size(); ++i) {
+        const joint_t& j = model.joints[i];
+        joints.BeginRow();
+        joints.Int(info.id);
+        joints.Id(info.robot_ids, j.robot);
+        joints.Int(static_cast<int64_t>(i));
+        joints.Text(j.name);
+        joints.Text(JointName(j.kind));
+        joints.Id(info.body_ids, j.body1);
+        joints.Id(info.body_ids, j.body2);
+        joints.Int(j.num_axes);
+        for (double a : j.anchor) joints.Double(a);
+        for (const auto& axis : j.axis)
+          for (double a : axis) joints.Double(a);
+        for (int a = 0; a < 3; ++a) {
+          joints.Double(j.lo_stop[a]);  // +-inf (free) becomes NULL
+          joints.Double(j.hi_stop[a]);
+        }
+        joints.EndRow();
+      }
+      joints.Finish();
+    }
+    info.joint_ids = LoadIds("`Joint`", "jointID", info.id, model.joints.size());
+
+    if (!model.sensors.empty()) {
+      RowSink sensors(db_.get(), InsertMethod::kMultiRowInsert, "", "Sensor",
+                      "simulationID,robotID,busIndex,name,type,bodyID,jointID,port,rate,params");
+      for (size_t i = 0; i < model.sensors.size(); ++i) {
+        const sensor_t& s = model.sensors[i];
+        sensors.BeginRow();
+        sensors.Int(info.id);
+        sensors.Id(info.robot_ids, s.robot);
+        sensors.Int(static_cast<int64_t>(i));
+        sensors.Text(s.name);
+        sensors.Text(SensorName(s.kind));
+        sensors.Id(info.body_ids, s.body);
+        sensors.Id(info.joint_ids, s.joint);
+        sensors.Int(s.port);
+        sensors.Double(s.rate);
+        sensors.Text(JoinValues(s.params));
+        sensors.EndRow();
+      }
+      sensors.Finish();
+    }
+    info.sensor_ids = LoadIds("Sensor", "sensorID", info.id, model.sensors.size());
+
+    std::vector<int64_t> actuator_ids;
+    if (!model.actuators.empty()) {
+      RowSink actuators(db_.get(), InsertMethod::kMultiRowInsert, "", "Actuator",
+                        "simulationID,robotID,busIndex,name,type,jointID,port");
+      for (size_t i = 0; i < model.actuators.size(); ++i) {
+        const actuator_t& a = model.actuators[i];
+        actuators.BeginRow();
+        actuators.Int(info.id);
+        actuators.Id(info.robot_ids, a.robot);
+        actuators.Int(static_cast<int64_t>(i));
+        actuators.Text(a.name);
+        actuators.Text(ActuatorName(a.kind));
+        actuators.Id(info.joint_ids, a.joint);
+        actuators.Int(a.port);
+        actuators.EndRow();
+      }
+      actuators.Finish();
+      actuator_ids = LoadIds("Actuator", "actuatorID", info.id, model.actuators.size());
+    }
+
+    // RobotComponent: what each robot is made of, by name.
+    RowSink components(db_.get(), InsertMethod::kMultiRowInsert, "", "RobotComponent",
+                       "robotID,type,name,reference");
+    auto component = [&](int16_t robot, const char* type, const std::string& name,
+                         const std::vector<int64_t>& ids, size_t index) {
+      if (robot < 0 || robot >= static_cast<int16_t>(info.robot_ids.size())) return;
+      components.BeginRow();
+      components.Int(info.robot_ids[static_cast<size_t>(robot)]);
+      components.Text(type);
+      components.Text(name);
+      components.Int(ids[index]);
+      components.EndRow();
+    };
+    for (size_t i = 0; i < model.bodies.size(); ++i)
+      component(model.bodies[i].robot, "BODY", model.bodies[i].name, info.body_ids, i);
+    for (size_t i = 0; i < model.joints.size(); ++i)
+      component(model.joints[i].robot, "JOINT", model.joints[i].name, info.joint_ids, i);
+    for (size_t i = 0; i < model.sensors.size(); ++i)
+      component(model.sensors[i].robot, "SENSOR", model.sensors[i].name, info.sensor_ids, i);
+    for (size_t i = 0; i < model.actuators.size(); ++i)
+      component(model.actuators[i].robot, "ACTUATOR", model.actuators[i].name, actuator_ids, i);
+    components.Finish();
+  }
+  CloseOthers(info, model.host,
+              "a new simulation started on the bus (the sim restarted or was reset)");
+  db_->Commit();
+  notice_(std::string(resumed ? "resuming" : "logging") + " simulation " +
+          std::to_string(info.id) + " (bus simulation id " + std::to_string(model.simulation_id) +
+          " from " + model.host + ", world '" + model.world_name + "', " +
+          std::to_string(model.bodies.size()) + " bodies, " + std::to_string(model.joints.size()) +
+          " joints" +
+          (resumed ? ", last logged step " + std::to_string(info.last_step) : std::string()) + ")");
+  simulations_[model.simulation_id] = std::move(info);
+}
+
+void DbWriter::CloseSimulation(const Record& record) {
+  SimInfo* sim = FindSimulation(record.simulation_id);
+  if (sim == nullptr) return;
+  const std::string sid = std::to_string(sim->id);
+  db_->Execute("UPDATE Simulation SET endTime = UTC_TIMESTAMP(6), endReason = 'the sim stopped', "
+               "lastStep = (SELECT MAX(step) FROM SimulationRow WHERE simulationID = " + sid +
+                   ") WHERE simulationID = " + sid + " AND endTime IS NULL",
+               "UPDATE Simulation (close " + sid + ")");
+  notice_("closed simulation " + sid + ": the sim stopped at step " +
+          std::to_string(ReadEnded(record).last_step));
+}
+
+void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_present,
+                        WriteResult* result) {
+  // States by simulation, in arrival order.
+  std::map<int64_t, std::vector<state_t>> states;
+  std::vector<const Record*> others;
+  for (const Record* r : run) {
+    if (FindSimulation(r->simulation_id) == nullptr) {
+      ++result->unwritable;
+      notice_(std::string("a ") + RecordKindName(r->kind) + " of bus simulation " +
+              std::to_string(r->simulation_id) +
+              " has no Simulation row (its SIM_MODEL never reached the database); not written");
+      continue;
+    }
+    if (r->kind == RecordKind::kState) states[r->simulation_id].push_back(Decode<state_t>(*r));
+    else others.push_back(r);
+  }
+  if (states.empty() && others.empty()) return;
+
+  db_->Begin();
+  std::vector<int64_t> published;  // publish times of the states written
+  std::map<int64_t, int64_t> new_last_step;
+  WriteResult pending;
+  for (auto& [bus_id, list] : states) {
+    SimInfo* sim = FindSimulation(bus_id);
+    const std::string sid = std::to_string(sim->id);
+    int64_t lo = list.front().step, hi = list.front().step;
+    for (const state_t& s : list) {
+      lo = std::min(lo, s.step);
+      hi = std::max(hi, s.step);
+    }
+    const std::string range = " WHERE simulationID = " + sid + " AND step BETWEEN " +
+                              std::to_string(lo) + " AND " + std::to_string(hi);
+    std::set<int64_t> present;
+    if (check_present || lo <= sim->last_step) {
+      std::unique_ptr<sql::ResultSet> rows =
+          db_->Query("SELECT step FROM SimulationRow" + range, "SELECT step FROM SimulationRow");
+      try {
+        while (rows->next()) present.insert(rows->getInt64(1));
+      } catch (const sql::SQLException&) {
+        db_->Rethrow("read SimulationRow");
+      }
+    }
+    std::vector<const state_t*> fresh;
+    int64_t last = sim->last_step;
+    RowSink gaps(db_.get(), InsertMethod::kMultiRowInsert, "", "LogGap",
+                 "simulationID,firstStep,lastStep,missing,detectedAt",
+                 "lastStep = VALUES(lastStep), missing = VALUES(missing)");
+    for (const state_t& s : list) {
+      if (last >= 0 && s.step > last + sim->stride) {
+        const int64_t missing = (s.step - last) / sim->stride - 1;
+        gaps.BeginRow();
+        gaps.Int(sim->id);
+        gaps.Int(last + sim->stride);
+        gaps.Int(s.step - sim->stride);
+        gaps.Int(missing);
+        gaps.Expression("UTC_TIMESTAMP(6)");
+        gaps.EndRow();
+        ++pending.gaps;
+        pending.missing_steps += static_cast<uint64_t>(missing);
+      }
+      last = std::max(last, s.step);
+      if (!present.insert(s.step).second) {
+        ++pending.states_present;
+        continue;
+      }
+      fresh.push_back(&s);
+    }
+    gaps.Finish();
+    pending.rows_written += gaps.rows();
+    new_last_step[bus_id] = last;
+    if (fresh.empty()) continue;
+
+    RowSink steps(db_.get(), InsertMethod::kMultiRowInsert, "", "SimulationRow",
+                  "simulationID,step,simulationTime,publishedUtime");
+    for (const state_t* s : fresh) {
+      steps.BeginRow();
+      steps.Int(sim->id);
+      steps.Int(s->step);
+      steps.Double(s->sim_time);
+      steps.Int(s->utime);
+      steps.EndRow();
+    }
+    steps.Finish();
+    std::unordered_map<int64_t, int64_t> row_ids;
+    {
+      std::unique_ptr<sql::ResultSet> rows = db_->Query(
+          "SELECT step, simulationRowID FROM SimulationRow" + range, "SELECT FROM SimulationRow");
+      try {
+        while (rows->next()) row_ids[rows->getInt64(1)] = static_cast<int64_t>(rows->getUInt64(2));
+      } catch (const sql::SQLException&) {
+        db_->Rethrow("read SimulationRow");
+      }
+    }
+    RowSink poses(db_.get(), options_.method, options_.scratch_dir, "Pose",
+                  "simulationRowID,bodyID,x,y,z,axisX,axisY,axisZ,angle");
+    RowSink forces(db_.get(), options_.method, options_.scratch_dir, "ForceAndTorque",
+                   "simulationRowID,bodyID,F_x,F_y,F_z,T_x,T_y,T_z");
+    RowSink joints(db_.get(), options_.method, options_.scratch_dir, "JointPose",
+                   "simulationRowID,jointID,anchorx,anchory,anchorz,angle,angle2,angle3,rate,"
+                   "rate2,rate3,F_x,F_y,F_z,T_x,T_y,T_z");
+    for (const state_t* s : fresh) {
+      const int64_t row = row_ids.at(s->step);
+      for (size_t b = 0; b < s->bodies.size(); ++b) {
+        const body_state_t& body = s->bodies[b];
+        const AxisAngle aa = AxisAngleFromQuaternion(body.orientation);
+        poses.BeginRow();
+        poses.Int(row);
+        poses.Int(sim->body_ids[b]);
+        for (double p : body.position) poses.Double(p);
+        for (double a : aa.axis) poses.Double(a);
+        poses.Double(aa.angle);
+        poses.EndRow();
+        forces.BeginRow();
+        forces.Int(row);
+        forces.Int(sim->body_ids[b]);
+        for (double f : body.contact_force) forces.Double(f);
+        for (double t : body.contact_torque) forces.Double(t);
+        forces.EndRow();
+      }
+      for (size_t j = 0; j < s->joints.size(); ++j) {
+        const joint_state_t& joint = s->joints[j];
+        joints.BeginRow();
+        joints.Int(row);
+        joints.Int(sim->joint_ids[j]);
+        for (double a : joint.anchor) joints.Double(a);
+        for (double p : joint.position) joints.Double(p);
+        for (double r : joint.rate) joints.Double(r);
+        for (double f : joint.force1) joints.Double(f);
+        for (double t : joint.torque1) joints.Double(t);
+        joints.EndRow();
+      }
+      published.push_back(s->utime);
+    }
+    poses.Finish();
+    forces.Finish();
+    joints.Finish();
+    pending.states_written += fresh.size();
+    pending.rows_written += steps.rows() + poses.rows() + forces.rows() + joints.rows();
+  }
+
+  // Sensor readings, commands and replies: few, keyed so a replay is a no-op.
+  RowSink readings(db_.get(), InsertMethod::kMultiRowInsert, "", "SensorReading",
+                   "simulationID,sensorID,step,simulationTime,receivedUtime,vals,text",
+                   "step = step");
+  RowSink commands(db_.get(), InsertMethod::kMultiRowInsert, "", "Command",
+                   "simulationID,receivedUtime,sentUtime,sender,requestID,robot,target,port,action,"
+                   "applyAtStep,vals,text",
+                   "requestID = requestID");
+  RowSink replies(db_.get(), InsertMethod::kMultiRowInsert, "", "CommandReply",
+                  "simulationID,receivedUtime,sender,requestID,target,accepted,reason,"
+                  "appliedAtStep,previous,previousText",
+                  "requestID = requestID");
+  for (const Record* r : others) {
+    const SimInfo* sim = FindSimulation(r->simulation_id);
+    if (r->kind == RecordKind::kSensor) {
+      const sensor_reading_t reading = Decode<sensor_reading_t>(*r);
+      if (reading.sensor < 0 || reading.sensor >= static_cast<int32_t>(sim->sensor_ids.size()))
+        continue;  // the receiver checks this against the model
+      readings.BeginRow();
+      readings.Int(sim->id);
+      readings.Int(sim->sensor_ids[static_cast<size_t>(reading.sensor)]);
+      readings.Int(reading.step);
+      readings.Double(reading.sim_time);
+      readings.Int(r->received_us);
+      readings.Text(JoinValues(reading.values));
+      readings.Text(reading.text);
+      readings.EndRow();
+    } else if (r->kind == RecordKind::kCommand) {
+      const command_t c = Decode<command_t>(*r);
+      commands.BeginRow();
+      commands.Int(sim->id);
+      commands.Int(r->received_us);
+      commands.Int(c.utime);
+      commands.Text(c.sender);
+      commands.Int(c.request_id);
+      commands.Text(c.robot);
+      commands.Text(c.target);
+      commands.Int(c.port);
+      commands.Text(ActionName(c.action));
+      commands.Int(c.apply_at_step);
+      commands.Text(JoinValues(c.values));
+      commands.Text(c.text);
+      commands.EndRow();
+    } else if (r->kind == RecordKind::kCommandReply) {
+      const command_reply_t c = Decode<command_reply_t>(*r);
+      replies.BeginRow();
+      replies.Int(sim->id);
+      replies.Int(r->received_us);
+      replies.Text(c.sender);
+      replies.Int(c.request_id);
+      replies.Text(c.target);
+      replies.Int(c.accepted ? 1 : 0);
+      replies.Text(c.reason);
+      replies.Int(c.applied_at_step);
+      replies.Text(JoinValues(c.previous));
+      replies.Text(c.previous_text);
+      replies.EndRow();
+    }
+  }
+  readings.Finish();
+  commands.Finish();
+  replies.Finish();
+  pending.rows_written += readings.rows() + commands.rows() + replies.rows();
+
+  db_->Commit();
+  const int64_t committed = NowMicros();
+  for (const auto& [bus_id, last] : new_last_step) simulations_[bus_id].last_step = last;
+  result->states_written += pending.states_written;
+  result->states_present += pending.states_present;
+  result->rows_written += pending.rows_written;
+  result->gaps += pending.gaps;
+  result->missing_steps += pending.missing_steps;
+  for (int64_t p : published) result->lags_us.push_back(committed - p);
+}
+
+}  // namespace simpartner::logger
