@@ -181,7 +181,8 @@ DbError::DbError(DbErrorKind kind, std::string server, std::string statement, st
       server_(std::move(server)),
       statement_(std::move(statement)),
       cause_(std::move(cause)),
-      code_(code) {}
+      code_(code),
+      detail_(std::string(what()).substr(server_.size() + 2)) {}
 
 DbConnection::DbConnection(DbTarget target, std::unique_ptr<sql::Connection> connection)
     : target_(std::move(target)), connection_(std::move(connection)) {}

@@ -165,15 +165,15 @@ void Logger::WriterLoop() {
       std::string what;
       switch (e.kind()) {
         case DbErrorKind::kUnreachable:
-          what = "database server " + e.server() + " is unreachable: " + e.what();
+          what = "database server " + e.server() + " is unreachable: " + e.detail();
           break;
         case DbErrorKind::kRefused:
-          what = "database server " + e.server() + " refuses writes: " + e.what();
+          what = "database server " + e.server() + " refuses writes: " + e.detail();
           break;
         case DbErrorKind::kRetry:
           continue;  // deadlock or lock wait: at once
         case DbErrorKind::kOther:
-          what = "database server " + e.server() + " failed: " + e.what();
+          what = "database server " + e.server() + " failed: " + e.detail();
           break;
       }
       ReportFailure(what, std::to_string(static_cast<int>(e.kind())) + "/" + std::to_string(e.code()));

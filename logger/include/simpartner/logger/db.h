@@ -67,6 +67,8 @@ class DbError : public Error {
   const std::string& statement() const { return statement_; }
   const std::string& cause() const { return cause_; }
   int code() const { return code_; }
+  // what() without the server: "statement: cause (error N, SQLSTATE S)".
+  const std::string& detail() const { return detail_; }
 
  private:
   DbErrorKind kind_;
@@ -74,6 +76,7 @@ class DbError : public Error {
   std::string statement_;
   std::string cause_;
   int code_;
+  std::string detail_;
 };
 
 DbErrorKind ClassifyServerError(int code);

@@ -1,0 +1,433 @@
+// The writer and the schema against a real MariaDB server (a private one per
+// test): migrations, every step exactly once however often it is written,
+// gaps, the simulation's life, the rights of the logger's user, the
+// original's mixed-case queries, a server that refuses writes or goes away,
+// and the query tool's CSV.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "logger_test_support.h"
+#include "simpartner/command_t.hpp"
+#include "simpartner/logger/axis_angle.h"
+#include "simpartner/logger/query.h"
+#include "simpartner/logger/schema.h"
+#include "simpartner/logger/writer.h"
+
+namespace simpartner::logger {
+namespace {
+
+using testing::ArmRun;
+using testing::Gen3Run;
+using testing::SimRun;
+
+class DbTest : public testing::ServerTest {
+ protected:
+  std::unique_ptr<DbWriter> Writer(const std::string& database = "simpartner",
+                                   InsertMethod method = InsertMethod::kMultiRowInsert) {
+    WriterOptions options;
+    options.method = method;
+    options.lcm_url = "udpm://test";
+    options.scratch_dir = dir_.string();
+    return std::make_unique<DbWriter>(server_->LoggerTarget(database), options,
+                                      [this](const std::string& s) { notices_.push_back(s); });
+  }
+  // Rows per step and per body of one simulation, each of which must be
+  // `bodies` and `steps` respectively.
+  void ExpectEveryStepOnce(const std::string& db, int64_t simulation, int64_t first, int64_t last,
+                           int64_t bodies, int64_t joints) {
+    const std::string sim = std::to_string(simulation);
+    const int64_t steps = last - first + 1;
+    EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = " + sim, db), steps);
+    EXPECT_EQ(QueryInt("SELECT COUNT(DISTINCT step) FROM SimulationRow WHERE simulationID = " + sim +
+                           " AND step BETWEEN " + std::to_string(first) + " AND " + std::to_string(last),
+                       db),
+              steps);
+    for (const char* table : {"Pose", "ForceAndTorque"}) {
+      EXPECT_EQ(QueryInt(std::string("SELECT COUNT(*) FROM (SELECT r.step FROM SimulationRow r JOIN ") +
+                             table + " t USING (simulationRowID) WHERE r.simulationID = " + sim +
+                             " GROUP BY r.step HAVING COUNT(*) <> " + std::to_string(bodies) + ") x",
+                         db),
+                0) << table << ": a step without exactly one row per body";
+      EXPECT_EQ(QueryInt(std::string("SELECT COUNT(*) FROM (SELECT t.bodyID FROM SimulationRow r JOIN ") +
+                             table + " t USING (simulationRowID) WHERE r.simulationID = " + sim +
+                             " GROUP BY t.bodyID HAVING COUNT(*) <> " + std::to_string(steps) + ") x",
+                         db),
+                0) << table << ": a body without exactly one row per step";
+      EXPECT_EQ(QueryInt(std::string("SELECT COUNT(*) FROM SimulationRow r JOIN ") + table +
+                             " t USING (simulationRowID) WHERE r.simulationID = " + sim,
+                         db),
+                steps * bodies) << table;
+    }
+    EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow r JOIN JointPose t USING (simulationRowID) "
+                       "WHERE r.simulationID = " + sim,
+                       db),
+              steps * joints);
+  }
+  std::vector<std::string> notices_;
+};
+
+TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
+  auto db = DbConnection::Open(server_->LoggerTarget("simpartner_a"), false);
+  EXPECT_EQ(MigrateSchema(db.get(), nullptr), 0);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_a"), LatestSchemaVersion());
+  EXPECT_EQ(MigrateSchema(db.get(), nullptr), LatestSchemaVersion());  // nothing left to do
+  for (const char* table : {"Simulation", "Robot", "RobotComponent", "Body", "Joint", "Sensor",
+                            "Actuator", "SimulationRow", "Pose", "JointPose", "ForceAndTorque",
+                            "LogGap", "SensorReading", "Command", "CommandReply"}) {
+    EXPECT_EQ(QueryInt(std::string("SELECT COUNT(*) FROM information_schema.TABLES WHERE "
+                                   "TABLE_SCHEMA = 'simpartner_a' AND TABLE_NAME = '") + table + "'",
+                       "simpartner_a"),
+              1) << table;
+  }
+
+  // A database the first version of the logger made.
+  auto old = Admin("simpartner_b");
+  old->Execute("CREATE TABLE SchemaVersion (version INT NOT NULL PRIMARY KEY, description "
+               "VARCHAR(1024) NOT NULL, appliedAt DATETIME(6) NOT NULL)", "");
+  for (const std::string& statement : Migrations().at(0).statements) old->Execute(statement, "");
+  old->Execute("INSERT INTO SchemaVersion VALUES (1, 'v1', NOW())", "");
+  std::vector<std::string> notices;
+  auto b = DbConnection::Open(server_->LoggerTarget("simpartner_b"), false);
+  EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 1);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 2);
+  ASSERT_EQ(notices.size(), 1u);
+  EXPECT_NE(notices[0].find("applied schema migration 2"), std::string::npos);
+
+  // A database from a newer logger is left alone.
+  old->Execute("INSERT INTO SchemaVersion VALUES (99, 'from the future', NOW())", "");
+  try {
+    MigrateSchema(b.get(), nullptr);
+    FAIL() << "a newer schema was accepted";
+  } catch (const DbError& e) {
+    EXPECT_NE(std::string(e.what()).find("database 'simpartner_b' has schema version 99, newer than "
+                                         "this program's 2"),
+              std::string::npos) << e.what();
+  }
+}
+
+TEST_F(DbTest, EveryStepOnceHoweverOftenItIsWritten) {
+  const SimRun run = ArmRun(300, 41);
+  {
+    auto writer = Writer();
+    writer->Write({run.ModelRecord()});
+    // Batches of uneven size, then all of them again (a replayed spool).
+    const std::vector<Record> states = run.StateRecords(1, 300);
+    for (size_t i = 0; i < states.size(); i += 37)
+      writer->Write(std::vector<Record>(states.begin() + static_cast<std::ptrdiff_t>(i),
+                                        states.begin() + static_cast<std::ptrdiff_t>(std::min(states.size(), i + 37))));
+    const WriteResult again = writer->Write(states);
+    EXPECT_EQ(again.states_written, 0u);
+    EXPECT_EQ(again.states_present, 300u);
+  }
+  // A new writer (a restarted logger) gets the model and old states again.
+  auto writer = Writer();
+  std::vector<Record> replay = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(250, 300)) replay.push_back(std::move(r));
+  const WriteResult result = writer->Write(replay);
+  EXPECT_EQ(result.states_written, 0u);
+  EXPECT_EQ(result.states_present, 51u);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1);
+  ExpectEveryStepOnce("simpartner", 1, 1, 300, 3, 2);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
+  EXPECT_NE(notices_.back().find("resuming simulation 1 (bus simulation id 41"), std::string::npos)
+      << notices_.back();
+}
+
+TEST_F(DbTest, RowsHoldTheStateInSiUnitsAndAxisAngle) {
+  const SimRun run = ArmRun(1500, 7);
+  auto writer = Writer();
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(1, 1500)) records.push_back(std::move(r));
+  writer->Write(records);
+  auto db = Admin();
+  for (int64_t step : {1, 700, 1500}) {
+    const state_t& s = run.states[static_cast<size_t>(step - 1)];
+    ASSERT_EQ(s.step, step);
+    const body_state_t& arm = s.bodies[1];
+    // Axis-angle straight from the quaternion, another way than the writer's.
+    const double* q = arm.orientation;
+    const double sign = q[0] < 0 ? -1.0 : 1.0;
+    const double vector_norm = std::sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    const double angle = 2 * std::atan2(vector_norm, std::abs(q[0]));
+    const std::vector<std::string> rows = QueryRows(
+        db.get(), "SELECT r.simulationTime, p.x, p.y, p.z, p.axisX, p.axisY, p.axisZ, p.angle, "
+                  "f.F_y FROM SimulationRow r JOIN Pose p USING (simulationRowID) JOIN "
+                  "ForceAndTorque f ON f.simulationRowID = r.simulationRowID AND f.bodyID = "
+                  "p.bodyID JOIN Body b ON b.bodyID = p.bodyID WHERE b.name = 'Arm' AND r.step = " +
+                      std::to_string(step));
+    ASSERT_EQ(rows.size(), 1u);
+    std::vector<double> v;
+    std::stringstream fields(rows[0]);
+    std::string field;
+    while (std::getline(fields, field, '\t')) v.push_back(std::stod(field));
+    EXPECT_DOUBLE_EQ(v[0], step * 0.001);
+    EXPECT_EQ(v[1], arm.position[0]);  // exact: shortest round-trip text
+    EXPECT_EQ(v[2], arm.position[1]);
+    EXPECT_EQ(v[3], arm.position[2]);
+    EXPECT_NEAR(v[7], angle, 1e-12);
+    if (angle > 1e-6) {
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(v[4 + k], sign * q[k + 1] / vector_norm, 1e-9);
+    }
+    EXPECT_EQ(v[8], arm.contact_force[1]);
+  }
+  // The arm swung up towards 3 rad about z: the logged angle went past 2.5.
+  EXPECT_GT(QueryInt("SELECT COUNT(*) FROM Pose p JOIN Body b USING (bodyID) WHERE b.name = 'Arm' "
+                     "AND p.angle > 2.5 AND ABS(p.axisZ) > 0.999"),
+            100);
+  const std::vector<std::string> joint = QueryRows(
+      db.get(), "SELECT j.type, j.numAxes, j.loStop1, b1.name, b2.name FROM `Joint` j JOIN Body b1 "
+                "ON b1.bodyID = j.body1ID JOIN Body b2 ON b2.bodyID = j.body2ID WHERE j.name = 'Shoulder'");
+  EXPECT_EQ(joint, (std::vector<std::string>{"HINGE\t1\tNULL\tBase\tArm"}));
+  EXPECT_EQ(QueryRows(db.get(), "SELECT type, name FROM RobotComponent ORDER BY type, name"),
+            (std::vector<std::string>{"BODY\tArm", "BODY\tBase", "BODY\tWheel", "JOINT\tAxle",
+                                      "JOINT\tShoulder", "SENSOR\tArmPosition", "SENSOR\tEcho",
+                                      "SENSOR\tShoulderLoad", "ACTUATOR\tArmMotor", "ACTUATOR\tSpin"}));
+}
+
+TEST_F(DbTest, GapsAreRecordedAlsoAcrossARestart) {
+  const SimRun run = ArmRun(40, 5);
+  {
+    auto writer = Writer();
+    std::vector<Record> records = {run.ModelRecord()};
+    for (Record& r : run.StateRecords(1, 10)) records.push_back(std::move(r));
+    for (Record& r : run.StateRecords(15, 20)) records.push_back(std::move(r));
+    writer->Write(records);
+  }
+  auto writer = Writer();  // restarted: knows the last step only from the database
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(30, 31)) records.push_back(std::move(r));
+  writer->Write(records);
+  auto db = Admin();
+  EXPECT_EQ(QueryRows(db.get(), "SELECT firstStep, lastStep, missing FROM LogGap ORDER BY firstStep"),
+            (std::vector<std::string>{"11\t14\t4", "21\t29\t9"}));
+}
+
+TEST_F(DbTest, ARestartedSimIsANewSimulationAndTheOldOneIsClosed) {
+  const SimRun first = ArmRun(20, 100);
+  const SimRun second = ArmRun(20, 200);
+  auto writer = Writer();
+  std::vector<Record> records = {first.ModelRecord()};
+  for (Record& r : first.StateRecords(1, 20)) records.push_back(std::move(r));
+  sensor_reading_t reading{};
+  reading.simulation_id = 100;
+  reading.sensor = 0;
+  reading.step = 20;
+  reading.values = {1.5, -2.25};
+  reading.num_values = 2;
+  records.push_back(testing::MakeRecord(RecordKind::kSensor, 100, reading, 555));
+  command_t command = sim::testing::Command("Spin", command_t::ACTION_SET, {10, 0.5});
+  command.text = "it's a \"test\"";
+  records.push_back(testing::MakeRecord(RecordKind::kCommand, 100, command, 556));
+  records.push_back(second.ModelRecord());
+  for (Record& r : second.StateRecords(1, 5)) records.push_back(std::move(r));
+  records.push_back(MakeEndedRecord(200, 0, EndedPayload{5}));
+  writer->Write(records);
+  writer->Write(records);  // again: nothing new
+  auto db = Admin();
+  EXPECT_EQ(QueryRows(db.get(), "SELECT simulationID, busSimulationID, endTime IS NOT NULL, endReason, "
+                                "lastStep FROM Simulation ORDER BY simulationID"),
+            (std::vector<std::string>{
+                "1\t100\t1\ta new simulation started on the bus (the sim restarted or was reset)\t20",
+                "2\t200\t1\tthe sim stopped\t5"}));
+  ExpectEveryStepOnce("simpartner", 1, 1, 20, 3, 2);
+  ExpectEveryStepOnce("simpartner", 2, 1, 5, 3, 2);
+  EXPECT_EQ(QueryRows(db.get(), "SELECT s.name, r.step, r.vals FROM SensorReading r JOIN Sensor s USING (sensorID)"),
+            (std::vector<std::string>{"ArmPosition\t20\t1.5,-2.25"}));
+  EXPECT_EQ(QueryRows(db.get(), "SELECT simulationID, target, action, vals, text FROM Command"),
+            (std::vector<std::string>{"1\tSpin\tSET\t10,0.5\tit's a \"test\""}));
+}
+
+TEST_F(DbTest, LoadDataWritesTheSameRowsAsInsert) {
+  const SimRun run = ArmRun(200, 3);
+  for (auto [db, method] : {std::pair{"simpartner_i", InsertMethod::kMultiRowInsert},
+                            std::pair{"simpartner_l", InsertMethod::kLoadDataLocal}}) {
+    auto writer = Writer(db, method);
+    std::vector<Record> records = {run.ModelRecord()};
+    for (Record& r : run.StateRecords(1, 200)) records.push_back(std::move(r));
+    writer->Write(records);
+    writer->Write(records);
+    ExpectEveryStepOnce(db, 1, 1, 200, 3, 2);
+  }
+  const std::string dump =
+      "SELECT r.step, p.bodyID, p.x, p.y, p.z, p.axisX, p.axisY, p.axisZ, p.angle, f.F_x, f.T_z, "
+      "j.angle, j.rate, j.F_y FROM SimulationRow r JOIN Pose p USING (simulationRowID) JOIN "
+      "ForceAndTorque f ON f.simulationRowID = r.simulationRowID AND f.bodyID = p.bodyID JOIN "
+      "JointPose j ON j.simulationRowID = r.simulationRowID ORDER BY r.step, p.bodyID, j.jointID";
+  auto a = Admin("simpartner_i");
+  auto b = Admin("simpartner_l");
+  const std::vector<std::string> rows = QueryRows(a.get(), dump);
+  EXPECT_EQ(rows.size(), 200u * 3 * 2);
+  EXPECT_EQ(rows, QueryRows(b.get(), dump));
+}
+
+TEST_F(DbTest, TheLoggerUserHasOnlyTheRightsItNeeds) {
+  auto writer = Writer();
+  const SimRun run = ArmRun(3, 1);
+  writer->Write({run.ModelRecord(), run.StateRecord(0)});
+  auto logger = DbConnection::Open(server_->LoggerTarget("simpartner"), false);
+  logger->UseDatabase(false);
+  auto refused = [](DbConnection* db, const std::string& sql) {
+    try {
+      db->Execute(sql, sql);
+    } catch (const DbError& e) {
+      return e.code();
+    }
+    return 0;
+  };
+  EXPECT_EQ(refused(logger.get(), "DROP TABLE Pose"), 1142);
+  EXPECT_EQ(refused(logger.get(), "DELETE FROM Pose"), 1142);
+  EXPECT_EQ(refused(logger.get(), "CREATE DATABASE other"), 1044);
+  EXPECT_EQ(refused(logger.get(), "SELECT * FROM mysql.user"), 1142);
+  EXPECT_EQ(refused(logger.get(), "GRANT SELECT ON simpartner.* TO 'simpartner_reader'@'localhost'"), 1044);
+  DbTarget reader_target = server_->LoggerTarget("simpartner");
+  reader_target.option_file = server_->reader_options();
+  auto reader = DbConnection::Open(reader_target, false);
+  reader->UseDatabase(false);
+  EXPECT_EQ(refused(reader.get(), "INSERT INTO LogGap VALUES (1, 1, 1, 1, NOW())"), 1142);
+  EXPECT_EQ(reader->QueryInt("SELECT COUNT(*) FROM Pose", "", -1), 3);
+}
+
+TEST_F(DbTest, TheOriginalsMixedCaseQueriesRunUnchanged) {
+  const SimRun run = Gen3Run(120, 77);
+  auto writer = Writer();
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(1, 120)) records.push_back(std::move(r));
+  writer->Write(records);
+
+  std::ifstream file(std::string(SP_SOURCE_DIR) + "/logger/analysis_queries.sql");
+  std::stringstream text;
+  text << file.rdbuf();
+  std::vector<std::string> queries;
+  std::string current, line;
+  while (std::getline(text, line)) {
+    if (line.rfind("--", 0) == 0) continue;
+    current += line + "\n";
+    if (!line.empty() && line.back() == ';') {
+      queries.push_back(current.substr(0, current.rfind(';')));
+      current.clear();
+    }
+  }
+  ASSERT_EQ(queries.size(), 7u);
+  // As the analysts did: the reader's user, the queries as written.
+  DbTarget reader_target = server_->LoggerTarget("simpartner");
+  reader_target.option_file = server_->reader_options();
+  auto db = DbConnection::Open(reader_target, false);
+  db->UseDatabase(false);
+  db->Execute("SET @simulation = 1", "SET @simulation");
+  std::vector<std::vector<std::string>> results;
+  for (const std::string& q : queries) results.push_back(QueryRows(db.get(), q));
+
+  size_t wheel1_index = 0;
+  for (size_t i = 0; i < run.model.bodies.size(); ++i)
+    if (run.model.bodies[i].name == "Wheel1") wheel1_index = i;
+  ASSERT_EQ(results[0].size(), 120u);  // Wheel1 every step
+  const state_t& last = run.states.back();
+  EXPECT_EQ(std::stod(results[0].back().substr(results[0].back().find('\t') + 1)),
+            last.bodies[wheel1_index].position[0]);
+  EXPECT_EQ(results[1].size(), 4u * 120);  // four wheels every step
+  ASSERT_EQ(results[2].size(), 4u);        // mean load per wheel
+  for (int w = 0; w < 4; ++w) {
+    EXPECT_EQ(results[2][static_cast<size_t>(w)].substr(0, 6), "Wheel" + std::to_string(w + 1));
+    EXPECT_NE(results[2][static_cast<size_t>(w)].find("\t120"), std::string::npos);
+  }
+  EXPECT_EQ(results[3].size(), 120u);  // Turner angle every step
+  EXPECT_EQ(results[4].size(), 4u);    // Calf1..4 at the last step
+  EXPECT_EQ(results[5].size(), 1u);
+  EXPECT_EQ(results[6], (std::vector<std::string>{"120\t" + std::to_string(120 * 26) + "\t" +
+                                                  std::to_string(120 * 26) + "\t" +
+                                                  std::to_string(120 * 25)}));
+}
+
+TEST_F(DbTest, AServerThatRefusesWritesIsAnErrorNamingServerAndCause) {
+  const SimRun run = ArmRun(20, 9);
+  auto writer = Writer();
+  writer->Write({run.ModelRecord(), run.StateRecord(0)});
+  Admin()->Execute("SET GLOBAL read_only = 1", "");
+  try {
+    writer->Write(run.StateRecords(2, 10));
+    FAIL() << "a read-only server took the rows";
+  } catch (const DbError& e) {
+    EXPECT_EQ(e.kind(), DbErrorKind::kRefused);
+    const std::string text = e.what();
+    EXPECT_NE(text.find("unix://" + server_->socket()), std::string::npos) << text;
+    EXPECT_NE(text.find("--read-only"), std::string::npos) << text;
+    EXPECT_NE(text.find("INSERT INTO SimulationRow"), std::string::npos) << text;
+  }
+  Admin()->Execute("SET GLOBAL read_only = 0", "");
+  writer->Write(run.StateRecords(2, 10));
+  ExpectEveryStepOnce("simpartner", 1, 1, 10, 3, 2);
+}
+
+TEST_F(DbTest, AServerThatWentAwayIsUnreachableAndTheWriterReconnects) {
+  const SimRun run = ArmRun(20, 9);
+  auto writer = Writer();
+  writer->Write({run.ModelRecord(), run.StateRecord(0)});
+  server_->Stop();
+  try {
+    writer->Write(run.StateRecords(2, 10));
+    FAIL() << "wrote to a stopped server";
+  } catch (const DbError& e) {
+    EXPECT_EQ(e.kind(), DbErrorKind::kUnreachable) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unix://" + server_->socket()), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(writer->connected());
+  try {
+    writer->Write(run.StateRecords(2, 10));
+    FAIL();
+  } catch (const DbError& e) {
+    EXPECT_EQ(e.kind(), DbErrorKind::kUnreachable) << e.what();
+    EXPECT_NE(std::string(e.what()).find("connect"), std::string::npos) << e.what();
+  }
+  server_->Start();
+  writer->Write(run.StateRecords(2, 20));
+  ExpectEveryStepOnce("simpartner", 1, 1, 20, 3, 2);
+}
+
+TEST_F(DbTest, QueryToolListsAndExportsCsv) {
+  const SimRun run = ArmRun(50, 12);
+  auto writer = Writer();
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(1, 50)) records.push_back(std::move(r));
+  writer->Write(records);
+  DbTarget reader_target = server_->LoggerTarget("simpartner");
+  reader_target.option_file = server_->reader_options();
+  auto db = DbConnection::Open(reader_target, false);
+  db->UseDatabase(false);
+
+  std::ostringstream list;
+  ListSimulations(db.get(), list);
+  EXPECT_TRUE(std::regex_search(list.str(), std::regex("\\n1 +12 +testhost +ArmWorld .* 50 +50 +0  open\\n")))
+      << list.str();
+
+  std::ostringstream csv;
+  EXPECT_EQ(ExportCsv(db.get(), ExportRequest{ExportKind::kPoses, "last", "Arm"}, csv), 50u);
+  std::stringstream lines(csv.str());
+  std::string header, first;
+  std::getline(lines, header);
+  std::getline(lines, first);
+  EXPECT_EQ(header, "time_s,step,body,x_m,y_m,z_m,axis_x,axis_y,axis_z,angle_rad");
+  EXPECT_EQ(first.substr(0, 14), "0.001,1,Arm,0.");
+  std::ostringstream forces, joints;
+  EXPECT_EQ(ExportCsv(db.get(), ExportRequest{ExportKind::kForces, "1", ""}, forces), 150u);
+  EXPECT_EQ(ExportCsv(db.get(), ExportRequest{ExportKind::kJoints, "1", "Shoulder"}, joints), 50u);
+  for (const auto& [request, message] :
+       std::vector<std::pair<ExportRequest, std::string>>{
+           {{ExportKind::kPoses, "7", ""}, "no simulation 7 in database 'simpartner'"},
+           {{ExportKind::kPoses, "x", ""}, "simulation 'x' is not a simulationID"},
+           {{ExportKind::kPoses, "1", "Wheel9"}, "simulation 1 has no body named 'Wheel9'"}}) {
+    std::ostringstream out;
+    try {
+      ExportCsv(db.get(), request, out);
+      FAIL() << message;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace simpartner::logger

@@ -1,0 +1,375 @@
+// simpartner-logger as a real process on real LCM multicast (udpm, ttl=0),
+// beside real simpartner-sim processes (or the test publishing as a sim),
+// writing into a real private MariaDB server, through the faults it must
+// survive: the server away for 30 s, SIGKILL and restart, a restarted sim,
+// bad messages, a server refusing writes, a stop while the server is away.
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+#include <signal.h>
+
+#include <chrono>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <thread>
+
+#include "logger_test_support.h"
+#include "simpartner/channels.h"
+#include "simpartner/child_process.h"
+#include "simpartner/control_t.hpp"
+#include "simpartner/status_t.hpp"
+
+namespace simpartner::logger {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using testing::SimRun;
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class LoggerProcessTest : public testing::ServerTest {
+ protected:
+  void SetUp() override {
+    ServerTest::SetUp();
+    const int port = 40000 + (static_cast<int>(::getpid()) * 13) % 20000;
+    url_ = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
+    std::ofstream(dir_ / "world.xml") << sim::testing::ArmWorld();
+    std::ofstream(dir_ / "arm.xml") << sim::testing::ArmRobot();
+  }
+  void TearDown() override {
+    loggers_.clear();
+    sims_.clear();
+    ServerTest::TearDown();
+  }
+
+  // Starts simpartner-logger n (log file logger<n>.log) with the spool in
+  // dir_/spool.
+  ChildProcess& StartLogger(std::vector<std::string> extra = {}) {
+    const std::string log = LoggerLog(loggers_.size());
+    std::vector<std::string> args = {std::string(SP_BINARY_DIR) + "/logger/simpartner-logger",
+                                     "--params", "/dev/null", "--lcm-url", url_,
+                                     "--db-options", server_->logger_options(),
+                                     "--spool", (dir_ / "spool").string(),
+                                     "--status-period", "1"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    loggers_.push_back(std::make_unique<ChildProcess>(args, log));
+    return *loggers_.back();
+  }
+  // The logger has subscribed (it says so once its bus is open).
+  bool WaitForReady(size_t n) {
+    return WaitFor([&] { return ReadFile(LoggerLog(n)).find(": logging udpm://") != std::string::npos; }, 30);
+  }
+  std::string LoggerLog(size_t n) const { return (dir_ / ("logger" + std::to_string(n) + ".log")).string(); }
+  ChildProcess& StartSim(std::vector<std::string> extra) {
+    std::vector<std::string> args = {std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim",
+                                     "--params", "/dev/null",
+                                     "--environment=" + (dir_ / "world.xml").string(),
+                                     "--lcm-url", url_};
+    args.insert(args.end(), extra.begin(), extra.end());
+    sims_.push_back(std::make_unique<ChildProcess>(
+        args, (dir_ / ("sim" + std::to_string(sims_.size()) + ".log")).string()));
+    return *sims_.back();
+  }
+  // Stops a logger with SIGTERM and returns its exit status.
+  int StopLogger(ChildProcess& logger, int seconds = 60) {
+    logger.Signal(SIGTERM);
+    return logger.Wait(std::chrono::seconds(seconds)).value_or(-1);
+  }
+  bool WaitFor(const std::function<bool()>& condition, double seconds) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < end) {
+      if (condition()) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    return condition();
+  }
+  int64_t Steps(int simulation = 1) {
+    try {
+      return QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = " + std::to_string(simulation));
+    } catch (const DbError&) {
+      return -1;  // not yet created, or the server is away
+    }
+  }
+  // Every step of `simulation` from first to last once, with a row per body
+  // and per joint.
+  void ExpectEveryStepOnce(int simulation, int64_t first, int64_t last, int bodies, int joints) {
+    const std::string sim = std::to_string(simulation);
+    EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = " + sim), last - first + 1);
+    EXPECT_EQ(QueryInt("SELECT MIN(step) FROM SimulationRow WHERE simulationID = " + sim), first);
+    EXPECT_EQ(QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = " + sim), last);
+    ExpectRowsPerStep(simulation, bodies, joints);
+  }
+  void ExpectRowsPerStep(int simulation, int bodies, int joints) {
+    const std::string sim = std::to_string(simulation);
+    EXPECT_EQ(QueryInt("SELECT COUNT(*) - COUNT(DISTINCT step) FROM SimulationRow WHERE simulationID = " + sim), 0);
+    for (auto [table, per_step] : {std::pair{"Pose", bodies}, std::pair{"ForceAndTorque", bodies},
+                                   std::pair{"JointPose", joints}}) {
+      EXPECT_EQ(QueryInt(std::string("SELECT COUNT(*) FROM (SELECT r.step FROM SimulationRow r LEFT JOIN ") +
+                         table + " t USING (simulationRowID) WHERE r.simulationID = " + sim +
+                         " GROUP BY r.step HAVING COUNT(t.simulationRowID) <> " + std::to_string(per_step) + ") x"),
+                0) << table;
+    }
+    const int64_t steps = QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = " + sim);
+    EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM (SELECT p.bodyID FROM SimulationRow r JOIN Pose p USING "
+                       "(simulationRowID) WHERE r.simulationID = " + sim +
+                       " GROUP BY p.bodyID HAVING COUNT(*) <> " + std::to_string(steps) + ") x"),
+              0) << "a body without one pose per step";
+  }
+  // The test as a sim: publishes a run's messages on the bus.
+  template <class M>
+  void Publish(lcm::LCM* bus, const char* channel, const M& message) {
+    ASSERT_EQ(bus->publish(channel, &message), 0);
+  }
+  void PublishStates(lcm::LCM* bus, const SimRun& run, int64_t first, int64_t last) {
+    for (int64_t s = first; s <= last; ++s) {
+      Publish(bus, channels::kState, run.states[static_cast<size_t>(s - 1)]);
+      if (s % 20 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  }
+  void PublishStopped(lcm::LCM* bus, const SimRun& run, int64_t step) {
+    status_t status{};
+    status.simulation_id = run.model.simulation_id;
+    status.run_state = status_t::RUN_STOPPED;
+    status.step = step;
+    Publish(bus, channels::kStatus, status);
+  }
+  bool Closed(int simulation) {
+    try {
+      return QueryInt("SELECT COUNT(*) FROM Simulation WHERE endTime IS NOT NULL AND simulationID = " +
+                      std::to_string(simulation)) == 1;
+    } catch (const DbError&) {
+      return false;
+    }
+  }
+  std::string TestUrl() const { return url_ + "&recv_buf_size=4194304"; }
+
+  std::string url_;
+  std::vector<std::unique_ptr<ChildProcess>> loggers_;
+  std::vector<std::unique_ptr<ChildProcess>> sims_;
+};
+
+// The server stops 3 s into a 40 s run and comes back 30 s later: records
+// pile up in memory and spill to the spool (queue limited to 2 MB), then the
+// logger catches up. Every one of the 40000 steps is in the database once.
+TEST_F(LoggerProcessTest, ServerAwayFor30SecondsMidRunLosesNothing) {
+  ChildProcess& logger = StartLogger({"--queue-mb", "2"});
+  ASSERT_TRUE(WaitForReady(0));
+  ChildProcess& sim = StartSim({"--duration=40"});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 2000; }, 30)) << ReadFile(LoggerLog(0));
+  server_->Stop();
+  const auto away = Clock::now();
+  std::this_thread::sleep_for(std::chrono::seconds(30));
+  server_->Start();
+  EXPECT_GE(Clock::now() - away, std::chrono::seconds(30));
+  ASSERT_EQ(sim.Wait(std::chrono::seconds(60)).value_or(-1), 0);
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 120)) << ReadFile(LoggerLog(0));
+  EXPECT_EQ(StopLogger(logger), 0);
+  ExpectEveryStepOnce(1, 1, 40000, 3, 2);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
+  const std::string log = ReadFile(LoggerLog(0));
+  EXPECT_NE(log.find("database server unix://" + server_->socket() + " is unreachable"),
+            std::string::npos) << log;
+  EXPECT_NE(log.find("takes writes again"), std::string::npos) << log;
+  EXPECT_EQ(log.find("LOST"), std::string::npos) << log;
+}
+
+// SIGKILL in the middle of a run, then a new logger on the same spool: the
+// same Simulation goes on, no step is written twice (everything went
+// through the spool, whose last records the new logger replays), and every
+// step the sim published is either in the database once or in LogGap.
+TEST_F(LoggerProcessTest, KilledLoggerResumesTheSameSimulationWithoutDuplicates) {
+  ChildProcess& first = StartLogger({"--queue-mb", "0.01"});
+  ASSERT_TRUE(WaitForReady(0));
+  ChildProcess& sim = StartSim({});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 1500; }, 30)) << ReadFile(LoggerLog(0));
+  first.Signal(SIGKILL);
+  ASSERT_EQ(first.Wait(std::chrono::seconds(10)).value_or(-1), 128 + SIGKILL);
+  const int64_t before = Steps();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ChildProcess& second = StartLogger({"--queue-mb", "0.01"});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > before + 1500; }, 30)) << ReadFile(LoggerLog(1));
+  lcm::LCM bus(TestUrl());
+  control_t quit{};
+  quit.action = control_t::ACTION_QUIT;
+  Publish(&bus, channels::kControl, quit);
+  ASSERT_EQ(sim.Wait(std::chrono::seconds(10)).value_or(-1), 0);
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(1));
+  EXPECT_EQ(StopLogger(second), 0);
+
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1);
+  ExpectRowsPerStep(1, 3, 2);
+  const int64_t last = QueryInt("SELECT lastStep FROM Simulation WHERE simulationID = 1");
+  const int64_t logged = Steps();
+  const int64_t missing = QueryInt("SELECT COALESCE(SUM(missing), 0) FROM LogGap");
+  EXPECT_EQ(QueryInt("SELECT MIN(step) FROM SimulationRow"), 1);
+  EXPECT_EQ(logged + missing, last) << "every step is logged once or counted in LogGap";
+  EXPECT_GT(missing, 0) << "the steps while no logger ran";
+  EXPECT_LT(missing, 5000);
+  const std::string log = ReadFile(LoggerLog(1));
+  EXPECT_NE(log.find("resuming simulation 1"), std::string::npos) << log;
+}
+
+// A logger that starts after the sim learns the model by asking for it; a
+// sim that is killed and started again is a new Simulation, the old one
+// closed; a sim that quits closes its Simulation. simpartner-query lists
+// both and exports one to CSV.
+TEST_F(LoggerProcessTest, LateLoggerAndRestartedSim) {
+  ChildProcess& sim_a = StartSim({"--modelPeriod=3600"});  // the model only at start and on request
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  ChildProcess& logger = StartLogger();
+  ASSERT_TRUE(WaitFor([&] { return Steps(1) > 500; }, 30)) << ReadFile(LoggerLog(0));
+  EXPECT_GT(QueryInt("SELECT MIN(step) FROM SimulationRow WHERE simulationID = 1"), 1);
+  sim_a.Signal(SIGKILL);
+  sim_a.Wait(std::chrono::seconds(10));
+  ChildProcess& sim_b = StartSim({"--duration=2"});
+  ASSERT_EQ(sim_b.Wait(std::chrono::seconds(30)).value_or(-1), 0);
+  ASSERT_TRUE(WaitFor([&] { return Closed(2); }, 30)) << ReadFile(LoggerLog(0));
+  EXPECT_EQ(StopLogger(logger), 0);
+
+  auto db = Admin();
+  EXPECT_EQ(QueryRows(db.get(), "SELECT simulationID, endReason FROM Simulation ORDER BY simulationID"),
+            (std::vector<std::string>{
+                "1\ta new simulation started on the bus (the sim restarted or was reset)",
+                "2\tthe sim stopped"}));
+  ExpectRowsPerStep(1, 3, 2);
+  ExpectEveryStepOnce(2, 1, 2000, 3, 2);
+
+  const std::string query = std::string(SP_BINARY_DIR) + "/logger/simpartner-query";
+  const std::string list_log = (dir_ / "list.txt").string();
+  ChildProcess list({query, "--params", "/dev/null", "--db-options", server_->reader_options(), "list"},
+                    list_log);
+  ASSERT_EQ(list.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile(list_log);
+  const std::string listing = ReadFile(list_log);
+  EXPECT_NE(listing.find("the sim stopped"), std::string::npos) << listing;
+  EXPECT_NE(listing.find("ArmWorld"), std::string::npos) << listing;
+  const std::string csv = (dir_ / "arm.csv").string();
+  ChildProcess export_poses({query, "--params", "/dev/null", "--db-options", server_->reader_options(),
+                             "poses", "2", "--body", "Arm", "--out", csv},
+                            (dir_ / "export.txt").string());
+  ASSERT_EQ(export_poses.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile((dir_ / "export.txt").string());
+  std::ifstream in(csv);
+  std::string line;
+  int lines = 0;
+  while (std::getline(in, line)) ++lines;
+  EXPECT_EQ(lines, 2001);  // header + every step
+}
+
+// Garbage, truncated, padded and foreign messages, and messages that do not
+// fit the model, on the logger's channels: counted per channel, reported,
+// never written; the good ones around them all are.
+TEST_F(LoggerProcessTest, BadMessagesAreCountedReportedAndNeverWritten) {
+  ChildProcess& logger = StartLogger();
+  const SimRun run = testing::ArmRun(100, 4242);
+  lcm::LCM bus(TestUrl());
+  ASSERT_TRUE(WaitForReady(0));
+  Publish(&bus, channels::kModel, run.model);
+  PublishStates(&bus, run, 1, 50);
+  const uint8_t garbage[] = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
+  bus.publish(channels::kState, garbage, sizeof garbage);
+  Publish(&bus, channels::kState, run.model);  // a model on SIM_STATE
+  std::vector<uint8_t> bytes(static_cast<size_t>(run.states[0].getEncodedSize()));
+  state_t fake = run.states[0];
+  fake.step = 9000;
+  fake.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  bus.publish(channels::kState, bytes.data(), static_cast<unsigned>(bytes.size() - 10));  // truncated
+  bytes.push_back(0);
+  bus.publish(channels::kState, bytes.data(), static_cast<unsigned>(bytes.size()));  // padded
+  state_t extra_body = run.states[0];
+  extra_body.step = 9001;
+  extra_body.bodies.push_back(extra_body.bodies[0]);
+  extra_body.num_bodies = 4;
+  Publish(&bus, channels::kState, extra_body);
+  state_t not_finite = run.states[0];
+  not_finite.step = 9002;
+  not_finite.bodies[2].contact_force[0] = std::numeric_limits<double>::infinity();
+  Publish(&bus, channels::kState, not_finite);
+  model_t broken_model = run.model;
+  broken_model.simulation_id = 777;
+  broken_model.sensors[0].joint = 99;
+  Publish(&bus, channels::kModel, broken_model);
+  bus.publish(channels::kCommand, garbage, sizeof garbage);
+  bus.publish(channels::kSensor, garbage, 3);
+  PublishStates(&bus, run, 51, 100);
+  PublishStopped(&bus, run, 100);
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(0));
+  EXPECT_EQ(StopLogger(logger), 0);
+
+  ExpectEveryStepOnce(1, 1, 100, 3, 2);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1);
+  const std::string log = ReadFile(LoggerLog(0));
+  const size_t stopped = log.find("stopped: ");
+  ASSERT_NE(stopped, std::string::npos) << log;
+  const std::string summary = log.substr(stopped);
+  EXPECT_NE(summary.find("bad messages 9"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("[SIM_STATE: 4 malformed, 2 invalid]"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("[SIM_MODEL: 0 malformed, 1 invalid]"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("[SIM_COMMAND: 1 malformed, 0 invalid]"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("[SIM_SENSOR: 1 malformed, 0 invalid]"), std::string::npos) << summary;
+  EXPECT_NE(log.find("SIM_STATE: message of 7 bytes is not a simpartner.state_t"), std::string::npos) << log;
+  EXPECT_NE(log.find("SIM_MODEL: model of simulation 777: sensors[0].joint = 99 (no such joint)"),
+            std::string::npos) << log;
+}
+
+// The server refuses writes (read-only): a clear error naming the server and
+// the cause, the records kept in the spool; once it takes writes again,
+// everything is written once.
+TEST_F(LoggerProcessTest, ServerRefusingWritesIsReportedAndTheSpoolKept) {
+  ChildProcess& logger = StartLogger({"--queue-mb", "0.01"});
+  const SimRun run = testing::ArmRun(400, 99);
+  lcm::LCM bus(TestUrl());
+  ASSERT_TRUE(WaitForReady(0));
+  Publish(&bus, channels::kModel, run.model);
+  PublishStates(&bus, run, 1, 50);
+  ASSERT_TRUE(WaitFor([&] { return Steps() == 50; }, 30)) << ReadFile(LoggerLog(0));
+  Admin()->Execute("SET GLOBAL read_only = 1", "");
+  PublishStates(&bus, run, 51, 400);
+  ASSERT_TRUE(WaitFor([&] { return ReadFile(LoggerLog(0)).find("refuses writes") != std::string::npos; }, 30));
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  uint64_t spooled = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir_ / "spool"))
+    if (e.path().extension() == ".seg") spooled += std::filesystem::file_size(e.path());
+  EXPECT_GT(spooled, 300u * 500) << "the records wait on disk";
+  EXPECT_EQ(Steps(), 50);
+  const std::string log = ReadFile(LoggerLog(0));
+  EXPECT_NE(log.find("database server unix://" + server_->socket() + " refuses writes: "),
+            std::string::npos) << log;
+  EXPECT_NE(log.find("--read-only option"), std::string::npos) << log;
+  EXPECT_NE(log.find("keeping every record"), std::string::npos) << log;
+  Admin()->Execute("SET GLOBAL read_only = 0", "");
+  ASSERT_TRUE(WaitFor([&] { return Steps() == 400; }, 30)) << ReadFile(LoggerLog(0));
+  EXPECT_EQ(StopLogger(logger), 0);
+  ExpectEveryStepOnce(1, 1, 400, 3, 2);
+}
+
+// Stopped (SIGTERM) while the server is away: what could not be written is
+// saved to the spool, and the next logger writes it, with no sim running.
+TEST_F(LoggerProcessTest, StopWhileTheServerIsAwayKeepsEverythingForTheNextRun) {
+  ChildProcess& first = StartLogger({"--drain-timeout", "1"});
+  const SimRun run = testing::ArmRun(300, 5);
+  lcm::LCM bus(TestUrl());
+  ASSERT_TRUE(WaitForReady(0));
+  Publish(&bus, channels::kModel, run.model);
+  PublishStates(&bus, run, 1, 100);
+  ASSERT_TRUE(WaitFor([&] { return Steps() == 100; }, 30)) << ReadFile(LoggerLog(0));
+  server_->Stop();
+  PublishStates(&bus, run, 101, 300);
+  PublishStopped(&bus, run, 300);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_EQ(StopLogger(first), 0);
+  const std::string log = ReadFile(LoggerLog(0));
+  EXPECT_NE(log.find("saved to the spool"), std::string::npos) << log;
+  server_->Start();
+  ChildProcess& second = StartLogger();
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(1));
+  EXPECT_EQ(StopLogger(second), 0);
+  ExpectEveryStepOnce(1, 1, 300, 3, 2);
+  EXPECT_NE(ReadFile(LoggerLog(1)).find("from an earlier run; writing that first"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace simpartner::logger
