@@ -14,6 +14,9 @@ namespace simpartner::sim {
 namespace {
 
 constexpr size_t kFeedbackChunk = 1024;
+// [m/s] below this a contact counts as sticking and keeps ODE's friction
+// directions (the direction of a smaller slip is noise).
+constexpr double kSlipDirectionSpeed = 1e-4;
 
 // ODE reports problems through process-wide handlers. They write into the
 // sink of the OdeWorld stepping on this thread (set only during Step), and
@@ -303,6 +306,27 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
   for (int i = 0; i < n; ++i) {
     dContact& contact = contact_buffer_[static_cast<size_t>(i)];
     contact.surface = surface;
+    // ODE's friction pyramid bounds each of two tangent directions by mu N
+    // separately. Left to ODE, the directions come from the normal alone
+    // (world x and z on a y-up plane), so friction depended on the heading:
+    // a cube sliding at 45 degrees braked at sqrt(2) mu g and a driving
+    // robot's slip forces changed four times a turn. Aligning the first
+    // direction with the sliding velocity makes sliding friction mu N
+    // against the slip whatever the heading.
+    const dContactGeom& g = contact.geom;
+    dVector3 v1 = {0, 0, 0, 0}, v2 = {0, 0, 0, 0};
+    dBodyGetPointVel(b1, g.pos[0], g.pos[1], g.pos[2], v1);
+    if (b2 != nullptr) dBodyGetPointVel(b2, g.pos[0], g.pos[1], g.pos[2], v2);
+    const Eigen::Vector3d normal = FromOde(g.normal);
+    Eigen::Vector3d slip = FromOde(v1) - FromOde(v2);
+    slip -= slip.dot(normal) * normal;
+    if (slip.norm() > kSlipDirectionSpeed) {
+      slip.normalize();
+      contact.surface.mode |= dContactFDir1;
+      contact.fdir1[0] = slip.x();
+      contact.fdir1[1] = slip.y();
+      contact.fdir1[2] = slip.z();
+    }
     const dJointID joint = dJointCreateContact(world_, contacts_, &contact);
     dJointAttach(joint, b1, b2);
     dJointFeedback* feedback = NextFeedback();
