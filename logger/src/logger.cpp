@@ -13,9 +13,10 @@ using Clock = std::chrono::steady_clock;
 
 constexpr size_t kBatchRecords = 1000;
 constexpr uint64_t kBatchBytes = 16u << 20;
-// At real time a batch collects ~20 steps: a transaction per 20 ms.
-constexpr size_t kMinBatchRecords = 20;
-constexpr auto kLinger = std::chrono::milliseconds(20);
+// At real time a batch collects ~50 steps (a transaction per 50 ms): big
+// enough for LOAD DATA, which costs the server a quarter less per row.
+constexpr size_t kMinBatchRecords = 50;
+constexpr auto kLinger = std::chrono::milliseconds(50);
 constexpr auto kFailureReminder = std::chrono::seconds(30);
 
 std::string Megabytes(uint64_t bytes) {
@@ -52,7 +53,9 @@ double LagHistogram::Percentile(double p) const {
   for (size_t b = 0; b < buckets_.size(); ++b) {
     seen += buckets_[b];
     if (static_cast<double>(seen) >= rank)
-      return std::pow(10.0, static_cast<double>(b + 1) / kBucketsPerDecade);  // upper edge
+      // The bucket's upper edge, but never above the largest lag seen.
+      return std::min(static_cast<double>(max_),
+                      std::pow(10.0, static_cast<double>(b + 1) / kBucketsPerDecade));
   }
   return static_cast<double>(max_);
 }

@@ -37,7 +37,9 @@ std::vector<FlagSpec> LoggerFlags() {
        "MariaDB client option file with [client] user, password and socket or host (mode "
        "0600); default state/mariadb/logger.cnf of the private server when dbserver is empty"},
       {"spool", true, "directory for records waiting for the database (default state/logger-spool)"},
-      {"insert", true, "multirow (INSERT ... VALUES (...),(...), default) or loaddata (LOAD DATA LOCAL)"},
+      {"insert", true,
+       "auto (default: multi-row INSERTs for small batches, LOAD DATA LOCAL for big ones), "
+       "multirow or loaddata"},
       {"queue-mb", true, "memory queue before records spill to the spool [MB] (default 64)"},
       {"status-period", true, "seconds between status lines (default 10)"},
       {"drain-timeout", true, "seconds to go on writing after SIGINT/SIGTERM (default 10)"},
@@ -58,10 +60,11 @@ LoggerOptions MakeLoggerOptions(const CommandLine& command_line, const Parameter
   options.lcm_url = params.lcmUrl;
   options.log_interval = params.logEveryStep ? 1 : params.logInterval;
   options.spool_dir = command_line.Value("spool", options.spool_dir);
-  const std::string insert = command_line.Value("insert", "multirow");
-  if (insert == "multirow") options.insert_method = InsertMethod::kMultiRowInsert;
+  const std::string insert = command_line.Value("insert", "auto");
+  if (insert == "auto") options.insert_method = InsertMethod::kAuto;
+  else if (insert == "multirow") options.insert_method = InsertMethod::kMultiRowInsert;
   else if (insert == "loaddata") options.insert_method = InsertMethod::kLoadDataLocal;
-  else diagnostics.Add("command line", 0, "--insert", "value '" + insert + "' is not multirow or loaddata");
+  else diagnostics.Add("command line", 0, "--insert", "value '" + insert + "' is not auto, multirow or loaddata");
   options.queue_bytes = static_cast<uint64_t>(
       PositiveNumber(command_line, "queue-mb", 64, 65536, &diagnostics) * 1e6);
   options.status_period = PositiveNumber(command_line, "status-period", 10, 86400, &diagnostics);

@@ -28,12 +28,19 @@ std::string Num(double v) {
   return text;
 }
 
-// First non-finite value of an array, as "field[i] = value", or "".
+// First non-finite value of an array, as "field[i] = value", or "". The
+// name is only built for the message (this runs for every body and joint
+// of every state).
+template <size_t N, class Name>
+std::string NonFiniteIn(const double (&values)[N], const Name& field) {
+  for (size_t i = 0; i < N; ++i)
+    if (!std::isfinite(values[i])) return field() + "[" + std::to_string(i) + "] = " + Num(values[i]);
+  return "";
+}
+
 template <size_t N>
 std::string NonFinite(const double (&values)[N], const std::string& field) {
-  for (size_t i = 0; i < N; ++i)
-    if (!std::isfinite(values[i])) return field + "[" + std::to_string(i) + "] = " + Num(values[i]);
-  return "";
+  return NonFiniteIn(values, [&field] { return field; });
 }
 
 std::string CheckName(const std::string& text, const std::string& field, size_t max_bytes) {
@@ -174,26 +181,30 @@ std::string CheckState(const state_t& s, const ModelShape& shape) {
   std::string p;
   for (size_t i = 0; i < s.bodies.size(); ++i) {
     const body_state_t& b = s.bodies[i];
-    const std::string f = "bodies[" + std::to_string(i) + "]";
-    if (!(p = NonFinite(b.position, f + ".position")).empty()) return p;
-    if (!(p = NonFinite(b.orientation, f + ".orientation")).empty()) return p;
-    if (!(p = NonFinite(b.contact_force, f + ".contact_force")).empty()) return p;
-    if (!(p = NonFinite(b.contact_torque, f + ".contact_torque")).empty()) return p;
+    auto f = [i](const char* field) {
+      return [i, field] { return "bodies[" + std::to_string(i) + "]." + field; };
+    };
+    if (!(p = NonFiniteIn(b.position, f("position"))).empty()) return p;
+    if (!(p = NonFiniteIn(b.orientation, f("orientation"))).empty()) return p;
+    if (!(p = NonFiniteIn(b.contact_force, f("contact_force"))).empty()) return p;
+    if (!(p = NonFiniteIn(b.contact_torque, f("contact_torque"))).empty()) return p;
     const double norm = std::sqrt(b.orientation[0] * b.orientation[0] +
                                   b.orientation[1] * b.orientation[1] +
                                   b.orientation[2] * b.orientation[2] +
                                   b.orientation[3] * b.orientation[3]);
     if (std::abs(norm - 1.0) > 1e-3)
-      return f + ".orientation has length " + Num(norm) + " (a unit quaternion is needed)";
+      return f("orientation")() + " has length " + Num(norm) + " (a unit quaternion is needed)";
   }
   for (size_t j = 0; j < s.joints.size(); ++j) {
     const joint_state_t& js = s.joints[j];
-    const std::string f = "joints[" + std::to_string(j) + "]";
-    if (!(p = NonFinite(js.position, f + ".position")).empty()) return p;
-    if (!(p = NonFinite(js.rate, f + ".rate")).empty()) return p;
-    if (!(p = NonFinite(js.anchor, f + ".anchor")).empty()) return p;
-    if (!(p = NonFinite(js.force1, f + ".force1")).empty()) return p;
-    if (!(p = NonFinite(js.torque1, f + ".torque1")).empty()) return p;
+    auto f = [j](const char* field) {
+      return [j, field] { return "joints[" + std::to_string(j) + "]." + field; };
+    };
+    if (!(p = NonFiniteIn(js.position, f("position"))).empty()) return p;
+    if (!(p = NonFiniteIn(js.rate, f("rate"))).empty()) return p;
+    if (!(p = NonFiniteIn(js.anchor, f("anchor"))).empty()) return p;
+    if (!(p = NonFiniteIn(js.force1, f("force1"))).empty()) return p;
+    if (!(p = NonFiniteIn(js.torque1, f("torque1"))).empty()) return p;
   }
   return "";
 }
@@ -323,7 +334,7 @@ void Receiver::Tick() {
     RequestModel();
 }
 
-void Receiver::Deliver(Record record) {
+void Receiver::Deliver(Record record, const state_t* decoded) {
   const auto model = models_.find(record.simulation_id);
   if (model == models_.end()) {
     Wait(std::move(record));
@@ -332,8 +343,12 @@ void Receiver::Deliver(Record record) {
   const ModelShape& shape = model->second;
   // The checks that need the model.
   if (record.kind == RecordKind::kState) {
-    state_t s;
-    s.decode(record.payload.data(), 0, static_cast<int>(record.payload.size()));
+    state_t waited;
+    if (decoded == nullptr) {
+      waited.decode(record.payload.data(), 0, static_cast<int>(record.payload.size()));
+      decoded = &waited;
+    }
+    const state_t& s = *decoded;
     const std::string problem = CheckState(s, shape);
     if (!problem.empty()) {
       Invalid(channels::kState, problem);
@@ -416,7 +431,7 @@ void Receiver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& chan
 void Receiver::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   state_t state;
   if (!Decode(buffer, channel, &state)) return;
-  Deliver(MakeRecord(RecordKind::kState, state.simulation_id, buffer));
+  Deliver(MakeRecord(RecordKind::kState, state.simulation_id, buffer), &state);
 }
 
 void Receiver::OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& channel) {

@@ -29,6 +29,15 @@ namespace {
 constexpr size_t kInsertStatementBytes = 1 << 20;
 constexpr size_t kLoadDataFileBytes = 16 << 20;
 constexpr int kDuplicateKey = 1062;  // ER_DUP_ENTRY
+// Below this many steps a batch goes as INSERTs: LOAD DATA's fixed cost per
+// statement (a file per table) outweighs its cheaper rows.
+constexpr size_t kLoadDataMinSteps = 25;
+
+// The server or the client library will not do LOAD DATA LOCAL.
+bool IsLoadDataRefused(int code) {
+  return code == 1148 /* ER_NOT_ALLOWED_COMMAND */ || code == 4166 /* capability disabled */ ||
+         code == 2068 /* CR_LOAD_DATA_LOCAL_INFILE_REJECTED */ || code == 3948;
+}
 
 int64_t NowMicros() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
@@ -127,7 +136,12 @@ void AppendId(std::string* out, const std::vector<int64_t>& ids, int64_t index) 
 }  // namespace
 
 const char* InsertMethodName(InsertMethod method) {
-  return method == InsertMethod::kLoadDataLocal ? "LOAD DATA LOCAL" : "multi-row INSERT";
+  switch (method) {
+    case InsertMethod::kMultiRowInsert: return "multi-row INSERT";
+    case InsertMethod::kLoadDataLocal: return "LOAD DATA LOCAL";
+    case InsertMethod::kAuto: return "multi-row INSERT or LOAD DATA LOCAL by batch size";
+  }
+  return "?";
 }
 
 // Rows of one table, sent as multi-row INSERTs or LOAD DATA LOCAL files.
@@ -202,9 +216,10 @@ class DbWriter::RowSink {
     const std::string what = (load_data_ ? "LOAD DATA LOCAL INTO " : "INSERT INTO ") + table_ +
                              " (" + std::to_string(rows_in_buffer_) + " rows)";
     if (load_data_) {
+      // Numbers only (the per-step tables have no text): read as bytes.
       WriteFile(what);
       db_->Execute("LOAD DATA LOCAL INFILE " + Quoted(scratch_path_) + " INTO TABLE " + table_ +
-                       " CHARACTER SET utf8mb4 FIELDS TERMINATED BY '\\t' LINES TERMINATED BY "
+                       " CHARACTER SET binary FIELDS TERMINATED BY '\\t' LINES TERMINATED BY "
                        "'\\n' (" + columns_ + ")",
                    what);
     } else {
@@ -251,7 +266,7 @@ DbWriter::~DbWriter() = default;
 void DbWriter::Connect() {
   if (db_) return;
   std::unique_ptr<DbConnection> db =
-      DbConnection::Open(target_, options_.method == InsertMethod::kLoadDataLocal);
+      DbConnection::Open(target_, options_.method != InsertMethod::kMultiRowInsert);
   MigrateSchema(db.get(), notice_);
   db_ = std::move(db);
 }
@@ -281,9 +296,18 @@ WriteResult DbWriter::Write(const std::vector<Record>& records) {
         try {
           WriteRun(run, false, &result);
         } catch (const DbError& e) {
-          if (e.code() != kDuplicateKey) throw;
           db_->Rollback();
-          WriteRun(run, true, &result);
+          if (e.code() == kDuplicateKey) {
+            WriteRun(run, true, &result);
+          } else if (options_.method == InsertMethod::kAuto && IsLoadDataRefused(e.code()) &&
+                     !load_data_refused_) {
+            load_data_refused_ = true;
+            notice_("server " + target_.Server() + " refuses LOAD DATA LOCAL (" + e.cause() +
+                    "); using multi-row INSERTs only");
+            WriteRun(run, false, &result);
+          } else {
+            throw;
+          }
         }
       }
     }
@@ -340,6 +364,12 @@ std::vector<int64_t> DbWriter::LoadIds(const char* table, const char* id_column,
     db_->Rethrow(std::string("read ") + table);
   }
   return ids;
+}
+
+InsertMethod DbWriter::MethodFor(size_t steps) const {
+  if (options_.method != InsertMethod::kAuto) return options_.method;
+  return steps >= kLoadDataMinSteps && !load_data_refused_ ? InsertMethod::kLoadDataLocal
+                                                           : InsertMethod::kMultiRowInsert;
 }
 
 DbWriter::SimInfo* DbWriter::FindSimulation(int64_t bus_id) {
@@ -659,11 +689,12 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
         db_->Rethrow("read SimulationRow");
       }
     }
-    RowSink poses(db_.get(), options_.method, options_.scratch_dir, "Pose",
+    const InsertMethod method = MethodFor(fresh.size());
+    RowSink poses(db_.get(), method, options_.scratch_dir, "Pose",
                   "simulationRowID,bodyID,x,y,z,axisX,axisY,axisZ,angle");
-    RowSink forces(db_.get(), options_.method, options_.scratch_dir, "ForceAndTorque",
+    RowSink forces(db_.get(), method, options_.scratch_dir, "ForceAndTorque",
                    "simulationRowID,bodyID,F_x,F_y,F_z,T_x,T_y,T_z");
-    RowSink joints(db_.get(), options_.method, options_.scratch_dir, "JointPose",
+    RowSink joints(db_.get(), method, options_.scratch_dir, "JointPose",
                    "simulationRowID,jointID,anchorx,anchory,anchorz,angle,angle2,angle3,rate,"
                    "rate2,rate3,F_x,F_y,F_z,T_x,T_y,T_z");
     for (const state_t* s : fresh) {

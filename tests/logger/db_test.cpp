@@ -263,6 +263,27 @@ TEST_F(DbTest, LoadDataWritesTheSameRowsAsInsert) {
   EXPECT_EQ(rows, QueryRows(b.get(), dump));
 }
 
+TEST_F(DbTest, AutoUsesInsertWhenTheServerRefusesLoadData) {
+  Admin()->Execute("SET GLOBAL local_infile = 0", "");
+  const SimRun run = ArmRun(120, 3);
+  auto writer = Writer("simpartner", InsertMethod::kAuto);
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(1, 120)) records.push_back(std::move(r));  // big enough for LOAD DATA
+  writer->Write(records);
+  ExpectEveryStepOnce("simpartner", 1, 1, 120, 3, 2);
+  bool told = false;
+  for (const std::string& n : notices_) told = told || n.find("refuses LOAD DATA LOCAL") != std::string::npos;
+  EXPECT_TRUE(told);
+  // Asked for explicitly, a refused LOAD DATA is an error naming the cause.
+  auto strict = Writer("simpartner_s", InsertMethod::kLoadDataLocal);
+  try {
+    strict->Write(records);
+    FAIL() << "LOAD DATA LOCAL went through with local_infile = 0";
+  } catch (const DbError& e) {
+    EXPECT_NE(std::string(e.what()).find("LOAD DATA LOCAL INTO Pose"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(DbTest, TheLoggerUserHasOnlyTheRightsItNeeds) {
   auto writer = Writer();
   const SimRun run = ArmRun(3, 1);

@@ -135,7 +135,7 @@ TEST(LoggerConfigTest, FlagsAndParameters) {
     FAIL();
   } catch (const ConfigError& e) {
     const std::string text = e.what();
-    EXPECT_NE(text.find("--insert: value 'fast' is not multirow or loaddata"), std::string::npos) << text;
+    EXPECT_NE(text.find("--insert: value 'fast' is not auto, multirow or loaddata"), std::string::npos) << text;
     EXPECT_NE(text.find("--queue-mb: value '-3' is not a number above 0"), std::string::npos) << text;
   }
 }

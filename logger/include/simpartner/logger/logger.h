@@ -32,7 +32,7 @@ struct LoggerOptions {
   DbTarget db;
   std::string spool_dir = "state/logger-spool";
   int log_interval = 1;  // 1 = every step (logEveryStep=1), else logInterval
-  InsertMethod insert_method = InsertMethod::kMultiRowInsert;
+  InsertMethod insert_method = InsertMethod::kAuto;
   uint64_t queue_bytes = 64u << 20;       // memory queue; beyond it records spill to disk
   uint64_t spool_segment_bytes = 64u << 20;
   double status_period = 10.0;  // [s] between status lines

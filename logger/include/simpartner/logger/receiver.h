@@ -96,7 +96,8 @@ class Receiver {
   void Invalid(const std::string& channel, const std::string& problem);
   Record MakeRecord(RecordKind kind, int64_t simulation_id, const lcm::ReceiveBuffer* buffer) const;
   // To the queue, or to the waiting list if the model is not known yet.
-  void Deliver(Record record);
+  // `decoded`: the state in the record, if the caller has decoded it.
+  void Deliver(Record record, const state_t* decoded = nullptr);
   void Push(Record record);
   void Wait(Record record);
 
