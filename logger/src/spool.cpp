@@ -176,6 +176,8 @@ Spool::Spool(std::string dir, uint64_t segment_bytes, Notice notice)
       if (::ftruncate(last.fd, static_cast<off_t>(valid)) != 0)
         throw SpoolError("cannot truncate spool file " + SegmentPath(last.seq) + ": " + Errno());
       last.size = valid;
+      buffer_.clear();  // it holds the cut-off bytes, which appends will overwrite
+      buffer_seq_ = 0;
     }
     next_seq_ = last.seq + 1;
     read_seq_ = segments_.front().seq;
@@ -223,6 +225,10 @@ void Spool::Append(const Record& record) {
     if (::ftruncate(s.fd, static_cast<off_t>(s.size)) != 0)
       notice_("cannot cut a partial record off " + SegmentPath(s.seq) + ": " + Errno() +
               "; the next start cuts it off");
+    if (buffer_seq_ == s.seq) {
+      buffer_.clear();
+      buffer_seq_ = 0;
+    }
     throw;
   }
   s.size += frame.size();

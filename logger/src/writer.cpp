@@ -377,6 +377,10 @@ DbWriter::SimInfo* DbWriter::FindSimulation(int64_t bus_id) {
   if (it != simulations_.end()) return &it->second;
   SimInfo info;
   if (!LoadSimulation("busSimulationID = " + std::to_string(bus_id), &info)) return nullptr;
+  // Records of a simulation logged before (a replayed spool, a restarted
+  // logger) before its model came by again.
+  notice_("resuming simulation " + std::to_string(info.id) + " (bus simulation id " +
+          std::to_string(bus_id) + ", last logged step " + std::to_string(info.last_step) + ")");
   return &simulations_.emplace(bus_id, std::move(info)).first->second;
 }
 

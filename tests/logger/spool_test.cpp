@@ -117,7 +117,10 @@ TEST_F(SpoolTest, CutShortAppendIsCutOffAtRestart) {
   for (int i = 0; i < 5; ++i) EXPECT_EQ(Number(spool->ReadNext()->record), i);
   EXPECT_FALSE(spool->ReadNext());
   spool->Append(Make(6));
-  EXPECT_EQ(Number(spool->ReadNext()->record), 6);
+  const auto six = spool->ReadNext();
+  ASSERT_TRUE(six) << "the record appended where the cut-off tail was";
+  EXPECT_EQ(Number(six->record), 6);
+  EXPECT_EQ(spool->damaged_records(), 0u);
 }
 
 TEST_F(SpoolTest, DamagedRecordInAnOlderSegmentIsReportedAndSkipped) {
