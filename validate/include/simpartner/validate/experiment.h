@@ -1,0 +1,79 @@
+// The validation experiments of SPEC 8 and the two beyond the original:
+// each runs a shipped world through the sim library (sim_core_lib) exactly
+// as simpartner-sim would, drives the robot with timed commands and
+// compares what happened with the analytic or real-robot target.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "simpartner/parameters.h"
+#include "simpartner/validate/check.h"
+#include "simpartner/validate/plot.h"
+
+namespace simpartner::validate {
+
+// What an experiment needs from the caller.
+struct Context {
+  std::string models_dir;   // holds worlds/ and robots/
+  Parameters params;        // the run's parameters (defaults + parameters.txt + overrides)
+  // Called with a line of progress now and then during long runs; may be empty.
+  std::function<void(const std::string&)> progress;
+  // Shorter runs of the same experiments with the same tolerances (the
+  // unit tests): fewer laps, a shorter scan.
+  bool quick = false;
+};
+
+struct ExperimentResult {
+  std::string name;
+  std::string title;
+  std::vector<Check> checks;
+  std::vector<Plot> plots;
+  // Markdown for the report: how it was run and what the figures mean;
+  // where a target is physically wrong, why.
+  std::string notes;
+  double sim_seconds = 0.0;   // simulated time over all its runs
+  double wall_seconds = 0.0;
+  std::string error;          // set when the run itself failed (exploded, bad file)
+
+  bool Passed() const;
+  // Measured value of the check whose label starts with `label`; throws
+  // simpartner::Error when there is none.
+  double Measured(const std::string& label) const;
+};
+
+struct Experiment {
+  std::string name;         // for --only, e.g. "free_fall"
+  std::string title;        // the SPEC 8 row
+  bool slow = false;        // minutes of simulated time (long gaits, test track)
+  std::function<ExperimentResult(const Context&)> run;
+};
+
+// Every experiment, in the order of SPEC 8, then ours.
+const std::vector<Experiment>& Experiments();
+const Experiment* FindExperiment(const std::string& name);
+
+// Runs one experiment: fills name, title and wall time, and turns an
+// exception (an explosion, a rejected command, a broken file) into a failed
+// result with the reason.
+ExperimentResult RunExperiment(const Experiment& experiment, const Context& context);
+
+// The experiments one by one (SPEC 8 order).
+ExperimentResult FreeFall(const Context& context);
+ExperimentResult FreeFallThrown(const Context& context);
+ExperimentResult SlidingCube(const Context& context);
+ExperimentResult TwoSpheres(const Context& context);
+ExperimentResult CircleEqualSpeeds(const Context& context);
+ExperimentResult CircleDifferentialSpeeds(const Context& context);
+ExperimentResult Scanner(const Context& context);
+ExperimentResult PoleTask(const Context& context);
+ExperimentResult SkiddingWheels(const Context& context);
+ExperimentResult CaterpillarGait(const Context& context);
+ExperimentResult RollingWalking(const Context& context);
+ExperimentResult Gen4StaticLoads(const Context& context);
+ExperimentResult TestTrack(const Context& context);
+ExperimentResult RollingSphere(const Context& context);
+ExperimentResult PendulumEnergy(const Context& context);
+
+}  // namespace simpartner::validate

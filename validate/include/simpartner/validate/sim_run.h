@@ -1,0 +1,71 @@
+// One run of a shipped world through the sim library, the way
+// simpartner-sim runs it: the world file is loaded and validated by the
+// loader, commands go through Simulation::Submit (by name, with the step at
+// which they apply, as the sequencer sends them) and every step is
+// Simulation::Step. Nothing here touches ODE directly.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "simpartner/sim/simulation.h"
+#include "simpartner/validate/experiment.h"
+
+namespace simpartner::validate {
+
+class SimRun {
+ public:
+  // world: file name under models_dir/worlds (e.g. "gen1_flat.xml").
+  SimRun(const Context& context, const std::string& world, Parameters params);
+  SimRun(const Context& context, const std::string& world);
+
+  sim::Simulation& sim() { return *sim_; }
+  double time() const { return sim_->time(); }
+  double dt() const { return sim_->params().stepsize; }
+  int64_t StepAt(double t) const;
+
+  // Queues an actuator command for sim time t (seconds); throws
+  // simpartner::Error with the sim's reason when it is rejected.
+  void Command(double t, const std::string& target, int8_t action, std::vector<double> values);
+  // The original's text form, e.g. "1000,1000,100,0,0,0.2".
+  void CommandText(double t, const std::string& target, int8_t action, const std::string& text);
+  void Velocity(double t, const std::string& actuator, double velocity, double max_force);
+  void Angle(double t, const std::string& actuator, double angle, double max_force, double p,
+             double i, double d);
+  void Hold(double t, const std::string& actuator, double max_force);
+
+  // Steps until sim time t (to the nearest step), calling each_step after
+  // every step. Throws simpartner::Error with the sim's warnings when the
+  // simulation faults (explodes).
+  void RunUntil(double t, const std::function<void()>& each_step = {});
+
+  // Lookups that throw simpartner::Error naming the world when absent.
+  int Body(const std::string& name) const;
+  int Joint(const std::string& name) const;
+  int Sensor(const std::string& name) const;
+
+  sim::BodyReadout Read(int body) const;
+  Eigen::Vector3d Position(int body) const { return Read(body).position; }
+  double JointPosition(int joint) const;
+  // Vertical (along up) contact force on a body this step [N].
+  double VerticalContactForce(int body) const;
+  // Kinetic energy (translation + rotation) of the non-static bodies and
+  // their potential energy against the world's gravity [J].
+  double KineticEnergy() const;
+  double PotentialEnergy() const;
+  // Centre of mass of a robot (or all bodies with robot = -1) in the world.
+  Eigen::Vector3d CentreOfMass(int robot) const;
+
+ private:
+  const Context& context_;
+  std::string world_name_;
+  std::unique_ptr<sim::Simulation> sim_;
+  std::vector<Eigen::Vector3d> com_offsets_;  // body frame
+  double progress_mark_ = 0.0;
+  int64_t request_id_ = 0;
+};
+
+}  // namespace simpartner::validate

@@ -1,0 +1,9 @@
+// simpartner-validate: reruns the validation experiments (SPEC 8) and
+// compares each with its target; see validate_lib.
+#include <iostream>
+
+#include "simpartner/validate/cli.h"
+
+int main(int argc, char** argv) {
+  return simpartner::validate::RunValidate(argc, argv, std::cout, std::cerr);
+}

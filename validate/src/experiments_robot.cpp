@@ -1,0 +1,438 @@
+// Experiments with gen2..gen4: the scanner, the pole task, the static wheel
+// loads and the test track.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "simpartner/diagnostic.h"
+#include "simpartner/validate/analysis.h"
+#include "simpartner/validate/experiment.h"
+#include "simpartner/validate/sim_run.h"
+
+namespace simpartner::validate {
+namespace {
+
+std::string Num(double v) { return FormatNumber(v); }
+
+// SPEC 8: the real robot's static wheel loads [N], wheels 1..4.
+constexpr double kRealWheelLoads[4] = {579.15, 774.90, 669.12, 676.03};
+
+}  // namespace
+
+ExperimentResult Gen4StaticLoads(const Context& context) {
+  ExperimentResult result;
+  constexpr double kSettle = 1.5, kAverage = 0.5;  // [s]
+  SimRun run(context, "gen4_flat.xml");
+  int wheel[4];
+  for (int k = 0; k < 4; ++k) wheel[k] = run.Body("Wheel" + std::to_string(k + 1));
+  double sum[4] = {0, 0, 0, 0};
+  int samples = 0;
+  run.RunUntil(kSettle + kAverage, [&] {
+    for (int k = 0; k < 4; ++k)
+      if (run.time() > kSettle) sum[k] += run.VerticalContactForce(wheel[k]);
+    samples += run.time() > kSettle ? 1 : 0;
+  });
+  result.sim_seconds = run.time();
+  double load[4];
+  for (int k = 0; k < 4; ++k) {
+    load[k] = sum[k] / samples;
+    result.checks.push_back(Relative("Wheel" + std::to_string(k + 1) + " load", load[k],
+                                     kRealWheelLoads[k], 0.02, "N"));
+  }
+  Plot bars;
+  bars.file = "gen4_loads.png";
+  bars.title = "gen4 static wheel loads: simulated vs the real robot";
+  bars.xlabel = "wheel";
+  bars.ylabel = "vertical load [N]";
+  bars.xtics = {"1 front right", "2 front left", "3 rear left", "4 rear right"};
+  bars.y_from_zero = true;
+  // SPEC 8: what the original simulator got.
+  constexpr double kOriginal[4] = {595.6, 785.1, 670.2, 702.7};
+  Series simulated{"simulated", {}, {}, "boxes"}, real{"real robot (SPEC 8)", {}, {}, "boxes"};
+  Series original{"original simulator", {}, {}, "boxes"};
+  for (int k = 0; k < 4; ++k) {
+    simulated.x.push_back(k - 0.26);
+    simulated.y.push_back(load[k]);
+    real.x.push_back(k);
+    real.y.push_back(kRealWheelLoads[k]);
+    original.x.push_back(k + 0.26);
+    original.y.push_back(kOriginal[k]);
+  }
+  bars.series = {simulated, real, original};
+  const double total = load[0] + load[1] + load[2] + load[3];
+  const double real_total = kRealWheelLoads[0] + kRealWheelLoads[1] + kRealWheelLoads[2] +
+                            kRealWheelLoads[3];
+  auto pair = [](const double* w, int a, int b) { return w[a] + w[b]; };
+  const double real_cross = pair(kRealWheelLoads, 1, 3) - pair(kRealWheelLoads, 0, 2);
+  const double cross = pair(load, 1, 3) - pair(load, 0, 2);
+  auto row = [&](const char* what, double simulated, double real) {
+    return std::string("| ") + what + " | " + Num(simulated) + " | " + Num(real) + " | " +
+           Num((simulated / real - 1.0) * 100.0) + " |\n";
+  };
+  result.notes =
+      "gen4 (`gen4_flat.xml`, 275.15 kg) stands on flat ground; the wheel loads are the "
+      "vertical contact forces on Wheel1..4 averaged over 0.5 s after 1.5 s of settling.\n\n"
+      "| sum [N] | simulated | real robot | difference [%] |\n|---|---|---|---|\n" +
+      row("all wheels", total, real_total) +
+      row("front (1 + 2)", pair(load, 0, 1), pair(kRealWheelLoads, 0, 1)) +
+      row("left (2 + 3)", pair(load, 1, 2), pair(kRealWheelLoads, 1, 2)) +
+      row("diagonal 1 + 3", pair(load, 0, 2), pair(kRealWheelLoads, 0, 2)) +
+      row("diagonal 2 + 4", pair(load, 1, 3), pair(kRealWheelLoads, 1, 3)) +
+      "\n**Why no mass distribution can meet 2 % on every wheel.** Four wheel loads have four "
+      "degrees of freedom; the masses fix three of them: the total, and through the centre of "
+      "mass the front/rear and left/right splits (the model's centre of mass is placed for "
+      "exactly the real splits; front/rear comes out exact). The fourth, the cross weight "
+      "(W2 + W4) - (W1 + W3), is set by the stiffness and height of the four supports, not "
+      "by the masses: a structure whose supports are alike left and right, front and rear, "
+      "standing on flat ground, has equal diagonals whatever its mass distribution (ours: " +
+      Num(cross) + " N). The real robot's cross weight is " + Num(real_cross) + " N (" +
+      Num(real_cross / real_total * 100.0) + " % of its weight): its loads are averages "
+      "over four 55 m runs on uneven snow with its legs actively held, not a static stand on "
+      "flat ground. With equal diagonals every wheel is off by at least " +
+      Num(std::abs(real_cross - cross) / 4.0) + " N, " +
+      Num(std::abs(real_cross - cross) / 4.0 / kRealWheelLoads[0] * 100.0) +
+      " % of wheel 1's load, so the 2 % target is out of reach for any masses; matching it "
+      "would need a model of the cross weight itself (for example legs held at slightly "
+      "different lengths, or tyres of different stiffness), which SPEC 7 does not describe. "
+      "The original's 4 % included a cross weight of 222 N; an iterative solver (ODE's "
+      "QuickStep) shares a statically indeterminate load arbitrarily, the exact solver "
+      "we use shares it symmetrically.\n\n"
+      "The left/right split falls short of the real one for another reason: a cylinder "
+      "wheel touches flat ground along a line (two contact points 0.14 m apart), so each "
+      "wheel carries a little of the roll moment, which moves " +
+      Num(pair(kRealWheelLoads, 1, 2) - pair(load, 1, 2)) +
+      " N from the left wheels to the right ones compared with point contacts at the tyre "
+      "centres (with sphere wheels, tried outside the shipped models, the split is exact). The model's centre of mass follows the "
+      "point-contact arithmetic of `workpartner_gen4.xml`, which `tests/models` checks.";
+  result.plots.push_back(bars);
+  return result;
+}
+
+ExperimentResult Scanner(const Context& context) {
+  ExperimentResult result;
+  constexpr double kOmega = 0.01;       // [rad/s] SPEC 8
+  constexpr double kWallDistance = 5.335;  // [m] scanner to wall, SPEC 8
+  constexpr double kPeriod = 0.1;       // [s] between scans
+  // Until the middle ray reaches the 10 m range (acos(0.5335) / 0.01 = 100.8 s).
+  const double duration = context.quick ? 20.0 : 100.0;
+  SimRun run(context, "scanner_wall.xml");
+  const int scanner = run.Sensor("Scanner");
+  const int turn = run.Joint("TorsoTurn");
+  const model::Sensor& source = *run.sim().flat().sensors[static_cast<size_t>(scanner)].source;
+  const int rays = source.rays;
+  // The torso follows theta = omega t: a new angle target every step (the
+  // AngleController's P term with the target one time constant ahead, so
+  // the joint turns at omega without lag).
+  constexpr double kP = 100.0;
+  auto target = [&](double t) { return kOmega * (t + 1.0 / kP); };
+  run.Angle(0.0, "TorsoTurnMotor", target(0.0), 1000.0, kP, 0.0, 0.0);
+  double worst = 0.0, worst_middle = 0.0, worst_angle = 0.0;
+  Series middle{"middle ray, simulated", {}, {}, "lines"};
+  Series middle_exact{"L / cos(omega t)", {}, {}, "dashed"};
+  Series edge{"ray 0 (alpha0 = -0.1), simulated", {}, {}, "lines"};
+  Series edge_exact{"L / cos(alpha0 + omega t)", {}, {}, "dashed"};
+  Series error_middle{"middle ray: simulated - L / cos(omega t)", {}, {}, "lines"};
+  const int every = static_cast<int>(std::lround(kPeriod / run.dt()));
+  run.RunUntil(duration, [&] {
+    const double t = run.time();
+    run.Angle(t, "TorsoTurnMotor", target(t), 1000.0, kP, 0.0, 0.0);
+    if (run.sim().step() % every != 0) return;
+    const sensor_reading_t reading = run.sim().ReadSensor(scanner);
+    const double theta = kOmega * t;
+    worst_angle = std::max(worst_angle, std::abs(run.JointPosition(turn) - theta));
+    for (int k = 0; k < rays; ++k) {
+      const double alpha = -source.half_span + 2.0 * source.half_span * k / (rays - 1);
+      const double exact = kWallDistance / std::cos(alpha + theta);
+      if (exact >= source.range - 0.01) continue;  // beyond the range: reads max range
+      const double error = reading.values[static_cast<size_t>(k)] - exact;
+      worst = std::max(worst, std::abs(error));
+      if (k == rays / 2) {
+        worst_middle = std::max(worst_middle, std::abs(error));
+        middle.x.push_back(t);
+        middle.y.push_back(reading.values[static_cast<size_t>(k)]);
+        middle_exact.x.push_back(t);
+        middle_exact.y.push_back(exact);
+        error_middle.x.push_back(t);
+        error_middle.y.push_back(error * 1000.0);
+      }
+      if (k == 0) {
+        edge.x.push_back(t);
+        edge.y.push_back(reading.values[0]);
+        edge_exact.x.push_back(t);
+        edge_exact.y.push_back(exact);
+      }
+    }
+  });
+  result.sim_seconds = run.time();
+  result.checks.push_back(Absolute("largest error, middle ray", worst_middle, 0.0, 0.001, "m"));
+  result.checks.push_back(Absolute("largest error, all 11 rays", worst, 0.0, 0.001, "m"));
+  Plot distances;
+  distances.file = "scanner.png";
+  distances.title = "gen2 scanner, wall 5.335 m ahead, torso turning at 0.01 rad/s";
+  distances.xlabel = "t [s]";
+  distances.ylabel = "distance [m]";
+  distances.series = {middle, middle_exact, edge, edge_exact};
+  Plot errors;
+  errors.file = "scanner_error.png";
+  errors.title = "Scanner: middle ray error vs d = L / cos(omega t)";
+  errors.xlabel = "t [s]";
+  errors.ylabel = "error [mm]";
+  errors.series = {error_middle};
+  result.plots = {distances, errors};
+  result.notes =
+      "gen2 stands 6 m from a static wall (`scanner_wall.xml`; the scanner sits on the torso's "
+      "turning axis, 5.335 m from the wall). The torso turns at omega = 0.01 rad/s: every step "
+      "`TorsoTurnMotor` gets the angle target omega (t + 1/P) with P = 100, so its velocity "
+      "output is omega without lag (largest torso angle error " + Num(worst_angle) +
+      " rad). Every 0.1 s the scanner is read; ray k, at alpha_k = -0.1 + 0.02 k rad from the "
+      "torso's heading, must read L / cos(alpha_k + omega t) while that is within the 10 m "
+      "range. The run lasts until the middle ray reaches the range (" + Num(duration) + " s).";
+  return result;
+}
+
+ExperimentResult PoleTask(const Context& context) {
+  ExperimentResult result;
+  SimRun run(context, "pole_task.xml");
+  const int pole = run.Body("Pole");
+  const double pole_mass = run.sim().flat().bodies[static_cast<size_t>(pole)].source->mass;
+  int wheel[4];
+  for (int k = 0; k < 4; ++k) wheel[k] = run.Body("Wheel" + std::to_string(k + 1));
+  const char* arms[2] = {"Right", "Left"};
+  // The sequence, as a sequencer file would send it (open loop, timed).
+  constexpr double kWheel = 1.0;          // [rad/s] = 0.235 m/s
+  constexpr double kCarry = 2.0;          // [rad/s] = 0.47 m/s with the pole
+  constexpr double kTorque = 1000.0;      // wheel motors [N m]
+  constexpr double kArmP = 2.0;           // arm angle controllers: 0.5 s time constant
+  constexpr double kGripTorque = 10.0;    // [N m] claws squeeze, not crush
+  constexpr double kLift = 0.3;           // [rad] elbows up: the claws rise ~0.13 m
+  double t = 0.5;
+  // Drives `distance` [m] at `speed` [rad/s] (negative: backwards) from
+  // `at`, ramping the wheel speed up and down over 0.5 s at 100 Hz as a
+  // sequence for the real robot would (a jump to full speed within one step
+  // tosses the loads about); returns when it has stopped.
+  auto drive = [&](double at, double speed, double distance) {
+    constexpr int kRampSteps = 50;
+    constexpr double kRampTime = 0.5;  // each ramp covers half its full-speed distance
+    const double cruise = distance / (std::abs(speed) * 0.235) - kRampTime;
+    if (cruise < 0.0) throw Error("pole task: drive of " + Num(distance) + " m is too short");
+    for (int r = 1; r <= kRampSteps; ++r) {
+      const double up = speed * r / kRampSteps, down = speed * (kRampSteps - r) / kRampSteps;
+      const double offset = kRampTime * (r - 1) / kRampSteps;
+      for (int k = 1; k <= 4; ++k) {
+        const std::string motor = "Axle" + std::to_string(k) + "Motor";
+        run.Velocity(at + offset, motor, up, kTorque);
+        if (r == kRampSteps) run.Hold(at + kRampTime + cruise + offset, motor, kTorque);
+        else run.Velocity(at + kRampTime + cruise + offset, motor, down, kTorque);
+      }
+    }
+    return at + 2.0 * kRampTime + cruise;
+  };
+  auto arm = [&](double at, const std::string& joint, double angle, double force) {
+    for (const char* side : arms)
+      run.Angle(at, std::string(side) + joint + "Motor", angle, force, kArmP, 0.0, 0.0);
+  };
+  t = drive(t, 0.5, 0.1);                  // into the pole: 0.1 m
+  arm(t += 0.3, "GripUpper", -0.3, kGripTorque);
+  arm(t, "GripLower", 0.3, kGripTorque);
+  arm(t += 1.0, "Elbow", kLift, 1000.0);
+  const double carry_start = t += 2.0;
+  t = drive(t, kCarry, 3.0);               // 3 m to the second pair
+  // Elbows back to where the pole was picked up: it touches the cubes
+  // there, so the arms do not press it down.
+  arm(t += 0.5, "Elbow", 0.0, 1000.0);
+  arm(t += 2.0, "GripUpper", 0.2, 100.0);  // open
+  arm(t, "GripLower", -0.2, 100.0);
+  t = drive(t + 1.0, -kWheel, 0.25);       // back away
+  const double end = t + 1.5;
+
+  Series load[4];
+  for (int k = 0; k < 4; ++k) load[k].title = "Wheel" + std::to_string(k + 1);
+  load[1].style = load[3].style = "dashed";  // gen3 is symmetric: 2 lies on 1, 4 on 3
+  Series pole_height{"pole centre height", {}, {}, "lines"};
+  double front_sum = 0.0, rear_sum = 0.0;
+  int carried = 0;
+  const int every = static_cast<int>(std::lround(0.01 / run.dt()));
+  run.RunUntil(end, [&] {
+    const double now = run.time();
+    double f[4];
+    for (int k = 0; k < 4; ++k) f[k] = run.VerticalContactForce(wheel[k]);
+    // Loads while the lifted pole is held still, before the drive.
+    if (now > carry_start - 1.0 && now <= carry_start) {
+      front_sum += f[0] + f[1];
+      rear_sum += f[2] + f[3];
+      ++carried;
+    }
+    if (run.sim().step() % every != 0) return;
+    for (int k = 0; k < 4; ++k) {
+      load[k].x.push_back(now);
+      load[k].y.push_back(f[k]);
+    }
+    pole_height.x.push_back(now);
+    pole_height.y.push_back(run.Position(pole).y());
+  });
+  result.sim_seconds = run.time();
+  const sim::BodyReadout p = run.Read(pole);
+  const Eigen::Vector3d axis = p.orientation * Eigen::Vector3d::UnitZ();  // the pole's length
+  const double half_length = run.sim().flat().bodies[static_cast<size_t>(pole)].source->geometry.size.y() / 2.0;
+  const Eigen::Vector3d end1 = p.position + half_length * axis, end2 = p.position - half_length * axis;
+  const double front = front_sum / carried, rear = rear_sum / carried;
+  result.checks.push_back(Relative("front/rear wheel load ratio holding the pole", front / rear,
+                                   2.0, 0.10, ""));
+  result.checks.push_back(Absolute("pole centre height (on the 1 m cubes: 1.05)", p.position.y(),
+                                   1.05, 0.005, "m"));
+  result.checks.push_back(Absolute("pole centre x (second pair centred at 4.2, 1 m deep)",
+                                   p.position.x(), 4.2, 0.5, "m"));
+  result.checks.push_back(AtLeast("pole ends' overlap with the cubes (|z| beyond 0.5)",
+                                  std::min(std::abs(end1.z()), std::abs(end2.z())) - 0.5, 0.3, "m"));
+  result.checks.push_back(Relative("cubes carry the pole's weight", run.VerticalContactForce(pole),
+                                   pole_mass * 9.81, 0.02, "N"));
+  result.checks.push_back(AtMost("pole speed at the end", p.linear_velocity.norm(), 0.001, "m/s"));
+  result.notes =
+      "gen3 (`pole_task.xml`) stands with its open claws just behind a 5 kg pole (r 0.05 m, "
+      "2.4 m) lying across two 1 m cubes; two more cubes stand 3 m further on. The sequence "
+      "is timed and open loop, as a sequencer file plays it: drive 0.1 m into the pole "
+      "(wheels ramped at 100 Hz to 0.5 rad/s and back), close both claws (angle controllers "
+      "towards -0.3 / +0.3 rad with at most 10 N m, so they squeeze rather than reach their "
+      "targets), lift the elbows 0.3 rad, drive 3 m at 2 rad/s, lower the elbows to where "
+      "the pole was picked up, open the claws and back away 0.25 m. The front/rear load "
+      "ratio is taken while the lifted pole is held still before the drive: " +
+      Num(front / 2.0) + " N per front wheel and " + Num(rear / 2.0) +
+      " N per rear one (the original: about 700 / 350 N). The team's \"close to 2:1\" is "
+      "checked within 10 %. The pole rests on the second pair when its centre is at the "
+      "cube tops' height plus its radius, over the cubes, both ends on them, at rest, and "
+      "the cubes carry its whole weight (the claws have let go).";
+  Plot forces;
+  forces.file = "pole_task.png";
+  forces.title = "gen3 pole task: wheel loads over time";
+  forces.xlabel = "t [s]";
+  forces.ylabel = "vertical load [N]";
+  forces.series = {load[0], load[1], load[2], load[3]};
+  result.plots.push_back(forces);
+  Plot height;
+  height.file = "pole_task_height.png";
+  height.title = "gen3 pole task: height of the pole's centre";
+  height.xlabel = "t [s]";
+  height.ylabel = "y [m]";
+  height.series = {pole_height};
+  result.plots.push_back(height);
+  return result;
+}
+
+ExperimentResult TestTrack(const Context& context) {
+  ExperimentResult result;
+  constexpr double kWheelSpeed = 1.5;      // [rad/s] SPEC 8
+  constexpr double kDuration = 104.75;     // [s] the original's run 4
+  constexpr double kTorque = 1000.0;       // [N m] the SPEC's default force per axis
+  constexpr double kStart = 1.0;           // [s] standing before the wheels turn
+  constexpr double kSample = 0.1;          // [s]
+  SimRun run(context, "test_track.xml");
+  for (int k = 1; k <= 4; ++k)
+    run.Velocity(kStart, "Axle" + std::to_string(k) + "Motor", kWheelSpeed, kTorque);
+  int wheel[4];
+  for (int k = 0; k < 4; ++k) wheel[k] = run.Body("Wheel" + std::to_string(k + 1));
+  // The robot's place on the track: the mean of its four wheel centres
+  // (the chassis would add its pitching to the speed).
+  auto place = [&]() -> Eigen::Vector3d {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) sum += run.Position(wheel[k]);
+    return sum / 4.0;
+  };
+  std::vector<double> times, xs;
+  Series load[4];
+  for (int k = 0; k < 4; ++k) load[k].title = "Wheel" + std::to_string(k + 1);
+  const int every = static_cast<int>(std::lround(kSample / run.dt()));
+  const int per_second = static_cast<int>(std::lround(1.0 / run.dt()));
+  const double x0 = place().x();
+  double load_sum[4] = {0, 0, 0, 0};
+  run.RunUntil(kStart + kDuration, [&] {
+    for (int k = 0; k < 4; ++k) load_sum[k] += run.VerticalContactForce(wheel[k]);
+    // Wheel loads as 1 s means: a rigid four-wheeler on uneven ground
+    // rocks from one diagonal pair to the other many times a second.
+    if (run.sim().step() % per_second == 0) {
+      for (int k = 0; k < 4; ++k) {
+        load[k].x.push_back(place().x());
+        load[k].y.push_back(load_sum[k] / per_second);
+        load_sum[k] = 0.0;
+      }
+    }
+    if (run.sim().step() % every != 0) return;
+    times.push_back(run.time());
+    xs.push_back(place().x());
+  });
+  result.sim_seconds = run.time();
+  const double distance = xs.back() - x0;
+  // Speed along the track, averaged over 1 s (10 samples), against x.
+  Series speed{"speed along x, 1 s average", {}, {}, "lines"};
+  for (size_t i = 10; i < xs.size(); ++i) {
+    if (times[i] < kStart + 2.0) continue;
+    speed.x.push_back((xs[i] + xs[i - 10]) / 2.0);
+    speed.y.push_back((xs[i] - xs[i - 10]) / (times[i] - times[i - 10]));
+  }
+  auto speeds_between = [&](double from, double to) {
+    std::vector<double> out;
+    for (size_t i = 0; i < speed.x.size(); ++i)
+      if (speed.x[i] >= from && speed.x[i] <= to) out.push_back(speed.y[i]);
+    return out;
+  };
+  const double no_slip = kWheelSpeed * 0.235;
+  const std::vector<double> level = speeds_between(5.0, 15.0);
+  const double level_speed = Mean(level);
+  // The features (scripts/make_test_track.py), widened by the 0.6 m from
+  // the robot's middle to its axles: it feels a feature from when its
+  // front wheels reach it until its rear wheels leave it.
+  struct Feature {
+    const char* name;
+    double from, to;
+  };
+  const Feature features[] = {{"slope down (16 to 19.5 m)", 16.0 - 0.6, 19.5 + 0.6},
+                              {"two bumps (21.75 to 26.25 m)", 21.75 - 0.6, 26.25 + 0.6},
+                              {"planks (29.5 to 30.5 m)", 29.5 - 0.6, 30.5 + 0.6}};
+  result.checks.push_back(AtLeast("distance in 104.75 s (past the planks: 31.1 m)", distance,
+                                  31.1, "m"));
+  std::string table;
+  for (const Feature& f : features) {
+    const std::vector<double> v = speeds_between(f.from, f.to);
+    const double slowest = v.empty() ? std::nan("") : *std::min_element(v.begin(), v.end());
+    result.checks.push_back(AtMost(std::string("slowest speed on the ") + f.name + ", of level",
+                                   slowest / level_speed, 0.98, ""));
+    table += std::string("| ") + f.name + " | " + Num(slowest) + " | " + Num(Mean(v)) + " |\n";
+  }
+  Plot speed_plot;
+  speed_plot.file = "test_track_speed.png";
+  speed_plot.title = "gen4 on the test track, wheels at 1.5 rad/s: speed along the track";
+  speed_plot.xlabel = "x of the wheel centres' mean [m]";
+  speed_plot.ylabel = "speed along x [m/s]";
+  Series slip_free{"no slip: 1.5 rad/s x 0.235 m", {0.0, 40.0}, {no_slip, no_slip}, "dashed"};
+  speed_plot.series = {speed, slip_free};
+  Plot load_plot;
+  load_plot.file = "test_track_loads.png";
+  load_plot.title = "gen4 on the test track: wheel loads, 1 s means";
+  load_plot.xlabel = "x of the wheel centres' mean [m]";
+  load_plot.ylabel = "vertical load [N]";
+  load_plot.series = {load[0], load[1], load[2], load[3]};
+  result.plots = {speed_plot, load_plot};
+  result.notes =
+      "gen4 on the heightfield track (`test_track.xml`, from `scripts/make_test_track.py`; our "
+      "reconstruction of the original's run 4) with all four wheels at 1.5 rad/s from t = 1 s "
+      "(JointController, " + Num(kTorque) + " N m, the SPEC's default force per axis) for "
+      "104.75 s, the original's run time. It covered " + Num(distance) + " m (no slip: " +
+      Num(no_slip * kDuration) + " m; the original simulator: 34.5 m). Speed along the track, "
+      "averaged over 1 s: " + Num(level_speed) + " m/s on the level (5 to 15 m); on the "
+      "features:\n\n| feature | slowest [m/s] | mean [m/s] |\n|---|---|---|\n" + table +
+      "\nWith velocity-controlled wheels strong enough to hold 1.5 rad/s, the robot slows "
+      "along the track only where its path tilts (the slope and the bumps: speed along x = "
+      "0.3525 m/s times the cosine of the slope, down to 0.977 on the 22 % slope) and where a "
+      "wheel has to climb an edge (the planks), while the others slip. A real robot on snow "
+      "also loses speed to sinking and rolling resistance; the track's snow has no rolling "
+      "resistance, so slowing more than this would need a model of the ground we do not have, "
+      "not a weaker motor.\n\n"
+      "The wheel loads (1 s means, against the position on the track) show what a rigid "
+      "four-wheeler does on uneven ground: gen4's legs are held stiffly and it has no "
+      "suspension, so on the snow's 1.5 cm unevenness it stands on one diagonal pair of "
+      "wheels (about 1350 N each) while the other pair barely touches, and rocks over to the "
+      "other pair every metre or two; only on the level ground at the start and between the "
+      "planks do all four carry their share.";
+  return result;
+}
+
+}  // namespace simpartner::validate

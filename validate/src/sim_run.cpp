@@ -1,0 +1,176 @@
+#include "simpartner/validate/sim_run.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "simpartner/model/loader.h"
+
+namespace simpartner::validate {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kProgressEverySeconds = 5.0;  // wall time between progress lines
+
+}  // namespace
+
+SimRun::SimRun(const Context& context, const std::string& world)
+    : SimRun(context, world, context.params) {}
+
+SimRun::SimRun(const Context& context, const std::string& world, Parameters params)
+    : context_(context), world_name_(world) {
+  const std::string path = (fs::path(context.models_dir) / "worlds" / world).string();
+  params.environment = path;
+  sim_ = std::make_unique<sim::Simulation>(model::LoadWorldOrThrow(path), std::move(params), 1);
+  for (const sim::FlatBody& b : sim_->flat().bodies) com_offsets_.push_back(b.source->com);
+}
+
+int64_t SimRun::StepAt(double t) const { return std::llround(t / dt()); }
+
+void SimRun::Command(double t, const std::string& target, int8_t action,
+                     std::vector<double> values) {
+  command_t c{};
+  c.request_id = ++request_id_;
+  c.sender = "simpartner-validate";
+  c.target = target;
+  c.action = action;
+  c.apply_at_step = StepAt(t);
+  c.values = std::move(values);
+  c.num_values = static_cast<int32_t>(c.values.size());
+  if (const auto reply = sim_->Submit(c))
+    throw Error(world_name_ + ": command to '" + target + "' at t = " + FormatNumber(t) +
+                " s rejected: " + reply->reason);
+}
+
+void SimRun::CommandText(double t, const std::string& target, int8_t action,
+                         const std::string& text) {
+  command_t c{};
+  c.request_id = ++request_id_;
+  c.sender = "simpartner-validate";
+  c.target = target;
+  c.action = action;
+  c.apply_at_step = StepAt(t);
+  c.text = text;
+  c.num_values = 0;
+  if (const auto reply = sim_->Submit(c))
+    throw Error(world_name_ + ": command '" + text + "' to '" + target + "' at t = " +
+                FormatNumber(t) + " s rejected: " + reply->reason);
+}
+
+void SimRun::Velocity(double t, const std::string& actuator, double velocity, double max_force) {
+  Command(t, actuator, command_t::ACTION_SET, {max_force, velocity});
+}
+
+void SimRun::Angle(double t, const std::string& actuator, double angle, double max_force,
+                   double p, double i, double d) {
+  Command(t, actuator, command_t::ACTION_SET, {max_force, angle, p, i, d});
+}
+
+void SimRun::Hold(double t, const std::string& actuator, double max_force) {
+  Command(t, actuator, command_t::ACTION_HOLD, {max_force});
+}
+
+void SimRun::RunUntil(double t, const std::function<void()>& each_step) {
+  const int64_t last = StepAt(t);
+  auto last_report = Clock::now();
+  while (sim_->step() < last) {
+    if (!sim_->Step()) {
+      std::string reasons;
+      for (const warning_t& w : sim_->TakeWarnings())
+        reasons += (reasons.empty() ? "" : "; ") + w.source + ": " + w.message;
+      throw Error(world_name_ + ": the simulation faulted at t = " + FormatNumber(sim_->time()) +
+                  " s: " + reasons);
+    }
+    // Replies and readings would go on the bus; here nobody reads them.
+    sim_->TakeReplies();
+    sim_->TakeSensorReadings();
+    if (each_step) each_step();
+    if ((sim_->step() & 1023) == 0 && context_.progress) {
+      const auto now = Clock::now();
+      if (std::chrono::duration<double>(now - last_report).count() >= kProgressEverySeconds) {
+        last_report = now;
+        char text[160];
+        std::snprintf(text, sizeof text, "%s: sim time %.1f of %.1f s", world_name_.c_str(),
+                      sim_->time(), t);
+        context_.progress(text);
+      }
+    }
+  }
+  // ODE messages (e.g. "LCP internal error") must not pass silently.
+  for (const warning_t& w : sim_->TakeWarnings()) {
+    if (w.severity >= warning_t::SEVERITY_WARNING)
+      throw Error(world_name_ + ": " + w.source + " warning at step " + std::to_string(w.step) +
+                  ": " + w.message);
+  }
+}
+
+int SimRun::Body(const std::string& name) const {
+  const int index = sim_->flat().FindBody("", name);
+  if (index < 0) throw Error(world_name_ + ": no body '" + name + "'");
+  return index;
+}
+
+int SimRun::Joint(const std::string& name) const {
+  const int index = sim_->flat().FindJoint("", name);
+  if (index < 0) throw Error(world_name_ + ": no joint '" + name + "'");
+  return index;
+}
+
+int SimRun::Sensor(const std::string& name) const {
+  const int index = sim_->flat().FindSensor("", name);
+  if (index < 0) throw Error(world_name_ + ": no sensor '" + name + "'");
+  return index;
+}
+
+sim::BodyReadout SimRun::Read(int body) const { return sim_->ode().ReadBody(body); }
+
+double SimRun::JointPosition(int joint) const { return sim_->ode().JointPosition(joint, 0); }
+
+double SimRun::VerticalContactForce(int body) const {
+  return Read(body).contact_force.dot(sim_->world().Up());
+}
+
+double SimRun::KineticEnergy() const {
+  double energy = 0.0;
+  for (size_t i = 0; i < sim_->flat().bodies.size(); ++i) {
+    const model::Body& source = *sim_->flat().bodies[i].source;
+    if (source.is_static) continue;
+    const sim::BodyReadout b = Read(static_cast<int>(i));
+    const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
+    const Eigen::Vector3d v_com = b.linear_velocity + b.angular_velocity.cross(r * com_offsets_[i]);
+    const Eigen::Vector3d w_body = r.transpose() * b.angular_velocity;
+    energy += 0.5 * source.mass * v_com.squaredNorm() + 0.5 * w_body.dot(source.inertia * w_body);
+  }
+  return energy;
+}
+
+double SimRun::PotentialEnergy() const {
+  double energy = 0.0;
+  const Eigen::Vector3d g = sim_->world().gravity;
+  for (size_t i = 0; i < sim_->flat().bodies.size(); ++i) {
+    const model::Body& source = *sim_->flat().bodies[i].source;
+    if (source.is_static) continue;
+    const sim::BodyReadout b = Read(static_cast<int>(i));
+    const Eigen::Vector3d com = b.position + b.orientation * com_offsets_[i];
+    energy -= source.mass * g.dot(com);
+  }
+  return energy;
+}
+
+Eigen::Vector3d SimRun::CentreOfMass(int robot) const {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double mass = 0.0;
+  for (size_t i = 0; i < sim_->flat().bodies.size(); ++i) {
+    const sim::FlatBody& flat = sim_->flat().bodies[i];
+    if (flat.source->is_static || (robot >= 0 && flat.robot != robot)) continue;
+    const sim::BodyReadout b = Read(static_cast<int>(i));
+    sum += flat.source->mass * (b.position + b.orientation * com_offsets_[i]);
+    mass += flat.source->mass;
+  }
+  return mass > 0 ? Eigen::Vector3d(sum / mass) : sum;
+}
+
+}  // namespace simpartner::validate
