@@ -1,0 +1,90 @@
+// Circle and line fits, and the ideal slipping vehicle the circle runs are
+// compared with.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "simpartner/validate/analysis.h"
+
+namespace simpartner::validate {
+namespace {
+
+std::vector<Eigen::Vector2d> Arc(const Eigen::Vector2d& centre, double radius, double from,
+                                 double to, int n) {
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i < n; ++i) {
+    const double a = from + (to - from) * i / (n - 1);
+    points.push_back(centre + radius * Eigen::Vector2d(std::cos(a), std::sin(a)));
+  }
+  return points;
+}
+
+TEST(ValidateFitCircle, RecoversAFullCircle) {
+  const CircleFit fit = FitCircle(Arc({3.0, -4.0}, 5.98, 0.0, 2.0 * M_PI, 500));
+  ASSERT_TRUE(fit.ok);
+  EXPECT_NEAR(fit.radius, 5.98, 1e-9);
+  EXPECT_NEAR(fit.centre.x(), 3.0, 1e-9);
+  EXPECT_NEAR(fit.centre.y(), -4.0, 1e-9);
+  EXPECT_LT(fit.worst_deviation, 1e-9);
+}
+
+TEST(ValidateFitCircle, RecoversAQuarterArc) {
+  // Kasa's algebraic fit alone is biased on short arcs with noise; the
+  // geometric refinement must land on the circle.
+  std::vector<Eigen::Vector2d> points = Arc({0.0, 0.0}, 4.01, 0.3, 0.3 + M_PI / 2, 200);
+  for (size_t i = 0; i < points.size(); ++i)
+    points[i] *= 1.0 + 1e-4 * ((i % 2) ? 1.0 : -1.0);  // +-0.4 mm
+  const CircleFit fit = FitCircle(points);
+  ASSERT_TRUE(fit.ok);
+  EXPECT_NEAR(fit.radius, 4.01, 1e-4);
+  EXPECT_NEAR(fit.worst_deviation, 4.01e-4, 2e-5);
+}
+
+TEST(ValidateFitCircle, ReportsHowFarAPathLeavesItsCircle) {
+  std::vector<Eigen::Vector2d> points = Arc({0.0, 0.0}, 6.0, 0.0, 2.0 * M_PI, 720);
+  points[100] *= 1.0 + 0.01 / 6.0;  // one point 1 cm outside
+  const CircleFit fit = FitCircle(points);
+  EXPECT_NEAR(fit.worst_deviation, 0.01, 5e-4);
+}
+
+TEST(ValidateFitCircle, RefusesTooFewOrCollinearPoints) {
+  EXPECT_FALSE(FitCircle({{0, 0}, {1, 1}}).ok);
+  EXPECT_FALSE(FitCircle({{0, 0}, {1, 1}, {2, 2}, {3, 3}}).ok);
+}
+
+TEST(ValidateFitLine, SlopeAndIntercept) {
+  const Eigen::Vector2d line = FitLine({0, 1, 2, 3}, {1, 3, 5, 7});
+  EXPECT_NEAR(line.x(), 1.0, 1e-12);
+  EXPECT_NEAR(line.y(), 2.0, 1e-12);
+}
+
+// Reference values solved independently (a separate Python script with the
+// same equations: Coulomb force mu N against each wheel's slip, force and
+// moment balance with the centripetal force of 136 kg at the joint, loads
+// 316 N front and 351 N rear per wheel).
+TEST(ValidateSkidSteerRadius, MatchedSpeedsGiveTheKinematicRadius) {
+  SkidSteerVehicle v;
+  v.front_load = 316.0;
+  v.rear_load = 351.0;
+  v.alpha = 0.2;
+  v.v_left = 1.0;
+  v.v_right = (5.98 + 0.3) / (5.98 - 0.3);
+  EXPECT_NEAR(SkidSteerRadius(v), 0.6 / std::tan(0.1), 1e-3);
+}
+
+TEST(ValidateSkidSteerRadius, SlippingWheelsTurnWiderThanTheSteering) {
+  SkidSteerVehicle v;
+  v.front_load = 316.0;
+  v.rear_load = 351.0;
+  v.alpha = 0.2972;
+  EXPECT_NEAR(SkidSteerRadius(v), 4.9143, 1e-3);  // equal speeds
+  v.mu = 0.5;
+  EXPECT_NEAR(SkidSteerRadius(v), 4.9230, 1e-3);
+  v.mu = 1.0;
+  v.alpha = 0.2;
+  v.v_right = 1.1;
+  EXPECT_NEAR(SkidSteerRadius(v), 6.0389, 1e-3);
+}
+
+}  // namespace
+}  // namespace simpartner::validate

@@ -1,0 +1,169 @@
+// The fast validation experiments (all but the long gaits and the test
+// track), shortened where they run for minutes (fewer laps, a shorter
+// scan), with the team's tolerances from issue 5. Targets are written here
+// from SPEC 8 and from physics, never taken from validate_lib.
+//
+// Where a SPEC 8 target is physically wrong (docs/validation explains
+// why), the team's check is kept as a DISABLED_ test so that it is listed
+// and can be run (--gtest_also_run_disabled_tests), and a test of what
+// physics does predict runs instead.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "simpartner/validate/experiment.h"
+
+namespace simpartner::validate {
+namespace {
+
+Context Quick() {
+  Context context;
+  context.models_dir = std::string(SP_SOURCE_DIR) + "/models";
+  context.quick = true;
+  return context;
+}
+
+ExperimentResult RunNamed(const char* name) {
+  const Experiment* experiment = FindExperiment(name);
+  EXPECT_NE(experiment, nullptr) << name;
+  if (experiment == nullptr) return ExperimentResult{};
+  ExperimentResult result = RunExperiment(*experiment, Quick());
+  EXPECT_EQ(result.error, "") << name;
+  return result;
+}
+
+constexpr double kG = 9.81;
+
+TEST(Validation, FreeFallErrorSlopeIsGDtOverTwo) {
+  const ExperimentResult r = RunNamed("free_fall");
+  for (const double dt : {0.02, 0.01, 0.005, 0.001}) {
+    std::ostringstream label;
+    label << "error slope, g 9.81, dt " << dt << " s";
+    EXPECT_NEAR(r.Measured(label.str()), kG * dt / 2.0, 0.01 * kG * dt / 2.0) << label.str();
+  }
+  EXPECT_NEAR(r.Measured("error slope, g 50, dt 0.001 s"), 0.025, 0.01 * 0.025);
+  EXPECT_TRUE(r.Passed());
+}
+
+TEST(Validation, ThrownBodyKeepsItsHorizontalVelocity) {
+  const ExperimentResult r = RunNamed("free_fall_thrown");
+  EXPECT_LE(r.Measured("largest horizontal error"), 1e-9);
+}
+
+TEST(Validation, SlidingCubeFollowsCoulombFriction) {
+  const ExperimentResult r = RunNamed("sliding_cube");
+  const double v0 = 10.0, mu = 0.5;
+  EXPECT_LE(r.Measured("largest |v - (v0 - mu g t)|"), 0.01 * v0);
+  EXPECT_LE(r.Measured("largest step-to-step deviation"), 0.01 * mu * kG * 0.001);
+  EXPECT_NEAR(r.Measured("sliding distance"), v0 * v0 / (2 * mu * kG), 0.01 * 10.19);
+}
+
+TEST(Validation, TwoSpheresBounceSymmetrically) {
+  const ExperimentResult r = RunNamed("two_spheres");
+  EXPECT_LE(r.Measured("largest mirror asymmetry"), 1e-9);
+  // Touching at centre distance 1.0, found within one 1 ms step of 2 m/s.
+  EXPECT_NEAR(r.Measured("closest centre distance"), 1.0, 0.002 + 1e-9);
+  EXPECT_NEAR(r.Measured("relative speed after the bounce"), 2.0, 0.02);
+}
+
+// SPEC 8: r = a cot(alpha/2) = 4.01 m, the team's tolerance 10 %.
+TEST(Validation, DISABLED_CircleEqualSpeedsWithinTenPercentOfTheKinematicRadius) {
+  const ExperimentResult r = RunNamed("circle_equal");
+  EXPECT_NEAR(r.Measured("radius, mu 0.5"), 4.008, 0.401);
+  EXPECT_NEAR(r.Measured("radius, mu 1"), 4.008, 0.401);
+}
+
+// With equal wheel speeds every wheel slips; an ideal rigid vehicle with
+// Coulomb friction turns at 4.91 m for either mu (analysis_test), and the
+// friction pyramid's extra sideways grip brings it a little closer to the
+// steering's 4.01 m. Between the two, and the same for both mu.
+TEST(Validation, CircleEqualSpeedsSlipsBetweenSteeringAndCoulombRadius) {
+  const ExperimentResult r = RunNamed("circle_equal");
+  const double r05 = r.Measured("radius, mu 0.5"), r1 = r.Measured("radius, mu 1");
+  for (const double radius : {r05, r1}) {
+    EXPECT_GT(radius, 4.008 * 1.10);
+    EXPECT_LT(radius, 4.914);
+  }
+  EXPECT_NEAR(r05 / r1, 1.0, 0.01);
+}
+
+// SPEC 8: 5.98 m within 0.25 % for 1.00 / 1.10 m/s.
+TEST(Validation, DISABLED_CircleDifferentialSpeedsWithinAQuarterPercent) {
+  const ExperimentResult r = RunNamed("circle_differential");
+  EXPECT_NEAR(r.Measured("radius, 1.00 / 1.10 m/s"), 5.98, 0.0025 * 5.98);
+}
+
+TEST(Validation, CircleDifferentialSpeedsIsCircularAndMatchedSpeedsGiveTheKinematicRadius) {
+  const ExperimentResult r = RunNamed("circle_differential");
+  EXPECT_LE(r.Measured("worst deviation from the fitted circle, 1.00 / 1.10"), 0.001);
+  // 1.10 asks for 6.3 m, the steering for 5.98 m; Coulomb slip: 6.039 m.
+  EXPECT_GT(r.Measured("radius, 1.00 / 1.10 m/s"), 5.98);
+  EXPECT_LT(r.Measured("radius, 1.00 / 1.10 m/s"), 6.039 * 1.002);
+  // Outer wheels at (5.98 + 0.3) / (5.98 - 0.3) = 1.1056 m/s: no slip needed.
+  EXPECT_NEAR(r.Measured("radius, 1.00 / 1.10563 m/s (matched)"), 5.98, 0.0025 * 5.98);
+  EXPECT_LE(r.Measured("worst deviation from the fitted circle, matched"), 0.001);
+}
+
+TEST(Validation, ScannerReadsLOverCosWithinAMillimetre) {
+  const ExperimentResult r = RunNamed("scanner");
+  EXPECT_LE(r.Measured("largest error, middle ray"), 0.001);
+  EXPECT_LE(r.Measured("largest error, all 11 rays"), 0.001);
+}
+
+TEST(Validation, PoleTaskSetsThePoleOnTheSecondPair) {
+  const ExperimentResult r = RunNamed("pole_task");
+  // The original: about 700 N per front wheel, 350 N per rear one.
+  EXPECT_NEAR(r.Measured("front/rear wheel load ratio"), 2.0, 0.2);
+  // On the second pair of 1 m cubes (tops at 1.0, centred at x 4.2, |z| 0.5 to 1.5).
+  EXPECT_NEAR(r.Measured("pole centre height"), 1.05, 0.005);
+  EXPECT_NEAR(r.Measured("pole centre x"), 4.2, 0.5);
+  EXPECT_GE(r.Measured("pole ends' overlap"), 0.3);
+  EXPECT_NEAR(r.Measured("cubes carry the pole's weight"), 5.0 * kG, 0.02 * 5.0 * kG);
+  EXPECT_LE(r.Measured("pole speed at the end"), 0.001);
+}
+
+// SPEC 8: the real robot's loads within 2 % on every wheel.
+TEST(Validation, DISABLED_Gen4StaticLoadsWithinTwoPercentOfTheRealRobot) {
+  const ExperimentResult r = RunNamed("gen4_loads");
+  const double real[4] = {579.15, 774.90, 669.12, 676.03};
+  for (int k = 0; k < 4; ++k) {
+    const std::string wheel = "Wheel" + std::to_string(k + 1);
+    EXPECT_NEAR(r.Measured(wheel + " load"), real[k], 0.02 * real[k]) << wheel;
+  }
+}
+
+// What the masses do fix: the total and the front/rear split; and what a
+// structure symmetric in its supports must show on flat ground: equal
+// diagonals.
+TEST(Validation, Gen4StaticLoadsFollowTheCentreOfMass) {
+  const ExperimentResult r = RunNamed("gen4_loads");
+  double w[4];
+  for (int k = 0; k < 4; ++k) w[k] = r.Measured("Wheel" + std::to_string(k + 1) + " load");
+  const double total = 579.15 + 774.90 + 669.12 + 676.03;
+  EXPECT_NEAR(w[0] + w[1] + w[2] + w[3], total, 0.001 * total);
+  EXPECT_NEAR(w[0] + w[1], 579.15 + 774.90, 0.005 * (579.15 + 774.90));
+  EXPECT_GT(w[1] + w[2], w[0] + w[3]);  // torso 5 cm to the left
+  EXPECT_NEAR(w[0] + w[2], w[1] + w[3], 0.005 * total / 2);
+}
+
+TEST(Validation, RollingSphereComesToRest) {
+  const ExperimentResult r = RunNamed("rolling_sphere");
+  // rho 2 mm, r 0.1 m: a = 5/7 rho g / r = 0.1401 m/s^2 from 1 m/s.
+  const double a = 5.0 / 7.0 * 0.002 * kG / 0.1;
+  EXPECT_LE(r.Measured("speed at 1.5 x the stopping time"), 0.001);
+  EXPECT_NEAR(r.Measured("time to come to rest"), 1.0 / a, 0.05 / a);
+  EXPECT_NEAR(r.Measured("rolling distance"), 1.0 / (2 * a), 0.05 / (2 * a));
+  EXPECT_NEAR(r.Measured("sphere without rolling friction keeps rolling"), 1.0, 0.01);
+}
+
+TEST(Validation, PassivePendulumCreatesNoEnergy) {
+  const ExperimentResult r = RunNamed("pendulum_energy");
+  EXPECT_LE(r.Measured("highest turning-point energy"), 1e-5);
+  EXPECT_LE(r.Measured("energy at the last turning point"), 0.0);
+  // 2 pi sqrt(2 L / 3 g) for small swings, times 2 K(sin 45 deg) / pi.
+  EXPECT_NEAR(r.Measured("period"), 2 * M_PI * std::sqrt(2.0 / (3 * kG)) * 1.18034, 0.005 * 1.93);
+}
+
+}  // namespace
+}  // namespace simpartner::validate
