@@ -40,6 +40,13 @@ std::string FormatNumber(double value) {
   return text;
 }
 
+std::string FormatFixed(double value, int decimals) {
+  if (!std::isfinite(value)) return FormatNumber(value);
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
 std::string Check::MeasuredText() const { return WithUnit(FormatNumber(measured), unit); }
 
 std::string Check::TargetText() const {

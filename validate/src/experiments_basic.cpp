@@ -164,7 +164,20 @@ ExperimentResult SlidingCube(const Context& context) {
   plot.xlabel = "t [s]";
   plot.ylabel = "v_x [m/s]";
   plot.series = {measured, exact};
-  result.plots.push_back(plot);
+  Plot errors;
+  errors.file = "sliding_cube_error.png";
+  errors.title = "Sliding cube: simulated v_x - (v0 - mu g t) over the slide";
+  errors.xlabel = "t [s]";
+  errors.ylabel = "velocity error [mm/s]";
+  errors.y_from_zero = true;
+  Series error{"error", {}, {}, "lines"};
+  for (size_t i = 0; i < measured.x.size(); ++i) {
+    if (measured.x[i] > t_stop - run.dt()) break;
+    error.x.push_back(measured.x[i]);
+    error.y.push_back((measured.y[i] - exact.y[i]) * 1000.0);
+  }
+  errors.series = {error};
+  result.plots = {plot, errors};
   result.notes =
       "The cube (`sliding_cube.xml`, mu 0.5 on cube and floor) starts at 10 m/s. Coulomb "
       "friction gives v = v0 - mu g t until it stops at t = " + Num(t_stop) +
@@ -220,7 +233,7 @@ ExperimentResult TwoSpheres(const Context& context) {
   result.plots.push_back(plot);
   result.notes =
       "Two 1 kg spheres of radius 0.5 m (`two_spheres.xml`, zero gravity, frictionless, "
-      "restitution 1) approach each other at 1 m/s. The right one's position must be the mirror "
+      "restitution 1, hard contact: softCFM 0) approach each other at 1 m/s. The right one's position must be the mirror "
       "image of the left one's at every step (tolerance 1e-9 m); the closest centre distance "
       "may fall short of 1.0 m by at most the 2 mm the two close in one 1 ms step, since "
       "contacts are detected once per step; the bounce must be elastic.";

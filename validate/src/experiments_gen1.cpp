@@ -219,15 +219,15 @@ ExperimentResult CircleDifferentialSpeeds(const Context& context) {
       "the outer at 1.10 m/s; circles fitted over " + Num(duration) + " s (about one lap) after " +
       Num(settle) + " s of settling. r = " + Num(run.Radius()) + " m (front axle " +
       Num(run.front.radius) + ", rear " + Num(run.rear.radius) + "), " +
-      Num((run.Radius() / kinematic - 1.0) * 100.0) + " % above a cot(alpha/2) = " +
+      FormatFixed((run.Radius() / kinematic - 1.0) * 100.0, 2) + " % above a cot(alpha/2) = " +
       Num(kinematic) + " m; circular within " + Num(run.WorstDeviation() * 1000.0) + " mm.\n\n"
       "**Why the 0.25 % target is physically wrong for 1.00 / 1.10 m/s.** Rolling without slip "
       "on the steering's circle needs the outer wheels at (r + 0.3) / (r - 0.3) = " +
       Num(matched) + " times the inner ones' speed; 1.10 asks for a circle of 6.3 m. The "
       "wheels must slip, and the radius falls between the two, where the friction forces "
       "balance: an ideal rigid vehicle with isotropic Coulomb friction and the run's wheel "
-      "loads turns at " + Num(coulomb) + " m (" + Num((coulomb / kinematic - 1.0) * 100.0) +
-      " %). Our " + Num(run.Radius()) + " m is as close to that as the friction model allows. "
+      "loads turns at " + Num(coulomb) + " m (+" +
+      FormatFixed((coulomb / kinematic - 1.0) * 100.0, 2) + " %). Our " + Num(run.Radius()) + " m is as close to that as the friction model allows. "
       "The same run with the outer wheels at the matched " + Num(matched) +
       " m/s is the experiment the formula describes: it gives " + Num(exact.Radius()) +
       " m, circular within " + Num(exact.WorstDeviation() * 1000.0) + " mm.";
@@ -445,7 +445,7 @@ namespace {
 
 ExperimentResult GaitExperiment(const Context& context, const std::vector<GaitPhase>& cycle,
                                 int cycles, const std::string& file, const std::string& name,
-                                double original) {
+                                double original, const std::string& description) {
   ExperimentResult result;
   const GaitRun gait = RunGait(context, cycle, cycles);
   const SkidRun skid = RunSkid(context, 10.0);
@@ -462,10 +462,9 @@ ExperimentResult GaitExperiment(const Context& context, const std::vector<GaitPh
   double cycle_time = 0.0;
   for (const GaitPhase& p : cycle) cycle_time += p.duration;
   result.notes =
-      "The light gen1 on ice (`slippery_ground.xml`). The gait moves some feet 0.25 m forward "
-      "relative to their hips while their wheels roll with them, driven at the matching "
-      "ground speed, and the other wheels are held; then the held feet stay on the ground "
-      "while the legs carry the body forward over them. Hip and knee targets follow from the "
+      "The light gen1 on ice (`slippery_ground.xml`). " + description +
+      " A moving foot's wheel rolls with it, driven at the matching ground speed; a standing "
+      "foot's wheel is held. Hip and knee targets follow from the "
       "legs' geometry (0.3 m links, hips 0.48 m above the axles) and are sent every step "
       "(P 100, target one time constant ahead). Cycle " + Num(cycle_time) + " s; " +
       std::to_string(cycles) + " cycles, the speed measured over all but the first: " +
@@ -494,7 +493,11 @@ ExperimentResult CaterpillarGait(const Context& context) {
       // front wheels hold; the body and the rolling rear wheels advance
       {3.5, {s, s, 0, 0}, {0, 0, 0, 0}, {false, false, true, true}, true},
   };
-  return GaitExperiment(context, cycle, 6, "caterpillar.png", "caterpillar", 0.057);
+  return GaitExperiment(context, cycle, 6, "caterpillar.png", "caterpillar", 0.057,
+                        "Caterpillar: the front feet reach 0.25 m forward (1.5 s) while the "
+                        "rear wheels hold the body; then the front wheels hold while the legs "
+                        "pull the body, and with it the rolling rear wheels, 0.25 m forward "
+                        "over them (3.5 s).");
 }
 
 ExperimentResult RollingWalking(const Context& context) {
@@ -508,7 +511,11 @@ ExperimentResult RollingWalking(const Context& context) {
       // all four hold; the legs push the body forward over the feet
       {3.0, {s, s, s, s}, {0, 0, 0, 0}, {false, false, false, false}, true},
   };
-  return GaitExperiment(context, cycle, 5, "rolking.png", "rolking", 0.048);
+  return GaitExperiment(context, cycle, 5, "rolking.png", "rolking", 0.048,
+                        "Rolling walking, after the real robot's: one leg at a time (1, 3, 2, "
+                        "4; 1 s each) reaches 0.25 m forward, its wheel rolling, while the "
+                        "other three stand; then all four stand and the legs push the body "
+                        "0.25 m forward over the feet (3 s).");
 }
 
 }  // namespace simpartner::validate

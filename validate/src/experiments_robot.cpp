@@ -66,8 +66,9 @@ ExperimentResult Gen4StaticLoads(const Context& context) {
   const double real_cross = pair(kRealWheelLoads, 1, 3) - pair(kRealWheelLoads, 0, 2);
   const double cross = pair(load, 1, 3) - pair(load, 0, 2);
   auto row = [&](const char* what, double simulated, double real) {
-    return std::string("| ") + what + " | " + Num(simulated) + " | " + Num(real) + " | " +
-           Num((simulated / real - 1.0) * 100.0) + " |\n";
+    return std::string("| ") + what + " | " + FormatFixed(simulated, 1) + " | " +
+           FormatFixed(real, 1) + " | " + FormatFixed((simulated / real - 1.0) * 100.0, 2) +
+           " |\n";
   };
   result.notes =
       "gen4 (`gen4_flat.xml`, 275.15 kg) stands on flat ground; the wheel loads are the "
@@ -85,22 +86,24 @@ ExperimentResult Gen4StaticLoads(const Context& context) {
       "(W2 + W4) - (W1 + W3), is set by the stiffness and height of the four supports, not "
       "by the masses: a structure whose supports are alike left and right, front and rear, "
       "standing on flat ground, has equal diagonals whatever its mass distribution (ours: " +
-      Num(cross) + " N). The real robot's cross weight is " + Num(real_cross) + " N (" +
-      Num(real_cross / real_total * 100.0) + " % of its weight): its loads are averages "
+      FormatFixed(cross, 1) + " N). The real robot's cross weight is " +
+      FormatFixed(real_cross, 1) + " N (" + FormatFixed(real_cross / real_total * 100.0, 1) +
+      " % of its weight): its loads are averages "
       "over four 55 m runs on uneven snow with its legs actively held, not a static stand on "
       "flat ground. With equal diagonals every wheel is off by at least " +
-      Num(std::abs(real_cross - cross) / 4.0) + " N, " +
-      Num(std::abs(real_cross - cross) / 4.0 / kRealWheelLoads[0] * 100.0) +
+      FormatFixed(std::abs(real_cross - cross) / 4.0, 1) + " N, " +
+      FormatFixed(std::abs(real_cross - cross) / 4.0 / kRealWheelLoads[0] * 100.0, 1) +
       " % of wheel 1's load, so the 2 % target is out of reach for any masses; matching it "
       "would need a model of the cross weight itself (for example legs held at slightly "
       "different lengths, or tyres of different stiffness), which SPEC 7 does not describe. "
-      "The original's 4 % included a cross weight of 222 N; an iterative solver (ODE's "
-      "QuickStep) shares a statically indeterminate load arbitrarily, the exact solver "
-      "we use shares it symmetrically.\n\n"
+      "The original came within 4 % with a cross weight of 222 N; how it got one the SPEC "
+      "does not say (an iterative solver such as ODE's QuickStep shares a statically "
+      "indeterminate load by the order of its sweeps; the exact solver we use shares it "
+      "symmetrically).\n\n"
       "The left/right split falls short of the real one for another reason: a cylinder "
       "wheel touches flat ground along a line (two contact points 0.14 m apart), so each "
       "wheel carries a little of the roll moment, which moves " +
-      Num(pair(kRealWheelLoads, 1, 2) - pair(load, 1, 2)) +
+      FormatFixed(pair(kRealWheelLoads, 1, 2) - pair(load, 1, 2), 1) +
       " N from the left wheels to the right ones compared with point contacts at the tyre "
       "centres (with sphere wheels, tried outside the shipped models, the split is exact). The model's centre of mass follows the "
       "point-contact arithmetic of `workpartner_gen4.xml`, which `tests/models` checks.";

@@ -20,14 +20,14 @@ std::string Pad(std::string text, size_t width) {
 
 std::string Seconds(double s) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.1f s", s);
+  std::snprintf(text, sizeof text, s < 1.0 ? "%.2f s" : "%.1f s", s);
   return text;
 }
 
-// Markdown table cells must not contain '|'.
+// A '|' inside a Markdown table cell is written \|.
 std::string Cell(const std::string& text) {
   std::string out;
-  for (char c : text) out += c == '|' ? '/' : c;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
   return out;
 }
 
@@ -90,6 +90,12 @@ void WriteReport(const std::string& directory, const std::vector<ExperimentResul
           << Cell(c.ToleranceText()) << " | " << (c.pass ? "PASS" : "**FAIL**") << " |\n";
     }
   }
+  std::string failing;
+  for (const ExperimentResult& r : results)
+    if (!r.Passed()) failing += (failing.empty() ? "" : ", ") + ("[" + r.name + "](#" + r.name + ")");
+  if (!failing.empty())
+    out << "\nFailing: " << failing
+        << ". Each section says whether the simulation or the target is at fault.\n";
   for (const ExperimentResult& r : results) {
     out << "\n<a id=\"" << r.name << "\"></a>\n## " << r.name << ": " << r.title << "\n\n";
     out << "Verdict: " << (r.Passed() ? "**PASS**" : "**FAIL**") << " (" << Seconds(r.sim_seconds)

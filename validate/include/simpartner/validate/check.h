@@ -39,5 +39,7 @@ Check AtMost(std::string label, double measured, double maximum, std::string uni
 // Short number text: 6 significant digits, no trailing zeros ("0.0049",
 // "1.2e-13").
 std::string FormatNumber(double value);
+// Fixed decimals for tables in the report ("1354.1", "-1.87").
+std::string FormatFixed(double value, int decimals);
 
 }  // namespace simpartner::validate
