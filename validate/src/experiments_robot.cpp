@@ -252,6 +252,7 @@ ExperimentResult PoleTask(const Context& context) {
   for (int k = 0; k < 4; ++k) load[k].title = "Wheel" + std::to_string(k + 1);
   load[1].style = load[3].style = "dashed";  // gen3 is symmetric: 2 lies on 1, 4 on 3
   Series pole_height{"pole centre height", {}, {}, "lines"};
+  Series pole_x{"pole centre x", {}, {}, "lines"};
   double front_sum = 0.0, rear_sum = 0.0;
   int carried = 0;
   const int every = static_cast<int>(std::lround(0.01 / run.dt()));
@@ -272,6 +273,8 @@ ExperimentResult PoleTask(const Context& context) {
     }
     pole_height.x.push_back(now);
     pole_height.y.push_back(run.Position(pole).y());
+    pole_x.x.push_back(now);
+    pole_x.y.push_back(run.Position(pole).x());
   });
   result.sim_seconds = run.time();
   const sim::BodyReadout p = run.Read(pole);
@@ -318,6 +321,18 @@ ExperimentResult PoleTask(const Context& context) {
   height.ylabel = "y [m]";
   height.series = {pole_height};
   result.plots.push_back(height);
+  Plot along;
+  along.file = "pole_task_x.png";
+  along.title = "gen3 pole task: the pole carried from the first pair of cubes to the second";
+  along.xlabel = "t [s]";
+  along.ylabel = "x [m]";
+  const double t_end = pole_x.x.empty() ? 0.0 : pole_x.x.back();
+  along.series = {pole_x,
+                  Series{"first pair (x 0.7 to 1.7)", {0.0, t_end, t_end, 0.0, 0.0},
+                         {0.7, 0.7, 1.7, 1.7, 0.7}, "dashed"},
+                  Series{"second pair (x 3.7 to 4.7)", {0.0, t_end, t_end, 0.0, 0.0},
+                         {3.7, 3.7, 4.7, 4.7, 3.7}, "dashed"}};
+  result.plots.push_back(along);
   return result;
 }
 
