@@ -1,0 +1,69 @@
+// The viewer on the LCM bus: decodes SIM_MODEL, SIM_STATE, SIM_STATUS and
+// SIM_SENSOR into a Scene, asks for the model (SIM_MODEL_REQUEST) when it
+// has none or sees another simulation, and sends SIM_CONTROL and scanner
+// read requests. Drain() handles everything that has arrived without
+// blocking, so the scene always holds the newest state and no backlog
+// builds up however fast the sim publishes.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "simpartner/viewer/scene.h"
+
+namespace simpartner::viewer {
+
+class ViewerBus {
+ public:
+  using Clock = std::chrono::steady_clock;
+  // Problems go to `report` (stderr in the program), each kind described
+  // the first time and then every 1000th time, so a flood stays readable.
+  using Reporter = std::function<void(const std::string&)>;
+
+  // lcm must be good(); lcm and scene outlive the bus.
+  ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Reporter report);
+  ViewerBus(const ViewerBus&) = delete;
+  ViewerBus& operator=(const ViewerBus&) = delete;
+
+  // Handles every message that has arrived, then waits for more until
+  // `until` (pass Clock::now() to only drain). Returns messages handled.
+  int Drain(Clock::time_point until);
+  // Asks for SIM_MODEL now if the scene wants one and the last request is
+  // older than half a second.
+  void RequestModelIfNeeded();
+
+  // SIM_CONTROL actions (control_t::ACTION_*).
+  void SendControl(int8_t action, int64_t steps = 0, double speed = 0);
+  // Asks every scanner of the model for a reading (command_t::ACTION_READ).
+  void RequestScans();
+
+  const std::string& url() const { return url_; }
+  const std::string& sender() const { return sender_; }
+  int64_t model_requests() const { return model_requests_; }
+
+ private:
+  void OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void Note(const Verdict& verdict);
+
+  lcm::LCM& lcm_;
+  std::string url_;
+  Scene* scene_;
+  Reporter report_;
+  std::string sender_;
+  bool want_model_ = true;
+  Clock::time_point last_request_{};
+  int64_t model_requests_ = 0;
+  int64_t request_id_ = 0;
+};
+
+// "viewer@host:pid".
+std::string ViewerSenderName();
+
+}  // namespace simpartner::viewer

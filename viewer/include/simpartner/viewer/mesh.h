@@ -1,0 +1,61 @@
+// Triangle meshes of the geometry kinds, built on the CPU (no GL) so that
+// their shape is unit tested; the renderer compiles them into display lists.
+// Frames follow the sim (ODE): shapes are centred on the body frame origin,
+// cylinders and capsules have their axis along body z.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include <vector>
+
+#include "simpartner/geometry_t.hpp"
+#include "simpartner/heightfield_t.hpp"
+
+namespace simpartner::viewer {
+
+// Separate triangles (3 vertices each) with per-vertex normals and,
+// optionally, per-vertex colours (RGB 0..1).
+struct Mesh {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<Eigen::Vector3f> normals;
+  std::vector<Eigen::Vector3f> colors;  // empty: one colour for the mesh
+  size_t triangles() const { return positions.size() / 3; }
+  void Append(const Mesh& other);
+};
+
+// Line segments (2 vertices each).
+struct Lines {
+  std::vector<Eigen::Vector3f> positions;
+  size_t segments() const { return positions.size() / 2; }
+};
+
+Mesh BoxMesh(const Eigen::Vector3d& size);
+// `slices` around the axis, `stacks` from pole to pole.
+Mesh SphereMesh(double radius, int slices = 24, int stacks = 12);
+// Closed cylinder, axis z, centred.
+Mesh CylinderMesh(double radius, double length, int slices = 24);
+// Cylinder of `length` with hemispherical caps (total length + 2 radius).
+Mesh CapsuleMesh(double radius, double length, int slices = 24, int stacks = 12);
+// The mesh of one body's geometry (empty for KIND_NONE).
+Mesh GeometryMesh(const geometry_t& geometry);
+
+// The world-frame surface of a heightfield (as the sim builds it: columns
+// along x over [-width/2, width/2], rows along z over [-depth/2, depth/2],
+// height = scale * sample + offset, turned so that its y follows `up`, then
+// moved to `position`), with smooth normals and colours by height.
+Mesh HeightfieldMesh(const heightfield_t& field, const Eigen::Vector3d& up);
+// Height (along up, before the position offset) of sample (row, column).
+double HeightfieldSample(const heightfield_t& field, int row, int column);
+// Lines on the heightfield surface along the sample rows and columns that
+// lie nearest to every `spacing` metres, lifted by `lift` along up.
+Lines HeightfieldGrid(const heightfield_t& field, const Eigen::Vector3d& up, double spacing,
+                      double lift);
+
+// A square of half-size `half` on the plane a*x + b*y + c*z = d, centred on
+// the point of the plane nearest to `around`; normal (a, b, c) normalised.
+Mesh PlaneMesh(const double plane[4], const Eigen::Vector3d& around, double half);
+// Grid lines every `spacing` m on that plane (aligned to whole multiples of
+// spacing in the plane's own axes), `half` m around `around`.
+Lines PlaneGrid(const double plane[4], const Eigen::Vector3d& around, double half, double spacing);
+
+}  // namespace simpartner::viewer

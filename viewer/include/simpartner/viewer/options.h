@@ -1,0 +1,57 @@
+// simpartner-viewer's command line: its flags besides the parameters (of
+// which it reads lcmUrl), and the options built from both.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "simpartner/parameters.h"
+#include "simpartner/viewer/camera.h"
+
+namespace simpartner::viewer {
+
+// What is drawn; each has a key that toggles it (see keys.h).
+struct Toggles {
+  bool wireframe = false;
+  bool body_frames = false;
+  bool contact_forces = false;
+  bool joint_forces = false;
+  bool scanner_rays = true;
+  bool grid = true;
+  bool hud = true;
+  bool key_help = false;
+  bool follow = true;  // camera follows robot 0
+};
+
+// An explicit camera: target, yaw and pitch [deg], distance [m].
+struct CameraSpec {
+  double target[3] = {0, 0, 0};
+  double yaw_deg = 0;
+  double pitch_deg = 0;
+  double distance = 5;
+};
+
+struct ViewerOptions {
+  std::string lcm_url;
+  int width = 1280;
+  int height = 720;
+  double max_fps = 60;       // 0: as fast as it can draw
+  std::string screenshot;    // write this PNG, then exit ("" = run until closed)
+  double after_seconds = 0;  // screenshot this long after start...
+  int64_t after_frames = 0;  // ...or after this many frames
+  double quit_after = 0;     // [s] exit after this long (0 = never); prints frame figures
+  std::optional<CameraSpec> camera;  // fixed start camera (turns follow off)
+  Toggles toggles;
+  double scanner_poll_hz = 0;  // ask scanners for readings this often (0 = only listen)
+};
+
+std::vector<FlagSpec> ViewerFlags();
+std::string ViewerSummary();
+// Throws ConfigError naming the flag and value.
+ViewerOptions MakeViewerOptions(const CommandLine& command_line, const Parameters& params);
+// Camera for a spec in a world with `up`.
+Camera CameraFromSpec(const CameraSpec& spec, const Eigen::Vector3d& up);
+
+}  // namespace simpartner::viewer

@@ -1,0 +1,77 @@
+// Draws a Scene with fixed-function OpenGL (GL 1.x/2.1 compatibility
+// calls only, which Mesa's llvmpipe and every desktop driver have): the
+// plane or heightfield with its grid, the bodies solid with lighting or as
+// wireframe, body frames, force arrows, scanner rays and the HUD text.
+// Needs a current GL context for its whole life.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "simpartner/viewer/camera.h"
+#include "simpartner/viewer/options.h"
+#include "simpartner/viewer/png_image.h"
+#include "simpartner/viewer/scene.h"
+
+namespace simpartner::viewer {
+
+using Color3 = std::array<float, 3>;  // RGB 0..1
+
+struct HudLine {
+  std::string text;
+  Color3 color{1, 1, 1};
+};
+
+// The text overlays of one frame.
+struct Hud {
+  std::vector<HudLine> top;     // status line, warnings
+  std::vector<HudLine> bottom;  // hints
+  std::vector<std::string> key_help;  // shown in a box when not empty
+};
+
+// Colour (RGB 0..1) a body is drawn in: robots in WorkPartner yellow with
+// dark wheels, moving objects blue, fixed objects wood brown. Parts of a
+// robot alternate slightly in brightness so that neighbours stay apart.
+Color3 BodyColor(const model_t& model, int body);
+// Background colour (RGB 0..1).
+Color3 SkyColor();
+
+// Scale of the force arrows [m per N].
+inline constexpr double kForceArrowScale = 1.0 / 1000.0;
+
+class Renderer {
+ public:
+  Renderer();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  void Draw(const Scene& scene, const Camera& camera, const Toggles& toggles, const Hud& hud,
+            int width, int height);
+  // The frame just drawn (call before swapping buffers).
+  RgbImage ReadPixels(int width, int height) const;
+  int bodies_drawn() const { return bodies_drawn_; }
+
+ private:
+  void RebuildModel(const Scene& scene);
+  void ReleaseModel();
+  void DrawGround(const Scene& scene, const Camera& camera, const Toggles& toggles);
+  void DrawBodies(const Scene& scene, const Toggles& toggles);
+  void DrawOverlays(const Scene& scene, const Camera& camera, const Toggles& toggles);
+  void DrawHud(const Hud& hud, int width, int height);
+  void DrawText(const std::string& text, float x, float y, float scale, const Color3& color,
+                float alpha = 1.0f);
+
+  int64_t model_generation_ = -1;
+  std::vector<unsigned> body_lists_;  // one display list per body (0: nothing to draw)
+  unsigned heightfield_list_ = 0;
+  unsigned heightfield_grid_list_ = 0;
+  unsigned font_texture_ = 0;
+  int font_width_ = 0;
+  int font_height_ = 0;
+  int bodies_drawn_ = 0;
+};
+
+}  // namespace simpartner::viewer

@@ -1,0 +1,125 @@
+// What the viewer knows about the running simulation, learned only from the
+// bus: the model of SIM_MODEL, the newest acceptable SIM_STATE, the last
+// SIM_STATUS and the latest scanner reading per sensor. No GL and no LCM
+// here, so the bookkeeping is unit tested on plain messages.
+//
+// A message that does not fit (a state of another simulation, with the
+// wrong number of bodies or joints, a non-finite or non-unit pose) is
+// ignored, counted by kind and described once per kind with the channel,
+// field and value; the scene keeps showing the last good state.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "simpartner/model_t.hpp"
+#include "simpartner/sensor_reading_t.hpp"
+#include "simpartner/state_t.hpp"
+#include "simpartner/status_t.hpp"
+
+namespace simpartner::viewer {
+
+// Why a message was ignored.
+enum class Rejection {
+  kUndecodable,        // bytes that do not decode as the channel's type
+  kOtherSimulation,    // simulation_id differs from the model's
+  kBodyCount,          // state_t.num_bodies != model_t.num_bodies
+  kJointCount,         // state_t.num_joints != model_t.num_joints
+  kNonFinite,          // NaN or infinity in a pose, velocity or force
+  kBadQuaternion,      // orientation far from unit length
+  kBadModel,           // a SIM_MODEL the viewer cannot draw (sizes, indices)
+  kBadReading,         // a SIM_SENSOR reading that does not fit its sensor
+};
+inline constexpr int kRejectionKinds = 8;
+const char* RejectionName(Rejection r);
+
+// One ignored message, described for stderr and the HUD.
+struct Problem {
+  Rejection kind;
+  std::string channel;
+  std::string message;  // "SIM_STATE: bodies[2].position[0] = nan (body 'Arm'): ..."
+};
+
+// Result of offering a message to the scene.
+struct Verdict {
+  bool accepted = false;
+  std::optional<Problem> problem;  // set when not accepted
+  bool want_model = false;         // the model is missing or stale: ask SIM_MODEL_REQUEST
+};
+
+class Scene {
+ public:
+  // A model of a new simulation replaces everything (poses go back to the
+  // model's initial ones until its first state); the periodic
+  // re-announcement of the same simulation only refreshes sensor settings.
+  Verdict OfferModel(const model_t& model);
+  Verdict OfferState(state_t&& state);
+  Verdict OfferStatus(const status_t& status);
+  Verdict OfferSensorReading(const sensor_reading_t& reading);
+  // Counts (and describes) a message the bus could not decode.
+  void CountUndecodable(const std::string& channel, int size);
+
+  bool has_model() const { return model_.has_value(); }
+  const model_t& model() const { return *model_; }
+  // Bumped whenever the model's geometry may have changed (a new
+  // simulation), so cached meshes know to rebuild.
+  int64_t model_generation() const { return model_generation_; }
+  int64_t simulation_id() const { return model_ ? model_->simulation_id : 0; }
+
+  bool has_state() const { return state_.has_value(); }
+  const state_t* state() const { return state_ ? &*state_ : nullptr; }
+  int64_t states_accepted() const { return states_accepted_; }
+  // States that came before any model (normal for a viewer that starts
+  // while a sim runs): not a problem, so not counted as rejected.
+  int64_t states_before_model() const { return states_before_model_; }
+  const status_t* status() const { return status_ ? &*status_ : nullptr; }
+
+  // World pose of body i: the newest state's, or the model's initial pose.
+  Eigen::Isometry3d BodyPose(int i) const;
+  // Up (opposite to gravity), unit length; y when the model has none.
+  Eigen::Vector3d Up() const;
+  // Centre of robot `robot`'s bodies in the current poses (all bodies when
+  // the model has no robot); nullopt without a model or bodies.
+  std::optional<Eigen::Vector3d> RobotCentre(int robot = 0) const;
+  // Centre and radius of a sphere around what the camera should frame at
+  // start: robot 0, else the moving bodies, else the heightfield.
+  std::pair<Eigen::Vector3d, double> FocusSphere() const;
+
+  // Latest scanner reading per sensor index (this simulation only).
+  const std::map<int, sensor_reading_t>& scans() const { return scans_; }
+
+  // Bad-input bookkeeping.
+  int64_t rejected(Rejection r) const { return rejected_[static_cast<int>(r)]; }
+  int64_t rejected_total() const;
+  // The most recent problems, newest last (bounded).
+  const std::deque<Problem>& recent_problems() const { return recent_problems_; }
+  // "3 other simulation, 2 body count" (empty when nothing was rejected).
+  std::string RejectionSummary() const;
+
+ private:
+  Verdict Reject(Rejection kind, const std::string& channel, const std::string& message);
+
+  std::optional<model_t> model_;
+  int64_t model_generation_ = 0;
+  std::optional<state_t> state_;
+  int64_t states_accepted_ = 0;
+  int64_t states_before_model_ = 0;
+  std::optional<status_t> status_;
+  std::map<int, sensor_reading_t> scans_;
+  std::array<int64_t, kRejectionKinds> rejected_{};
+  std::deque<Problem> recent_problems_;
+};
+
+// Checks that a SIM_MODEL can be drawn: finite positive sizes, a
+// heightfield whose sample count matches rows x columns, indices in range.
+// Returns the first problem ("bodies[3].geometry.size[0] = -1 (body 'Arm')").
+std::optional<std::string> CheckModel(const model_t& model);
+
+}  // namespace simpartner::viewer

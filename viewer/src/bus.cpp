@@ -1,0 +1,164 @@
+#include "simpartner/viewer/bus.h"
+
+#include <unistd.h>
+
+#include <stdexcept>
+
+#include "simpartner/channels.h"
+#include "simpartner/command_t.hpp"
+#include "simpartner/control_t.hpp"
+#include "simpartner/model_request_t.hpp"
+
+namespace simpartner::viewer {
+namespace {
+
+constexpr auto kModelRequestInterval = std::chrono::milliseconds(500);
+// Every decoded state is checked (so bad ones are counted), but only the
+// newest is kept; the queue only has to hold what arrives between two
+// drains (a frame), at up to 50x real time of a 1 kHz sim.
+constexpr int kStateQueue = 2000;
+// A flood that outpaces decoding must not starve drawing: past this, the
+// rest waits for the next frame (or is dropped by the kernel, which is
+// harmless for a stateless stream).
+constexpr auto kMaxDrainOverrun = std::chrono::milliseconds(30);
+
+int64_t WallMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// Decodes a whole buffer; false if the bytes are not exactly one T.
+template <class T>
+bool Decode(const lcm::ReceiveBuffer* buffer, T* out) {
+  const int size = static_cast<int>(buffer->data_size);
+  return out->decode(buffer->data, 0, size) == size;
+}
+
+}  // namespace
+
+std::string ViewerSenderName() {
+  char host[256] = {0};
+  if (::gethostname(host, sizeof host - 1) != 0) std::snprintf(host, sizeof host, "unknown");
+  return "viewer@" + std::string(host) + ":" + std::to_string(::getpid());
+}
+
+ViewerBus::ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Reporter report)
+    : lcm_(*lcm), url_(url), scene_(scene), report_(std::move(report)), sender_(ViewerSenderName()) {
+  lcm_.subscribe(channels::kModel, &ViewerBus::OnModel, this)->setQueueCapacity(4);
+  lcm_.subscribe(channels::kState, &ViewerBus::OnState, this)->setQueueCapacity(kStateQueue);
+  lcm_.subscribe(channels::kStatus, &ViewerBus::OnStatus, this)->setQueueCapacity(100);
+  lcm_.subscribe(channels::kSensor, &ViewerBus::OnSensor, this)->setQueueCapacity(1000);
+}
+
+int ViewerBus::Drain(Clock::time_point until) {
+  int handled = 0;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
+    const int timeout = static_cast<int>(std::max<int64_t>(left.count(), 0));
+    const int status = lcm_.handleTimeout(timeout);
+    if (status < 0) throw std::runtime_error("LCM at '" + url_ + "' failed while receiving");
+    if (status == 0) {
+      if (Clock::now() >= until) break;
+      continue;
+    }
+    ++handled;
+    RequestModelIfNeeded();
+    if (Clock::now() > until + kMaxDrainOverrun) break;
+  }
+  return handled;
+}
+
+void ViewerBus::Note(const Verdict& verdict) {
+  if (verdict.want_model) want_model_ = true;
+  if (!verdict.problem) return;
+  const int64_t count = scene_->rejected(verdict.problem->kind);
+  if (count == 1 || count % 1000 == 0)
+    report_(verdict.problem->message + (count > 1 ? " (" + std::to_string(count) + " so far)" : ""));
+}
+
+void ViewerBus::RequestModelIfNeeded() {
+  if (!want_model_) return;
+  const auto now = Clock::now();
+  if (model_requests_ > 0 && now - last_request_ < kModelRequestInterval) return;
+  model_request_t request{};
+  request.utime = WallMicros();
+  request.sender = sender_;
+  lcm_.publish(channels::kModelRequest, &request);
+  last_request_ = now;
+  ++model_requests_;
+  want_model_ = false;  // until a message shows it is still missing
+}
+
+void ViewerBus::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  model_t model;
+  if (!Decode(buffer, &model)) {
+    scene_->CountUndecodable(channel, static_cast<int>(buffer->data_size));
+    Note(Verdict{false, scene_->recent_problems().back(), false});
+    return;
+  }
+  const Verdict v = scene_->OfferModel(model);
+  if (v.accepted) want_model_ = false;
+  Note(v);
+}
+
+void ViewerBus::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  state_t state;
+  if (!Decode(buffer, &state)) {
+    scene_->CountUndecodable(channel, static_cast<int>(buffer->data_size));
+    Note(Verdict{false, scene_->recent_problems().back(), false});
+    return;
+  }
+  Note(scene_->OfferState(std::move(state)));
+}
+
+void ViewerBus::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  status_t status;
+  if (!Decode(buffer, &status)) {
+    scene_->CountUndecodable(channel, static_cast<int>(buffer->data_size));
+    Note(Verdict{false, scene_->recent_problems().back(), false});
+    return;
+  }
+  Note(scene_->OfferStatus(status));
+}
+
+void ViewerBus::OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  sensor_reading_t reading;
+  if (!Decode(buffer, &reading)) {
+    scene_->CountUndecodable(channel, static_cast<int>(buffer->data_size));
+    Note(Verdict{false, scene_->recent_problems().back(), false});
+    return;
+  }
+  Note(scene_->OfferSensorReading(reading));
+}
+
+void ViewerBus::SendControl(int8_t action, int64_t steps, double speed) {
+  control_t control{};
+  control.utime = WallMicros();
+  control.request_id = ++request_id_;
+  control.sender = sender_;
+  control.action = action;
+  control.steps = steps;
+  control.speed = speed;
+  lcm_.publish(channels::kControl, &control);
+}
+
+void ViewerBus::RequestScans() {
+  if (!scene_->has_model()) return;
+  const model_t& m = scene_->model();
+  for (const sensor_t& sensor : m.sensors) {
+    if (sensor.kind != sensor_t::KIND_SCANNER) continue;
+    command_t command{};
+    command.utime = WallMicros();
+    command.request_id = ++request_id_;
+    command.sender = sender_;
+    if (sensor.robot >= 0 && sensor.robot < m.num_robots)
+      command.robot = m.robots[static_cast<size_t>(sensor.robot)].name;
+    command.target = sensor.name;
+    command.action = command_t::ACTION_READ;
+    command.apply_at_step = -1;
+    lcm_.publish(channels::kCommand, &command);
+  }
+}
+
+}  // namespace simpartner::viewer

@@ -1,0 +1,484 @@
+#include "simpartner/viewer/renderer.h"
+
+#include <SDL2/SDL_opengl.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "simpartner/viewer/font.h"
+#include "simpartner/viewer/mesh.h"
+
+namespace simpartner::viewer {
+namespace {
+
+using Color = Color3;
+
+constexpr Color kPlaneColor{0.50f, 0.55f, 0.50f};
+constexpr Color kGridColor{0.30f, 0.34f, 0.32f};
+constexpr Color kFieldGridColor{0.45f, 0.52f, 0.62f};
+constexpr Color kContactForceColor{0.95f, 0.15f, 0.15f};
+constexpr Color kJointForceColor{0.15f, 0.75f, 0.95f};
+constexpr Color kRayColor{1.0f, 0.1f, 0.1f};
+constexpr Color kHitColor{1.0f, 0.9f, 0.1f};
+
+constexpr float kHudScale = 2.0f;  // font pixels per screen pixel
+constexpr float kHudLineHeight = kCellHeight * kHudScale + 4;
+
+void SetColor(const Color& c, float alpha = 1.0f) { glColor4f(c[0], c[1], c[2], alpha); }
+
+void Vertex(const Eigen::Vector3d& p) { glVertex3d(p.x(), p.y(), p.z()); }
+
+// Compiles a mesh (with its colours if it has them) into a display list.
+unsigned CompileMesh(const Mesh& mesh) {
+  if (mesh.positions.empty()) return 0;
+  const unsigned list = glGenLists(1);
+  glNewList(list, GL_COMPILE);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glVertexPointer(3, GL_FLOAT, sizeof(Eigen::Vector3f), mesh.positions.data());
+  glNormalPointer(GL_FLOAT, sizeof(Eigen::Vector3f), mesh.normals.data());
+  if (!mesh.colors.empty()) {
+    glEnableClientState(GL_COLOR_ARRAY);
+    glColorPointer(3, GL_FLOAT, sizeof(Eigen::Vector3f), mesh.colors.data());
+  }
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(mesh.positions.size()));
+  glDisableClientState(GL_COLOR_ARRAY);
+  glDisableClientState(GL_NORMAL_ARRAY);
+  glDisableClientState(GL_VERTEX_ARRAY);
+  glEndList();
+  return list;
+}
+
+unsigned CompileLines(const Lines& lines) {
+  if (lines.positions.empty()) return 0;
+  const unsigned list = glGenLists(1);
+  glNewList(list, GL_COMPILE);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glVertexPointer(3, GL_FLOAT, sizeof(Eigen::Vector3f), lines.positions.data());
+  glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(lines.positions.size()));
+  glDisableClientState(GL_VERTEX_ARRAY);
+  glEndList();
+  return list;
+}
+
+void DrawLines(const Lines& lines) {
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glVertexPointer(3, GL_FLOAT, sizeof(Eigen::Vector3f), lines.positions.data());
+  glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(lines.positions.size()));
+  glDisableClientState(GL_VERTEX_ARRAY);
+}
+
+void DrawMesh(const Mesh& mesh) {
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glVertexPointer(3, GL_FLOAT, sizeof(Eigen::Vector3f), mesh.positions.data());
+  glNormalPointer(GL_FLOAT, sizeof(Eigen::Vector3f), mesh.normals.data());
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(mesh.positions.size()));
+  glDisableClientState(GL_NORMAL_ARRAY);
+  glDisableClientState(GL_VERTEX_ARRAY);
+}
+
+// An arrow from `from` along `vector`, its head facing the camera.
+void DrawArrow(const Eigen::Vector3d& from, const Eigen::Vector3d& vector,
+               const Eigen::Vector3d& eye) {
+  const double length = vector.norm();
+  if (length < 1e-4) return;
+  const Eigen::Vector3d tip = from + vector;
+  const Eigen::Vector3d dir = vector / length;
+  Eigen::Vector3d side = dir.cross(eye - tip);
+  if (side.norm() < 1e-9) side = dir.unitOrthogonal();
+  side.normalize();
+  const double head = std::min(0.25 * length, 0.08);
+  glBegin(GL_LINES);
+  Vertex(from);
+  Vertex(tip);
+  glEnd();
+  glBegin(GL_TRIANGLES);
+  Vertex(tip);
+  Vertex(tip - head * dir + 0.4 * head * side);
+  Vertex(tip - head * dir - 0.4 * head * side);
+  glEnd();
+}
+
+Eigen::Vector3d V(const double v[3]) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+
+}  // namespace
+
+Color3 SkyColor() { return {0.70f, 0.78f, 0.86f}; }
+
+Color3 BodyColor(const model_t& model, int body) {
+  const body_t& b = model.bodies[static_cast<size_t>(body)];
+  Color c;
+  if (b.robot >= 0) {
+    c = b.geometry.kind == geometry_t::KIND_CYLINDER ? Color{0.20f, 0.20f, 0.22f}
+                                                     : Color{0.95f, 0.68f, 0.12f};
+    const float shade = (body % 2 == 0) ? 1.0f : 0.86f;
+    for (float& v : c) v *= shade;
+  } else if (b.is_static) {
+    c = {0.58f, 0.42f, 0.26f};
+  } else {
+    c = {0.22f, 0.42f, 0.85f};
+  }
+  return c;
+}
+
+Renderer::Renderer() {
+  const FontAtlas atlas = MakeFontAtlas();
+  font_width_ = atlas.width;
+  font_height_ = atlas.height;
+  glGenTextures(1, &font_texture_);
+  glBindTexture(GL_TEXTURE_2D, font_texture_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, atlas.width, atlas.height, 0, GL_ALPHA,
+               GL_UNSIGNED_BYTE, atlas.coverage.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+Renderer::~Renderer() {
+  ReleaseModel();
+  if (font_texture_ != 0) glDeleteTextures(1, &font_texture_);
+}
+
+void Renderer::ReleaseModel() {
+  for (unsigned list : body_lists_)
+    if (list != 0) glDeleteLists(list, 1);
+  body_lists_.clear();
+  if (heightfield_list_ != 0) glDeleteLists(heightfield_list_, 1);
+  if (heightfield_grid_list_ != 0) glDeleteLists(heightfield_grid_list_, 1);
+  heightfield_list_ = heightfield_grid_list_ = 0;
+}
+
+void Renderer::RebuildModel(const Scene& scene) {
+  ReleaseModel();
+  model_generation_ = scene.model_generation();
+  if (!scene.has_model()) return;
+  const model_t& m = scene.model();
+  for (const body_t& b : m.bodies) body_lists_.push_back(CompileMesh(GeometryMesh(b.geometry)));
+  if (m.heightfield.present) {
+    heightfield_list_ = CompileMesh(HeightfieldMesh(m.heightfield, scene.Up()));
+    heightfield_grid_list_ = CompileLines(HeightfieldGrid(m.heightfield, scene.Up(), 1.0, 0.004));
+  }
+}
+
+void Renderer::Draw(const Scene& scene, const Camera& camera, const Toggles& toggles,
+                    const Hud& hud, int width, int height) {
+  if (scene.model_generation() != model_generation_) RebuildModel(scene);
+  glViewport(0, 0, width, height);
+  const Color sky = SkyColor();
+  glClearColor(sky[0], sky[1], sky[2], 1);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+  glMatrixMode(GL_PROJECTION);
+  const Eigen::Matrix4d projection = camera.Projection(static_cast<double>(width) / height);
+  glLoadMatrixd(projection.data());
+  glMatrixMode(GL_MODELVIEW);
+  const Eigen::Matrix4d view = camera.View();
+  glLoadMatrixd(view.data());
+
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_NORMALIZE);  // body meshes are not scaled, but keep normals unit anyway
+  glShadeModel(GL_SMOOTH);
+  // Lights move with the camera (a sun above and to the right of the eye,
+  // a dimmer fill from the left), so the faces turned to the viewer always
+  // differ in shade, from any side.
+  const Eigen::Vector3d up = scene.Up();
+  const Eigen::Vector3d toward_eye = camera.EyeDirection();
+  const Eigen::Vector3d right = up.cross(toward_eye).normalized();
+  const Eigen::Vector3d sun = (0.75 * up + 0.55 * right + 0.35 * toward_eye).normalized();
+  const Eigen::Vector3d fill = (0.2 * up - 0.7 * right + 0.4 * toward_eye).normalized();
+  const GLfloat sun_position[4] = {static_cast<float>(sun.x()), static_cast<float>(sun.y()),
+                                   static_cast<float>(sun.z()), 0};
+  const GLfloat fill_position[4] = {static_cast<float>(fill.x()), static_cast<float>(fill.y()),
+                                    static_cast<float>(fill.z()), 0};
+  const GLfloat sun_diffuse[4] = {0.75f, 0.75f, 0.72f, 1};
+  const GLfloat fill_diffuse[4] = {0.25f, 0.26f, 0.30f, 1};
+  const GLfloat ambient[4] = {0.30f, 0.30f, 0.32f, 1};
+  const GLfloat black[4] = {0, 0, 0, 1};
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);  // terrain seen from below, open shapes
+  glLightfv(GL_LIGHT0, GL_POSITION, sun_position);
+  glLightfv(GL_LIGHT0, GL_DIFFUSE, sun_diffuse);
+  glLightfv(GL_LIGHT0, GL_SPECULAR, black);
+  glLightfv(GL_LIGHT0, GL_AMBIENT, black);
+  glLightfv(GL_LIGHT1, GL_POSITION, fill_position);
+  glLightfv(GL_LIGHT1, GL_DIFFUSE, fill_diffuse);
+  glLightfv(GL_LIGHT1, GL_SPECULAR, black);
+  glLightfv(GL_LIGHT1, GL_AMBIENT, black);
+  glEnable(GL_LIGHT0);
+  glEnable(GL_LIGHT1);
+  glColorMaterial(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE);
+  glEnable(GL_COLOR_MATERIAL);
+
+  if (scene.has_model()) {
+    DrawGround(scene, camera, toggles);
+    DrawBodies(scene, toggles);
+    DrawOverlays(scene, camera, toggles);
+  } else {
+    bodies_drawn_ = 0;
+    if (toggles.grid) {
+      // Something to look at while waiting: the y = 0 grid.
+      glDisable(GL_LIGHTING);
+      SetColor(kGridColor);
+      const double plane[4] = {0, 1, 0, 0};
+      DrawLines(PlaneGrid(plane, camera.target, 20, 1));
+    }
+  }
+  DrawHud(hud, width, height);
+}
+
+void Renderer::DrawGround(const Scene& scene, const Camera& camera, const Toggles& toggles) {
+  const model_t& m = scene.model();
+  // The plane is drawn as a square around the point looked at, large enough
+  // to reach the horizon of any sensible view.
+  const double half = std::max(200.0, 20 * camera.distance);
+  if (m.has_plane) {
+    glEnable(GL_LIGHTING);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1, 1);  // grid lines and resting objects win the depth test
+    SetColor(kPlaneColor);
+    DrawMesh(PlaneMesh(m.plane, camera.target, half));
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
+  if (heightfield_list_ != 0) {
+    glEnable(GL_LIGHTING);
+    if (toggles.wireframe) {
+      glDisable(GL_LIGHTING);
+      glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    } else {
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(1, 1);
+    }
+    glCallList(heightfield_list_);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
+  if (!toggles.grid) return;
+  glDisable(GL_LIGHTING);
+  glLineWidth(1);
+  if (m.has_plane) {
+    SetColor(kGridColor);
+    DrawLines(PlaneGrid(m.plane, camera.target, std::min(half, 60.0), 1.0));
+  } else if (heightfield_grid_list_ == 0) {
+    // No ground at all (free fall worlds): a grid through the origin
+    // perpendicular to up, for scale.
+    const Eigen::Vector3d up = scene.Up();
+    const double plane[4] = {up.x(), up.y(), up.z(), 0};
+    SetColor(kGridColor);
+    DrawLines(PlaneGrid(plane, camera.target, 30, 1.0));
+  }
+  if (heightfield_grid_list_ != 0 && !toggles.wireframe) {
+    SetColor(kFieldGridColor);
+    glCallList(heightfield_grid_list_);
+  }
+}
+
+void Renderer::DrawBodies(const Scene& scene, const Toggles& toggles) {
+  const model_t& m = scene.model();
+  bodies_drawn_ = 0;
+  if (toggles.wireframe) {
+    glDisable(GL_LIGHTING);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glLineWidth(1);
+  } else {
+    glEnable(GL_LIGHTING);
+  }
+  for (int i = 0; i < m.num_bodies && i < static_cast<int>(body_lists_.size()); ++i) {
+    if (body_lists_[static_cast<size_t>(i)] == 0) continue;
+    const Eigen::Matrix4d pose = scene.BodyPose(i).matrix();
+    glPushMatrix();
+    glMultMatrixd(pose.data());
+    Color c = BodyColor(m, i);
+    if (toggles.wireframe)
+      for (float& v : c) v *= 0.6f;  // darker lines read better on the sky
+    SetColor(c);
+    glCallList(body_lists_[static_cast<size_t>(i)]);
+    glPopMatrix();
+    ++bodies_drawn_;
+  }
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+}
+
+void Renderer::DrawOverlays(const Scene& scene, const Camera& camera, const Toggles& toggles) {
+  const model_t& m = scene.model();
+  const state_t* s = scene.state();
+  const Eigen::Vector3d eye = camera.Eye();
+  glDisable(GL_LIGHTING);
+  glLineWidth(2);
+  if (toggles.body_frames) {
+    glBegin(GL_LINES);
+    for (int i = 0; i < m.num_bodies; ++i) {
+      const Eigen::Isometry3d pose = scene.BodyPose(i);
+      const geometry_t& g = m.bodies[static_cast<size_t>(i)].geometry;
+      const double length =
+          std::clamp(0.75 * std::max({g.size[0], g.size[1], g.size[2]}), 0.1, 1.0);
+      for (int axis = 0; axis < 3; ++axis) {
+        Color c{0, 0, 0};
+        c[static_cast<size_t>(axis)] = 1;
+        SetColor(c);
+        Vertex(pose.translation());
+        Vertex(pose.translation() + length * pose.linear().col(axis));
+      }
+    }
+    glEnd();
+  }
+  if (s != nullptr && toggles.contact_forces) {
+    SetColor(kContactForceColor);
+    for (int i = 0; i < s->num_bodies; ++i) {
+      const body_state_t& b = s->bodies[static_cast<size_t>(i)];
+      DrawArrow(V(b.position), kForceArrowScale * V(b.contact_force), eye);
+    }
+  }
+  if (s != nullptr && toggles.joint_forces) {
+    SetColor(kJointForceColor);
+    for (int j = 0; j < s->num_joints; ++j) {
+      const joint_state_t& js = s->joints[static_cast<size_t>(j)];
+      DrawArrow(V(js.anchor), kForceArrowScale * V(js.force1), eye);
+    }
+  }
+  if (toggles.scanner_rays) {
+    for (const auto& [index, reading] : scene.scans()) {
+      const sensor_t& sensor = m.sensors[static_cast<size_t>(index)];
+      if (sensor.body < 0) continue;
+      Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();
+      mount.linear() = Eigen::Quaterniond(sensor.orientation[0], sensor.orientation[1],
+                                          sensor.orientation[2], sensor.orientation[3])
+                           .normalized()
+                           .toRotationMatrix();
+      mount.translation() = V(sensor.position);
+      const Eigen::Isometry3d world = scene.BodyPose(sensor.body) * mount;
+      // params: rays, half-span [rad], range [m]; the reading's own count wins.
+      const double half_span = sensor.num_params >= 2 ? sensor.params[1] : 0.1;
+      const double range = sensor.num_params >= 3 ? sensor.params[2] : 10.0;
+      const int rays = reading.num_values;
+      std::vector<Eigen::Vector3d> hits;
+      glBegin(GL_LINES);
+      SetColor(kRayColor, 0.8f);
+      for (int k = 0; k < rays; ++k) {
+        // As the sim casts them: around the sensor's z axis in its z-x plane.
+        const double angle = rays == 1 ? 0.0 : -half_span + 2.0 * half_span * k / (rays - 1);
+        const Eigen::Vector3d direction =
+            world.linear() * Eigen::Vector3d(std::sin(angle), 0.0, std::cos(angle));
+        const double distance = reading.values[static_cast<size_t>(k)];
+        const Eigen::Vector3d end = world.translation() + distance * direction;
+        Vertex(world.translation());
+        Vertex(end);
+        if (distance < range * 0.9999) hits.push_back(end);
+      }
+      glEnd();
+      glPointSize(6);
+      glBegin(GL_POINTS);
+      SetColor(kHitColor);
+      for (const Eigen::Vector3d& h : hits) Vertex(h);
+      glEnd();
+    }
+  }
+  glLineWidth(1);
+}
+
+void Renderer::DrawText(const std::string& text, float x, float y, float scale, const Color& color,
+                        float alpha) {
+  const float w = kCellWidth * scale, h = kCellHeight * scale;
+  const int glyphs = kLastGlyph - kFirstGlyph + 1;
+  SetColor(color, alpha);
+  glBegin(GL_QUADS);
+  for (char ch : text) {
+    if (ch < kFirstGlyph || ch > kLastGlyph) ch = '?';
+    const float u0 = static_cast<float>(ch - kFirstGlyph) / glyphs;
+    const float u1 = static_cast<float>(ch - kFirstGlyph + 1) / glyphs;
+    glTexCoord2f(u0, 0);
+    glVertex2f(x, y);
+    glTexCoord2f(u1, 0);
+    glVertex2f(x + w, y);
+    glTexCoord2f(u1, 1);
+    glVertex2f(x + w, y + h);
+    glTexCoord2f(u0, 1);
+    glVertex2f(x, y + h);
+    x += w;
+  }
+  glEnd();
+}
+
+void Renderer::DrawHud(const Hud& hud, int width, int height) {
+  // Pixel coordinates, y down.
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(0, width, height, 0, -1, 1);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_LIGHTING);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+
+  auto panel = [&](float x0, float y0, float x1, float y1, float alpha) {
+    glDisable(GL_TEXTURE_2D);
+    glColor4f(0.05f, 0.06f, 0.08f, alpha);
+    glBegin(GL_QUADS);
+    glVertex2f(x0, y0);
+    glVertex2f(x1, y0);
+    glVertex2f(x1, y1);
+    glVertex2f(x0, y1);
+    glEnd();
+  };
+  auto text_width = [](const std::string& t, float scale) {
+    return static_cast<float>(t.size()) * kCellWidth * scale;
+  };
+  auto lines_panel = [&](const std::vector<HudLine>& lines, float y0) {
+    float widest = 0;
+    for (const HudLine& l : lines) widest = std::max(widest, text_width(l.text, kHudScale));
+    panel(0, y0, widest + 16, y0 + lines.size() * kHudLineHeight + 6, 0.55f);
+    glEnable(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, font_texture_);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+    float y = y0 + 5;
+    for (const HudLine& l : lines) {
+      DrawText(l.text, 8, y, kHudScale, l.color);
+      y += kHudLineHeight;
+    }
+  };
+  if (!hud.top.empty()) lines_panel(hud.top, 0);
+  if (!hud.bottom.empty())
+    lines_panel(hud.bottom, height - hud.bottom.size() * kHudLineHeight - 6);
+  if (!hud.key_help.empty()) {
+    float widest = 0;
+    for (const std::string& l : hud.key_help) widest = std::max(widest, text_width(l, kHudScale));
+    const float box_h = hud.key_help.size() * kHudLineHeight + 16;
+    const float x0 = std::max(0.0f, (width - widest) / 2 - 12);
+    const float y0 = std::max(0.0f, (height - box_h) / 2);
+    panel(x0, y0, x0 + widest + 24, y0 + box_h, 0.8f);
+    glEnable(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, font_texture_);
+    float y = y0 + 8;
+    for (const std::string& l : hud.key_help) {
+      DrawText(l, x0 + 12, y, kHudScale, {1, 1, 1});
+      y += kHudLineHeight;
+    }
+  }
+  glDisable(GL_TEXTURE_2D);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+}
+
+RgbImage Renderer::ReadPixels(int width, int height) const {
+  RgbImage image;
+  image.width = width;
+  image.height = height;
+  std::vector<uint8_t> bottom_up(static_cast<size_t>(width) * height * 3);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_BACK);
+  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, bottom_up.data());
+  image.pixels.resize(bottom_up.size());
+  const size_t row = static_cast<size_t>(width) * 3;
+  for (int y = 0; y < height; ++y)
+    std::copy_n(bottom_up.data() + (height - 1 - y) * row, row, image.pixels.data() + y * row);
+  return image;
+}
+
+}  // namespace simpartner::viewer
