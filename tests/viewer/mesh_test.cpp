@@ -113,12 +113,14 @@ TEST(MeshTest, HeightfieldSamplesSitWhereTheSimPutsThem) {
   EXPECT_TRUE(b.min().isApprox(Eigen::Vector3f(7, -0.9f, -1), 1e-5));
   EXPECT_TRUE(b.max().isApprox(Eigen::Vector3f(13, 1.1f, 1), 1e-5));
   // Seen from above: every face and normal points up.
-  for (size_t t = 0; t < m.positions.size(); t += 3) {
-    const Eigen::Vector3f face =
-        (m.positions[t + 1] - m.positions[t]).cross(m.positions[t + 2] - m.positions[t]);
-    EXPECT_GT(face.y(), 0);
-    EXPECT_GT(m.normals[t].y(), 0);
+  for (size_t t = 0; t < m.triangles(); ++t) {
+    const Eigen::Vector3f a = m.positions[m.Corner(t, 0)], b = m.positions[m.Corner(t, 1)],
+                          c = m.positions[m.Corner(t, 2)];
+    EXPECT_GT((b - a).cross(c - a).y(), 0);
+    EXPECT_GT(m.normals[m.Corner(t, 0)].y(), 0);
   }
+  // Neighbouring triangles share their vertices: one per sample.
+  EXPECT_EQ(m.positions.size(), 12u);
   // The peak is lighter than the flat ground.
   size_t peak_index = 0, flat_index = 0;
   for (size_t i = 0; i < m.positions.size(); ++i) {
@@ -138,13 +140,23 @@ TEST(MeshTest, HeightfieldTurnsWithUp) {
   EXPECT_NEAR(top, 2.1f, 1e-5);
 }
 
-TEST(MeshTest, HeightfieldGridFollowsWholeMetres) {
+TEST(MeshTest, HeightfieldGridFollowsWholeMetresAndSkipsFlatStretches) {
   heightfield_t f = Field();  // columns at x = 7, 9, 11, 13; rows at z = -1, 0, 1
-  const Lines grid = HeightfieldGrid(f, Eigen::Vector3d::UnitY(), 1.0, 0.01);
-  // Four column lines of 2 segments (7, 9, 11, 13 are each nearest to a
-  // whole metre) and three row lines of 3 segments.
-  EXPECT_EQ(grid.segments(), 4u * 2 + 3u * 3);
-  for (const Eigen::Vector3f& p : grid.positions) EXPECT_GE(p.y(), -0.9f + 0.01f - 1e-5);
+  const Lines grid = HeightfieldGrid(f, Eigen::Vector3d::UnitY(), 1.0, 0.01, 0.001);
+  // 7, 9, 11, 13 are each the column nearest a whole metre and the rows lie
+  // on whole metres. Flat lines are one segment; the line through the peak
+  // (column 1, row 1) keeps every sample: 2 + 1 + 1 + 1 column segments,
+  // 1 + 3 + 1 row segments.
+  EXPECT_EQ(grid.segments(), 5u + 5u);
+  bool through_peak = false;
+  for (const Eigen::Vector3f& p : grid.positions) {
+    EXPECT_GE(p.y(), -0.9f + 0.01f - 1e-5);
+    through_peak |= (p - Eigen::Vector3f(9, 1.11f, 0)).norm() < 1e-5;
+  }
+  EXPECT_TRUE(through_peak);
+  // Without simplification every sample is a vertex: 4 lines of 2 and 3
+  // lines of 3 segments.
+  EXPECT_EQ(HeightfieldGrid(f, Eigen::Vector3d::UnitY(), 1.0, 0.01, -1).segments(), 4u * 2 + 3u * 3);
 }
 
 TEST(MeshTest, PlaneSquareLiesOnThePlaneFacingItsNormal) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace simpartner::viewer {
 namespace {
@@ -190,31 +191,67 @@ Mesh HeightfieldMesh(const heightfield_t& f, const Eigen::Vector3d& up) {
   // Snow: bluish grey in the hollows to white on the tops.
   auto color = [&](double height) {
     const float t = hi > lo ? static_cast<float>((height - lo) / (hi - lo)) : 1.0f;
-    return V3(0.66f + 0.28f * t, 0.72f + 0.24f * t, 0.80f + 0.17f * t);
+    return V3(0.60f + 0.26f * t, 0.66f + 0.23f * t, 0.75f + 0.18f * t);
   };
-  auto vertex = [&](int r, int c) {
-    // Eigen expressions must become values here, not outlive their operands.
-    return std::make_tuple(V3((turn * FieldPoint(f, r, c) + at).cast<float>()),
-                           V3((turn * local_normal(r, c)).cast<float>()),
-                           color(HeightfieldSample(f, r, c)));
-  };
-  m.positions.reserve(static_cast<size_t>(f.rows - 1) * (f.columns - 1) * 6);
+  const size_t count = static_cast<size_t>(f.rows) * f.columns;
+  m.positions.reserve(count);
+  m.normals.reserve(count);
+  m.colors.reserve(count);
+  for (int r = 0; r < f.rows; ++r)
+    for (int c = 0; c < f.columns; ++c) {
+      m.positions.push_back((turn * FieldPoint(f, r, c) + at).cast<float>());
+      m.normals.push_back((turn * local_normal(r, c)).cast<float>());
+      m.colors.push_back(color(HeightfieldSample(f, r, c)));
+    }
+  auto index = [&](int r, int c) { return static_cast<uint32_t>(r * f.columns + c); };
+  m.indices.reserve(static_cast<size_t>(f.rows - 1) * (f.columns - 1) * 6);
   for (int r = 0; r + 1 < f.rows; ++r)
     for (int c = 0; c + 1 < f.columns; ++c) {
-      const auto [p00, n00, k00] = vertex(r, c);
-      const auto [p01, n01, k01] = vertex(r, c + 1);
-      const auto [p10, n10, k10] = vertex(r + 1, c);
-      const auto [p11, n11, k11] = vertex(r + 1, c + 1);
       // Counter-clockwise seen from above (+y): (r, c) -> (r + 1, c) -> (r, c + 1).
-      Triangle(&m, p00, p10, p01, n00, n10, n01);
-      Triangle(&m, p01, p10, p11, n01, n10, n11);
-      m.colors.insert(m.colors.end(), {k00, k10, k01, k01, k10, k11});
+      m.indices.insert(m.indices.end(), {index(r, c), index(r + 1, c), index(r, c + 1),
+                                         index(r, c + 1), index(r + 1, c), index(r + 1, c + 1)});
     }
   return m;
 }
 
+namespace {
+
+// Indices of the points of polyline (t[i], h[i]) that Douglas-Peucker keeps
+// at `tolerance` (always the first and the last).
+std::vector<int> Simplify(const std::vector<double>& t, const std::vector<double>& h,
+                          double tolerance) {
+  const int n = static_cast<int>(t.size());
+  std::vector<bool> keep(static_cast<size_t>(n), false);
+  keep.front() = keep.back() = true;
+  std::vector<std::pair<int, int>> spans = {{0, n - 1}};
+  while (!spans.empty()) {
+    const auto [a, b] = spans.back();
+    spans.pop_back();
+    int worst = -1;
+    double worst_error = tolerance;
+    for (int i = a + 1; i < b; ++i) {
+      const double chord = h[a] + (h[b] - h[a]) * (t[i] - t[a]) / (t[b] - t[a]);
+      const double error = std::abs(h[i] - chord);
+      if (error > worst_error) {
+        worst_error = error;
+        worst = i;
+      }
+    }
+    if (worst < 0) continue;
+    keep[static_cast<size_t>(worst)] = true;
+    spans.push_back({a, worst});
+    spans.push_back({worst, b});
+  }
+  std::vector<int> kept;
+  for (int i = 0; i < n; ++i)
+    if (keep[static_cast<size_t>(i)]) kept.push_back(i);
+  return kept;
+}
+
+}  // namespace
+
 Lines HeightfieldGrid(const heightfield_t& f, const Eigen::Vector3d& up, double spacing,
-                      double lift) {
+                      double lift, double tolerance) {
   Lines lines;
   if (!f.present || f.rows < 2 || f.columns < 2 || spacing <= 0) return lines;
   const Eigen::Matrix3d turn = UpRotation(up);
@@ -223,8 +260,8 @@ Lines HeightfieldGrid(const heightfield_t& f, const Eigen::Vector3d& up, double 
   auto world = [&](int r, int c) -> V3 {
     return (turn * (FieldPoint(f, r, c) + lift_local) + at).cast<float>();
   };
-  // Sample indices nearest to each multiple of spacing (in world-ish
-  // coordinates along that axis, so lines of neighbouring fields agree).
+  // Sample indices nearest to each multiple of spacing, measured in world
+  // coordinates along that axis so that lines continue onto the plane grid.
   auto lines_at = [&](int count, double extent, double centre) {
     std::vector<int> picked;
     const double step = extent / (count - 1);
@@ -236,12 +273,23 @@ Lines HeightfieldGrid(const heightfield_t& f, const Eigen::Vector3d& up, double 
     }
     return picked;
   };
+  auto add_line = [&](int count, const std::function<std::pair<int, int>(int)>& sample) {
+    std::vector<double> t(static_cast<size_t>(count)), h(static_cast<size_t>(count));
+    for (int i = 0; i < count; ++i) {
+      t[static_cast<size_t>(i)] = i;
+      h[static_cast<size_t>(i)] = HeightfieldSample(f, sample(i).first, sample(i).second);
+    }
+    const std::vector<int> kept = Simplify(t, h, tolerance);
+    for (size_t k = 0; k + 1 < kept.size(); ++k) {
+      const auto [r0, c0] = sample(kept[k]);
+      const auto [r1, c1] = sample(kept[k + 1]);
+      lines.positions.insert(lines.positions.end(), {world(r0, c0), world(r1, c1)});
+    }
+  };
   for (int c : lines_at(f.columns, f.width, f.position[0]))
-    for (int r = 0; r + 1 < f.rows; ++r)
-      lines.positions.insert(lines.positions.end(), {world(r, c), world(r + 1, c)});
+    add_line(f.rows, [c](int i) { return std::make_pair(i, c); });
   for (int r : lines_at(f.rows, f.depth, f.position[2]))
-    for (int c = 0; c + 1 < f.columns; ++c)
-      lines.positions.insert(lines.positions.end(), {world(r, c), world(r, c + 1)});
+    add_line(f.columns, [r](int i) { return std::make_pair(r, i); });
   return lines;
 }
 

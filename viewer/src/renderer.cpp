@@ -1,5 +1,7 @@
 #include "simpartner/viewer/renderer.h"
 
+// Buffer objects (GL 1.5) are called directly: libGL (glvnd) exports them.
+#define GL_GLEXT_PROTOTYPES 1
 #include <SDL2/SDL_opengl.h>
 
 #include <algorithm>
@@ -49,17 +51,64 @@ unsigned CompileMesh(const Mesh& mesh) {
   return list;
 }
 
-unsigned CompileLines(const Lines& lines) {
-  if (lines.positions.empty()) return 0;
-  const unsigned list = glGenLists(1);
-  glNewList(list, GL_COMPILE);
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glVertexPointer(3, GL_FLOAT, sizeof(Eigen::Vector3f), lines.positions.data());
-  glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(lines.positions.size()));
-  glDisableClientState(GL_VERTEX_ARRAY);
-  glEndList();
-  return list;
-}
+}  // namespace
+
+// A large indexed mesh in buffer objects: positions, normals and colours
+// one after the other in one buffer, the indices in another.
+struct Renderer::BufferMesh {
+  GLuint vertices = 0;
+  GLuint indices = 0;
+  GLsizei index_count = 0;
+  size_t normals_offset = 0;
+  size_t colors_offset = 0;
+
+  explicit BufferMesh(const Mesh& mesh) {
+    const size_t block = mesh.positions.size() * sizeof(Eigen::Vector3f);
+    normals_offset = block;
+    colors_offset = 2 * block;
+    glGenBuffers(1, &vertices);
+    glBindBuffer(GL_ARRAY_BUFFER, vertices);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(3 * block), nullptr, GL_STATIC_DRAW);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(block), mesh.positions.data());
+    glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(block), static_cast<GLsizeiptr>(block),
+                    mesh.normals.data());
+    glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(2 * block),
+                    static_cast<GLsizeiptr>(block), mesh.colors.data());
+    glGenBuffers(1, &indices);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)),
+                 mesh.indices.data(), GL_STATIC_DRAW);
+    index_count = static_cast<GLsizei>(mesh.indices.size());
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  }
+  ~BufferMesh() {
+    glDeleteBuffers(1, &vertices);
+    glDeleteBuffers(1, &indices);
+  }
+  BufferMesh(const BufferMesh&) = delete;
+  BufferMesh& operator=(const BufferMesh&) = delete;
+
+  void Draw() const {
+    glBindBuffer(GL_ARRAY_BUFFER, vertices);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glEnableClientState(GL_NORMAL_ARRAY);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glVertexPointer(3, GL_FLOAT, 0, nullptr);
+    glNormalPointer(GL_FLOAT, 0, reinterpret_cast<const void*>(normals_offset));
+    glColorPointer(3, GL_FLOAT, 0, reinterpret_cast<const void*>(colors_offset));
+    glDrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
+    glDisableClientState(GL_COLOR_ARRAY);
+    glDisableClientState(GL_NORMAL_ARRAY);
+    glDisableClientState(GL_VERTEX_ARRAY);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  }
+};
+
+namespace {
 
 void DrawLines(const Lines& lines) {
   glEnableClientState(GL_VERTEX_ARRAY);
@@ -104,7 +153,7 @@ Eigen::Vector3d V(const double v[3]) { return Eigen::Vector3d(v[0], v[1], v[2]);
 
 }  // namespace
 
-Color3 SkyColor() { return {0.70f, 0.78f, 0.86f}; }
+Color3 SkyColor() { return {0.47f, 0.64f, 0.86f}; }
 
 Color3 BodyColor(const model_t& model, int body) {
   const body_t& b = model.bodies[static_cast<size_t>(body)];
@@ -117,7 +166,7 @@ Color3 BodyColor(const model_t& model, int body) {
   } else if (b.is_static) {
     c = {0.58f, 0.42f, 0.26f};
   } else {
-    c = {0.22f, 0.42f, 0.85f};
+    c = {0.80f, 0.25f, 0.20f};
   }
   return c;
 }
@@ -135,6 +184,7 @@ Renderer::Renderer() {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, atlas.width, atlas.height, 0, GL_ALPHA,
                GL_UNSIGNED_BYTE, atlas.coverage.data());
+
   glBindTexture(GL_TEXTURE_2D, 0);
 }
 
@@ -147,9 +197,8 @@ void Renderer::ReleaseModel() {
   for (unsigned list : body_lists_)
     if (list != 0) glDeleteLists(list, 1);
   body_lists_.clear();
-  if (heightfield_list_ != 0) glDeleteLists(heightfield_list_, 1);
-  if (heightfield_grid_list_ != 0) glDeleteLists(heightfield_grid_list_, 1);
-  heightfield_list_ = heightfield_grid_list_ = 0;
+  heightfield_.reset();
+  heightfield_grid_.positions.clear();
 }
 
 void Renderer::RebuildModel(const Scene& scene) {
@@ -159,8 +208,10 @@ void Renderer::RebuildModel(const Scene& scene) {
   const model_t& m = scene.model();
   for (const body_t& b : m.bodies) body_lists_.push_back(CompileMesh(GeometryMesh(b.geometry)));
   if (m.heightfield.present) {
-    heightfield_list_ = CompileMesh(HeightfieldMesh(m.heightfield, scene.Up()));
-    heightfield_grid_list_ = CompileLines(HeightfieldGrid(m.heightfield, scene.Up(), 1.0, 0.004));
+    heightfield_ = std::make_unique<BufferMesh>(HeightfieldMesh(m.heightfield, scene.Up()));
+    // Lines cost llvmpipe per segment: straight stretches become one
+    // segment, lifted above the surface by more than they may cut into it.
+    heightfield_grid_ = HeightfieldGrid(m.heightfield, scene.Up(), 1.0, 0.012, 0.006);
   }
 }
 
@@ -196,9 +247,9 @@ void Renderer::Draw(const Scene& scene, const Camera& camera, const Toggles& tog
                                    static_cast<float>(sun.z()), 0};
   const GLfloat fill_position[4] = {static_cast<float>(fill.x()), static_cast<float>(fill.y()),
                                     static_cast<float>(fill.z()), 0};
-  const GLfloat sun_diffuse[4] = {0.75f, 0.75f, 0.72f, 1};
-  const GLfloat fill_diffuse[4] = {0.25f, 0.26f, 0.30f, 1};
-  const GLfloat ambient[4] = {0.30f, 0.30f, 0.32f, 1};
+  const GLfloat sun_diffuse[4] = {0.68f, 0.68f, 0.65f, 1};
+  const GLfloat fill_diffuse[4] = {0.22f, 0.23f, 0.27f, 1};
+  const GLfloat ambient[4] = {0.28f, 0.28f, 0.30f, 1};
   const GLfloat black[4] = {0, 0, 0, 1};
   glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
   glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);  // terrain seen from below, open shapes
@@ -234,28 +285,28 @@ void Renderer::Draw(const Scene& scene, const Camera& camera, const Toggles& tog
 
 void Renderer::DrawGround(const Scene& scene, const Camera& camera, const Toggles& toggles) {
   const model_t& m = scene.model();
-  // The plane is drawn as a square around the point looked at, large enough
-  // to reach the horizon of any sensible view.
-  const double half = std::max(200.0, 20 * camera.distance);
-  if (m.has_plane) {
-    glEnable(GL_LIGHTING);
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1, 1);  // grid lines and resting objects win the depth test
-    SetColor(kPlaneColor);
-    DrawMesh(PlaneMesh(m.plane, camera.target, half));
-    glDisable(GL_POLYGON_OFFSET_FILL);
-  }
-  if (heightfield_list_ != 0) {
-    glEnable(GL_LIGHTING);
+  const Eigen::Vector3d up = scene.Up();
+  // The heightfield first, then the plane, so that the part of the plane
+  // hidden under the terrain fails the depth test early.
+  if (heightfield_) {
     if (toggles.wireframe) {
       glDisable(GL_LIGHTING);
       glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     } else {
-      glEnable(GL_POLYGON_OFFSET_FILL);
-      glPolygonOffset(1, 1);
+      glEnable(GL_LIGHTING);
     }
-    glCallList(heightfield_list_);
+    heightfield_->Draw();
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
+  if (m.has_plane) {
+    // A square around the point looked at, large enough to reach the
+    // horizon of any sensible view.
+    const double half = std::max(200.0, 20 * camera.distance);
+    glEnable(GL_LIGHTING);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1, 1);  // grid lines and bodies resting on it win the depth test
+    SetColor(kPlaneColor);
+    DrawMesh(PlaneMesh(m.plane, camera.target, half));
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
   if (!toggles.grid) return;
@@ -263,18 +314,17 @@ void Renderer::DrawGround(const Scene& scene, const Camera& camera, const Toggle
   glLineWidth(1);
   if (m.has_plane) {
     SetColor(kGridColor);
-    DrawLines(PlaneGrid(m.plane, camera.target, std::min(half, 60.0), 1.0));
-  } else if (heightfield_grid_list_ == 0) {
-    // No ground at all (free fall worlds): a grid through the origin
-    // perpendicular to up, for scale.
-    const Eigen::Vector3d up = scene.Up();
+    DrawLines(PlaneGrid(m.plane, camera.target, 30.0, 1.0));
+  } else if (!heightfield_) {
+    // No ground at all (free fall worlds): grid lines through the origin
+    // across up, for scale.
     const double plane[4] = {up.x(), up.y(), up.z(), 0};
     SetColor(kGridColor);
     DrawLines(PlaneGrid(plane, camera.target, 30, 1.0));
   }
-  if (heightfield_grid_list_ != 0 && !toggles.wireframe) {
+  if (heightfield_ && !toggles.wireframe && !heightfield_grid_.positions.empty()) {
     SetColor(kFieldGridColor);
-    glCallList(heightfield_grid_list_);
+    DrawLines(heightfield_grid_);
   }
 }
 
@@ -446,9 +496,19 @@ void Renderer::DrawHud(const Hud& hud, int width, int height) {
   if (!hud.bottom.empty())
     lines_panel(hud.bottom, height - hud.bottom.size() * kHudLineHeight - 6);
   if (!hud.key_help.empty()) {
-    float widest = 0;
-    for (const std::string& l : hud.key_help) widest = std::max(widest, text_width(l, kHudScale));
-    const float box_h = hud.key_help.size() * kHudLineHeight + 16;
+    // Half size when the list does not fit the window at the HUD's size.
+    float scale = kHudScale;
+    auto widest_at = [&](float sc) {
+      float widest = 0;
+      for (const std::string& l : hud.key_help) widest = std::max(widest, text_width(l, sc));
+      return widest;
+    };
+    const float line_height_2 = kCellHeight * kHudScale + 4;
+    if (widest_at(kHudScale) + 24 > width || hud.key_help.size() * line_height_2 + 16 > height)
+      scale = 1.0f;
+    const float line_height = kCellHeight * scale + 2 * scale;
+    const float widest = widest_at(scale);
+    const float box_h = hud.key_help.size() * line_height + 16;
     const float x0 = std::max(0.0f, (width - widest) / 2 - 12);
     const float y0 = std::max(0.0f, (height - box_h) / 2);
     panel(x0, y0, x0 + widest + 24, y0 + box_h, 0.8f);
@@ -456,8 +516,8 @@ void Renderer::DrawHud(const Hud& hud, int width, int height) {
     glBindTexture(GL_TEXTURE_2D, font_texture_);
     float y = y0 + 8;
     for (const std::string& l : hud.key_help) {
-      DrawText(l, x0 + 12, y, kHudScale, {1, 1, 1});
-      y += kHudLineHeight;
+      DrawText(l, x0 + 12, y, scale, {1, 1, 1});
+      y += line_height;
     }
   }
   glDisable(GL_TEXTURE_2D);

@@ -13,14 +13,21 @@
 
 namespace simpartner::viewer {
 
-// Separate triangles (3 vertices each) with per-vertex normals and,
-// optionally, per-vertex colours (RGB 0..1).
+// Triangles with per-vertex normals and, optionally, per-vertex colours
+// (RGB 0..1). Without indices every 3 vertices are a triangle; with them
+// (large meshes: vertices shared by up to 6 triangles are lit once) every
+// 3 indices are.
 struct Mesh {
   std::vector<Eigen::Vector3f> positions;
   std::vector<Eigen::Vector3f> normals;
   std::vector<Eigen::Vector3f> colors;  // empty: one colour for the mesh
-  size_t triangles() const { return positions.size() / 3; }
-  void Append(const Mesh& other);
+  std::vector<uint32_t> indices;        // empty: not indexed
+  size_t triangles() const { return (indices.empty() ? positions.size() : indices.size()) / 3; }
+  // Vertex k (0..2) of triangle t.
+  size_t Corner(size_t t, int k) const {
+    return indices.empty() ? 3 * t + k : indices[3 * t + k];
+  }
+  void Append(const Mesh& other);  // both not indexed
 };
 
 // Line segments (2 vertices each).
@@ -46,10 +53,12 @@ Mesh GeometryMesh(const geometry_t& geometry);
 Mesh HeightfieldMesh(const heightfield_t& field, const Eigen::Vector3d& up);
 // Height (along up, before the position offset) of sample (row, column).
 double HeightfieldSample(const heightfield_t& field, int row, int column);
-// Lines on the heightfield surface along the sample rows and columns that
-// lie nearest to every `spacing` metres, lifted by `lift` along up.
+// Grid lines on the heightfield surface along the sample rows and columns
+// that lie nearest to every `spacing` metres, lifted by `lift` along up.
+// Samples where a line stays within `tolerance` of a straight chord are
+// left out (Douglas-Peucker), so flat stretches cost one segment.
 Lines HeightfieldGrid(const heightfield_t& field, const Eigen::Vector3d& up, double spacing,
-                      double lift);
+                      double lift, double tolerance);
 
 // A square of half-size `half` on the plane a*x + b*y + c*z = d, centred on
 // the point of the plane nearest to `around`; normal (a, b, c) normalised.

@@ -7,10 +7,12 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "simpartner/viewer/camera.h"
+#include "simpartner/viewer/mesh.h"
 #include "simpartner/viewer/options.h"
 #include "simpartner/viewer/png_image.h"
 #include "simpartner/viewer/scene.h"
@@ -32,7 +34,7 @@ struct Hud {
 };
 
 // Colour (RGB 0..1) a body is drawn in: robots in WorkPartner yellow with
-// dark wheels, moving objects blue, fixed objects wood brown. Parts of a
+// dark wheels, moving objects red, fixed objects wood brown. Parts of a
 // robot alternate slightly in brightness so that neighbours stay apart.
 Color3 BodyColor(const model_t& model, int body);
 // Background colour (RGB 0..1).
@@ -64,10 +66,12 @@ class Renderer {
   void DrawText(const std::string& text, float x, float y, float scale, const Color3& color,
                 float alpha = 1.0f);
 
+  struct BufferMesh;
+
   int64_t model_generation_ = -1;
   std::vector<unsigned> body_lists_;  // one display list per body (0: nothing to draw)
-  unsigned heightfield_list_ = 0;
-  unsigned heightfield_grid_list_ = 0;
+  std::unique_ptr<BufferMesh> heightfield_;
+  Lines heightfield_grid_;
   unsigned font_texture_ = 0;
   int font_width_ = 0;
   int font_height_ = 0;
