@@ -1,0 +1,475 @@
+// simpartner-viewer as a real process: its own Xvfb per test, a real
+// simpartner-sim, real LCM multicast (udpm, ttl=0, a port per test). The
+// screenshots are checked pixel by pixel: each body appears where the pose
+// in SIM_STATE says, projected with the viewer's camera maths, and the sky
+// shows where nothing is.
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "simpartner/channels.h"
+#include "simpartner/child_process.h"
+#include "simpartner/control_t.hpp"
+#include "simpartner/model_t.hpp"
+#include "simpartner/state_t.hpp"
+#include "simpartner/viewer/camera.h"
+#include "simpartner/viewer/options.h"
+#include "simpartner/viewer/png_image.h"
+#include "simpartner/viewer/xvfb.h"
+
+namespace simpartner::viewer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kWidth = 800;
+constexpr int kHeight = 450;
+// Looks along -x at (0, 1.2, 0) from 6 m, 8 degrees from above.
+constexpr const char* kCamera = "0,1.2,0,0,8,6";
+
+std::string UniqueUrl(int offset) {
+  const int port = 20000 + (static_cast<int>(::getpid()) * 11 + 7919 + offset) % 20000;
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
+}
+
+std::string Transform(double x, double y, double z, double yaw_deg = 0) {
+  const double c = std::cos(yaw_deg * M_PI / 180), s = std::sin(yaw_deg * M_PI / 180);
+  std::ostringstream t;
+  t << "<transformation><T00>" << c << "</T00><T01>0</T01><T02>" << s << "</T02><T03>" << x
+    << "</T03><T10>0</T10><T11>1</T11><T12>0</T12><T13>" << y
+    << "</T13><T20>" << -s << "</T20><T21>0</T21><T22>" << c << "</T22><T23>" << z
+    << "</T23></transformation>";
+  return t.str();
+}
+
+// No ground, so the sky is behind every body: a fixed box, cylinder and
+// capsule, and a pendulum (a sphere hinged to the world 1 m from its
+// anchor, released level) that swings in the image plane.
+std::string ShapesWorld() {
+  return R"(<world name="ViewerShapes">
+  <gravity><x>0</x><y>-9.81</y><z>0</z></gravity>
+  <object type="Box" name="Crate" static="true"><size><x>0.8</x><y>0.8</y><z>0.8</z></size>)" +
+         Transform(0, 0.6, 1.3, 30) + R"(</object>
+  <object type="Cylinder" name="Drum" static="true"><radius>0.3</radius><length>0.8</length>)" +
+         Transform(0.3, 0.5, -1.3) + R"(</object>
+  <object type="Capsule" name="Pill" static="true"><radius>0.15</radius><length>0.5</length>)" +
+         Transform(-0.5, 0.2, 0) + R"(</object>
+  <object type="Sphere" name="Bob"><mass>1</mass><radius>0.2</radius>)" +
+         Transform(0, 2.4, -1.0) + R"(</object>
+  <joint type="Hinge" name="Swing"><body1>Bob</body1><body2>world</body2>
+    <anchor><x>0</x><y>2.4</y><z>0</z></anchor><axis1><x>1</x><y>0</y><z>0</z></axis1></joint>
+</world>)";
+}
+
+// A plane, a bumpy heightfield and a fixed sphere high up where
+// ViewerShapes has only sky.
+std::string TerrainWorld() {
+  std::string samples;
+  for (int r = 0; r < 5; ++r)
+    for (int c = 0; c < 7; ++c) samples += std::to_string((r * 3 + c * 5) % 4) + " ";
+  return R"(<world name="ViewerTerrain">
+  <gravity><x>0</x><y>-9.81</y><z>0</z></gravity>
+  <surface><a>0</a><b>1</b><c>0</c><d>-0.5</d></surface>
+  <heightfield rows="5" columns="7"><width>6</width><depth>4</depth><scale>0.1</scale>
+    <position><x>0</x><y>0</y><z>0</z></position><samples>)" +
+         samples + R"(</samples></heightfield>
+  <object type="Sphere" name="Beacon" static="true"><radius>0.3</radius>)" +
+         Transform(0, 3.0, 1.6) + R"(</object>
+</world>)";
+}
+
+struct Pose {
+  Eigen::Vector3d position;
+};
+
+// Test side of the bus: the model and every body position by step.
+class Listener {
+ public:
+  explicit Listener(const std::string& url) : lcm_(url) {
+    EXPECT_TRUE(lcm_.good());
+    lcm_.subscribe(channels::kState, &Listener::OnState, this)->setQueueCapacity(100000);
+    lcm_.subscribe(channels::kModel, &Listener::OnModel, this);
+  }
+  lcm::LCM& lcm() { return lcm_; }
+  bool Until(const std::function<bool()>& pred, double seconds) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (!pred() && Clock::now() < end) lcm_.handleTimeout(10);
+    return pred();
+  }
+  void Pump(double seconds) {
+    Until([] { return false; }, seconds);
+  }
+  int BodyIndex(const std::string& name) const {
+    for (const body_t& b : model.bodies)
+      if (b.name == name) return b.id;
+    ADD_FAILURE() << "no body " << name;
+    return 0;
+  }
+
+  model_t model;
+  bool has_model = false;
+  std::map<int64_t, std::vector<Eigen::Vector3d>> positions;  // step -> body positions
+  int64_t last_simulation = 0;
+
+ private:
+  void OnState(const lcm::ReceiveBuffer*, const std::string&, const state_t* s) {
+    std::vector<Eigen::Vector3d>& p = positions[s->step];
+    p.clear();
+    for (const body_state_t& b : s->bodies)
+      p.emplace_back(b.position[0], b.position[1], b.position[2]);
+    last_simulation = s->simulation_id;
+  }
+  void OnModel(const lcm::ReceiveBuffer*, const std::string&, const model_t* m) {
+    model = *m;
+    has_model = true;
+  }
+  lcm::LCM lcm_;
+};
+
+double ColorDistance(const RgbImage::Rgb& a, const RgbImage::Rgb& b) {
+  return std::sqrt(static_cast<double>((a.r - b.r) * (a.r - b.r) + (a.g - b.g) * (a.g - b.g) +
+                                       (a.b - b.b) * (a.b - b.b)));
+}
+
+class ViewerProcessTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("sp_viewer_process_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    std::ofstream(dir_ / "shapes.xml") << ShapesWorld();
+    std::ofstream(dir_ / "terrain.xml") << TerrainWorld();
+    xvfb_ = std::make_unique<XvfbServer>(1280, 720, (dir_ / "xvfb.log").string());
+  }
+  void TearDown() override {
+    xvfb_.reset();
+    if (!HasFailure()) std::filesystem::remove_all(dir_);
+  }
+
+  std::unique_ptr<ChildProcess> StartSim(const std::string& world, const std::string& url,
+                                         const std::string& log,
+                                         std::vector<std::string> extra = {}) {
+    std::vector<std::string> argv = {std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim",
+                                     "--params", "/dev/null",
+                                     "--environment=" + (dir_ / world).string(), "--lcm-url", url,
+                                     "--duration=60"};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    return std::make_unique<ChildProcess>(argv, (dir_ / log).string());
+  }
+
+  std::unique_ptr<ChildProcess> StartViewer(const std::string& url, const std::string& log,
+                                            std::vector<std::string> extra) {
+    std::vector<std::string> argv = {
+        "/usr/bin/env", "DISPLAY=" + xvfb_->display(),
+        // Mesa and X keep allocations for the life of the process; see the file.
+        "LSAN_OPTIONS=suppressions=" + std::string(SP_SOURCE_DIR) + "/tests/viewer/lsan.supp",
+        std::string(SP_BINARY_DIR) + "/viewer/simpartner-viewer", "--params", "/dev/null",
+        "--lcm-url", url, "--width", std::to_string(kWidth), "--height", std::to_string(kHeight),
+        "--camera", kCamera};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    return std::make_unique<ChildProcess>(argv, (dir_ / log).string());
+  }
+
+  std::string Read(const std::string& log) const {
+    std::ifstream in(dir_ / log);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  bool WaitForText(const std::string& log, const std::string& text, double seconds,
+                   Listener* bus = nullptr) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < end) {
+      if (Read(log).find(text) != std::string::npos) return true;
+      if (bus != nullptr)
+        bus->Pump(0.05);
+      else
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return Read(log).find(text) != std::string::npos;
+  }
+  // Step of the state the screenshot shows, from the viewer's log line.
+  int64_t ScreenshotStep(const std::string& log) const {
+    const std::string text = Read(log);
+    const size_t line = text.find("simpartner-viewer: screenshot ");
+    const size_t step = text.find(", step ", line == std::string::npos ? text.size() : line);
+    if (step == std::string::npos) return -1;
+    return std::atoll(text.c_str() + step + 7);
+  }
+
+  Eigen::Vector2d Pixel(const Eigen::Vector3d& p, const Eigen::Vector3d& up) const {
+    const Camera camera = CameraFromSpec(Spec(), up);
+    const auto pixel = camera.Project(p, kWidth, kHeight);
+    EXPECT_TRUE(pixel && pixel->x() >= 0 && pixel->x() < kWidth && pixel->y() >= 0 &&
+                pixel->y() < kHeight)
+        << p.transpose() << " is not in the picture";
+    return pixel.value_or(Eigen::Vector2d(-1, -1));
+  }
+  static CameraSpec Spec() {
+    CameraSpec spec;
+    spec.target[1] = 1.2;
+    spec.yaw_deg = 0;
+    spec.pitch_deg = 8;
+    spec.distance = 6;
+    return spec;
+  }
+  RgbImage::Rgb At(const RgbImage& image, const Eigen::Vector2d& pixel) const {
+    return image.At(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()));
+  }
+
+  // Expects the screenshot to show each named body at its position in the
+  // state of step `step`, and the sky at points away from every body.
+  void ExpectBodiesWhereTheStateSays(const RgbImage& image, const Listener& bus, int64_t step,
+                                     const std::vector<std::string>& names) {
+    ASSERT_EQ(image.width, kWidth);
+    ASSERT_EQ(image.height, kHeight);
+    ASSERT_TRUE(bus.positions.count(step)) << "no state of step " << step << " on the bus";
+    const std::vector<Eigen::Vector3d>& at = bus.positions.at(step);
+    const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+    // The sky: well above everything.
+    const RgbImage::Rgb sky = At(image, Pixel(Eigen::Vector3d(0, 3.4, 2.2), up));
+    for (const Eigen::Vector3d& empty :
+         {Eigen::Vector3d(0, 3.4, -2.2), Eigen::Vector3d(0, 1.5, -2.5), Eigen::Vector3d(0, 0.6, 2.6)}) {
+      EXPECT_LT(ColorDistance(At(image, Pixel(empty, up)), sky), 12)
+          << "something drawn at " << empty.transpose() << " where no body is";
+    }
+    for (const std::string& name : names) {
+      const Eigen::Vector3d p = at.at(static_cast<size_t>(bus.BodyIndex(name)));
+      const Eigen::Vector2d pixel = Pixel(p, up);
+      EXPECT_GT(ColorDistance(At(image, pixel), sky), 60)
+          << name << " at " << p.transpose() << " (pixel " << pixel.transpose()
+          << ") is not drawn there";
+    }
+  }
+
+  std::filesystem::path dir_;
+  std::unique_ptr<XvfbServer> xvfb_;
+};
+
+void Quit(lcm::LCM& lcm) {
+  control_t c{};
+  c.action = control_t::ACTION_QUIT;
+  c.sender = "viewer-test";
+  lcm.publish(channels::kControl, &c);
+}
+
+// Fraction of pixels that differ from the sky in the middle 60 % of the
+// rectangle around the projected corners of a cube of edge `edge` at
+// `centre` (a cube well inside the body looked at).
+double CoveredFraction(const RgbImage& image, const Eigen::Vector3d& centre, double edge,
+                       const std::function<Eigen::Vector2d(const Eigen::Vector3d&)>& pixel,
+                       const RgbImage::Rgb& sky) {
+  Eigen::AlignedBox2d box;
+  for (int k = 0; k < 8; ++k)
+    box.extend(pixel(centre + edge / 2 *
+                                  Eigen::Vector3d(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1)));
+  const Eigen::Vector2d c = box.center(), half = 0.3 * box.sizes();
+  int covered = 0, total = 0;
+  for (int y = static_cast<int>(c.y() - half.y()); y <= c.y() + half.y(); ++y)
+    for (int x = static_cast<int>(c.x() - half.x()); x <= c.x() + half.x(); ++x) {
+      ++total;
+      covered += ColorDistance(image.At(x, y), sky) > 30;
+    }
+  return total == 0 ? 0 : static_cast<double>(covered) / total;
+}
+
+TEST_F(ViewerProcessTest, ScreenshotShowsEveryBodyWhereItsStateSaysAndWireframeDiffers) {
+  const std::string url = UniqueUrl(1);
+  Listener bus(url);
+  auto sim = StartSim("shapes.xml", url, "sim.log");
+  ASSERT_TRUE(bus.Until([&] { return bus.has_model && !bus.positions.empty(); }, 15)) << Read("sim.log");
+
+  const std::string solid = (dir_ / "solid.png").string();
+  auto viewer = StartViewer(url, "viewer.log", {"--hide", "hud,grid", "--screenshot", solid,
+                                                "--after", "2.5"});
+  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << Read("viewer.log");
+  bus.Pump(0.3);
+  ASSERT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
+  const int64_t step = ScreenshotStep("viewer.log");
+  ASSERT_GT(step, 0) << Read("viewer.log");
+  const RgbImage image = ReadPng(solid);
+  ExpectBodiesWhereTheStateSays(image, bus, step, {"Crate", "Drum", "Pill", "Bob"});
+  // The pendulum has swung from where it started: the check above used the
+  // state's pose, not the model's initial one.
+  EXPECT_GT((bus.positions.at(step)[static_cast<size_t>(bus.BodyIndex("Bob"))] -
+             Eigen::Vector3d(0, 2.4, -1.0)).norm(),
+            0.05);
+
+  // Not blank: a good share of the image is bodies.
+  const RgbImage::Rgb sky = image.At(2, kHeight / 2);
+  int drawn = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) drawn += ColorDistance(image.At(x, y), sky) > 30;
+  EXPECT_GT(drawn, kWidth * kHeight / 50);
+
+  // Wireframe: the crate's faces are no longer filled.
+  const std::string wire = (dir_ / "wire.png").string();
+  auto wire_viewer = StartViewer(url, "wire.log", {"--hide", "hud,grid", "--show", "wireframe",
+                                                   "--screenshot", wire, "--after", "2"});
+  ASSERT_EQ(wire_viewer->Wait(std::chrono::seconds(30)).value_or(-1), 0) << Read("wire.log");
+  const RgbImage wire_image = ReadPng(wire);
+  auto pixel = [&](const Eigen::Vector3d& p) { return Pixel(p, Eigen::Vector3d::UnitY()); };
+  const Eigen::Vector3d crate = bus.positions.at(step)[static_cast<size_t>(bus.BodyIndex("Crate"))];
+  const double solid_cover = CoveredFraction(image, crate, 0.5, pixel, sky);
+  const double wire_cover = CoveredFraction(wire_image, crate, 0.5, pixel, sky);
+  EXPECT_GT(solid_cover, 0.95);
+  EXPECT_LT(wire_cover, 0.5);
+  int differing = 0;
+  for (size_t i = 0; i < image.pixels.size(); i += 3)
+    differing += std::abs(image.pixels[i] - wire_image.pixels[i]) > 30;
+  EXPECT_GT(differing, 1000);
+  Quit(bus.lcm());
+  EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
+}
+
+TEST_F(ViewerProcessTest, LateViewerAsksForTheModelAndDrawsAllOfIt) {
+  const std::string url = UniqueUrl(2);
+  Listener bus(url);
+  // No periodic announcement: only a request brings the model.
+  auto sim = StartSim("shapes.xml", url, "sim.log", {"--modelPeriod=3600"});
+  ASSERT_TRUE(bus.Until([&] { return bus.has_model; }, 15)) << Read("sim.log");
+  bus.Pump(3.0);  // the viewer comes 3 s later
+  const std::string shot = (dir_ / "late.png").string();
+  auto viewer = StartViewer(url, "viewer.log", {"--hide", "hud,grid", "--screenshot", shot,
+                                                "--after", "2"});
+  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << Read("viewer.log");
+  bus.Pump(0.3);
+  ASSERT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
+  const std::string log = Read("viewer.log");
+  EXPECT_NE(log.find("model of simulation " + std::to_string(bus.model.simulation_id) +
+                     ": world 'ViewerShapes', 4 bodies"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("4 bodies drawn"), std::string::npos) << log;
+  ExpectBodiesWhereTheStateSays(ReadPng(shot), bus, ScreenshotStep("viewer.log"),
+                                {"Crate", "Drum", "Pill", "Bob"});
+  Quit(bus.lcm());
+  EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
+}
+
+TEST_F(ViewerProcessTest, SimRestartedWithAnotherWorldShowsTheNewModel) {
+  const std::string url = UniqueUrl(3);
+  Listener bus(url);
+  const std::string restarted = (dir_ / "restarted.png").string();
+  auto viewer = StartViewer(url, "viewer.log", {"--hide", "hud,grid", "--screenshot", restarted,
+                                                "--after", "9"});
+  auto first = StartSim("shapes.xml", url, "first.log");
+  ASSERT_TRUE(WaitForText("viewer.log", "world 'ViewerShapes'", 20, &bus)) << Read("viewer.log");
+  Quit(bus.lcm());
+  ASSERT_EQ(first->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("first.log");
+  auto second = StartSim("terrain.xml", url, "second.log");
+  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << Read("viewer.log");
+  ASSERT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
+  EXPECT_NE(Read("viewer.log").find("world 'ViewerTerrain', 1 bodies"), std::string::npos)
+      << Read("viewer.log");
+
+  // A viewer started fresh on the second sim sees the same picture.
+  const std::string fresh = (dir_ / "fresh.png").string();
+  auto fresh_viewer = StartViewer(url, "fresh.log", {"--hide", "hud,grid", "--screenshot", fresh,
+                                                     "--after", "2"});
+  ASSERT_EQ(fresh_viewer->Wait(std::chrono::seconds(30)).value_or(-1), 0) << Read("fresh.log");
+  const RgbImage a = ReadPng(restarted), b = ReadPng(fresh);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < a.pixels.size(); i += 3)
+    differing += ColorDistance({a.pixels[i], a.pixels[i + 1], a.pixels[i + 2]},
+                               {b.pixels[i], b.pixels[i + 1], b.pixels[i + 2]}) > 12;
+  EXPECT_LT(differing, a.pixels.size() / 3 / 200) << "the restarted viewer shows something else";
+
+  // And that picture is the terrain world: the beacon where the first world
+  // had sky, the heightfield and the plane below, no crate.
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  const RgbImage::Rgb sky = At(a, Pixel(Eigen::Vector3d(0, 3.4, -2.2), up));
+  EXPECT_GT(ColorDistance(At(a, Pixel(Eigen::Vector3d(0, 3.0, 1.6), up)), sky), 60) << "beacon";
+  const RgbImage::Rgb plane = At(a, Pixel(Eigen::Vector3d(-40, -0.5, 8), up));
+  EXPECT_GT(ColorDistance(plane, sky), 30) << "plane";
+  const RgbImage::Rgb field = At(a, Pixel(Eigen::Vector3d(1.5, 0.15, -1.0), up));
+  EXPECT_GT(ColorDistance(field, sky), 30) << "heightfield";
+  EXPECT_GT(ColorDistance(field, plane), 30) << "heightfield";
+  const RgbImage::Rgb where_bob_was = At(a, Pixel(Eigen::Vector3d(0, 2.4, -1.0), up));
+  EXPECT_LT(ColorDistance(where_bob_was, sky), 12) << "the first world's pendulum is still drawn";
+  Quit(bus.lcm());
+  EXPECT_EQ(second->Wait(std::chrono::seconds(10)).value_or(-1), 0);
+}
+
+TEST_F(ViewerProcessTest, BadStatesAreCountedAndIgnoredWithoutACrash) {
+  const std::string url = UniqueUrl(4);
+  Listener bus(url);
+  auto sim = StartSim("shapes.xml", url, "sim.log");
+  ASSERT_TRUE(bus.Until([&] { return bus.has_model && !bus.positions.empty(); }, 15)) << Read("sim.log");
+  const std::string shot = (dir_ / "after_bad.png").string();
+  auto viewer = StartViewer(url, "viewer.log", {"--hide", "hud,grid", "--screenshot", shot,
+                                                "--after", "5"});
+  ASSERT_TRUE(WaitForText("viewer.log", "model of simulation", 20, &bus)) << Read("viewer.log");
+
+  const model_t& m = bus.model;
+  auto good = [&] {
+    state_t s{};
+    s.simulation_id = m.simulation_id;
+    s.step = 1;
+    s.bodies.resize(static_cast<size_t>(m.num_bodies));
+    for (body_state_t& b : s.bodies) b.orientation[0] = 1;
+    s.num_bodies = m.num_bodies;
+    s.joints.resize(static_cast<size_t>(m.num_joints));
+    s.num_joints = m.num_joints;
+    return s;
+  };
+  for (int i = 0; i < 3; ++i) {
+    state_t more = good();
+    more.bodies.resize(more.bodies.size() + 2);
+    more.num_bodies += 2;
+    bus.lcm().publish(channels::kState, &more);
+    state_t other = good();
+    other.simulation_id = m.simulation_id + 1000 + i;
+    bus.lcm().publish(channels::kState, &other);
+    state_t nan = good();
+    nan.bodies[1].position[0] = std::nan("");
+    bus.lcm().publish(channels::kState, &nan);
+    state_t zero_quaternion = good();
+    zero_quaternion.bodies[0].orientation[0] = 0;
+    bus.lcm().publish(channels::kState, &zero_quaternion);
+    const uint8_t garbage[] = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
+    bus.lcm().publish(channels::kState, garbage, sizeof garbage);
+    bus.Pump(0.02);
+  }
+  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << Read("viewer.log");
+  bus.Pump(0.3);
+  ASSERT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
+  const std::string log = Read("viewer.log");
+  // Each kind described once, with channel, field and value...
+  EXPECT_NE(log.find("SIM_STATE: num_bodies = " + std::to_string(m.num_bodies + 2)),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("SIM_STATE: simulation_id = " + std::to_string(m.simulation_id + 1000)),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("SIM_STATE: bodies[1].position[0] = nan (body '" + m.bodies[1].name + "'"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("SIM_STATE: bodies[0].orientation has length 0"), std::string::npos) << log;
+  EXPECT_NE(log.find("SIM_STATE: 7 bytes that do not decode: ignored"), std::string::npos) << log;
+  // ...and every one counted.
+  EXPECT_NE(log.find("ignored: 3 undecodable, 3 other simulation, 3 body count, 3 non-finite, "
+                     "3 bad quaternion"),
+            std::string::npos)
+      << log;
+  // The bodies are still drawn from the sim's good states.
+  ExpectBodiesWhereTheStateSays(ReadPng(shot), bus, ScreenshotStep("viewer.log"),
+                                {"Crate", "Drum", "Pill", "Bob"});
+  Quit(bus.lcm());
+  EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
+}
+
+}  // namespace
+}  // namespace simpartner::viewer
