@@ -1,0 +1,225 @@
+// viewer_bench: how fast simpartner-viewer draws and what it costs, under a
+// private Xvfb with Mesa's llvmpipe (software rendering), next to a
+// simpartner-sim running at real time.
+//
+//   viewer_bench [--seconds N] [--width W --height H] [world.xml]
+//
+// Default world: models/worlds/test_track.xml (the heightfield track) with
+// WorkPartner gen3 in place of its gen4 (a copy in a temporary directory).
+// Prints, for the viewer drawing as fast as it can (--fps 0) and at its
+// default cap (60 fps): frames per second, the viewer's CPU time as a
+// fraction of one core (from /proc, startup excluded), the X server's
+// share, and the sim's real-time factor meanwhile (from SIM_STATUS).
+#include <lcm/lcm-cpp.hpp>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "simpartner/channels.h"
+#include "simpartner/child_process.h"
+#include "simpartner/control_t.hpp"
+#include "simpartner/status_t.hpp"
+#include "simpartner/viewer/xvfb.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using simpartner::ChildProcess;
+
+std::string ReadFile(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// utime + stime of a process [s], from /proc/PID/stat; -1 if it is gone.
+double CpuSeconds(pid_t pid) {
+  const std::string stat = ReadFile("/proc/" + std::to_string(pid) + "/stat");
+  const size_t close = stat.rfind(')');
+  if (close == std::string::npos) return -1;
+  std::istringstream fields(stat.substr(close + 2));
+  std::string field;
+  double utime = 0, stime = 0;
+  // Fields after "(comm)": state is field 3; utime 14, stime 15.
+  for (int k = 3; k <= 15 && fields >> field; ++k) {
+    if (k == 14) utime = std::atof(field.c_str());
+    if (k == 15) stime = std::atof(field.c_str());
+  }
+  return (utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
+}
+
+// The gen3 copy of the test track: same terrain, gen3 in place of gen4.
+std::string Gen3TestTrack(const std::filesystem::path& dir) {
+  const std::string source = std::string(SP_SOURCE_DIR) + "/models/worlds/test_track.xml";
+  std::string xml = ReadFile(source);
+  const std::string gen4 = "file=\"../robots/workpartner_gen4.xml\"";
+  const size_t at = xml.find(gen4);
+  if (at == std::string::npos) {
+    std::cerr << "viewer_bench: " << source << " no longer places " << gen4 << "\n";
+    std::exit(1);
+  }
+  xml.replace(at, gen4.size(),
+              "file=\"" + std::string(SP_SOURCE_DIR) + "/models/robots/workpartner_gen3.xml\"");
+  const std::filesystem::path path = dir / "test_track_gen3.xml";
+  std::ofstream(path) << xml;
+  return path.string();
+}
+
+// Collects the sim's real-time factor from SIM_STATUS.
+class StatusWatch {
+ public:
+  explicit StatusWatch(const std::string& url) : lcm_(url) {
+    lcm_.subscribe(simpartner::channels::kStatus, &StatusWatch::OnStatus, this);
+  }
+  void Pump(double seconds) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < end) lcm_.handleTimeout(20);
+  }
+  void Reset() {
+    factors_.clear();
+    behind_ = 0;
+  }
+  double MeanFactor() const {
+    double sum = 0;
+    for (double f : factors_) sum += f;
+    return factors_.empty() ? 0 : sum / factors_.size();
+  }
+  int behind() const { return behind_; }
+  lcm::LCM& lcm() { return lcm_; }
+
+ private:
+  void OnStatus(const lcm::ReceiveBuffer*, const std::string&, const simpartner::status_t* s) {
+    if (s->run_state == simpartner::status_t::RUN_RUNNING && s->step > 0)
+      factors_.push_back(s->real_time_factor);
+    for (const simpartner::warning_t& w : s->warnings)
+      if (w.source == "realtime" && seen_.insert(w.step).second) ++behind_;
+  }
+  lcm::LCM lcm_;
+  std::vector<double> factors_;
+  std::set<int64_t> seen_;
+  int behind_ = 0;
+};
+
+struct RunFigures {
+  double fps = 0;
+  double viewer_cores = 0;
+  double xserver_cores = 0;
+  double sim_factor = 0;
+  int sim_fell_behind = 0;
+};
+
+RunFigures RunViewer(const std::string& url, const std::filesystem::path& dir, int width,
+                     int height, const std::string& fps, double seconds, pid_t xvfb,
+                     StatusWatch* status) {
+  const std::string log = (dir / ("viewer_fps" + fps + ".log")).string();
+  ChildProcess viewer({std::string(SP_BINARY_DIR) + "/viewer/simpartner-viewer", "--params",
+                       "/dev/null", "--lcm-url", url, "--width", std::to_string(width),
+                       "--height", std::to_string(height), "--fps", fps, "--quit-after",
+                       std::to_string(seconds)},
+                      log);
+  // Leave out the start (window, GL context, model request, first frames).
+  const double warmup = 2.0;
+  status->Pump(warmup);
+  status->Reset();
+  const double viewer_cpu0 = CpuSeconds(viewer.pid()), x_cpu0 = CpuSeconds(xvfb);
+  const auto t0 = Clock::now();
+  status->Pump(seconds - warmup - 0.5);
+  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  RunFigures f;
+  f.viewer_cores = (CpuSeconds(viewer.pid()) - viewer_cpu0) / wall;
+  f.xserver_cores = (CpuSeconds(xvfb) - x_cpu0) / wall;
+  f.sim_factor = status->MeanFactor();
+  f.sim_fell_behind = status->behind();
+  if (viewer.Wait(std::chrono::seconds(30)).value_or(-1) != 0) {
+    std::cerr << "viewer_bench: the viewer failed:\n" << ReadFile(log);
+    std::exit(1);
+  }
+  // "simpartner-viewer: N frames in T s (F fps), ..."
+  const std::string text = ReadFile(log);
+  const size_t at = text.find(" fps), CPU");
+  const size_t open = text.rfind('(', at);
+  if (at == std::string::npos || open == std::string::npos) {
+    std::cerr << "viewer_bench: no frame figures in the viewer's output:\n" << text;
+    std::exit(1);
+  }
+  f.fps = std::atof(text.c_str() + open + 1);
+  return f;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double seconds = 12;
+  int width = 1280, height = 720;
+  std::string world;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--seconds" && i + 1 < argc) {
+      seconds = std::max(4.0, std::atof(argv[++i]));
+    } else if (arg == "--width" && i + 1 < argc) {
+      width = std::atoi(argv[++i]);
+    } else if (arg == "--height" && i + 1 < argc) {
+      height = std::atoi(argv[++i]);
+    } else if (arg == "--help") {
+      std::cout << "usage: viewer_bench [--seconds N] [--width W --height H] [world.xml]\n";
+      return 0;
+    } else {
+      world = arg;
+    }
+  }
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("sp_viewer_bench_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  if (world.empty()) world = Gen3TestTrack(dir);
+
+  simpartner::viewer::XvfbServer xvfb(width, height, (dir / "xvfb.log").string());
+  ::setenv("DISPLAY", xvfb.display().c_str(), 1);
+  const int port = 40000 + static_cast<int>(::getpid()) % 20000;
+  const std::string url = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
+  StatusWatch status(url);
+  ChildProcess sim({std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim", "--params",
+                    "/dev/null", "--environment=" + world, "--lcm-url", url, "--speed=1"},
+                   (dir / "sim.log").string());
+  status.Pump(1.5);
+
+  std::cout << "viewer_bench: " << world << ", " << width << "x" << height << " under Xvfb "
+            << xvfb.display() << ", sim at real time, " << seconds << " s per run, "
+            << std::thread::hardware_concurrency() << " cores\n";
+  std::printf("%-22s %8s %14s %14s %12s %12s\n", "viewer", "fps", "viewer cores",
+              "Xvfb cores", "sim x real", "sim behind");
+  for (const std::string fps : {"0", "60"}) {
+    const RunFigures f = RunViewer(url, dir, width, height, fps, seconds, xvfb.pid(), &status);
+    std::printf("%-22s %8.1f %14.2f %14.2f %12.3f %12d\n",
+                fps == "0" ? "--fps 0 (unlimited)" : "--fps 60 (default)", f.fps, f.viewer_cores,
+                f.xserver_cores, f.sim_factor, f.sim_fell_behind);
+    std::fflush(stdout);
+  }
+  // The sim alone, for comparison.
+  status.Pump(1.0);
+  status.Reset();
+  const double sim_cpu0 = CpuSeconds(sim.pid());
+  const auto t0 = Clock::now();
+  status.Pump(4.0);
+  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  std::printf("%-22s %8s %14s %14s %12.3f %12d   (sim %.2f cores)\n", "no viewer", "-", "-", "-",
+              status.MeanFactor(), status.behind(), (CpuSeconds(sim.pid()) - sim_cpu0) / wall);
+
+  simpartner::control_t quit{};
+  quit.action = simpartner::control_t::ACTION_QUIT;
+  quit.sender = "viewer_bench";
+  status.lcm().publish(simpartner::channels::kControl, &quit);
+  sim.Wait(std::chrono::seconds(5));
+  std::filesystem::remove_all(dir);
+  return 0;
+}
