@@ -256,7 +256,7 @@ TEST(SceneTest, FocusAndFollowUseRobotZero) {
   const model_t m = TwoBodyModel(7);
   scene.OfferModel(m);
   // Base centre (0, 1, 0), Ball (2, 1, 0).
-  EXPECT_TRUE(scene.RobotCentre(0)->isApprox(Eigen::Vector3d(1, 1, 0)));
+  EXPECT_TRUE(scene.FollowPoint()->isApprox(Eigen::Vector3d(1, 1, 0)));
   const auto [centre, radius] = scene.FocusSphere();
   // Between the two bodies, and wide enough for both: the box reaches
   // sqrt(0.5^2 + 1^2 + 0.5^2) from its centre, the ball 0.25.
@@ -267,7 +267,24 @@ TEST(SceneTest, FocusAndFollowUseRobotZero) {
   s.bodies[0].position[2] = 4;
   s.bodies[1].position[2] = 4;
   scene.OfferState(std::move(s));
-  EXPECT_NEAR(scene.RobotCentre(0)->z(), 4, 1e-12);
+  EXPECT_NEAR(scene.FollowPoint()->z(), 4, 1e-12);
+}
+
+TEST(SceneTest, WithoutRobotsTheCameraFollowsWhatMoves) {
+  Scene scene;
+  model_t m = TwoBodyModel(7);
+  m.robots.clear();
+  m.num_robots = 0;
+  for (body_t& b : m.bodies) b.robot = -1;
+  m.bodies[0].is_static = true;  // the box stays, the ball moves
+  scene.OfferModel(m);
+  EXPECT_TRUE(scene.FollowPoint()->isApprox(Eigen::Vector3d(2, 1, 0)));
+  // Framing still takes in every body.
+  EXPECT_LT(scene.FocusSphere().first.x(), 2);
+  m.bodies[1].is_static = true;
+  Scene fixed;
+  fixed.OfferModel(m);
+  EXPECT_FALSE(fixed.FollowPoint().has_value());
 }
 
 TEST(SceneTest, UndecodableMessagesAreCountedPerChannel) {

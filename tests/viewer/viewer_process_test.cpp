@@ -21,6 +21,7 @@
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_t.hpp"
 #include "simpartner/state_t.hpp"
+#include "simpartner/status_t.hpp"
 #include "simpartner/viewer/camera.h"
 #include "simpartner/viewer/options.h"
 #include "simpartner/viewer/png_image.h"
@@ -98,6 +99,7 @@ class Listener {
     EXPECT_TRUE(lcm_.good());
     lcm_.subscribe(channels::kState, &Listener::OnState, this)->setQueueCapacity(100000);
     lcm_.subscribe(channels::kModel, &Listener::OnModel, this);
+    lcm_.subscribe(channels::kStatus, &Listener::OnStatus, this)->setQueueCapacity(1000);
   }
   lcm::LCM& lcm() { return lcm_; }
   bool Until(const std::function<bool()>& pred, double seconds) {
@@ -117,6 +119,9 @@ class Listener {
 
   model_t model;
   bool has_model = false;
+  int8_t run_state = -1;     // of the last SIM_STATUS
+  int64_t status_step = -1;  // of the last SIM_STATUS
+  int64_t last_step = -1;    // of the last SIM_STATE
   std::map<int64_t, std::vector<Eigen::Vector3d>> positions;  // step -> body positions
   int64_t last_simulation = 0;
 
@@ -127,6 +132,11 @@ class Listener {
     for (const body_state_t& b : s->bodies)
       p.emplace_back(b.position[0], b.position[1], b.position[2]);
     last_simulation = s->simulation_id;
+    last_step = s->step;
+  }
+  void OnStatus(const lcm::ReceiveBuffer*, const std::string&, const status_t* s) {
+    run_state = s->run_state;
+    status_step = s->step;
   }
   void OnModel(const lcm::ReceiveBuffer*, const std::string&, const model_t* m) {
     model = *m;
@@ -467,6 +477,58 @@ TEST_F(ViewerProcessTest, BadStatesAreCountedAndIgnoredWithoutACrash) {
   // The bodies are still drawn from the sim's good states.
   ExpectBodiesWhereTheStateSays(ReadPng(shot), bus, ScreenshotStep("viewer.log"),
                                 {"Crate", "Drum", "Pill", "Bob"});
+  Quit(bus.lcm());
+  EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
+}
+
+// Real key presses (XTEST, through xdotool) reach the viewer's window and
+// become SIM_CONTROL messages the sim obeys: space pauses and resumes, n
+// steps once, r resets to step 0, Esc closes the viewer.
+TEST_F(ViewerProcessTest, KeysPauseStepResetAndResumeTheSim) {
+  const std::string url = UniqueUrl(5);
+  Listener bus(url);
+  auto sim = StartSim("shapes.xml", url, "sim.log");
+  ASSERT_TRUE(bus.Until([&] { return bus.has_model && bus.last_step > 0; }, 15)) << Read("sim.log");
+  auto viewer = StartViewer(url, "viewer.log", {"--quit-after", "60"});
+  ASSERT_TRUE(WaitForText("viewer.log", "model of simulation", 20, &bus)) << Read("viewer.log");
+  auto xdotool = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"/usr/bin/env", "DISPLAY=" + xvfb_->display(), "/usr/bin/xdotool"});
+    ChildProcess run(args, (dir_ / "xdotool.log").string());
+    EXPECT_EQ(run.Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("xdotool.log");
+  };
+  // No window manager: keyboard focus follows the pointer onto the
+  // viewer's window, which is centred on the screen.
+  xdotool({"mousemove", "640", "360"});
+
+  xdotool({"key", "space"});
+  ASSERT_TRUE(bus.Until([&] { return bus.run_state == status_t::RUN_PAUSED; }, 10))
+      << Read("viewer.log") << Read("sim.log");
+  bus.Pump(0.3);
+  const int64_t paused_at = bus.last_step;
+  xdotool({"key", "n"});
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step == paused_at + 1; }, 10))
+      << "step after n: " << bus.last_step << ", paused at " << paused_at;
+  bus.Pump(0.5);
+  EXPECT_EQ(bus.last_step, paused_at + 1);  // one step only, still paused
+
+  // A reset starts a new simulation (new id, step 0, still paused); the
+  // viewer takes up its model.
+  const int64_t before_reset = bus.model.simulation_id;
+  xdotool({"key", "r"});
+  ASSERT_TRUE(bus.Until([&] { return bus.status_step == 0 && bus.model.simulation_id != before_reset; },
+                        10))
+      << "status step " << bus.status_step;
+  EXPECT_TRUE(WaitForText("viewer.log",
+                          "model of simulation " + std::to_string(bus.model.simulation_id), 10,
+                          &bus))
+      << Read("viewer.log");
+  xdotool({"key", "space"});
+  ASSERT_TRUE(bus.Until([&] { return bus.run_state == status_t::RUN_RUNNING && bus.last_step > 100; },
+                        10))
+      << "step " << bus.last_step;
+
+  xdotool({"key", "Escape"});
+  EXPECT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
   Quit(bus.lcm());
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
 }

@@ -122,26 +122,45 @@ class Viewer {
     const double cpu_at_start = ProcessCpuSeconds();
     bus_.RequestModelIfNeeded();  // a late viewer need not wait for the periodic announcement
     Clock::time_point last_frame = start_;
+    Clock::time_point last_draw = start_;
     Clock::time_point next_poll = start_;
     while (!quit_) {
       const Clock::time_point frame_start = Clock::now();
+      if (options_.quit_after > 0 && Seconds(frame_start - start_) >= options_.quit_after) break;
       const double dt = std::min(Seconds(frame_start - last_frame), 0.1);
       last_frame = frame_start;
 
       SDL_Event event;
-      while (SDL_PollEvent(&event)) HandleEvent(event);
+      while (SDL_PollEvent(&event)) {
+        HandleEvent(event);
+        dirty_ = true;  // input, exposure, resizing: draw again
+      }
       bus_.Drain(frame_start);  // everything that arrived; keeps only the newest state
       bus_.RequestModelIfNeeded();
       FollowModel();
       Fly(dt);
-      if (toggles_.follow && scene_.has_model())
-        if (auto centre = scene_.RobotCentre(0)) camera_.target = *centre;
+      if (toggles_.follow)
+        if (auto centre = scene_.FollowPoint()) camera_.target = *centre;
       if (options_.scanner_poll_hz > 0 && frame_start >= next_poll) {
         bus_.RequestScans();
         next_poll = frame_start + std::chrono::duration_cast<Clock::duration>(
                                       std::chrono::duration<double>(1.0 / options_.scanner_poll_hz));
       }
 
+      // Nothing new (a paused or stopped sim, no input): keep the picture
+      // and spend no CPU on it, but refresh the HUD once a second. Frame
+      // counts (--fps 0, --frames) draw every frame.
+      const bool every_frame = options_.max_fps == 0 || options_.after_frames > 0;
+      const bool redraw = dirty_ || every_frame || !held_.empty() ||
+                          scene_.version() != drawn_version_ || ScreenshotDue(frame_start) ||
+                          pending_key_screenshot_ || frame_start - last_draw >= std::chrono::seconds(1);
+      if (!redraw) {
+        WaitForNextFrame(frame_start);
+        continue;
+      }
+      dirty_ = false;
+      drawn_version_ = scene_.version();
+      last_draw = frame_start;
       const auto [width, height] = window_.DrawableSize();
       renderer_->Draw(scene_, camera_, toggles_, MakeHud(), width, height);
       ++frames_;
@@ -156,14 +175,7 @@ class Viewer {
         WriteScreenshot(KeyScreenshotName(), width, height);
       }
       SDL_GL_SwapWindow(window_.get());
-      if (options_.quit_after > 0 && Seconds(Clock::now() - start_) >= options_.quit_after) break;
-      if (options_.max_fps > 0) {
-        // Wait for the next frame on the bus, so messages are handled as
-        // they come instead of piling up in the socket.
-        const auto period = std::chrono::duration_cast<Clock::duration>(
-            std::chrono::duration<double>(1.0 / options_.max_fps));
-        bus_.Drain(frame_start + period);
-      }
+      WaitForNextFrame(frame_start);
     }
     PrintSummary(cpu_at_start);
     return 0;
@@ -179,6 +191,15 @@ class Viewer {
   static std::string Text(GLenum name) {
     const GLubyte* s = glGetString(name);
     return s != nullptr ? reinterpret_cast<const char*>(s) : "?";
+  }
+
+  // Waits for the next frame on the bus, so messages are handled as they
+  // come instead of piling up in the socket.
+  void WaitForNextFrame(Clock::time_point frame_start) {
+    if (options_.max_fps <= 0) return;
+    const auto period = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(1.0 / options_.max_fps));
+    bus_.Drain(frame_start + period);
   }
 
   void Warn(const std::string& message) { err_ << "simpartner-viewer: " << message << std::endl; }
@@ -205,7 +226,7 @@ class Viewer {
     }
     const auto [centre, radius] = scene_.FocusSphere();
     camera_ = FramingCamera(scene_.Up(), centre, radius);
-    toggles_.follow = options_.toggles.follow;
+    toggles_.follow = options_.toggles.follow && scene_.FollowPoint().has_value();
   }
 
   void HandleEvent(const SDL_Event& e) {
@@ -342,7 +363,9 @@ class Viewer {
                          {1.0f, 0.6f, 0.2f}});
     }
     std::string hint = "h: keys   " + Fixed(fps_, 0) + " fps";
-    if (toggles_.follow) hint += "   following the robot";
+    if (toggles_.follow && scene_.FollowPoint())
+      hint += scene_.has_model() && scene_.model().num_robots > 0 ? "   following the robot"
+                                                                  : "   following what moves";
     if (toggles_.wireframe) hint += "   wireframe";
     hud.bottom.push_back({hint, {0.85f, 0.9f, 1.0f}});
     return hud;
@@ -422,6 +445,8 @@ class Viewer {
   int64_t seen_generation_ = 0;
   std::set<KeyAction> held_;
   bool quit_ = false;
+  bool dirty_ = true;
+  int64_t drawn_version_ = -1;
   bool pending_key_screenshot_ = false;
   Clock::time_point start_;
   int64_t frames_ = 0;

@@ -158,6 +158,7 @@ std::optional<std::string> CheckModel(const model_t& m) {
 
 Verdict Scene::Reject(Rejection kind, const std::string& channel, const std::string& message) {
   ++rejected_[static_cast<int>(kind)];
+  ++version_;
   Problem problem{kind, channel, channel + ": " + message};
   recent_problems_.push_back(problem);
   while (recent_problems_.size() > kMaxRecentProblems) recent_problems_.pop_front();
@@ -197,6 +198,7 @@ Verdict Scene::OfferModel(const model_t& model) {
   }
   Verdict v;
   v.accepted = true;
+  ++version_;
   if (model_ && model_->simulation_id == model.simulation_id) {
     // The periodic re-announcement: sensor settings may have changed.
     model_->sensors = model.sensors;
@@ -270,6 +272,7 @@ Verdict Scene::OfferState(state_t&& s) {
   }
   state_ = std::move(s);
   ++states_accepted_;
+  ++version_;
   Verdict v;
   v.accepted = true;
   return v;
@@ -285,7 +288,10 @@ Verdict Scene::OfferStatus(const status_t& status) {
   // A status of another simulation means the sim restarted (or a paused
   // one is running that we have not heard the model of).
   v.want_model = !model_ || status.simulation_id != model_->simulation_id;
-  if (!v.want_model || !model_) status_ = status;
+  if (!v.want_model || !model_) {
+    status_ = status;
+    ++version_;
+  }
   return v;
 }
 
@@ -312,7 +318,10 @@ Verdict Scene::OfferSensorReading(const sensor_reading_t& r) {
                     what + ": values[" + std::to_string(k) + "] = " + Num(r.values[k]) +
                         ": ignored");
   v.accepted = true;
-  if (r.kind == sensor_t::KIND_SCANNER) scans_[r.sensor] = r;
+  if (r.kind == sensor_t::KIND_SCANNER) {
+    scans_[r.sensor] = r;
+    ++version_;
+  }
   return v;
 }
 
@@ -335,33 +344,28 @@ Eigen::Vector3d Scene::Up() const {
   return Eigen::Vector3d(model_->up[0], model_->up[1], model_->up[2]).normalized();
 }
 
-std::optional<Eigen::Vector3d> Scene::RobotCentre(int robot) const {
-  if (!model_ || model_->num_bodies == 0) return std::nullopt;
-  const bool any_of_robot = [&] {
-    for (const body_t& b : model_->bodies)
-      if (b.robot == robot) return true;
-    return false;
-  }();
+std::optional<Eigen::Vector3d> Scene::FollowPoint() const {
+  if (!model_) return std::nullopt;
+  const bool has_robot = model_->num_robots > 0;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   int n = 0;
   for (int i = 0; i < model_->num_bodies; ++i) {
-    if (any_of_robot && model_->bodies[static_cast<size_t>(i)].robot != robot) continue;
+    const body_t& b = model_->bodies[static_cast<size_t>(i)];
+    if (has_robot ? b.robot != 0 : b.is_static) continue;
     sum += BodyPose(i).translation();
     ++n;
   }
+  if (n == 0) return std::nullopt;
   return sum / n;
 }
 
 std::pair<Eigen::Vector3d, double> Scene::FocusSphere() const {
   if (!model_) return {Eigen::Vector3d::Zero(), 5.0};
-  // The bodies of robot 0, else every body that moves, else all bodies.
+  // The bodies of robot 0, else all bodies.
   std::vector<int> chosen;
-  for (int pass = 0; pass < 3 && chosen.empty(); ++pass)
-    for (int i = 0; i < model_->num_bodies; ++i) {
-      const body_t& b = model_->bodies[static_cast<size_t>(i)];
-      if ((pass == 0 && b.robot == 0) || (pass == 1 && !b.is_static) || pass == 2)
-        chosen.push_back(i);
-    }
+  for (int pass = 0; pass < 2 && chosen.empty(); ++pass)
+    for (int i = 0; i < model_->num_bodies; ++i)
+      if (pass == 1 || model_->bodies[static_cast<size_t>(i)].robot == 0) chosen.push_back(i);
   if (chosen.empty()) {
     const heightfield_t& h = model_->heightfield;
     if (h.present)

@@ -85,15 +85,20 @@ class Scene {
   Eigen::Isometry3d BodyPose(int i) const;
   // Up (opposite to gravity), unit length; y when the model has none.
   Eigen::Vector3d Up() const;
-  // Centre of robot `robot`'s bodies in the current poses (all bodies when
-  // the model has no robot); nullopt without a model or bodies.
-  std::optional<Eigen::Vector3d> RobotCentre(int robot = 0) const;
+  // What the camera follows: the centre of robot 0's bodies in the current
+  // poses, or in a world without robots the centre of the bodies that
+  // move; nullopt when there is neither.
+  std::optional<Eigen::Vector3d> FollowPoint() const;
   // Centre and radius of a sphere around what the camera should frame at
-  // start: robot 0, else the moving bodies, else the heightfield.
+  // start: robot 0, else all bodies, else the heightfield.
   std::pair<Eigen::Vector3d, double> FocusSphere() const;
 
   // Latest scanner reading per sensor index (this simulation only).
   const std::map<int, sensor_reading_t>& scans() const { return scans_; }
+
+  // Changes with every message that changed what is shown (including
+  // counted problems), so a viewer can skip drawing when nothing did.
+  int64_t version() const { return version_; }
 
   // Bad-input bookkeeping.
   int64_t rejected(Rejection r) const { return rejected_[static_cast<int>(r)]; }
@@ -107,6 +112,7 @@ class Scene {
   Verdict Reject(Rejection kind, const std::string& channel, const std::string& message);
 
   std::optional<model_t> model_;
+  int64_t version_ = 0;
   int64_t model_generation_ = 0;
   std::optional<state_t> state_;
   int64_t states_accepted_ = 0;
