@@ -68,8 +68,10 @@ TEST(MeshTest, CylinderAndCapsuleRunAlongZ) {
 
 TEST(MeshTest, GeometryKindsMapToTheirMeshes) {
   geometry_t g{};
-  g.kind = geometry_t::KIND_NONE;
-  EXPECT_TRUE(GeometryMesh(g).positions.empty());
+  g.kind = geometry_t::KIND_NONE;  // a point mass: a marker, so it can be seen
+  EXPECT_EQ(GeometryMesh(g).triangles(), 8u);
+  ExpectOutwardAndUnit(GeometryMesh(g), "point mass");
+  EXPECT_NEAR(Bounds(GeometryMesh(g)).max().y(), 0.05f, 1e-6);
   g.kind = geometry_t::KIND_SPHERE;
   g.size[0] = 2;
   EXPECT_NEAR(Bounds(GeometryMesh(g)).max().x(), 2, 1e-5);

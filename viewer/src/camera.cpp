@@ -94,10 +94,11 @@ Camera FramingCamera(const Eigen::Vector3d& up, const Eigen::Vector3d& centre, d
   camera.up = up.normalized();
   camera.target = centre;
   camera.yaw = 35.0 * M_PI / 180;
-  camera.pitch = 22.0 * M_PI / 180;
+  // From above enough to look over the 2 m walls of the maze world.
+  camera.pitch = 32.0 * M_PI / 180;
   // The sphere fills most of the view height.
   camera.distance =
-      std::clamp(1.15 * std::max(radius, 0.1) / std::sin(camera.fov_y / 2), 1.0, kMaxDistance);
+      std::clamp(1.25 * std::max(radius, 0.1) / std::sin(camera.fov_y / 2), 1.0, kMaxDistance);
   return camera;
 }
 

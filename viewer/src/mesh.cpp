@@ -144,12 +144,29 @@ Mesh CapsuleMesh(double radius, double length, int slices, int stacks) {
   return m;
 }
 
+Mesh PointMassMesh(double radius) {
+  Mesh m;
+  const float r = static_cast<float>(radius);
+  for (int sx : {-1, 1})
+    for (int sy : {-1, 1})
+      for (int sz : {-1, 1}) {
+        const V3 a(sx * r, 0, 0), b(0, sy * r, 0), c(0, 0, sz * r);
+        // Counter-clockwise seen from outside when sx * sy * sz > 0.
+        if (sx * sy * sz > 0)
+          FlatTriangle(&m, a, b, c);
+        else
+          FlatTriangle(&m, a, c, b);
+      }
+  return m;
+}
+
 Mesh GeometryMesh(const geometry_t& g) {
   switch (g.kind) {
     case geometry_t::KIND_BOX: return BoxMesh(Eigen::Vector3d(g.size[0], g.size[1], g.size[2]));
     case geometry_t::KIND_SPHERE: return SphereMesh(g.size[0]);
     case geometry_t::KIND_CYLINDER: return CylinderMesh(g.size[0], g.size[1]);
     case geometry_t::KIND_CAPSULE: return CapsuleMesh(g.size[0], g.size[1]);
+    case geometry_t::KIND_NONE: return PointMassMesh();
     default: return Mesh();
   }
 }

@@ -23,6 +23,11 @@ constexpr Color kJointForceColor{0.15f, 0.75f, 0.95f};
 constexpr Color kRayColor{1.0f, 0.1f, 0.1f};
 constexpr Color kHitColor{1.0f, 0.9f, 0.1f};
 
+constexpr GLfloat kSunDiffuse[4] = {0.68f, 0.68f, 0.65f, 1};
+constexpr GLfloat kFillDiffuse[4] = {0.22f, 0.23f, 0.27f, 1};
+constexpr GLfloat kAmbient[4] = {0.28f, 0.28f, 0.30f, 1};
+constexpr double kPlaneGridHalf = 30.0;  // [m] grid lines this far around the point looked at
+
 constexpr float kHudScale = 2.0f;  // font pixels per screen pixel
 constexpr float kHudLineHeight = kCellHeight * kHudScale + 4;
 
@@ -241,15 +246,17 @@ void Renderer::Draw(const Scene& scene, const Camera& camera, const Toggles& tog
   const Eigen::Vector3d up = scene.Up();
   const Eigen::Vector3d toward_eye = camera.EyeDirection();
   const Eigen::Vector3d right = up.cross(toward_eye).normalized();
-  const Eigen::Vector3d sun = (0.75 * up + 0.55 * right + 0.35 * toward_eye).normalized();
-  const Eigen::Vector3d fill = (0.2 * up - 0.7 * right + 0.4 * toward_eye).normalized();
+  sun_ = (0.75 * up + 0.55 * right + 0.35 * toward_eye).normalized();
+  fill_ = (0.2 * up - 0.7 * right + 0.4 * toward_eye).normalized();
+  const Eigen::Vector3d& sun = sun_;
+  const Eigen::Vector3d& fill = fill_;
   const GLfloat sun_position[4] = {static_cast<float>(sun.x()), static_cast<float>(sun.y()),
                                    static_cast<float>(sun.z()), 0};
   const GLfloat fill_position[4] = {static_cast<float>(fill.x()), static_cast<float>(fill.y()),
                                     static_cast<float>(fill.z()), 0};
-  const GLfloat sun_diffuse[4] = {0.68f, 0.68f, 0.65f, 1};
-  const GLfloat fill_diffuse[4] = {0.22f, 0.23f, 0.27f, 1};
-  const GLfloat ambient[4] = {0.28f, 0.28f, 0.30f, 1};
+  const GLfloat* sun_diffuse = kSunDiffuse;
+  const GLfloat* fill_diffuse = kFillDiffuse;
+  const GLfloat* ambient = kAmbient;
   const GLfloat black[4] = {0, 0, 0, 1};
   glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
   glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);  // terrain seen from below, open shapes
@@ -313,8 +320,22 @@ void Renderer::DrawGround(const Scene& scene, const Camera& camera, const Toggle
   glDisable(GL_LIGHTING);
   glLineWidth(1);
   if (m.has_plane) {
+    // The lines fade into the plane with distance (fog of the plane's own
+    // lit colour) instead of crowding into a flickering band at the horizon.
+    const Eigen::Vector3d n = Eigen::Vector3d(m.plane[0], m.plane[1], m.plane[2]).normalized();
+    GLfloat lit[4] = {0, 0, 0, 1};
+    for (int k = 0; k < 3; ++k)
+      lit[k] = std::min(1.0f, kPlaneColor[static_cast<size_t>(k)] *
+                                  (kAmbient[k] + kSunDiffuse[k] * std::max(0.0f, static_cast<float>(n.dot(sun_))) +
+                                   kFillDiffuse[k] * std::max(0.0f, static_cast<float>(n.dot(fill_)))));
+    glEnable(GL_FOG);
+    glFogi(GL_FOG_MODE, GL_LINEAR);
+    glFogf(GL_FOG_START, static_cast<float>(0.3 * kPlaneGridHalf));
+    glFogf(GL_FOG_END, static_cast<float>(kPlaneGridHalf));
+    glFogfv(GL_FOG_COLOR, lit);
     SetColor(kGridColor);
-    DrawLines(PlaneGrid(m.plane, camera.target, 30.0, 1.0));
+    DrawLines(PlaneGrid(m.plane, camera.target, kPlaneGridHalf, 1.0));
+    glDisable(GL_FOG);
   } else if (!heightfield_) {
     // No ground at all (free fall worlds): grid lines through the origin
     // across up, for scale.

@@ -43,7 +43,9 @@ Mesh SphereMesh(double radius, int slices = 24, int stacks = 12);
 Mesh CylinderMesh(double radius, double length, int slices = 24);
 // Cylinder of `length` with hemispherical caps (total length + 2 radius).
 Mesh CapsuleMesh(double radius, double length, int slices = 24, int stacks = 12);
-// The mesh of one body's geometry (empty for KIND_NONE).
+// A small octahedron (corners `radius` from the centre) marking a point mass.
+Mesh PointMassMesh(double radius = 0.05);
+// The mesh of one body's geometry; a point mass (KIND_NONE) gets the marker.
 Mesh GeometryMesh(const geometry_t& geometry);
 
 // The world-frame surface of a heightfield (as the sim builds it: columns

@@ -76,6 +76,9 @@ class Renderer {
   int font_width_ = 0;
   int font_height_ = 0;
   int bodies_drawn_ = 0;
+  // Light directions of the current frame (world frame, unit).
+  Eigen::Vector3d sun_ = Eigen::Vector3d::UnitY();
+  Eigen::Vector3d fill_ = Eigen::Vector3d::UnitY();
 };
 
 }  // namespace simpartner::viewer
