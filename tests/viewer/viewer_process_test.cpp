@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -145,6 +146,14 @@ class Listener {
   lcm::LCM lcm_;
 };
 
+// The caller's ASan options (scripts/test sets some), plus leave to an
+// LD_PRELOADed library the place ASan wants first.
+std::string AsanOptions() {
+  const char* given = std::getenv("ASAN_OPTIONS");
+  return (given != nullptr && *given != '\0' ? std::string(given) + ":" : std::string()) +
+         "verify_asan_link_order=0";
+}
+
 double ColorDistance(const RgbImage::Rgb& a, const RgbImage::Rgb& b) {
   return std::sqrt(static_cast<double>((a.r - b.r) * (a.r - b.r) + (a.g - b.g) * (a.g - b.g) +
                                        (a.b - b.b) * (a.b - b.b)));
@@ -182,8 +191,10 @@ class ViewerProcessTest : public ::testing::Test {
                                             std::vector<std::string> extra) {
     std::vector<std::string> argv = {
         "/usr/bin/env", "DISPLAY=" + xvfb_->display(),
-        // Mesa and X keep allocations for the life of the process; see the file.
+        // Under ASan: Mesa, X and D-Bus keep allocations for the life of the
+        // process; see lsan.supp and keep_libraries_loaded.c.
         "LSAN_OPTIONS=suppressions=" + std::string(SP_SOURCE_DIR) + "/tests/viewer/lsan.supp",
+        "LD_PRELOAD=" SP_KEEP_LOADED_LIB, "ASAN_OPTIONS=" + AsanOptions(),
         std::string(SP_BINARY_DIR) + "/viewer/simpartner-viewer", "--params", "/dev/null",
         "--lcm-url", url, "--width", std::to_string(kWidth), "--height", std::to_string(kHeight),
         "--camera", kCamera};
