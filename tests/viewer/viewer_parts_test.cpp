@@ -138,6 +138,8 @@ TEST(OptionsTest, DefaultsAndScreenshotFlags) {
   // A screenshot without a time is taken after 2 s.
   EXPECT_DOUBLE_EQ(Options({"--screenshot", "b.png"}).after_seconds, 2.0);
   EXPECT_EQ(Options({"--screenshot", "b.png", "--frames", "5"}).after_frames, 5);
+  EXPECT_EQ(d.nice, 5);
+  EXPECT_EQ(Options({"--nice", "0"}).nice, 0);
 }
 
 TEST(OptionsTest, CameraShowAndHide) {
@@ -157,6 +159,8 @@ TEST(OptionsTest, BadValuesNameTheFlagAndValue) {
   EXPECT_NE(ErrorOf({"--width", "wide"}).find("--width: value 'wide' is not a number from 64"),
             std::string::npos);
   EXPECT_NE(ErrorOf({"--fps", "-1"}).find("--fps: value '-1'"), std::string::npos);
+  EXPECT_NE(ErrorOf({"--nice", "20"}).find("--nice: value '20' is not a number from 0 to 19"),
+            std::string::npos);
   EXPECT_NE(ErrorOf({"--camera", "1,2,3"}).find("--camera: value '1,2,3' is not 6 numbers"),
             std::string::npos);
   EXPECT_NE(ErrorOf({"--camera", "0,0,0,0,95,5"}).find("--camera: value '95' is not a number from -89 to 89"),

@@ -4,6 +4,9 @@
 #include <SDL2/SDL_opengl.h>
 #include <sys/resource.h>
 
+#include <cerrno>
+#include <cstring>
+
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -29,6 +32,7 @@ constexpr double kOrbitRadiansPerPixel = 0.006;
 constexpr double kZoomPerWheelStep = 0.9;
 constexpr double kFlySpeedPerDistance = 0.8;  // [1/s]: flies 0.8 x the camera distance per second
 constexpr double kFastFlyFactor = 4.0;
+constexpr double kWarningSeconds = 10.0;  // [s of sim time] a warning stays on the HUD
 constexpr Color3 kWhite{1, 1, 1};
 
 std::string Fixed(double v, int decimals) {
@@ -341,10 +345,16 @@ class Viewer {
       const bool alarm = st != nullptr && st->run_state == status_t::RUN_FAULTED;
       hud.top.push_back({line, alarm ? Color3{1.0f, 0.45f, 0.35f} : kWhite});
       if (st != nullptr) {
-        // The newest two warnings of the sim.
-        const size_t n = st->warnings.size();
+        // The newest two warnings of the sim from the last 10 s of sim time
+        // (SIM_STATUS repeats its recent warnings for good).
+        const int64_t now_step = s != nullptr ? s->step : st->step;
+        const int64_t recent = m.step_size > 0 ? static_cast<int64_t>(kWarningSeconds / m.step_size) : 0;
+        std::vector<const warning_t*> shown;
+        for (const warning_t& w : st->warnings)
+          if (w.step >= now_step - recent && w.step <= now_step) shown.push_back(&w);
+        const size_t n = shown.size();
         for (size_t k = n > 2 ? n - 2 : 0; k < n; ++k) {
-          const warning_t& w = st->warnings[k];
+          const warning_t& w = *shown[k];
           std::string text = "step " + std::to_string(w.step) + " " + w.source + ": " + w.message;
           if (!w.bodies.empty()) {
             text += " (";
@@ -458,6 +468,15 @@ class Viewer {
 }  // namespace
 
 int RunViewer(const ViewerOptions& options, std::ostream& out, std::ostream& err) {
+  // Before any thread starts: Linux priorities are per thread and the
+  // renderer's threads (llvmpipe's) inherit this one's.
+  if (options.nice > 0) {
+    errno = 0;
+    const int current = getpriority(PRIO_PROCESS, 0);
+    if (errno == 0 && setpriority(PRIO_PROCESS, 0, std::min(current + options.nice, 19)) != 0)
+      err << "simpartner-viewer: cannot lower the priority by " << options.nice << ": "
+          << std::strerror(errno) << std::endl;
+  }
   Viewer viewer(options, out, err);
   return viewer.Run();
 }

@@ -66,6 +66,9 @@ std::vector<FlagSpec> ViewerFlags() {
        "distance [m]; turns follow off"},
       {"show", true, std::string("turn these on at start (comma-separated): ") + kToggleNames},
       {"hide", true, "turn these off at start (same names)"},
+      {"nice", true,
+       "lower the viewer's CPU priority by this much, 0 to 19 (default 5): on a machine "
+       "without a GPU drawing takes about a core, and the sim keeping real time matters more"},
       {"scanner-poll", true,
        "ask every scanner for a reading this many times per second (default 0: only draw "
        "readings the sim publishes at the sensor's rate)"},
@@ -98,6 +101,7 @@ ViewerOptions MakeViewerOptions(const CommandLine& command_line, const Parameter
   if (auto v = number("frames", 1, 1e9)) o.after_frames = static_cast<int64_t>(*v);
   if (auto v = number("quit-after", 0, 1e9)) o.quit_after = *v;
   if (auto v = number("scanner-poll", 0, 1000)) o.scanner_poll_hz = *v;
+  if (auto v = number("nice", 0, 19)) o.nice = static_cast<int>(*v);
   o.screenshot = command_line.Value("screenshot", "");
   const bool timed = o.after_seconds > 0 || o.after_frames > 0;
   if (o.screenshot.empty() && timed)

@@ -45,6 +45,7 @@ struct ViewerOptions {
   std::optional<CameraSpec> camera;  // fixed start camera (turns follow off)
   Toggles toggles;
   double scanner_poll_hz = 0;  // ask scanners for readings this often (0 = only listen)
+  int nice = 5;                // lower the viewer's CPU priority by this much (0..19)
 };
 
 std::vector<FlagSpec> ViewerFlags();
