@@ -5,6 +5,7 @@
 // shows where nothing is.
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
+#include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -490,6 +491,18 @@ TEST_F(ViewerProcessTest, BadStatesAreCountedAndIgnoredWithoutACrash) {
                                 {"Crate", "Drum", "Pill", "Bob"});
   Quit(bus.lcm());
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
+}
+
+// SIGTERM (or SIGINT) closes the window and ends the viewer cleanly, even
+// while it waits on the bus, with its frame figures.
+TEST_F(ViewerProcessTest, SigtermEndsTheViewerCleanly) {
+  const std::string url = UniqueUrl(6);
+  auto viewer = StartViewer(url, "viewer.log", {});
+  ASSERT_TRUE(WaitForText("viewer.log", "listening on", 20)) << Read("viewer.log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  viewer->Signal(SIGTERM);
+  EXPECT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
+  EXPECT_NE(Read("viewer.log").find("frames in"), std::string::npos) << Read("viewer.log");
 }
 
 // Real key presses (XTEST, through xdotool) reach the viewer's window and

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
 
 #include "simpartner/channels.h"
@@ -57,7 +59,13 @@ int ViewerBus::Drain(Clock::time_point until) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
     const int timeout = static_cast<int>(std::max<int64_t>(left.count(), 0));
     const int status = lcm_.handleTimeout(timeout);
-    if (status < 0) throw std::runtime_error("LCM at '" + url_ + "' failed while receiving");
+    if (status < 0) {
+      // A signal (SIGTERM, SIGINT: SDL turns them into a quit event) cut
+      // the wait short: back to the frame loop, which sees the event.
+      if (errno == EINTR) break;
+      throw std::runtime_error("LCM at '" + url_ + "' failed while receiving: " +
+                               std::strerror(errno));
+    }
     if (status == 0) {
       if (Clock::now() >= until) break;
       continue;
