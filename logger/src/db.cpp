@@ -285,27 +285,19 @@ int64_t DbConnection::QueryInt(const std::string& sql, const std::string& what, 
   }
 }
 
-void DbConnection::Begin() {
-  try {
-    connection_->setAutoCommit(false);
-  } catch (const sql::SQLException&) {
-    Rethrow("begin transaction");
-  }
-}
+// Transactions are plain statements, not Connector/C++'s setAutoCommit(),
+// commit() and rollback(): Connector/C++ 1.1.12 (Debian 12) ignores the
+// result of mysql_commit() and mysql_autocommit(), so a COMMIT sent to a
+// server that had just shut down "succeeded" and the batch was dropped from
+// the queue although the server never committed it (seen: 60 steps lost in
+// the 30 s outage test). A statement's failure always throws.
+void DbConnection::Begin() { Execute("START TRANSACTION", "begin transaction"); }
 
-void DbConnection::Commit() {
-  try {
-    connection_->commit();
-    connection_->setAutoCommit(true);
-  } catch (const sql::SQLException&) {
-    Rethrow("commit");
-  }
-}
+void DbConnection::Commit() { Execute("COMMIT", "commit"); }
 
 void DbConnection::Rollback() noexcept {
   try {
-    connection_->rollback();
-    connection_->setAutoCommit(true);
+    statement_->execute("ROLLBACK");
   } catch (const sql::SQLException&) {
     // The connection is broken; the server rolls the transaction back.
   }

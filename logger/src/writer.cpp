@@ -268,6 +268,13 @@ void DbWriter::Connect() {
   std::unique_ptr<DbConnection> db =
       DbConnection::Open(target_, options_.method != InsertMethod::kMultiRowInsert);
   MigrateSchema(db.get(), notice_);
+  // After a lost connection the database, not our memory, says how far each
+  // simulation got: whatever the old connection sent last may or may not
+  // have been committed. A step that went missing then shows as a gap.
+  for (auto& [bus_id, sim] : simulations_)
+    sim.last_step = db->QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = " +
+                                     std::to_string(sim.id),
+                                 "SELECT MAX(step) FROM SimulationRow", -1);
   db_ = std::move(db);
 }
 

@@ -407,6 +407,34 @@ TEST_F(DbTest, AServerThatWentAwayIsUnreachableAndTheWriterReconnects) {
   ExpectEveryStepOnce("simpartner", 1, 1, 20, 3, 2);
 }
 
+// A COMMIT on a connection the server has dropped (a shutdown, a KILL)
+// must be an error: Connector/C++ 1.1's own commit() ignores the failure,
+// and a writer trusting it drops a batch the server never committed.
+TEST_F(DbTest, ACommitOnADroppedConnectionIsAnErrorAndNothingIsCommitted) {
+  Admin()->Execute("CREATE TABLE Probe (x INT PRIMARY KEY) ENGINE=InnoDB", "CREATE TABLE Probe");
+  auto db = DbConnection::Open(server_->LoggerTarget("simpartner"), false);
+  db->UseDatabase(false);
+  const int64_t id = db->QueryInt("SELECT CONNECTION_ID()", "CONNECTION_ID()", -1);
+  db->Begin();
+  db->Execute("INSERT INTO Probe VALUES (1)", "INSERT INTO Probe");
+  Admin()->Execute("KILL CONNECTION " + std::to_string(id), "KILL");
+  try {
+    db->Commit();
+    FAIL() << "COMMIT on a killed connection succeeded";
+  } catch (const DbError& e) {
+    EXPECT_EQ(e.kind(), DbErrorKind::kUnreachable) << e.what();
+    EXPECT_NE(std::string(e.what()).find("commit"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Probe"), 0);
+  // A transaction that does commit is there.
+  auto again = DbConnection::Open(server_->LoggerTarget("simpartner"), false);
+  again->UseDatabase(false);
+  again->Begin();
+  again->Execute("INSERT INTO Probe VALUES (2)", "INSERT INTO Probe");
+  again->Commit();
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Probe"), 1);
+}
+
 TEST_F(DbTest, QueryToolListsAndExportsCsv) {
   const SimRun run = ArmRun(50, 12);
   auto writer = Writer();

@@ -99,10 +99,26 @@ class LoggerProcessTest : public testing::ServerTest {
   // and per joint.
   void ExpectEveryStepOnce(int simulation, int64_t first, int64_t last, int bodies, int joints) {
     const std::string sim = std::to_string(simulation);
-    EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = " + sim), last - first + 1);
+    EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = " + sim), last - first + 1)
+        << "missing steps (first, last): " << MissingRanges(simulation) << "\n" << ReadFile(LoggerLog(0));
     EXPECT_EQ(QueryInt("SELECT MIN(step) FROM SimulationRow WHERE simulationID = " + sim), first);
     EXPECT_EQ(QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = " + sim), last);
     ExpectRowsPerStep(simulation, bodies, joints);
+  }
+  // Runs of steps absent between the first and the last logged one, as
+  // "a-b" items: what a failed count has lost.
+  std::string MissingRanges(int simulation) {
+    const std::string sim = std::to_string(simulation);
+    std::unique_ptr<DbConnection> db = Admin();
+    std::string text;
+    for (const std::string& row : QueryRows(
+             db.get(), "SELECT r.step + 1, (SELECT MIN(n.step) - 1 FROM SimulationRow n WHERE n.simulationID = " +
+                           sim + " AND n.step > r.step) FROM SimulationRow r WHERE r.simulationID = " + sim +
+                           " AND NOT EXISTS (SELECT 1 FROM SimulationRow x WHERE x.simulationID = " + sim +
+                           " AND x.step = r.step + 1) AND r.step < (SELECT MAX(step) FROM SimulationRow WHERE "
+                           "simulationID = " + sim + ") ORDER BY r.step LIMIT 20"))
+      text += row + "; ";
+    return text.empty() ? "none" : text;
   }
   void ExpectRowsPerStep(int simulation, int bodies, int joints) {
     const std::string sim = std::to_string(simulation);

@@ -9,7 +9,9 @@
 #include <cppconn/resultset.h>
 #include <cppconn/resultset_metadata.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -104,6 +106,13 @@ class ServerTest : public ::testing::Test {
   }
   void TearDown() override {
     server_.reset();
+    // SP_KEEP_TEST_DIRS=1 keeps the server's files, the spool and the
+    // processes' logs of a failed test for a look afterwards.
+    const char* keep = std::getenv("SP_KEEP_TEST_DIRS");
+    if (keep != nullptr && std::string(keep) == "1" && HasFailure()) {
+      std::cerr << "kept " << dir_ << "\n";
+      return;
+    }
     std::filesystem::remove_all(dir_);
   }
   // The administrator, in `database` (created if missing).
