@@ -1,5 +1,10 @@
 // simpartner-sim: parse flags, load validated parameters and world, run.
+#include <signal.h>
+#include <sys/signalfd.h>
+#include <unistd.h>
+
 #include <iostream>
+#include <stdexcept>
 
 #include "simpartner/model/loader.h"
 #include "simpartner/parameters.h"
@@ -15,9 +20,24 @@ int main(int argc, char** argv) {
       return 0;
     }
     const Parameters params = LoadParameters(command_line);
+    if (command_line.Has("print-parameters")) {
+      std::cout << FormatParameters(params);
+      return 0;
+    }
     model::World world = model::LoadWorldOrThrow(params.environment);
     std::cout << model::DescribeWorld(world) << std::flush;
     if (command_line.Has("check")) return 0;
+
+    // SIGINT/SIGTERM end the run like SIM_CONTROL quit (a last SIM_STATUS
+    // says RUN_STOPPED, so a logger closes the simulation): they arrive as a
+    // readable fd that the loop watches beside the bus.
+    sigset_t stop_signals;
+    sigemptyset(&stop_signals);
+    sigaddset(&stop_signals, SIGINT);
+    sigaddset(&stop_signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+    const int stop_fd = signalfd(-1, &stop_signals, SFD_CLOEXEC | SFD_NONBLOCK);
+    if (stop_fd < 0) throw std::runtime_error("cannot create a signalfd for SIGINT/SIGTERM");
 
     lcm::LCM bus(params.lcmUrl);
     if (!bus.good()) {
@@ -25,11 +45,17 @@ int main(int argc, char** argv) {
       return 1;
     }
     sim::Simulation simulation(std::move(world), params, sim::NowMicros());
-    sim::SimNode node(&simulation, &bus);
+    sim::SimNode node(&simulation, &bus, stop_fd);
     std::cout << "simpartner-sim: running (step " << params.stepsize << " s, "
               << params.stepper << " stepper, speed " << params.speed << ") on "
               << params.lcmUrl << std::endl;
-    return node.Run();
+    const int status = node.Run();
+    signalfd_siginfo signal{};
+    if (::read(stop_fd, &signal, sizeof signal) == static_cast<ssize_t>(sizeof signal))
+      std::cout << "simpartner-sim: stopped by " << (signal.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM")
+                << " at step " << simulation.step() << std::endl;
+    ::close(stop_fd);
+    return status;
   } catch (const DiagnosticError& e) {
     std::cerr << e.diagnostics().Format() << "\n"
               << "simpartner-sim: " << e.diagnostics().size() << " error"

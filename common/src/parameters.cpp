@@ -286,8 +286,8 @@ CommandLine ParseCommandLine(int argc, const char* const* argv,
       }
       continue;
     }
-    if (name == "help" && !has_inline_value) {
-      result.flags.push_back("help");
+    if ((name == "help" || name == "print-parameters") && !has_inline_value) {
+      result.flags.push_back(name);
       continue;
     }
     if (const FlagSpec* flag = find_flag(name)) {
@@ -420,6 +420,7 @@ std::string FormatUsage(const std::string& program, const std::string& summary,
   line("--lcm-url URL", std::string("LCM URL (default ") + kDefaultLcmUrl + ")");
   for (const FlagSpec& f : process_flags)
     line("--" + f.name + (f.takes_value ? " VALUE" : ""), f.help);
+  line("--print-parameters", "print the effective parameters (file + overrides) as key=value and exit");
   line("--help", "show this text");
   out += "\nParameters (key=default, in parameters.txt or as --key=value):\n";
   out += DescribeParameters();

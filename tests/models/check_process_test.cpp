@@ -136,5 +136,24 @@ TEST(CheckProcess, GoodWorldExitsZeroWithTheSummary) {
   EXPECT_NE(run.out.find("actuators: "), std::string::npos) << run.out;
 }
 
+// What scripts use to learn a setting (scripts/run: log, dbserver): the
+// file's values with the command line's overrides applied, validated.
+TEST(CheckProcess, PrintParametersShowsTheFileWithTheOverrides) {
+  const SimRun run = RunSim({"--print-parameters", "--params", (kSource / "parameters.txt").string(),
+                             "--stepsize=0.002", "--log=0"});
+  EXPECT_EQ(run.status, 0) << "stderr:\n" << run.err;
+  EXPECT_TRUE(HasLine(run.out, "stepsize=0.002")) << run.out;
+  EXPECT_TRUE(HasLine(run.out, "log=0")) << run.out;
+  EXPECT_TRUE(HasLine(run.out, "dbname=simpartner")) << run.out;  // from the file
+  EXPECT_EQ(run.out.find("objects:"), std::string::npos) << "nothing loaded, nothing started";
+
+  const SimRun bad = RunSim({"--print-parameters", "--params", (kSource / "parameters.txt").string(),
+                             "--stepsize=2"});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("command line: stepsize: value '2' is out of range"), std::string::npos)
+      << bad.err;
+  EXPECT_EQ(bad.out, "");
+}
+
 }  // namespace
 }  // namespace simpartner::model
