@@ -43,8 +43,8 @@ std::string SenderName(const std::string& program) {
   return program + "@" + HostName() + ":" + std::to_string(::getpid());
 }
 
-SimNode::SimNode(Simulation* sim, lcm::LCM* lcm)
-    : sim_(sim), lcm_(lcm), host_(HostName()) {
+SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd)
+    : sim_(sim), lcm_(lcm), stop_fd_(stop_fd), host_(HostName()) {
   paused_ = sim->params().startPaused;
   speed_ = sim->params().speed;
   lcm_->subscribe(channels::kCommand, &SimNode::OnCommand, this)->setQueueCapacity(1000);
@@ -155,10 +155,16 @@ void SimNode::HandleIncoming(Clock::duration timeout) {
     fd_set fds;
     FD_ZERO(&fds);
     FD_SET(fd, &fds);
+    if (stop_fd_ >= 0) FD_SET(stop_fd_, &fds);
     const auto micros =
         std::max<int64_t>(0, std::chrono::duration_cast<std::chrono::microseconds>(remaining).count());
     timeval tv{static_cast<time_t>(micros / 1000000), static_cast<suseconds_t>(micros % 1000000)};
-    const int ready = ::select(fd + 1, &fds, nullptr, nullptr, &tv);
+    const int ready = ::select(std::max(fd, stop_fd_) + 1, &fds, nullptr, nullptr, &tv);
+    if (ready > 0 && stop_fd_ >= 0 && FD_ISSET(stop_fd_, &fds)) {
+      quit_ = true;
+      status_changed_ = true;
+      return;
+    }
     if (ready > 0) {
       lcm_->handle();
     } else {

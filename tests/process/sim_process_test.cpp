@@ -295,6 +295,26 @@ TEST_F(SimProcessTest, PauseStepResetQuit) {
             true);
 }
 
+// Ctrl-C or a service manager's SIGTERM ends a run as cleanly as
+// SIM_CONTROL quit: exit status 0 and a last SIM_STATUS saying RUN_STOPPED
+// (a logger closes the simulation on it).
+TEST_F(SimProcessTest, SigintAndSigtermStopTheRunCleanly) {
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const std::string url = UniqueUrl(signal == SIGINT ? 11 : 12);
+    SimProcess sim(Args(url, {}), Log());
+    Listener bus(url);
+    ASSERT_TRUE(bus.Until([&] { return bus.last_step > 50; }, 5.0)) << LogText();
+    sim.Signal(signal);
+    EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0) << LogText();
+    EXPECT_TRUE(bus.Until(
+        [&] { return !bus.statuses.empty() && bus.statuses.back().run_state == status_t::RUN_STOPPED; },
+        2.0));
+    EXPECT_NE(LogText().find(std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM")),
+              std::string::npos)
+        << LogText();
+  }
+}
+
 // The same timed commands give the same SIM_STATE stream at real time and
 // as fast as possible.
 TEST_F(SimProcessTest, SameStreamAtAnySpeed) {

@@ -22,12 +22,15 @@ class SimNode {
  public:
   using Clock = std::chrono::steady_clock;
 
-  // lcm must be good(); sim and lcm outlive the node.
-  SimNode(Simulation* sim, lcm::LCM* lcm);
+  // lcm must be good(); sim and lcm outlive the node. stop_fd, if >= 0,
+  // becomes readable when the process is told to stop (a signalfd for
+  // SIGINT/SIGTERM): the node then ends as on SIM_CONTROL quit, with a
+  // last SIM_STATUS saying RUN_STOPPED.
+  SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd = -1);
   SimNode(const SimNode&) = delete;
   SimNode& operator=(const SimNode&) = delete;
 
-  // Runs until SIM_CONTROL quit or the duration parameter is reached.
+  // Runs until SIM_CONTROL quit, stop_fd or the duration parameter.
   // Returns the process exit status (0).
   int Run();
 
@@ -55,6 +58,7 @@ class SimNode {
 
   Simulation* sim_;
   lcm::LCM* lcm_;
+  int stop_fd_;
   std::string host_;
   bool quit_ = false;
   bool paused_ = false;
