@@ -30,11 +30,16 @@ int main(int argc, char** argv) {
   using namespace simpartner;
   try {
     const CommandLine command_line = ParseCommandLine(argc, argv, kFlags);
-    if (command_line.Has("help") || command_line.positional.empty()) {
+    if (command_line.Has("help") ||
+        (command_line.positional.empty() && !command_line.Has("print-parameters"))) {
       std::cout << FormatUsage("simpartner-query", kSummary, kFlags);
       return command_line.Has("help") ? 0 : 2;
     }
     const Parameters params = LoadParameters(command_line);
+    if (command_line.Has("print-parameters")) {
+      std::cout << FormatParameters(params);
+      return 0;
+    }
     const std::string& command = command_line.positional[0];
     logger::ExportRequest request;
     if (command == "poses") request.kind = logger::ExportKind::kPoses;
