@@ -35,6 +35,21 @@ constexpr double kScannerAhead = 0.665; // SPEC 8: wall 6 m from the centre, 5.3
 constexpr int kScannerRays = 11;        // SPEC 4
 constexpr double kScannerHalfSpan = 0.1;
 constexpr double kScannerRange = 10.0;
+// gen4's supports, our design (models/README.md, workpartner_gen4.xml):
+// tyres of 2e5 N/m and 7000 N s/m per wheel, which on flat ground touch at
+// two contact points (the wheel's faces) of half that each; legs 2 and 4
+// 0.5235 mm longer than legs 1 and 3 (their whole leg sits that much lower).
+constexpr double kGen4TyreStiffness = 2e5;    // [N/m] per wheel
+constexpr double kGen4TyreDamping = 7000.0;   // [N s/m] per wheel
+constexpr double kGen4LegOffset = 0.0005235;  // [m]
+// The run parameters the tyre softness is written for (parameters.txt) and
+// the hold of SPEC 4 (sim_core/controllers.h: velocity kHoldGain * error).
+constexpr double kStep = 0.001;                       // [s] stepsize
+constexpr double kGlobalERP = 0.2, kGlobalCFM = 1e-5;  // joints
+constexpr double kDefaultSoftERP = 0.2;                // contactSoftERP: a ground without material
+constexpr double kDefaultSoftCFM = 1e-5;               // contactSoftCFM
+constexpr double kHoldGain = 20.0;                     // [1/s]
+constexpr double kMaxCorrectingVel = 0.2;              // [m/s] contactMaxCorrectingVel
 // Our design (models/README.md): gen1 = chassis 20 + 32 kg + four 21 kg legs.
 constexpr double kGen1Mass = 136.0;
 constexpr double kGen2Mass = 187.0;     // gen1 + 51
@@ -51,6 +66,12 @@ const WheelPlace kWheels[] = {{1, +kAxleX, +kHalfTrack},
                               {4, -kAxleX, +kHalfTrack}};
 
 const char* const kGenerations[] = {"gen1", "gen1_light", "gen2", "gen3", "gen4"};
+
+// How much lower than SPEC 7's place a leg (and its wheel) sits: gen4's
+// legs 2 and 4 are kGen4LegOffset longer, which makes its cross weight.
+double LegDrop(const std::string& gen, int wheel) {
+  return gen == "gen4" && (wheel == 2 || wheel == 4) ? kGen4LegOffset : 0.0;
+}
 
 Robot LoadShippedRobot(const std::string& gen) {
   const std::string path = (kModels / "robots" / ("workpartner_" + gen + ".xml")).string();
@@ -369,7 +390,8 @@ TEST(ShippedRobots, WheelsAreNumberedAndPlacedPerSpec) {
       ASSERT_NE(wheel, nullptr);
       EXPECT_EQ(wheel->geometry.kind, GeometryKind::kCylinder);
       EXPECT_DOUBLE_EQ(wheel->geometry.size.x(), kWheelRadius);
-      EXPECT_TRUE(Near(wheel->pose.translation(), Eigen::Vector3d(w.x, kWheelRadius, w.z), 1e-9))
+      const Eigen::Vector3d centre(w.x, kWheelRadius - LegDrop(gen, w.number), w.z);
+      EXPECT_TRUE(Near(wheel->pose.translation(), centre, 1e-9))
           << "Wheel" << i << " at " << wheel->pose.translation().transpose();
       EXPECT_TRUE(Near(wheel->com, Eigen::Vector3d::Zero(), 1e-12));
       // Cylinder axis (body z) along the robot's z: the axle is lateral.
@@ -433,7 +455,8 @@ TEST(ShippedRobots, OnlyTheWheelsTouchTheGroundAndNothingOverlaps) {
     for (const Body& b : r.bodies) {
       const Box3 box = Bounds(b);
       if (b.name.rfind("Wheel", 0) == 0) {
-        EXPECT_NEAR(box.lo.y(), 0.0, 1e-9) << b.name;
+        // gen4's wheels 2 and 4 start kGen4LegOffset in the ground.
+        EXPECT_NEAR(box.lo.y(), -LegDrop(gen, std::stoi(b.name.substr(5))), 1e-9) << b.name;
       } else {
         EXPECT_GT(box.lo.y(), 0.05) << b.name;
       }
@@ -618,24 +641,107 @@ TEST(ShippedRobots, LegacyPortsAreUniqueAndStableAcrossGenerations) {
   }
 }
 
-TEST(ShippedRobots, Gen4CentreOfMassGivesTheRealStaticLoadSplits) {
+// gen4's legs are gen3's, with legs 2 and 4 moved down as a whole (hip,
+// knee and axle anchors, thigh, calf and wheel): longer legs, same shape.
+TEST(ShippedRobots, Gen4LegsTwoAndFourAreLongerAsAWhole) {
+  const Robot& g3 = Shipped("gen3");
+  const Robot& g4 = Shipped("gen4");
+  for (int n = 1; n <= 4; ++n) {
+    const std::string i = std::to_string(n);
+    const Eigen::Vector3d drop(0, -LegDrop("gen4", n), 0);
+    for (const char* part : {"Thigh", "Calf", "Wheel"}) {
+      const Body* b3 = g3.FindBody(part + i);
+      const Body* b4 = g4.FindBody(part + i);
+      ASSERT_NE(b3, nullptr);
+      ASSERT_NE(b4, nullptr);
+      EXPECT_TRUE(Near(b4->pose.translation() - b3->pose.translation(), drop, 1e-12)) << part << n;
+      EXPECT_TRUE(b4->pose.linear().isApprox(b3->pose.linear(), 1e-12)) << part << n;
+    }
+    for (const char* joint : {"Hip", "Knee", "Axle"}) {
+      const Joint* j3 = g3.FindJoint(joint + i);
+      const Joint* j4 = g4.FindJoint(joint + i);
+      ASSERT_NE(j3, nullptr);
+      ASSERT_NE(j4, nullptr);
+      EXPECT_TRUE(Near(j4->anchor - j3->anchor, drop, 1e-12)) << joint << n;
+    }
+  }
+}
+
+// The tyre material: a contact point is an implicit spring-damper with
+// ERP = h k_p / (h k_p + c_p), CFM = 1 / (h k_p + c_p) (ODE's manual), so
+// k_p = ERP / (h CFM) and c_p = (1 - ERP) / CFM; two points per wheel.
+TEST(ShippedRobots, Gen4TyresHaveTheirStiffnessAndDamping) {
+  const Robot& r = Shipped("gen4");
+  const Material* tyre = nullptr;
+  for (int n = 1; n <= 4; ++n) {
+    const Body* wheel = r.FindBody("Wheel" + std::to_string(n));
+    ASSERT_NE(wheel, nullptr);
+    for (const Material& m : r.materials)
+      if (m.name == wheel->material) tyre = &m;
+    ASSERT_NE(tyre, nullptr) << "Wheel" << n;
+  }
+  // Softer than a ground without material, so the tyre decides the contact.
+  EXPECT_LT(tyre->soft_erp, kDefaultSoftERP);
+  EXPECT_GT(tyre->soft_cfm, kDefaultSoftCFM);
+  // The file rounds ERP and CFM to 6 significant digits.
+  const double k_point = tyre->soft_erp / (kStep * tyre->soft_cfm);
+  const double c_point = (1.0 - tyre->soft_erp) / tyre->soft_cfm;
+  EXPECT_NEAR(2.0 * k_point / kGen4TyreStiffness, 1.0, 1e-5);
+  EXPECT_NEAR(2.0 * c_point / kGen4TyreDamping, 1.0, 1e-5);
+  // ODE caps ERP * depth / h at contactMaxCorrectingVel; standing, that is
+  // F * CFM, so a point gives way above 0.2 / CFM. The heaviest static
+  // point load is under 400 N (a wheel's 775 N and its share of the roll
+  // moment); leave a factor of 1.5 for driving.
+  EXPECT_GT(kMaxCorrectingVel / tyre->soft_cfm, 1.5 * 400.0);
+}
+
+// gen4's loads on flat ground as a spring model of its supports (the
+// arithmetic is written out in workpartner_gen4.xml): each wheel is its
+// tyre (two contact points of k_p) in series with its leg, whose axle, knee
+// and hip hinges yield like springs of ERP / (h CFM) per position row and
+// whose knee (0.18 m beside the axle) is held with kHoldGain / CFM N m per
+// radian:  k_v = 1 / (1 / (2 k_p) + 3 h CFM / ERP + 0.18^2 CFM / G).
+//  - total = M g;
+//  - cross weight: legs 2 and 4 are delta longer; on flat ground the
+//    chassis settles halfway, (W2 + W4) - (W1 + W3) = 2 k_v delta;
+//  - splits, from moments about the ground-level axes with the robot
+//    leaning on its supports (its centre of mass moves over by its height
+//    h_c times the angle) and, in roll, each wheel also carrying a moment
+//    through its two contact points at +-0.07 m:
+//      front - rear = 4 k_v a W x / (4 k_v a^2 - W h_c),
+//      left - right = 4 k_v t W z_left / (4 k_v t^2 + 8 k_p 0.07^2 - W h_c).
+// The real robot's sums within 0.5 N: the file rounds its positions to
+// 0.1 um and 1 um, less than 0.1 N here.
+TEST(ShippedRobots, Gen4SupportsAndCentreOfMassGiveTheRealStaticLoads) {
   const Robot& r = Shipped("gen4");
   const Eigen::Vector3d com = CentreOfMass(r);
-  const double total = kW1 + kW2 + kW3 + kW4;
-  // A rigid vehicle on four points (+-a, +-t): moments about the axes
-  // through the origin give the front and left shares of the weight.
-  const double front = 0.5 + com.x() / (2.0 * kAxleX);
-  const double left = 0.5 - com.z() / (2.0 * kHalfTrack);
-  const double front_target = (kW1 + kW2) / total;
-  const double left_target = (kW2 + kW3) / total;
-  EXPECT_NEAR(front / front_target, 1.0, 0.005) << "front share " << front;
-  EXPECT_NEAR((1.0 - front) / (1.0 - front_target), 1.0, 0.005);
-  EXPECT_NEAR(left / left_target, 1.0, 0.005) << "left share " << left;
-  EXPECT_NEAR((1.0 - left) / (1.0 - left_target), 1.0, 0.005);
-  // In newtons, within 0.5 % of the real robot's sums.
   const double weight = r.TotalMass() * 9.81;
-  EXPECT_NEAR(weight * front, kW1 + kW2, 0.005 * (kW1 + kW2));
-  EXPECT_NEAR(weight * left, kW2 + kW3, 0.005 * (kW2 + kW3));
+  EXPECT_NEAR(weight, kW1 + kW2 + kW3 + kW4, 0.05);  // 275.15 kg is rounded to 10 g
+  double soft_erp = kDefaultSoftERP, soft_cfm = kDefaultSoftCFM;
+  for (const Material& m : r.materials) {
+    if (m.name != r.FindBody("Wheel1")->material) continue;
+    soft_erp = std::min(soft_erp, m.soft_erp);
+    soft_cfm = std::max(soft_cfm, m.soft_cfm);
+  }
+  const double k_point = soft_erp / (kStep * soft_cfm);
+  const double knee_lever = 0.18;  // knee to axle, along x (models/README.md)
+  const double k_v = 1.0 / (1.0 / (2.0 * k_point) + 3.0 * kStep * kGlobalCFM / kGlobalERP +
+                            knee_lever * knee_lever * kGlobalCFM / kHoldGain);
+  // The wheels sink weight / (4 k) into the ground from the file's pose.
+  const double height = com.y() - weight / (4.0 * 2.0 * k_point);
+  const double front_minus_rear =
+      4.0 * k_v * kAxleX * weight * com.x() / (4.0 * k_v * kAxleX * kAxleX - weight * height);
+  const double left_minus_right =
+      4.0 * k_v * kHalfTrack * weight * -com.z() /
+      (4.0 * k_v * kHalfTrack * kHalfTrack + 8.0 * k_point * 0.07 * 0.07 - weight * height);
+  const double cross = 2.0 * k_v * kGen4LegOffset;
+  EXPECT_NEAR(front_minus_rear, (kW1 + kW2) - (kW3 + kW4), 0.5);
+  EXPECT_NEAR(left_minus_right, (kW2 + kW3) - (kW1 + kW4), 0.5);
+  EXPECT_NEAR(cross, (kW2 + kW4) - (kW1 + kW3), 0.5);
+  // Point supports would need the centre of mass 0.3 * 188.84 / 2699.2 =
+  // 0.0210 m to the left; the wheels' line contact and the lean move it to
+  // 0.0216 m.
+  EXPECT_GT(-com.z(), 0.3 * ((kW2 + kW3) - (kW1 + kW4)) / (kW1 + kW2 + kW3 + kW4) + 0.0005);
 }
 
 TEST(ShippedRobots, Gen3IsHeavierAtTheFrontAsTheOriginal) {
