@@ -463,12 +463,13 @@ ExperimentResult TestTrack(const Context& context) {
       "also loses speed to sinking and rolling resistance; the track's snow has no rolling "
       "resistance, so slowing more than this would need a model of the ground we do not have, "
       "not a weaker motor.\n\n"
-      "The wheel loads (1 s means, against the position on the track) show what a rigid "
-      "four-wheeler does on uneven ground: gen4's legs are held stiffly and it has no "
-      "suspension, so on the snow's 1.5 cm unevenness it stands on one diagonal pair of "
-      "wheels (about 1350 N each) while the other pair barely touches, and rocks over to the "
-      "other pair every metre or two; only on the level ground at the start and between the "
-      "planks do all four carry their share.";
+      "The wheel loads (1 s means, against the position on the track) show the robot rocking "
+      "from one diagonal pair of wheels to the other: gen4's legs are held stiffly and its "
+      "only compliance is in its tyres (3.4 mm of sag under its weight, against the snow's "
+      "1.5 cm unevenness), so a diagonal pair takes most of the weight (up to about 1150 N a "
+      "wheel) while the other is nearly unloaded (down to about 200 N), and the roles swap "
+      "every metre or two; on the level ground at the start all four carry about their "
+      "static share.";
   return result;
 }
 
