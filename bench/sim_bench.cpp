@@ -2,6 +2,7 @@
 // the same world in the same run, so our overhead is a ratio:
 //   bare      dSpaceCollide + dWorldStep/QuickStep + dJointGroupEmpty only
 //   sim       Simulation::Step (commands, controllers, step, health check)
+//   sim+enc   the same plus SIM_STATE filled and encoded (our part of publishing)
 //   sim+pub   the same plus SIM_STATE filled, encoded and published on LCM
 // for each world given (default: the WorkPartner worlds), each stepper
 // setting, as fast as possible. Also peak resident memory.
@@ -97,8 +98,8 @@ int main(int argc, char** argv) {
                               {"QuickStep 20", "quick", 20},
                               {"QuickStep 50", "quick", 50},
                               {"QuickStep 100", "quick", 100}};
-  std::printf("%-28s %-14s %6s %10s %10s %10s %8s %8s %9s\n", "world", "stepper", "bodies",
-              "bare us", "sim us", "sim+pub us", "sim/bare", "pub/bare", "x realtime");
+  std::printf("%-28s %-14s %6s %10s %10s %10s %10s %8s %8s %9s\n", "world", "stepper", "bodies",
+              "bare us", "sim us", "sim+enc us", "sim+pub us", "sim/bare", "pub/bare", "x realtime");
   for (const std::string& path : worlds) {
     model::WorldLoadResult loaded = model::LoadWorldFile(path);
     if (!loaded.world) {
@@ -141,6 +142,20 @@ int main(int argc, char** argv) {
         for (int n = 0; n < steps; ++n) faulted |= !sim.Step();
         sim_us = MicrosPerStep(Clock::now() - start, steps);
       }
+      double enc_us = 0;
+      {
+        sim::Simulation sim(*loaded.world, params, 1);
+        state_t state;
+        std::vector<uint8_t> buffer;
+        const auto start = Clock::now();
+        for (int n = 0; n < steps; ++n) {
+          faulted |= !sim.Step();
+          sim.FillState(&state);
+          buffer.resize(static_cast<size_t>(state.getEncodedSize()));
+          state.encode(buffer.data(), 0, static_cast<int>(buffer.size()));
+        }
+        enc_us = MicrosPerStep(Clock::now() - start, steps);
+      }
       {
         sim::Simulation sim(*loaded.world, params, 1);
         state_t state;
@@ -153,8 +168,8 @@ int main(int argc, char** argv) {
         pub_us = MicrosPerStep(Clock::now() - start, steps);
       }
       std::string name = std::filesystem::path(path).filename().string();
-      std::printf("%-28s %-14s %6zu %10.1f %10.1f %10.1f %8.3f %8.3f %9.1f%s\n", name.c_str(),
-                  setting.name, bodies, bare_us, sim_us, pub_us, sim_us / bare_us,
+      std::printf("%-28s %-14s %6zu %10.1f %10.1f %10.1f %10.1f %8.3f %8.3f %9.1f%s\n", name.c_str(),
+                  setting.name, bodies, bare_us, sim_us, enc_us, pub_us, sim_us / bare_us,
                   pub_us / bare_us, params.stepsize * 1e6 / pub_us,
                   faulted ? "  FAULTED (unstable)" : "");
       std::fflush(stdout);
