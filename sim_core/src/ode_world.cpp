@@ -234,24 +234,42 @@ OdeWorld::~OdeWorld() {
   if (heightfield_data_ != nullptr) dGeomHeightfieldDataDestroy(heightfield_data_);
 }
 
-SurfaceProperties OdeWorld::Surface(const std::string& material) const {
+SurfaceProperties ResolveSurface(const model::Material* material, const Parameters& params) {
   SurfaceProperties s;
-  s.mu = params_.contactMu;
-  s.bounce = params_.contactBounce;
-  s.bounce_velocity = params_.contactBounceVelocity;
-  s.soft_erp = params_.contactSoftERP;
-  s.soft_cfm = params_.contactSoftCFM;
-  s.rolling_friction = params_.rollingFriction;
-  if (material.empty()) return s;
+  if (material == nullptr) {
+    s.mu = params.contactMu;
+    s.bounce = params.contactBounce;
+    s.bounce_velocity = params.contactBounceVelocity;
+    s.soft_erp = params.contactSoftERP;
+    s.soft_cfm = params.contactSoftCFM;
+    s.rolling_friction = params.rollingFriction;
+  } else {
+    s.mu = material->mu;
+    s.bounce = material->bounce;
+    s.bounce_velocity = material->bounce_velocity;
+    s.soft_erp = material->soft_erp;
+    s.soft_cfm = material->soft_cfm;
+    s.rolling_friction = material->rolling_friction;
+  }
+  return s;
+}
+
+SurfaceProperties CombineSurfaces(const SurfaceProperties& a, const SurfaceProperties& b) {
+  SurfaceProperties s;
+  s.mu = std::min(a.mu, b.mu);
+  s.rolling_friction = std::min(a.rolling_friction, b.rolling_friction);
+  s.bounce = std::max(a.bounce, b.bounce);
+  s.bounce_velocity = std::max(a.bounce_velocity, b.bounce_velocity);
+  s.soft_erp = std::min(a.soft_erp, b.soft_erp);
+  s.soft_cfm = std::max(a.soft_cfm, b.soft_cfm);
+  return s;
+}
+
+SurfaceProperties OdeWorld::Surface(const std::string& material) const {
+  if (material.empty()) return ResolveSurface(nullptr, params_);
   const model::Material* m = model_.world->FindMaterial(material);
   SP_CHECK_MSG(m != nullptr, "material '" + material + "' was not checked by the loader");
-  s.mu = m->mu;
-  s.bounce = m->bounce;
-  s.bounce_velocity = m->bounce_velocity;
-  s.soft_erp = m->soft_erp;
-  s.soft_cfm = m->soft_cfm;
-  s.rolling_friction = m->rolling_friction;
-  return s;
+  return ResolveSurface(m, params_);
 }
 
 dJointFeedback* OdeWorld::NextFeedback() {
@@ -281,22 +299,18 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
   if (n <= 0) return;
   const GeomInfo& g1 = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(o1)) - 1];
   const GeomInfo& g2 = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(o2)) - 1];
-  // Friction and rolling resistance: the smaller; bounce: the larger;
-  // softness: the softer of the two.
-  const SurfaceProperties& s1 = g1.surface;
-  const SurfaceProperties& s2 = g2.surface;
+  const SurfaceProperties combined = CombineSurfaces(g1.surface, g2.surface);
   dSurfaceParameters surface{};
   surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
-  surface.mu = std::min(s1.mu, s2.mu);
-  surface.soft_erp = std::min(s1.soft_erp, s2.soft_erp);
-  surface.soft_cfm = std::max(s1.soft_cfm, s2.soft_cfm);
-  const double bounce = std::max(s1.bounce, s2.bounce);
-  if (bounce > 0.0) {
+  surface.mu = combined.mu;
+  surface.soft_erp = combined.soft_erp;
+  surface.soft_cfm = combined.soft_cfm;
+  if (combined.bounce > 0.0) {
     surface.mode |= dContactBounce;
-    surface.bounce = bounce;
-    surface.bounce_vel = std::max(s1.bounce_velocity, s2.bounce_velocity);
+    surface.bounce = combined.bounce;
+    surface.bounce_vel = combined.bounce_velocity;
   }
-  const double rolling = std::min(s1.rolling_friction, s2.rolling_friction);
+  const double rolling = combined.rolling_friction;
   if (rolling > 0.0) {
     surface.mode |= dContactRolling;
     surface.rho = rolling;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "simpartner/diagnostic.h"
+#include "simpartner/sim/ode_world.h"
 #include "simpartner/validate/analysis.h"
 #include "simpartner/validate/experiment.h"
 #include "simpartner/validate/sim_run.h"
@@ -71,20 +72,16 @@ ExperimentResult Gen4StaticLoads(const Context& context) {
            " |\n";
   };
   // The supports as the model file sets them (workpartner_gen4.xml writes
-  // out the arithmetic): the contact softness of tyre against ground (the
-  // softer of the tyre's material and the ground's, which has none here),
-  // k_p = ERP / (h CFM) per contact point, two points per wheel on flat
+  // out the arithmetic): the contact of tyre against ground as the sim makes
+  // it, k_p = ERP / (h CFM) per contact point, two points per wheel on flat
   // ground; and how much longer legs 2 and 4 are than legs 1 and 3 (their
   // wheels sit lower).
   const model::Body& tyre_body = *run.sim().flat().bodies[static_cast<size_t>(wheel[0])].source;
-  const model::Material* tyre = run.sim().world().FindMaterial(tyre_body.material);
-  double soft_erp = run.sim().params().contactSoftERP;
-  double soft_cfm = run.sim().params().contactSoftCFM;
-  if (tyre != nullptr) {
-    soft_erp = std::min(soft_erp, tyre->soft_erp);
-    soft_cfm = std::max(soft_cfm, tyre->soft_cfm);
-  }
-  const double tyre_k = 2.0 * soft_erp / (run.dt() * soft_cfm);  // per wheel [N/m]
+  const model::World& world = run.sim().world();
+  const sim::SurfaceProperties contact = sim::CombineSurfaces(
+      sim::ResolveSurface(world.FindMaterial(tyre_body.material), run.sim().params()),
+      sim::ResolveSurface(world.FindMaterial(world.plane_material), run.sim().params()));
+  const double tyre_k = 2.0 * contact.soft_erp / (run.dt() * contact.soft_cfm);  // per wheel [N/m]
   double wheel_y[4];
   for (int k = 0; k < 4; ++k)
     wheel_y[k] = run.sim().flat().bodies[static_cast<size_t>(wheel[k])].pose.translation().y();

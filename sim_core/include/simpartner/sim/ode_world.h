@@ -39,6 +39,14 @@ struct SurfaceProperties {
   double soft_erp = 0.2, soft_cfm = 1e-5, rolling_friction = 0.0;
 };
 
+// A material's contact properties; a geom without one (nullptr) takes the
+// contact defaults of the parameters.
+SurfaceProperties ResolveSurface(const model::Material* material, const Parameters& params);
+// The contact between two surfaces, as the sim makes it: friction and
+// rolling resistance the smaller, bounce the larger, softness the softer
+// (smaller ERP, larger CFM) of the two.
+SurfaceProperties CombineSurfaces(const SurfaceProperties& a, const SurfaceProperties& b);
+
 class OdeWorld {
  public:
   // model and its World must outlive this object.
