@@ -17,10 +17,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     const Parameters params = LoadParameters(command_line);
-    if (command_line.Has("print-parameters")) {
-      std::cout << FormatParameters(params);
-      return 0;
-    }
+    if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
     if (!params.log) {
       std::cout << "simpartner-logger: log=0 in the parameters: nothing to log" << std::endl;
       return 0;

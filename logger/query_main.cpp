@@ -36,10 +36,7 @@ int main(int argc, char** argv) {
       return command_line.Has("help") ? 0 : 2;
     }
     const Parameters params = LoadParameters(command_line);
-    if (command_line.Has("print-parameters")) {
-      std::cout << FormatParameters(params);
-      return 0;
-    }
+    if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
     const std::string& command = command_line.positional[0];
     logger::ExportRequest request;
     if (command == "poses") request.kind = logger::ExportKind::kPoses;

@@ -20,10 +20,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     const Parameters params = LoadParameters(command_line);
-    if (command_line.Has("print-parameters")) {
-      std::cout << FormatParameters(params);
-      return 0;
-    }
+    if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
     model::World world = model::LoadWorldOrThrow(params.environment);
     std::cout << model::DescribeWorld(world) << std::flush;
     if (command_line.Has("check")) return 0;
@@ -50,9 +47,9 @@ int main(int argc, char** argv) {
               << params.stepper << " stepper, speed " << params.speed << ") on "
               << params.lcmUrl << std::endl;
     const int status = node.Run();
-    signalfd_siginfo signal{};
-    if (::read(stop_fd, &signal, sizeof signal) == static_cast<ssize_t>(sizeof signal))
-      std::cout << "simpartner-sim: stopped by " << (signal.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM")
+    signalfd_siginfo received{};
+    if (::read(stop_fd, &received, sizeof received) == static_cast<ssize_t>(sizeof received))
+      std::cout << "simpartner-sim: stopped by " << (received.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM")
                 << " at step " << simulation.step() << std::endl;
     ::close(stop_fd);
     return status;

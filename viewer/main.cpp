@@ -12,10 +12,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     const Parameters params = LoadParameters(command_line);
-    if (command_line.Has("print-parameters")) {
-      std::cout << FormatParameters(params);
-      return 0;
-    }
+    if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
     const viewer::ViewerOptions options = viewer::MakeViewerOptions(command_line, params);
     return viewer::RunViewer(options, std::cout, std::cerr);
   } catch (const DiagnosticError& e) {

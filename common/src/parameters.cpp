@@ -385,6 +385,13 @@ std::string FormatParameters(const Parameters& params) {
   return out;
 }
 
+bool PrintParametersIfAsked(const CommandLine& command_line, const Parameters& params,
+                            std::ostream& out) {
+  if (!command_line.Has("print-parameters")) return false;
+  out << FormatParameters(params);
+  return true;
+}
+
 std::vector<std::string> ParameterKeys() {
   Parameters params;
   std::vector<std::string> keys;

@@ -60,10 +60,7 @@ int RunValidate(int argc, const char* const* argv, std::ostream& out, std::ostre
       return 2;
     }
     context.params = LoadParameters(command_line);
-    if (command_line.Has("print-parameters")) {
-      out << FormatParameters(context.params);
-      return 0;
-    }
+    if (PrintParametersIfAsked(command_line, context.params, out)) return 0;
   } catch (const DiagnosticError& e) {
     err << e.diagnostics().Format() << "\n";
     return 2;

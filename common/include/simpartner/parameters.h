@@ -5,6 +5,7 @@
 #pragma once
 
 #include <limits>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -182,6 +183,11 @@ Parameters LoadParameters(const CommandLine& command_line);
 
 // Effective parameters as `key=value` lines, in the documented order.
 std::string FormatParameters(const Parameters& params);
+
+// --print-parameters (common to every program): writes params to out and
+// returns true, for the program to exit 0; false when not asked.
+bool PrintParametersIfAsked(const CommandLine& command_line, const Parameters& params,
+                            std::ostream& out);
 
 // Documentation of every key (type, range, default, meaning) for --help and
 // for checking that parameters.txt documents every key.
