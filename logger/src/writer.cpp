@@ -26,6 +26,13 @@
 namespace simpartner::logger {
 namespace {
 
+// The last step of a simulation in the database, -1 if none.
+int64_t LastLoggedStep(DbConnection* db, uint32_t simulation) {
+  return db->QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = " +
+                          std::to_string(simulation),
+                      "SELECT MAX(step) FROM SimulationRow", -1);
+}
+
 constexpr size_t kInsertStatementBytes = 1 << 20;
 constexpr size_t kLoadDataFileBytes = 16 << 20;
 constexpr int kDuplicateKey = 1062;  // ER_DUP_ENTRY
@@ -271,10 +278,7 @@ void DbWriter::Connect() {
   // After a lost connection the database, not our memory, says how far each
   // simulation got: whatever the old connection sent last may or may not
   // have been committed. A step that went missing then shows as a gap.
-  for (auto& [bus_id, sim] : simulations_)
-    sim.last_step = db->QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = " +
-                                     std::to_string(sim.id),
-                                 "SELECT MAX(step) FROM SimulationRow", -1);
+  for (auto& [bus_id, sim] : simulations_) sim.last_step = LastLoggedStep(db.get(), sim.id);
   db_ = std::move(db);
 }
 
@@ -340,8 +344,7 @@ bool DbWriter::LoadSimulation(const std::string& where, SimInfo* info) {
     db_->Rethrow("read Simulation");
   }
   const std::string id = std::to_string(info->id);
-  info->last_step = db_->QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = " + id,
-                                  "SELECT MAX(step) FROM SimulationRow", -1);
+  info->last_step = LastLoggedStep(db_.get(), info->id);
   const auto count = [&](const char* table) {
     return static_cast<size_t>(db_->QueryInt(
         std::string("SELECT COUNT(*) FROM ") + table + " WHERE simulationID = " + id,

@@ -106,7 +106,7 @@ class LoggerProcessTest : public testing::ServerTest {
     ExpectRowsPerStep(simulation, bodies, joints);
   }
   // Runs of steps absent between the first and the last logged one, as
-  // "a-b" items: what a failed count has lost.
+  // "first<TAB>last; " items (at most 20): what a failed count has lost.
   std::string MissingRanges(int simulation) {
     const std::string sim = std::to_string(simulation);
     std::unique_ptr<DbConnection> db = Admin();
