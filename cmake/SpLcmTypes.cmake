@@ -2,6 +2,7 @@
 # tree only (never into git): C++ headers for the programs and a jar for
 # lcm-spy. One custom command per output set, rerun when a .lcm changes.
 find_program(LCM_GEN_EXECUTABLE lcm-gen REQUIRED)
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
 set(SP_LCM_JAR_SYSTEM /usr/share/java/lcm.jar CACHE FILEPATH "LCM's Java jar (liblcm-java)")
 
 function(sp_lcm_types)
@@ -24,7 +25,17 @@ function(sp_lcm_types)
     DEPENDS ${abs_sources}
     COMMENT "lcm-gen: C++ headers for ${ARG_PACKAGE}"
     VERBATIM)
-  add_custom_target(${ARG_CPP_TARGET}_gen DEPENDS ${headers})
+  # The field layout table that common/bus_decode checks untrusted bytes with.
+  set(schema ${cpp_dir}/${ARG_PACKAGE}/lcm_schema.hpp)
+  set(schema_script ${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../lcmtypes/lcm_schema.py)
+  add_custom_command(
+    OUTPUT ${schema}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${cpp_dir}/${ARG_PACKAGE}
+    COMMAND ${Python3_EXECUTABLE} ${schema_script} ${schema} ${ARG_PACKAGE} ${abs_sources}
+    DEPENDS ${abs_sources} ${schema_script}
+    COMMENT "lcm_schema.py: field layout table for ${ARG_PACKAGE}"
+    VERBATIM)
+  add_custom_target(${ARG_CPP_TARGET}_gen DEPENDS ${headers} ${schema})
   add_library(${ARG_CPP_TARGET} INTERFACE)
   add_dependencies(${ARG_CPP_TARGET} ${ARG_CPP_TARGET}_gen)
   target_include_directories(${ARG_CPP_TARGET} SYSTEM INTERFACE ${cpp_dir})

@@ -1,0 +1,103 @@
+// Total decoding of untrusted bus input. Every process that reads the bus
+// decodes through here, never through lcm-gen's decode() directly.
+//
+// lcm-gen's C++ decoders trust the bytes: a string length of 0 or less
+// throws std::length_error, and an array count is allocated before it is
+// checked against the datagram (2^31-1 doubles is bad_alloc, 1e8 is 800 MB).
+// Anyone on the network segment can send such a datagram to our multicast
+// group. So a message is first walked field by field against its layout
+// (generated from the .lcm files, lcm_schema.hpp): every string length must
+// be at least 1 and fit, every count must be >= 0, within the bound the
+// .lcm file states ("at most N") and small enough that its elements fit in
+// the bytes left. Only then does lcm-gen's decoder run, and it allocates at
+// most a small multiple of the datagram's size.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace simpartner {
+
+// Why a datagram was refused, for messages: "field 'sender': string length
+// 0 (an LCM string holds at least its NUL)".
+struct DecodeFailure {
+  std::string reason;
+};
+
+// Checks that `data` holds exactly one message of the LCM type named
+// `type_name` (e.g. "command_t") with fingerprint `hash`, without decoding
+// it. Returns the first problem found, or nothing when lcm-gen's decoder
+// can be run safely.
+std::optional<DecodeFailure> CheckLcmLayout(const char* type_name, int64_t hash,
+                                            const void* data, size_t size);
+
+// Decodes one whole message of type T from untrusted bytes. Never throws,
+// never allocates beyond a small multiple of `size`. On failure returns why
+// and leaves *out unspecified.
+template <class T>
+std::optional<DecodeFailure> DecodeLcm(const void* data, size_t size, T* out) {
+  if (size > static_cast<size_t>(INT32_MAX))
+    return DecodeFailure{"message of " + std::to_string(size) + " bytes is larger than LCM allows"};
+  if (auto failure = CheckLcmLayout(T::getTypeName(), T::getHash(), data, size)) return failure;
+  try {
+    const int used = out->decode(data, 0, static_cast<int>(size));
+    if (used < 0) return DecodeFailure{"lcm-gen's decoder refused it"};
+    if (static_cast<size_t>(used) != size)
+      return DecodeFailure{std::to_string(size - static_cast<size_t>(used)) +
+                           " bytes follow the message"};
+  } catch (const std::exception& e) {
+    // The layout check should make this unreachable; a failure here is a
+    // bug in it, reported rather than fatal.
+    return DecodeFailure{std::string("decoder threw: ") + e.what()};
+  }
+  return std::nullopt;
+}
+
+// The description every process prints and counts for a refused message:
+// "SIM_COMMAND: 48 bytes refused as simpartner.command_t: field 'sender':
+// string length 0 (...)".
+std::string DescribeRefusal(const std::string& channel, const char* type_name, size_t size,
+                            const DecodeFailure& failure);
+
+// Refused messages counted per channel, with the newest description of
+// each, for a process's status output. Not thread-safe: one per receiver.
+class BadMessageCounter {
+ public:
+  // Records one refused message; returns true when it should be printed
+  // (the first of a channel, then one in every `print_every`), so a flood
+  // does not become a flood of log lines.
+  bool Count(const std::string& channel, const std::string& description);
+  uint64_t total() const { return total_; }
+  uint64_t count(const std::string& channel) const;
+  const std::map<std::string, uint64_t>& per_channel() const { return counts_; }
+  // "SIM_COMMAND 3, SIM_STATE 1" (channels in name order), or "" when none.
+  std::string Summary() const;
+  const std::string& last_description() const { return last_; }
+
+  static constexpr uint64_t kPrintEvery = 1000;
+
+ private:
+  std::map<std::string, uint64_t> counts_;
+  uint64_t total_ = 0;
+  std::string last_;
+};
+
+// Decodes `data` as T for `channel`; on failure counts it in `counter` and
+// returns the description (also when it should not be printed: see
+// `print`). The one call every subscriber makes.
+template <class T>
+std::optional<std::string> DecodeFromBus(const std::string& channel, const void* data, size_t size,
+                                         T* out, BadMessageCounter* counter, bool* print = nullptr) {
+  auto failure = DecodeLcm(data, size, out);
+  if (!failure) return std::nullopt;
+  std::string description = DescribeRefusal(channel, T::getTypeName(), size, *failure);
+  const bool should_print = counter ? counter->Count(channel, description) : true;
+  if (print) *print = should_print;
+  return description;
+}
+
+}  // namespace simpartner
