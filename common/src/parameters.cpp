@@ -324,7 +324,11 @@ void ParseParametersText(const std::string& text, const std::string& file_name,
   const std::vector<Entry> entries = BindEntries(params);
   const std::string base_dir = DirectoryOf(file_name);
   std::map<std::string, int> line_of_key;
-  std::istringstream in(text);
+  // Editors on Windows start UTF-8 files with a byte order mark; it is not
+  // part of the first key.
+  constexpr char kUtf8Bom[] = "\xEF\xBB\xBF";
+  const bool has_bom = text.compare(0, 3, kUtf8Bom) == 0;
+  std::istringstream in(has_bom ? text.substr(3) : text);
   std::string raw;
   int line_number = 0;
   while (std::getline(in, raw)) {

@@ -129,6 +129,20 @@ TEST_F(ParametersFiles, CommandLineOverridesFile) {
   EXPECT_EQ(params.environment, (dir_ / "worlds/w.xml").lexically_normal().string());
 }
 
+// Editors on Windows save parameters.txt as UTF-8 with a byte order mark.
+TEST_F(ParametersFiles, Utf8ByteOrderMarkAtStartIsAccepted) {
+  const std::string file =
+      Write("conf/bom.txt", "\xEF\xBB\xBF" "environment=../worlds/w.xml\nstepsize=0.002\n");
+  const char* argv[] = {"sim", "--params", file.c_str()};
+  const Parameters params = LoadParameters(ParseCommandLine(3, argv, {}));
+  EXPECT_EQ(params.environment, (dir_ / "worlds/w.xml").lexically_normal().string());
+  EXPECT_DOUBLE_EQ(params.stepsize, 0.002);
+  // Only a mark at the very start is one; elsewhere the bytes are part of a key.
+  Parameters inside;
+  const DiagnosticList d = Parse("stepsize=0.002\n\xEF\xBB\xBF" "log=0\n", &inside);
+  EXPECT_TRUE(HasDiagnostic(d, 2, "\xEF\xBB\xBF" "log", "unknown key")) << d.Format();
+}
+
 TEST_F(ParametersFiles, MissingGivenFileIsAnError) {
   const std::string missing = (dir_ / "nope.txt").string();
   const char* argv[] = {"sim", "--params", missing.c_str()};
