@@ -106,6 +106,8 @@ int FindType(const char* name) {
 // Walks a buffer against the layout table; the first problem ends it.
 class LayoutWalker {
  public:
+  // `data` is the message after its 8-byte fingerprint; reported byte
+  // offsets count from the start of the datagram.
   LayoutWalker(const uint8_t* data, size_t size) : data_(data), size_(size) {}
 
   std::optional<DecodeFailure> Struct(int type, const std::string& path) {
@@ -133,7 +135,8 @@ class LayoutWalker {
   size_t left() const { return size_ - pos_; }
 
   std::optional<DecodeFailure> Fail(const std::string& field, const std::string& what) const {
-    return DecodeFailure{"field '" + field + "' at byte " + std::to_string(pos_) + ": " + what};
+    return DecodeFailure{"field '" + field + "' at byte " + std::to_string(start_ + 8) + ": " +
+                         what};
   }
 
   int64_t ReadInteger(int bytes) {
@@ -150,6 +153,7 @@ class LayoutWalker {
 
   std::optional<DecodeFailure> Field_(const Field& f, const std::string& name, int64_t count,
                                       int64_t* value) {
+    start_ = pos_;
     const TypeSizes& sizes = Sizes();
     int64_t element_min = 0;
     if (f.kind == Kind::kStruct) element_min = sizes.min[static_cast<size_t>(f.struct_type)];
@@ -168,6 +172,7 @@ class LayoutWalker {
     if (f.kind == Kind::kString) {
       for (int64_t e = 0; e < count; ++e) {
         const std::string element = f.num_dims ? name + "[" + std::to_string(e) + "]" : name;
+        start_ = pos_;
         if (left() < 4) return Fail(element, "truncated before its length");
         const int64_t length = ReadInteger(4);
         if (length < 1)
@@ -212,6 +217,7 @@ class LayoutWalker {
   const uint8_t* data_;
   size_t size_;
   size_t pos_ = 0;
+  size_t start_ = 0;  // where the field (or array element) being checked begins
 };
 
 std::string Hex(uint64_t v) {

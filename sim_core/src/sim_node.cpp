@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
@@ -18,6 +19,10 @@ constexpr size_t kRecentWarnings = 16;
 // When the sim falls this far behind its schedule (a slow machine, a
 // debugger), it re-anchors instead of racing to catch up.
 constexpr auto kMaxLag = std::chrono::milliseconds(100);
+// Input handled once a step is due: at most this much wall time, so that a
+// flood of messages (every one refused, and answered) cannot stop the
+// stepping; the rest waits in the socket for the next step.
+constexpr auto kInputBudget = std::chrono::microseconds(200);
 
 std::string FormatMs(double ms) {
   char text[32];
@@ -66,18 +71,31 @@ void SimNode::Warn(int8_t severity, const std::string& source, const std::string
 }
 
 void SimNode::ReportBadMessage(const std::string& channel, const std::string& what) {
-  ++bad_messages_;
-  Warn(warning_t::SEVERITY_WARNING, "bus", channel + ": " + what);
+  ReportBadMessageText(channel + ": " + what, bad_message_counter_.Count(channel, what));
+}
+
+void SimNode::ReportBadMessageText(const std::string& description, bool print) {
+  bad_messages_ = static_cast<int64_t>(bad_message_counter_.total());
+  // A flood is counted in full but printed only now and then.
+  if (print)
+    Warn(warning_t::SEVERITY_WARNING, "bus",
+         description + "; ignored (" + std::to_string(bad_messages_) + " bad so far: " +
+             bad_message_counter_.Summary() + ")");
+}
+
+template <class T>
+bool SimNode::DecodeInput(const lcm::ReceiveBuffer* buffer, const std::string& channel, T* out) {
+  bool print = false;
+  const auto refusal = DecodeFromBus(channel, buffer->data, buffer->data_size, out,
+                                     &bad_message_counter_, &print);
+  if (!refusal) return true;
+  ReportBadMessageText(*refusal, print);
+  return false;
 }
 
 void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   command_t command;
-  if (command.decode(buffer->data, 0, static_cast<int>(buffer->data_size)) < 0) {
-    ReportBadMessage(channel, "message of " + std::to_string(buffer->data_size) +
-                                  " bytes is not a simpartner.command_t (wrong type or "
-                                  "truncated); ignored");
-    return;
-  }
+  if (!DecodeInput(buffer, channel, &command)) return;
   if (auto rejection = sim_->Submit(command)) {
     ++commands_rejected_;
     std::cerr << "simpartner-sim: step " << sim_->step() << ": command " << command.request_id
@@ -88,61 +106,74 @@ void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& cha
 
 void SimNode::OnControl(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   control_t control;
-  if (control.decode(buffer->data, 0, static_cast<int>(buffer->data_size)) < 0) {
-    ReportBadMessage(channel, "message of " + std::to_string(buffer->data_size) +
-                                  " bytes is not a simpartner.control_t; ignored");
-    return;
-  }
+  if (!DecodeInput(buffer, channel, &control)) return;
   status_changed_ = true;
+  // A control that changes the schedule ends the wait for the next step at
+  // once (at a slow speed that wait can be long). One that changes nothing
+  // (a repeated SET_SPEED or RESUME) leaves the schedule alone, so a stream
+  // of them cannot make the sim step early.
   switch (control.action) {
     case control_t::ACTION_PAUSE:
       paused_ = true;
       steps_to_run_ = 0;
+      wake_ = true;
       break;
     case control_t::ACTION_RESUME:
-      paused_ = false;
-      schedule_anchored_ = false;
+      if (paused_) {
+        paused_ = false;
+        schedule_anchored_ = false;
+        wake_ = true;
+      }
       break;
     case control_t::ACTION_STEP:
       if (control.steps < 1 || control.steps > 100000000) {
         ReportBadMessage(channel, "step count " + std::to_string(control.steps) +
-                                      " is out of range [1, 1e8]; ignored");
+                                      " from '" + control.sender + "' is out of range [1, 1e8]");
         return;
       }
       paused_ = true;
       steps_to_run_ = control.steps;
+      wake_ = true;
       break;
     case control_t::ACTION_RESET:
       sim_->Reset(NowMicros());
       steps_to_run_ = 0;
       schedule_anchored_ = false;
       model_requested_ = true;
+      wake_ = true;
       break;
     case control_t::ACTION_SET_SPEED:
-      if (!std::isfinite(control.speed) || control.speed > 1000.0) {
-        ReportBadMessage(channel, "speed " + std::to_string(control.speed) +
-                                      " is out of range (<= 0 for as fast as possible, or up "
-                                      "to 1000); ignored");
+      // Below kMinSpeed one step would take longer than a person waits
+      // for a pause to take effect; <= 0 means as fast as possible.
+      if (!std::isfinite(control.speed) || control.speed > kMaxSpeed ||
+          (control.speed > 0 && control.speed < kMinSpeed)) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", control.speed);
+        ReportBadMessage(channel, std::string("speed ") + text + " from '" + control.sender +
+                                      "' is out of range (<= 0 for as fast as possible, or " +
+                                      "0.001 to 1000 times real time)");
         return;
       }
-      speed_ = control.speed;
-      schedule_anchored_ = false;
+      if (control.speed != speed_ && !(control.speed <= 0 && speed_ <= 0)) {
+        speed_ = control.speed;
+        schedule_anchored_ = false;
+        wake_ = true;
+      }
       break;
     case control_t::ACTION_QUIT:
       quit_ = true;
+      wake_ = true;
       break;
     default:
-      ReportBadMessage(channel, "unknown action " + std::to_string(control.action) + "; ignored");
+      ReportBadMessage(channel, "unknown action " + std::to_string(control.action) + " from '" +
+                                    control.sender + "'");
       return;
   }
 }
 
 void SimNode::OnModelRequest(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   model_request_t request;
-  if (request.decode(buffer->data, 0, static_cast<int>(buffer->data_size)) < 0) {
-    ReportBadMessage(channel, "message is not a simpartner.model_request_t; ignored");
-    return;
-  }
+  if (!DecodeInput(buffer, channel, &request)) return;
   model_requested_ = true;
 }
 
@@ -150,7 +181,11 @@ void SimNode::HandleIncoming(Clock::duration timeout) {
   const int fd = lcm_->getFileno();
   auto remaining = timeout;
   const auto end = Clock::now() + timeout;
-  // Handle everything already there, then wait for more until the timeout.
+  // Past the end (the step is due), input gets kInputBudget more; what is
+  // still waiting then is handled before the next step.
+  const auto budget_end = end + kInputBudget;
+  wake_ = false;
+  // Handle what is there, then wait for more until the timeout.
   while (true) {
     fd_set fds;
     FD_ZERO(&fds);
@@ -165,15 +200,29 @@ void SimNode::HandleIncoming(Clock::duration timeout) {
       status_changed_ = true;
       return;
     }
-    if (ready > 0) {
-      lcm_->handle();
-    } else {
-      return;  // timeout (or EINTR)
+    if (ready <= 0) return;  // timeout (or EINTR)
+    const auto now = Clock::now();
+    if (now >= budget_end) {
+      ++input_deferrals_;
+      return;
     }
+    lcm_->handle();
+    if (quit_ || wake_) return;
     remaining = end - Clock::now();
     if (remaining <= Clock::duration::zero()) remaining = Clock::duration::zero();
-    if (quit_) return;
   }
+}
+
+void SimNode::ReportInputDeferrals() {
+  if (input_deferrals_ == reported_deferrals_) return;
+  Warn(warning_t::SEVERITY_WARNING, "bus",
+       "more input than the step budget (" +
+           std::to_string(std::chrono::duration_cast<std::chrono::microseconds>(kInputBudget).count()) +
+           " us past each due step): " + std::to_string(input_deferrals_ - reported_deferrals_) +
+           " steps left messages waiting for the next step (" + std::to_string(input_deferrals_) +
+           " since start; bad messages so far: " + std::to_string(bad_message_counter_.total()) +
+           ", commands refused: " + std::to_string(commands_rejected_) + ")");
+  reported_deferrals_ = input_deferrals_;
 }
 
 void SimNode::CollectWarnings() {
@@ -296,6 +345,13 @@ int SimNode::Run() {
       }
       if (next_deadline_ > now) HandleIncoming(next_deadline_ - now);
       else HandleIncoming(Clock::duration::zero());
+      if (wake_ && !quit_) {
+        // A control changed the schedule before this step was due: decide
+        // again under the new one, publishing what changed.
+        PublishPending();
+        if (status_changed_) PublishStatus();
+        continue;
+      }
       next_deadline_ += step_period;
     } else if (stepping) {
       HandleIncoming(Clock::duration::zero());
@@ -318,6 +374,7 @@ int SimNode::Run() {
       next_model = now + model_period;
     }
     if (status_changed_ || now >= next_status) {
+      if (now >= next_status) ReportInputDeferrals();
       PublishStatus();
       next_status = now + status_period;
     }

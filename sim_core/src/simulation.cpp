@@ -129,6 +129,7 @@ void Simulation::Build() {
     sensors_.push_back(state);
   }
   pending_.clear();
+  pending_bytes_ = 0;
   step_ = 0;
   faulted_ = false;
 }
@@ -137,6 +138,12 @@ void Simulation::Reset(int64_t simulation_id) {
   simulation_id_ = simulation_id;
   Build();
   AddWarning(warning_t::SEVERITY_INFO, "control", "reset to the initial state");
+}
+
+size_t Simulation::PendingBytes(const Pending& p) {
+  const command_t& c = p.command;
+  return sizeof(Pending) + c.sender.size() + c.robot.size() + c.target.size() + c.text.size() +
+         sizeof(double) * (c.values.size() + p.values.size());
 }
 
 command_reply_t Simulation::Reply(const command_t& command, bool accepted,
@@ -255,6 +262,17 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
     }
     pending.values = values;
   }
+  // The queue of commands waiting for their step is bounded, so that
+  // commands dated far ahead cannot take the sim's memory.
+  const size_t bytes = PendingBytes(pending);
+  if (pending_.size() >= kMaxPendingCommands || pending_bytes_ + bytes > kMaxPendingBytes)
+    return reject("the queue of commands waiting for their step is full (" +
+                  std::to_string(pending_.size()) + " commands, " +
+                  std::to_string(pending_bytes_ / 1024) + " KiB; at most " +
+                  std::to_string(kMaxPendingCommands) + " commands and " +
+                  std::to_string(kMaxPendingBytes / (1024 * 1024)) +
+                  " MiB): send commands closer to their apply_at_step");
+  pending_bytes_ += bytes;
   pending.sequence = next_sequence_++;
   const auto position = std::upper_bound(
       pending_.begin(), pending_.end(), pending, [](const Pending& a, const Pending& b) {
@@ -332,7 +350,10 @@ bool Simulation::Step() {
   // Commands due in this step, in the order they were sent.
   size_t due = 0;
   while (due < pending_.size() && pending_[due].step <= step_) ++due;
-  for (size_t k = 0; k < due; ++k) ApplyPending(pending_[k]);
+  for (size_t k = 0; k < due; ++k) {
+    ApplyPending(pending_[k]);
+    pending_bytes_ -= PendingBytes(pending_[k]);
+  }
   pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(due));
 
   for (size_t a = 0; a < controllers_.size(); ++a) {

@@ -289,10 +289,10 @@ TEST(SceneTest, WithoutRobotsTheCameraFollowsWhatMoves) {
 
 TEST(SceneTest, UndecodableMessagesAreCountedPerChannel) {
   Scene scene;
-  scene.CountUndecodable("SIM_STATE", 17);
+  scene.CountUndecodable("SIM_STATE", "17 bytes refused as simpartner.state_t: too short");
   EXPECT_EQ(scene.rejected(Rejection::kUndecodable), 1);
   EXPECT_EQ(scene.recent_problems().back().message,
-            "SIM_STATE: 17 bytes that do not decode: ignored");
+            "SIM_STATE: 17 bytes refused as simpartner.state_t: too short; ignored");
 }
 
 }  // namespace

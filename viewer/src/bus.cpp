@@ -6,6 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
@@ -30,11 +31,14 @@ int64_t WallMicros() {
       .count();
 }
 
-// Decodes a whole buffer; false if the bytes are not exactly one T.
+// Decodes a whole buffer through the shared total decoder; on failure
+// returns what is wrong ("9 bytes refused as simpartner.state_t: ...").
 template <class T>
-bool Decode(const lcm::ReceiveBuffer* buffer, T* out) {
-  const int size = static_cast<int>(buffer->data_size);
-  return out->decode(buffer->data, 0, size) == size;
+std::optional<std::string> Decode(const lcm::ReceiveBuffer* buffer, T* out) {
+  const auto failure = DecodeLcm(buffer->data, buffer->data_size, out);
+  if (!failure) return std::nullopt;
+  return std::to_string(buffer->data_size) + " bytes refused as simpartner." + T::getTypeName() +
+         ": " + failure->reason;
 }
 
 }  // namespace
@@ -100,8 +104,8 @@ void ViewerBus::RequestModelIfNeeded() {
 
 void ViewerBus::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   model_t model;
-  if (!Decode(buffer, &model)) {
-    scene_->CountUndecodable(channel, static_cast<int>(buffer->data_size));
+  if (auto refusal = Decode(buffer, &model)) {
+    scene_->CountUndecodable(channel, *refusal);
     Note(Verdict{false, scene_->recent_problems().back(), false});
     return;
   }
@@ -112,8 +116,8 @@ void ViewerBus::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& cha
 
 void ViewerBus::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   state_t state;
-  if (!Decode(buffer, &state)) {
-    scene_->CountUndecodable(channel, static_cast<int>(buffer->data_size));
+  if (auto refusal = Decode(buffer, &state)) {
+    scene_->CountUndecodable(channel, *refusal);
     Note(Verdict{false, scene_->recent_problems().back(), false});
     return;
   }
@@ -122,8 +126,8 @@ void ViewerBus::OnState(const lcm::ReceiveBuffer* buffer, const std::string& cha
 
 void ViewerBus::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   status_t status;
-  if (!Decode(buffer, &status)) {
-    scene_->CountUndecodable(channel, static_cast<int>(buffer->data_size));
+  if (auto refusal = Decode(buffer, &status)) {
+    scene_->CountUndecodable(channel, *refusal);
     Note(Verdict{false, scene_->recent_problems().back(), false});
     return;
   }
@@ -132,8 +136,8 @@ void ViewerBus::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& ch
 
 void ViewerBus::OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   sensor_reading_t reading;
-  if (!Decode(buffer, &reading)) {
-    scene_->CountUndecodable(channel, static_cast<int>(buffer->data_size));
+  if (auto refusal = Decode(buffer, &reading)) {
+    scene_->CountUndecodable(channel, *refusal);
     Note(Verdict{false, scene_->recent_problems().back(), false});
     return;
   }

@@ -167,9 +167,8 @@ Verdict Scene::Reject(Rejection kind, const std::string& channel, const std::str
   return v;
 }
 
-void Scene::CountUndecodable(const std::string& channel, int size) {
-  Reject(Rejection::kUndecodable, channel,
-         std::to_string(size) + " bytes that do not decode: ignored");
+void Scene::CountUndecodable(const std::string& channel, const std::string& refusal) {
+  Reject(Rejection::kUndecodable, channel, refusal + "; ignored");
 }
 
 int64_t Scene::rejected_total() const {

@@ -13,6 +13,7 @@
 #include <deque>
 #include <string>
 
+#include "simpartner/bus_decode.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/status_t.hpp"
 
@@ -41,16 +42,31 @@ class SimNode {
   void PublishModel();
   void PublishStatus();
 
+  // Real-time factors a SIM_CONTROL may ask for (besides <= 0: as fast as
+  // possible).
+  static constexpr double kMinSpeed = 1e-3;
+  static constexpr double kMaxSpeed = 1000.0;
+
   bool quit_requested() const { return quit_; }
   bool paused() const { return paused_; }
   double speed() const { return speed_; }
   int64_t bad_messages() const { return bad_messages_; }
+  const BadMessageCounter& bad_message_counter() const { return bad_message_counter_; }
+  // Times the input budget ran out with messages still waiting.
+  int64_t input_deferrals() const { return input_deferrals_; }
 
  private:
   void OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnControl(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnModelRequest(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  // Decodes through the shared total decoder; a refusal is counted and
+  // reported.
+  template <class T>
+  bool DecodeInput(const lcm::ReceiveBuffer* buffer, const std::string& channel, T* out);
+  // A message that decoded but is refused (out of range, unknown action).
   void ReportBadMessage(const std::string& channel, const std::string& what);
+  void ReportBadMessageText(const std::string& description, bool print);
+  void ReportInputDeferrals();
   void PublishPending();
   void CollectWarnings();
   // Reports on stderr and in the next SIM_STATUS.
@@ -69,6 +85,10 @@ class SimNode {
   int64_t commands_accepted_ = 0;
   int64_t commands_rejected_ = 0;
   int64_t bad_messages_ = 0;
+  BadMessageCounter bad_message_counter_;
+  int64_t input_deferrals_ = 0;
+  int64_t reported_deferrals_ = 0;
+  bool wake_ = false;            // a control arrived: stop waiting for the deadline
   std::deque<warning_t> recent_warnings_;
   // Pacing and figures.
   Clock::time_point next_deadline_;

@@ -26,6 +26,10 @@ namespace simpartner::sim {
 
 class Simulation {
  public:
+  // Bounds of the queue of accepted commands waiting for their step.
+  static constexpr size_t kMaxPendingCommands = 10000;
+  static constexpr size_t kMaxPendingBytes = 16u << 20;
+
   Simulation(model::World world, Parameters params, int64_t simulation_id);
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -83,6 +87,7 @@ class Simulation {
     int64_t period_steps = 0;     // 0 = on request only
   };
 
+  static size_t PendingBytes(const Pending& pending);
   void Build();
   command_reply_t Reply(const command_t& command, bool accepted, const std::string& reason) const;
   void ApplyPending(const Pending& pending);
@@ -98,6 +103,7 @@ class Simulation {
   std::vector<ActuatorController> controllers_;
   std::vector<SensorState> sensors_;
   std::vector<Pending> pending_;  // sorted by (step, sequence)
+  size_t pending_bytes_ = 0;      // PendingBytes summed over pending_
   uint64_t next_sequence_ = 0;
   int64_t step_ = 0;
   bool faulted_ = false;

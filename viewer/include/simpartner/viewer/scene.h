@@ -64,7 +64,7 @@ class Scene {
   Verdict OfferStatus(const status_t& status);
   Verdict OfferSensorReading(const sensor_reading_t& reading);
   // Counts (and describes) a message the bus could not decode.
-  void CountUndecodable(const std::string& channel, int size);
+  void CountUndecodable(const std::string& channel, const std::string& refusal);
 
   bool has_model() const { return model_.has_value(); }
   const model_t& model() const { return *model_; }
