@@ -108,6 +108,89 @@ bool CommandValues(const std::vector<double>& values, const std::string& text,
   return true;
 }
 
+namespace {
+
+// What one value of a command sets, for messages and for the checks of the
+// slots a joint does not use.
+enum class ValueKind { kForce, kVelocity, kPosition, kGain };
+struct ValueMeaning {
+  std::string name;              // "max force, x slot"
+  ValueKind kind = ValueKind::kForce;
+  bool unused = false;           // a slot of the long form the joint has no axis for
+};
+
+// The meaning of every value of an actuator command of `count` values, or
+// an empty list when count fits neither form (the caller reports that).
+std::vector<ValueMeaning> CommandLayout(int action, model::ActuatorKind kind,
+                                        const FlatJoint& joint, size_t count) {
+  const int n = joint.num_axes;
+  const char* kSlotNames = "xyz";
+  std::string used_slots;
+  for (int a = 0; a < n; ++a) used_slots += std::string(used_slots.empty() ? "" : ", ") +
+                                            kSlotNames[joint.slot[a]];
+  auto slot_meaning = [&](const std::string& group, ValueKind value_kind, int slot) {
+    ValueMeaning m{group + ", " + kSlotNames[slot] + " slot", value_kind, true};
+    for (int a = 0; a < n; ++a)
+      if (joint.slot[a] == slot) m.unused = false;
+    if (m.unused)
+      m.name += ", unused: joint '" + joint.name + "' has " +
+                (n == 0 ? std::string("no axis") : "slot " + used_slots + " only");
+    return m;
+  };
+  auto axis_meaning = [&](const std::string& group, ValueKind value_kind, int a) {
+    return ValueMeaning{n > 1 ? group + ", axis " + std::to_string(a + 1) : group, value_kind,
+                        false};
+  };
+  // Groups of per-axis values, then any gains.
+  std::vector<std::pair<std::string, ValueKind>> groups;
+  bool gains = false;
+  bool stops = false;
+  switch (action) {
+    case command_t::ACTION_SET:
+      groups.emplace_back("max force", ValueKind::kForce);
+      if (kind == model::ActuatorKind::kAngle) {
+        groups.emplace_back("target angle", ValueKind::kPosition);
+        gains = true;
+      } else {
+        groups.emplace_back("velocity", ValueKind::kVelocity);
+      }
+      break;
+    case command_t::ACTION_HOLD: groups.emplace_back("max force", ValueKind::kForce); break;
+    case command_t::ACTION_SET_STOPS: stops = true; break;
+    default: return {};
+  }
+  const size_t per_group = stops ? 2 : 1;
+  const size_t group_count = stops ? 1 : groups.size();
+  const size_t tail = gains ? 3 : 0;
+  const size_t long_form = 3 * per_group * group_count + tail;
+  const size_t short_form = static_cast<size_t>(n) * per_group * group_count + tail;
+  std::vector<ValueMeaning> layout;
+  if (count != long_form && count != short_form) return layout;
+  const bool slot_form = count == long_form;
+  const int places = slot_form ? 3 : n;
+  if (stops) {
+    // lo, hi per slot (long form) or per axis (short form).
+    for (int p = 0; p < places; ++p) {
+      for (const char* bound : {"low stop", "high stop"})
+        layout.push_back(slot_form ? slot_meaning(bound, ValueKind::kPosition, p)
+                                   : axis_meaning(bound, ValueKind::kPosition, p));
+    }
+  } else {
+    for (const auto& [group, value_kind] : groups) {
+      for (int p = 0; p < places; ++p)
+        layout.push_back(slot_form ? slot_meaning(group, value_kind, p)
+                                   : axis_meaning(group, value_kind, p));
+    }
+  }
+  if (gains) {
+    for (const char* gain : {"P gain", "I gain", "D gain"})
+      layout.push_back(ValueMeaning{gain, ValueKind::kGain, false});
+  }
+  return layout;
+}
+
+}  // namespace
+
 ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
                                    model::ActuatorKind kind, const FlatJoint& joint,
                                    const ActuatorSetting& current) {
@@ -117,9 +200,34 @@ ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
   const bool rotational = IsRotational(joint.source->kind);
   std::string& error = parsed.error;
 
+  const std::vector<ValueMeaning> layout = CommandLayout(action, kind, joint, v.size());
   for (size_t k = 0; k < v.size(); ++k) {
     if (!std::isfinite(v[k])) {
       error = "values[" + std::to_string(k) + "] = " + Num(v[k]) + " is not a finite number";
+      if (k < layout.size()) error += " (" + layout[k].name + ")";
+      return parsed;
+    }
+  }
+  // A slot the joint does not use sets nothing, but a value there is still
+  // held to the range of its kind: 1e308 in the x slot of a wheel's
+  // "1000,1000,100,0,0,0.2" is a broken sender, not a no-op.
+  for (size_t k = 0; k < layout.size(); ++k) {
+    if (!layout[k].unused) continue;
+    double lo = 0.0, hi = 0.0;
+    std::string unit;
+    switch (layout[k].kind) {
+      case ValueKind::kForce: lo = 0.0; hi = kMaxMotorForce; break;
+      case ValueKind::kVelocity: lo = -kMaxMotorVelocity; hi = kMaxMotorVelocity; break;
+      case ValueKind::kPosition:
+        lo = rotational ? -M_PI : -kMaxSliderPosition;
+        hi = rotational ? M_PI : kMaxSliderPosition;
+        unit = rotational ? " rad" : " m";
+        break;
+      case ValueKind::kGain: lo = 0.0; hi = kMaxGain; break;
+    }
+    if (v[k] < lo || v[k] > hi) {
+      error = "values[" + std::to_string(k) + "] (" + layout[k].name + ") = " + Num(v[k]) +
+              unit + " is out of range [" + Num(lo) + ", " + Num(hi) + "]";
       return parsed;
     }
   }
@@ -143,7 +251,7 @@ ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
     } else if (x < lo || x > hi) {
       error = field(index) + " (" + what + ") = " + Num(x) + " is outside joint '" + joint.name +
               "' range [" + Num(lo) + ", " + Num(hi) + "]";
-    } else if (!rotational && std::abs(x) > 1e3) {
+    } else if (!rotational && std::abs(x) > kMaxSliderPosition) {
       error = field(index) + " (" + what + ") = " + Num(x) + " m is out of range";
     }
     return error.empty();
@@ -173,9 +281,9 @@ ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
         const size_t g = v.size() - 3;
         const char* names[3] = {"P", "I", "D"};
         for (int k = 0; k < 3; ++k) {
-          if (v[g + k] < 0.0 || v[g + k] > 1e6) {
+          if (v[g + k] < 0.0 || v[g + k] > kMaxGain) {
             error = field(g + k) + " (" + names[k] + " gain) = " + Num(v[g + k]) +
-                    " is out of range [0, 1e6]";
+                    " is out of range [0, " + Num(kMaxGain) + "]";
             return parsed;
           }
         }

@@ -17,6 +17,8 @@ inline constexpr double kHoldGain = 20.0;             // [1/s] drift correction 
 inline constexpr double kMaxMotorVelocity = 1000.0;   // [rad/s] or [m/s], commands beyond are refused
 inline constexpr double kMaxMotorForce = 1e7;         // [N] or [N m]
 inline constexpr double kMaxPidVelocity = 20.0;       // [rad/s] PID output saturation
+inline constexpr double kMaxSliderPosition = 1e3;    // [m] slider targets and stops
+inline constexpr double kMaxGain = 1e6;              // P, I, D gains
 
 enum class ControlMode { kHold, kVelocity, kAngle };
 
@@ -76,7 +78,9 @@ bool CommandValues(const std::vector<double>& values, const std::string& text,
 // of kind `kind` driving `joint`. Values in the original's three-slot form
 // (e.g. 6 for a velocity controller) or the short per-axis form are
 // accepted. Every number is checked: finite, forces >= 0, velocities and
-// angles and stops in range.
+// angles and stops in range; a slot of the long form that the joint does
+// not use (x and y of a wheel's axle in z) sets nothing but is held to the
+// same range, and a message names the slot.
 ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& values,
                                    model::ActuatorKind kind, const FlatJoint& joint,
                                    const ActuatorSetting& current);
