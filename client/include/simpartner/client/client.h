@@ -1,0 +1,173 @@
+// Control code's connection to the sim over LCM.
+//
+// Threading: a Client owns one receive thread that handles the bus and
+// keeps the newest state, status, sensor readings, the replies addressed to
+// this client and the newest model. Every public method may be called from
+// any thread (teleop's UI loop, a sequencer's main loop); they only lock a
+// mutex briefly and publish, or wait on a condition variable fed by the
+// receive thread. Callbacks (OnState, OnReading) run on the receive thread:
+// keep them short and do not call waiting methods from them.
+//
+// Restarts: when a SIM_MODEL or SIM_STATE with a new simulation id arrives,
+// the next call that depends on the model (Send, Command, Wait*) throws
+// SimRestarted once; Relearn() then takes the new model and the client
+// goes on. Reset() does this by itself.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "simpartner/bus_decode.h"
+#include "simpartner/client/catalog.h"
+#include "simpartner/client/command.h"
+#include "simpartner/client/errors.h"
+#include "simpartner/command_reply_t.hpp"
+#include "simpartner/command_t.hpp"
+#include "simpartner/model_t.hpp"
+#include "simpartner/sensor_reading_t.hpp"
+#include "simpartner/state_t.hpp"
+#include "simpartner/status_t.hpp"
+
+namespace lcm {
+class LCM;
+}
+
+namespace simpartner::client {
+
+inline constexpr const char* kDefaultUrl = "udpm://239.255.76.67:7667?ttl=0";
+
+struct ClientOptions {
+  std::string url = kDefaultUrl;
+  // Program name in the sender field: "<program>@<host>:<pid>".
+  std::string program = "client";
+  // How long the constructor waits for SIM_MODEL [s] (NoSim after it).
+  double model_timeout = 3.0;
+  // Default wait for a command's reply [s] (Timeout after it).
+  double reply_timeout = 2.0;
+  // false: do not wait for the model in the constructor (status, pause,
+  // quit work without one); catalog() is empty until Relearn().
+  bool learn_model = true;
+};
+
+class Client {
+ public:
+  // Connects and (unless options.learn_model is false) learns the model.
+  // Throws ClientError when the URL is bad, NoSim when no model comes.
+  explicit Client(ClientOptions options = {});
+  ~Client();
+  Client(const Client&) = delete;
+  Client& operator=(const Client&) = delete;
+
+  const std::string& url() const { return options_.url; }
+  const std::string& sender() const { return sender_; }
+
+  // The model learned last (replaced only by Relearn/Reset).
+  std::shared_ptr<const Catalog> catalog() const;
+  std::shared_ptr<const model_t> model() const;
+  // Shorthand for catalog()->Resolve(name_or_port).
+  Target Find(const std::string& name_or_port) const;
+
+  // Fire and forget: fills utime, request_id and sender, publishes, returns
+  // the request id (its reply can be looked up with TakeReply). Throws
+  // SimRestarted when the sim restarted since the model was learned.
+  int64_t Send(command_t command);
+  // Builds (BuildCommandFromText) and sends.
+  int64_t Send(const std::string& target, int action, const std::string& text,
+               int64_t apply_at_step = -1);
+  // Sends and waits for the reply: returns it when accepted (previous /
+  // previous_text hold the setting it replaced); throws Refused, Timeout
+  // (timeout < 0: options.reply_timeout), SimRestarted. An accepted
+  // command is answered when it is applied, so one with apply_at_step
+  // ahead of the sim waits until that step.
+  command_reply_t Command(command_t command, double timeout = -1);
+  command_reply_t Command(const std::string& target, int action, const std::string& text,
+                          int64_t apply_at_step = -1, double timeout = -1);
+  // The reply to a sent request, if it has come (removed when taken).
+  std::optional<command_reply_t> TakeReply(int64_t request_id);
+
+  // Run control (SIM_CONTROL), fire and forget.
+  void Pause();
+  void Resume();
+  void Step(int64_t steps);
+  void SetSpeed(double real_time_factor);  // <= 0: as fast as possible
+  void Quit();
+  // Resets the sim and learns its new model (the sim gives a reset a new
+  // simulation id). Throws NoSim when the new model does not come.
+  std::shared_ptr<const Catalog> Reset(double timeout = 3.0);
+
+  // Newest messages, or nothing before the first one.
+  std::optional<state_t> LatestState() const;
+  std::optional<status_t> LatestStatus() const;
+  std::optional<sensor_reading_t> LatestReading(const std::string& sensor) const;
+  // Waits for a reading of `sensor` (name as in the model) from a step
+  // after `after_step`; throws Timeout, SimRestarted.
+  sensor_reading_t WaitForReading(const std::string& sensor, int64_t after_step, double timeout);
+  // Waits for a SIM_STATE with sim_time >= t - half a step; returns it.
+  // Throws Timeout, SimRestarted.
+  state_t WaitUntilSimTime(double sim_time, double timeout);
+  // Waits for a SIM_STATUS newer than the call (e.g. after a Pause).
+  status_t WaitForStatus(double timeout);
+
+  // Called on the receive thread for every state / reading of the current
+  // simulation. One callback each; an empty function removes it.
+  void OnState(std::function<void(const state_t&)> callback);
+  void OnReading(std::function<void(const sensor_reading_t&)> callback);
+
+  // Seconds since the last SIM_STATE or SIM_STATUS (a running or paused
+  // sim sends a status every second); infinity before the first.
+  double SecondsSinceHeard() const;
+  // The restart noticed and not yet followed, if any (does not throw).
+  std::optional<SimRestarted> PendingRestart() const;
+  // Learns the model of the sim now on the bus (asks with
+  // SIM_MODEL_REQUEST, waits up to `timeout`), clears a pending restart.
+  // Throws NoSim.
+  std::shared_ptr<const Catalog> Relearn(double timeout = 3.0);
+
+  // Bad messages received, "SIM_STATE 2, ..." or "".
+  std::string BadMessageSummary() const;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void ReceiveLoop();
+  void Publish(const std::string& channel, const void* data, int size);
+  void SendControl(int action, int64_t steps, double speed);
+  void ThrowIfRestarted() const;  // requires mutex_ held
+  void RequestModel();
+  void NoteSimulation(int64_t simulation_id);  // requires mutex_ held
+
+  ClientOptions options_;
+  std::string sender_;
+  std::unique_ptr<lcm::LCM> lcm_;
+  std::mutex publish_mutex_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::shared_ptr<const Catalog> catalog_;
+  std::shared_ptr<const model_t> model_;         // learned
+  std::shared_ptr<const model_t> newest_model_;  // last seen on the bus
+  std::optional<state_t> state_;
+  std::optional<status_t> status_;
+  uint64_t status_count_ = 0;
+  std::map<std::string, sensor_reading_t> readings_;
+  std::map<int64_t, command_reply_t> replies_;
+  std::optional<SimRestarted> restart_;
+  int64_t latest_simulation_id_ = 0;
+  std::optional<Clock::time_point> last_heard_;
+  std::function<void(const state_t&)> on_state_;
+  std::function<void(const sensor_reading_t&)> on_reading_;
+  BadMessageCounter bad_messages_;
+  int64_t next_request_id_ = 1;
+  bool stop_ = false;
+  std::thread receiver_;
+};
+
+}  // namespace simpartner::client
