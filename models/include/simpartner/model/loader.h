@@ -12,11 +12,32 @@
 
 namespace simpartner::model {
 
-// Reads a file's bytes; returns false when it cannot. Injected so that tests
-// and fuzzers can load worlds whose robot files live in memory.
+// Reads a file's bytes; returns false when it cannot, or throws
+// ModelFileError to say why. Injected so that tests and fuzzers can load
+// worlds whose robot files live in memory.
 using FileReader = std::function<bool(const std::string& path, std::string* contents)>;
 
-// Reads from the file system.
+// Model files larger than this are refused unread (the largest shipped
+// one, test_track.xml, is about 100 KB).
+inline constexpr long long kMaxModelFileBytes = 64LL * 1024 * 1024;
+
+// Why a model file cannot be read; the loader reports it as a diagnostic
+// at the file. A file that cannot be opened (missing, no permission) reads
+// "cannot read world file: <why>"; one that is refused, its reason as it
+// is ("not a regular file (FIFO); model files must be regular files").
+class ModelFileError : public Error {
+ public:
+  ModelFileError(const std::string& why, bool cannot_open)
+      : Error(why), cannot_open_(cannot_open) {}
+  bool cannot_open() const { return cannot_open_; }
+
+ private:
+  bool cannot_open_;
+};
+
+// Reads from the file system: regular files only (a device, FIFO, socket
+// or directory is refused without reading or blocking), at most
+// kMaxModelFileBytes. Throws ModelFileError with the reason.
 bool ReadFileFromDisk(const std::string& path, std::string* contents);
 
 struct RobotLoadResult {
