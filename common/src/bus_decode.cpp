@@ -181,6 +181,18 @@ class LayoutWalker {
         if (length > static_cast<int64_t>(left()))
           return Fail(element, "string length " + std::to_string(length) + " is more than the " +
                                    std::to_string(left()) + " bytes left");
+        // lcm-gen encodes a string up to its first NUL but sizes it by
+        // size(): one NUL inside makes every message that repeats it (a
+        // reply echoes the sender) encode short, with stale bytes after.
+        const uint8_t* text = data_ + pos_;
+        const size_t chars = static_cast<size_t>(length) - 1;
+        if (text[chars] != 0)
+          return Fail(element, "string of length " + std::to_string(length) +
+                                   " does not end with a NUL");
+        if (const void* nul = std::memchr(text, 0, chars))
+          return Fail(element, "string of length " + std::to_string(length) +
+                                   " has a NUL at character " +
+                                   std::to_string(static_cast<const uint8_t*>(nul) - text));
         pos_ += static_cast<size_t>(length);
       }
       return std::nullopt;

@@ -97,6 +97,10 @@ TEST(BusDecode, ReasonsNameTheFieldAndTheValue) {
             std::string::npos);
   EXPECT_NE(reason["state_t sent on SIM_COMMAND"].find("another type or version"),
             std::string::npos);
+  EXPECT_EQ(reason["model_request_t sender with a NUL inside"],
+            "field 'sender' at byte 16: string of length 4 has a NUL at character 1");
+  EXPECT_EQ(reason["model_request_t sender without its NUL"],
+            "field 'sender' at byte 16: string of length 3 does not end with a NUL");
   EXPECT_NE(reason["empty datagram on SIM_MODEL_REQUEST"].find("too short for a fingerprint"),
             std::string::npos);
 }

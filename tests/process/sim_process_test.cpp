@@ -257,7 +257,8 @@ TEST_F(SimProcessTest, BadInputOnTheBusIsRefusedAndSteppingGoesOn) {
       << " rejected, " << (bus.statuses.empty() ? -1 : bus.statuses.back().bad_messages)
       << " bad messages";
   const std::string log = LogText();
-  EXPECT_NE(log.find("SIM_COMMAND: message of 5 bytes is not a simpartner.command_t"),
+  EXPECT_NE(log.find("SIM_COMMAND: 5 bytes refused as simpartner.command_t: only 5 bytes: too "
+                     "short for a fingerprint"),
             std::string::npos)
       << log;
   EXPECT_NE(log.find("SIM_CONTROL"), std::string::npos) << log;

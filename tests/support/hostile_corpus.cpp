@@ -204,6 +204,14 @@ std::vector<HostileMessage> HostileCorpus(int64_t simulation_id) {
     bad("model_request_t sender length -1", kModelRequest, m.bytes());
   }
   bad("empty datagram on SIM_MODEL_REQUEST", kModelRequest, {});
+  {
+    RawMessage m(model_request_t::getHash());
+    m.I64(1).I32(4).I8('a').I8(0).I8('b').I8(0);
+    bad("model_request_t sender with a NUL inside", kModelRequest, m.bytes());
+    RawMessage n(model_request_t::getHash());
+    n.I64(1).I32(3).I8('a').I8('b').I8('c');
+    bad("model_request_t sender without its NUL", kModelRequest, n.bytes());
+  }
 
   // --- SIM_STATE: state_t
   bad("state_t num_bodies -1", kState, StateHead(simulation_id, 5).I32(-1).I32(0).bytes());

@@ -1,0 +1,235 @@
+// The hostile corpus (tests/support/hostile_corpus.h: every channel, every
+// message type) sent on real LCM multicast to a running simpartner-sim,
+// simpartner-logger (real private MariaDB) and simpartner-viewer (own
+// Xvfb) at once. After each message every process must still run; after
+// all of them the sim still steps and takes a good command, the viewer
+// still draws the sim's newest state, and the logger has every step with
+// all of its rows.
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+#include <signal.h>
+
+#include <chrono>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <thread>
+
+#include "../logger/logger_test_support.h"
+#include "../support/hostile_corpus.h"
+#include "simpartner/bus_decode.h"
+#include "simpartner/channels.h"
+#include "simpartner/child_process.h"
+#include "simpartner/command_reply_t.hpp"
+#include "simpartner/control_t.hpp"
+#include "simpartner/state_t.hpp"
+#include "simpartner/status_t.hpp"
+#include "simpartner/viewer/xvfb.h"
+
+namespace simpartner {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string ReadFile(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The test's side of the bus: newest step, the sim's newest status and the
+// replies to this test's commands.
+class Observer {
+ public:
+  explicit Observer(const std::string& url) : lcm_(url) {
+    lcm_.subscribe(channels::kState, &Observer::OnState, this)->setQueueCapacity(100000);
+    lcm_.subscribe(channels::kStatus, &Observer::OnStatus, this)->setQueueCapacity(1000);
+    lcm_.subscribe(channels::kCommandReply, &Observer::OnReply, this)->setQueueCapacity(1000);
+  }
+  lcm::LCM& lcm() { return lcm_; }
+  void Pump(double seconds) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < end) lcm_.handleTimeout(10);
+  }
+  bool Until(const std::function<bool()>& condition, double seconds) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < end) {
+      if (condition()) return true;
+      lcm_.handleTimeout(20);
+    }
+    return condition();
+  }
+
+  int64_t simulation_id = -1;
+  int64_t last_step = -1;
+  status_t status{};
+  bool has_status = false;
+  std::vector<command_reply_t> replies;
+
+ private:
+  // Only what comes from the sim itself counts (the corpus also sends
+  // forged states and statuses, which the test must not believe).
+  void OnState(const lcm::ReceiveBuffer* b, const std::string& channel) {
+    state_t s;
+    if (DecodeFromBus(channel, b->data, b->data_size, &s, &bad_)) return;
+    if (simulation_id < 0) simulation_id = s.simulation_id;
+    if (s.simulation_id == simulation_id && s.num_bodies > 1 && s.step < 10000000)
+      last_step = std::max(last_step, s.step);
+  }
+  void OnStatus(const lcm::ReceiveBuffer* b, const std::string& channel) {
+    status_t s;
+    if (DecodeFromBus(channel, b->data, b->data_size, &s, &bad_)) return;
+    if (s.simulation_id != simulation_id || s.host == "elsewhere") return;
+    status = s;
+    has_status = true;
+  }
+  void OnReply(const lcm::ReceiveBuffer* b, const std::string& channel) {
+    command_reply_t r;
+    if (DecodeFromBus(channel, b->data, b->data_size, &r, &bad_)) return;
+    if (r.sender == "hostile-test") replies.push_back(r);
+  }
+
+  lcm::LCM lcm_;
+  BadMessageCounter bad_;
+};
+
+class HostileProcessTest : public logger::testing::ServerTest {
+ protected:
+  void SetUp() override {
+    ServerTest::SetUp();
+    const int port = 20000 + (static_cast<int>(::getpid()) * 17 + 3) % 20000;
+    url_ = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
+    std::ofstream(dir_ / "world.xml") << sim::testing::ArmWorld();
+    std::ofstream(dir_ / "arm.xml") << sim::testing::ArmRobot();
+  }
+  std::unique_ptr<ChildProcess> Start(std::vector<std::string> argv, const std::string& log) {
+    return std::make_unique<ChildProcess>(argv, (dir_ / log).string());
+  }
+  bool WaitForText(const std::string& log, const std::string& text, double seconds, Observer* bus) {
+    return bus->Until([&] { return ReadFile(dir_ / log).find(text) != std::string::npos; }, seconds);
+  }
+
+  std::string url_;
+};
+
+TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
+  Observer bus(url_);
+  const std::string bin = SP_BINARY_DIR;
+  auto logger = Start({bin + "/logger/simpartner-logger", "--params", "/dev/null", "--lcm-url", url_,
+                       "--db-options", server_->logger_options(), "--spool",
+                       (dir_ / "spool").string(), "--status-period", "1"},
+                      "logger.log");
+  ASSERT_TRUE(WaitForText("logger.log", ": logging udpm://", 30, &bus)) << ReadFile(dir_ / "logger.log");
+  auto sim = Start({bin + "/sim_core/simpartner-sim", "--params", "/dev/null",
+                    "--environment=" + (dir_ / "world.xml").string(), "--lcm-url", url_,
+                    "--statusPeriod=0.2"},
+                   "sim.log");
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > 100; }, 20)) << ReadFile(dir_ / "sim.log");
+
+  viewer::XvfbServer xvfb(640, 360, (dir_ / "xvfb.log").string());
+  const std::string shot = (dir_ / "after.png").string();
+  auto viewer = Start({"/usr/bin/env", "DISPLAY=" + xvfb.display(),
+                       "LSAN_OPTIONS=suppressions=" + std::string(SP_SOURCE_DIR) + "/tests/viewer/lsan.supp",
+                       "LD_PRELOAD=" SP_KEEP_LOADED_LIB, bin + "/viewer/simpartner-viewer", "--params",
+                       "/dev/null", "--lcm-url", url_, "--width", "640", "--height", "360",
+                       "--screenshot", shot, "--after", "12"},
+                      "viewer.log");
+  bus.Pump(2.0);  // the viewer learns the model
+
+  struct Process {
+    const char* name;
+    ChildProcess* child;
+    std::string log;
+  };
+  const std::vector<Process> processes = {
+      {"simpartner-sim", sim.get(), "sim.log"},
+      {"simpartner-logger", logger.get(), "logger.log"},
+      {"simpartner-viewer", viewer.get(), "viewer.log"}};
+  const auto corpus = testing::HostileCorpus(bus.simulation_id);
+  int undecodable_for_sim = 0;
+  for (const testing::HostileMessage& m : corpus) {
+    std::cout << "sending: " << m.name << " on " << m.channel << " (" << m.bytes.size() << " bytes)\n";
+    for (int repeat = 0; repeat < 3; ++repeat) {
+      bus.lcm().publish(m.channel, m.bytes.data(), static_cast<unsigned>(m.bytes.size()));
+      bus.Pump(0.01);
+    }
+    if (m.undecodable && (m.channel == channels::kCommand || m.channel == channels::kControl ||
+                          m.channel == channels::kModelRequest))
+      undecodable_for_sim += 3;
+    bus.Pump(0.03);
+    for (const Process& p : processes)
+      ASSERT_TRUE(p.child->running()) << p.name << " died after '" << m.name << "' on " << m.channel
+                                      << ":\n" << ReadFile(dir_ / p.log);
+  }
+
+  // The sim: still stepping at its pace, counted the refusals, takes a
+  // good command.
+  const int64_t step_after_corpus = bus.last_step;
+  bus.Pump(1.0);
+  EXPECT_GT(bus.last_step, step_after_corpus + 500) << "the sim stopped stepping";
+  ASSERT_TRUE(bus.Until([&] { return bus.has_status && bus.status.bad_messages >= undecodable_for_sim; }, 5))
+      << "bad_messages " << bus.status.bad_messages << " of " << undecodable_for_sim << "\n"
+      << ReadFile(dir_ / "sim.log");
+  EXPECT_EQ(bus.status.run_state, status_t::RUN_RUNNING);
+  EXPECT_GE(bus.status.target_speed, 1.0);  // the nonsense speeds were refused
+  command_t good{};
+  good.sender = "hostile-test";
+  good.request_id = 1;
+  good.target = "ArmMotor";
+  good.action = command_t::ACTION_SET;
+  good.apply_at_step = -1;
+  good.values = {1000, 1000, 1000, 0, 0, 0.5, 20, 0, 0};  // angle 0.5 rad, P = 20
+  good.num_values = 9;
+  bus.lcm().publish(channels::kCommand, &good);
+  ASSERT_TRUE(bus.Until([&] { return !bus.replies.empty(); }, 5));
+  EXPECT_TRUE(bus.replies.back().accepted) << bus.replies.back().reason;
+  const std::string sim_log = ReadFile(dir_ / "sim.log");
+  EXPECT_NE(sim_log.find("SIM_COMMAND: 48 bytes refused as simpartner.command_t: field 'sender' at "
+                         "byte 24: string length 0"),
+            std::string::npos)
+      << sim_log;
+
+  // The viewer: its screenshot, taken after the corpus, shows a state the
+  // sim published after the corpus.
+  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << ReadFile(dir_ / "viewer.log");
+  ASSERT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << ReadFile(dir_ / "viewer.log");
+  const std::string viewer_log = ReadFile(dir_ / "viewer.log");
+  const size_t at = viewer_log.find(", step ", viewer_log.find("simpartner-viewer: screenshot"));
+  ASSERT_NE(at, std::string::npos) << viewer_log;
+  EXPECT_GT(std::atoll(viewer_log.c_str() + at + 7), step_after_corpus) << viewer_log;
+  EXPECT_NE(viewer_log.find("refused as simpartner.state_t"), std::string::npos) << viewer_log;
+
+  // The logger: the sim quits; every step it made is in the database once,
+  // with a row for each of its 3 bodies and 2 joints, and nothing forged.
+  control_t quit{};
+  quit.sender = "hostile-test";
+  quit.action = control_t::ACTION_QUIT;
+  bus.lcm().publish(channels::kControl, &quit);
+  ASSERT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0) << ReadFile(dir_ / "sim.log");
+  bus.Pump(0.5);
+  const int64_t last = bus.last_step;
+  const auto end = Clock::now() + std::chrono::seconds(60);
+  int64_t rows = -1;
+  while (Clock::now() < end) {
+    rows = QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = 1");
+    if (rows >= last) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  }
+  EXPECT_EQ(rows, last) << ReadFile(dir_ / "logger.log");
+  EXPECT_EQ(QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = 1"), last);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1) << "a forged model became a simulation";
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Pose p JOIN SimulationRow r USING (simulationRowID) "
+                     "WHERE r.simulationID = 1"),
+            3 * last);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM JointPose j JOIN SimulationRow r USING (simulationRowID) "
+                     "WHERE r.simulationID = 1"),
+            2 * last);
+  logger->Signal(SIGTERM);
+  EXPECT_EQ(logger->Wait(std::chrono::seconds(60)).value_or(-1), 0) << ReadFile(dir_ / "logger.log");
+  EXPECT_NE(ReadFile(dir_ / "logger.log").find("refused as simpartner.state_t"), std::string::npos)
+      << ReadFile(dir_ / "logger.log");
+}
+
+}  // namespace
+}  // namespace simpartner
