@@ -9,11 +9,13 @@
 // keep them short and do not call waiting methods from them.
 //
 // Restarts: when a SIM_MODEL or SIM_STATE with a new simulation id arrives,
-// the next call that depends on the model (Send, Command, Wait*) throws
-// SimRestarted once; Relearn() then takes the new model and the client
-// goes on. Reset() does this by itself.
+// every call that depends on the model (Send, Command, Wait*) throws
+// SimRestarted until Relearn() takes the new model; then the client goes
+// on. Reset() does this by itself. Run control (Pause, Resume, ...) and the
+// Latest* getters never throw it.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -39,6 +41,7 @@
 
 namespace lcm {
 class LCM;
+class ReceiveBuffer;
 }
 
 namespace simpartner::client {
@@ -73,7 +76,8 @@ class Client {
   // The model learned last (replaced only by Relearn/Reset).
   std::shared_ptr<const Catalog> catalog() const;
   std::shared_ptr<const model_t> model() const;
-  // Shorthand for catalog()->Resolve(name_or_port).
+  // Shorthand for catalog()->Resolve(name_or_port); throws UnknownTarget,
+  // and SimRestarted while a restart is pending.
   Target Find(const std::string& name_or_port) const;
 
   // Fire and forget: fills utime, request_id and sender, publishes, returns
@@ -138,6 +142,11 @@ class Client {
  private:
   using Clock = std::chrono::steady_clock;
   void ReceiveLoop();
+  void OnMessageBuffer(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnMessage(const void* data, size_t size, const std::string& channel);
+  // Waits for a SIM_MODEL accepted by `accept`, adopts it; NoSim after timeout.
+  std::shared_ptr<const Catalog> LearnModel(double timeout,
+                                            const std::function<bool(const model_t&)>& accept);
   void Publish(const std::string& channel, const void* data, int size);
   void SendControl(int action, int64_t steps, double speed);
   void ThrowIfRestarted() const;  // requires mutex_ held
@@ -157,7 +166,8 @@ class Client {
   std::optional<state_t> state_;
   std::optional<status_t> status_;
   uint64_t status_count_ = 0;
-  std::map<std::string, sensor_reading_t> readings_;
+  uint64_t model_count_ = 0;
+  std::map<int, sensor_reading_t> readings_;  // by sensor index
   std::map<int64_t, command_reply_t> replies_;
   std::optional<SimRestarted> restart_;
   int64_t latest_simulation_id_ = 0;
@@ -166,7 +176,7 @@ class Client {
   std::function<void(const sensor_reading_t&)> on_reading_;
   BadMessageCounter bad_messages_;
   int64_t next_request_id_ = 1;
-  bool stop_ = false;
+  std::atomic<bool> stop_{false};
   std::thread receiver_;
 };
 

@@ -43,7 +43,8 @@ class Refused : public ClientError {
 // Something awaited did not come in time (a reply, a sim time, a reading).
 class Timeout : public ClientError {
  public:
-  Timeout(std::string awaited, double seconds, std::string url);
+  // hint: what may explain it ("the sim is paused: ..."), appended.
+  Timeout(std::string awaited, double seconds, std::string url, std::string hint = "");
   const std::string& awaited() const { return awaited_; }
   double seconds() const { return seconds_; }
 

@@ -1,0 +1,440 @@
+#include "simpartner/client/client.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <iostream>
+#include <lcm/lcm-cpp.hpp>
+#include <limits>
+
+#include "simpartner/channels.h"
+#include "simpartner/control_t.hpp"
+#include "simpartner/model_request_t.hpp"
+
+namespace simpartner::client {
+namespace {
+
+int64_t WallMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string HostName() {
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) != 0) return "unknown";
+  return host;
+}
+
+template <class T>
+std::vector<uint8_t> Encode(const T& message) {
+  std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
+  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+constexpr size_t kMaxKeptReplies = 4096;
+
+}  // namespace
+
+Client::Client(ClientOptions options)
+    : options_(std::move(options)),
+      sender_(options_.program + "@" + HostName() + ":" + std::to_string(::getpid())) {
+  lcm_ = std::make_unique<lcm::LCM>(options_.url);
+  if (!lcm_->good())
+    throw ClientError("cannot open the LCM bus '" + options_.url +
+                      "' (expected e.g. udpm://239.255.76.67:7667?ttl=0)");
+  for (const char* channel : {channels::kModel, channels::kState, channels::kStatus,
+                              channels::kCommandReply, channels::kSensor}) {
+    lcm::Subscription* subscription = lcm_->subscribe(
+        channel, &Client::OnMessageBuffer, this);
+    subscription->setQueueCapacity(1000);
+  }
+  receiver_ = std::thread([this] { ReceiveLoop(); });
+  if (options_.learn_model) {
+    try {
+      LearnModel(options_.model_timeout, [](const model_t&) { return true; });
+    } catch (...) {
+      stop_ = true;
+      receiver_.join();
+      throw;
+    }
+  }
+}
+
+Client::~Client() {
+  stop_ = true;
+  if (receiver_.joinable()) receiver_.join();
+}
+
+void Client::OnMessageBuffer(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  OnMessage(buffer->data, buffer->data_size, channel);
+}
+
+void Client::ReceiveLoop() {
+  while (!stop_) {
+    if (lcm_->handleTimeout(50) < 0) {
+      // A broken socket: stop receiving rather than spin; waits then time out.
+      std::cerr << "simpartner client: receiving on " << options_.url << " failed\n";
+      return;
+    }
+  }
+}
+
+void Client::OnMessage(const void* data, size_t size, const std::string& channel) {
+  auto refused = [&](const std::optional<std::string>& why, bool print) {
+    if (why && print) std::cerr << "simpartner client: " << *why << "\n";
+    return why.has_value();
+  };
+  bool print = false;
+  if (channel == channels::kModel) {
+    auto model = std::make_shared<model_t>();
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (refused(DecodeFromBus(channel, data, size, model.get(), &bad_messages_, &print), print))
+      return;
+    newest_model_ = model;
+    ++model_count_;
+    NoteSimulation(model->simulation_id);
+    changed_.notify_all();
+  } else if (channel == channels::kState) {
+    state_t state;
+    std::function<void(const state_t&)> callback;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (refused(DecodeFromBus(channel, data, size, &state, &bad_messages_, &print), print))
+        return;
+      last_heard_ = Clock::now();
+      NoteSimulation(state.simulation_id);
+      state_ = state;
+      if (catalog_ && state.simulation_id == catalog_->simulation_id()) callback = on_state_;
+      changed_.notify_all();
+    }
+    if (callback) callback(state);
+  } else if (channel == channels::kStatus) {
+    status_t status;
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (refused(DecodeFromBus(channel, data, size, &status, &bad_messages_, &print), print))
+      return;
+    last_heard_ = Clock::now();
+    // A status carries the id too, but a quitting sim's last status is no
+    // restart; SIM_MODEL and SIM_STATE tell.
+    status_ = status;
+    ++status_count_;
+    changed_.notify_all();
+  } else if (channel == channels::kCommandReply) {
+    command_reply_t reply;
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (refused(DecodeFromBus(channel, data, size, &reply, &bad_messages_, &print), print))
+      return;
+    if (reply.sender != sender_) return;  // every client sees every reply
+    replies_[reply.request_id] = reply;
+    while (replies_.size() > kMaxKeptReplies) replies_.erase(replies_.begin());
+    changed_.notify_all();
+  } else if (channel == channels::kSensor) {
+    sensor_reading_t reading;
+    std::function<void(const sensor_reading_t&)> callback;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (refused(DecodeFromBus(channel, data, size, &reading, &bad_messages_, &print), print))
+        return;
+      if (!catalog_ || reading.simulation_id != catalog_->simulation_id()) return;
+      readings_[reading.sensor] = reading;
+      callback = on_reading_;
+      changed_.notify_all();
+    }
+    if (callback) callback(reading);
+  }
+}
+
+void Client::NoteSimulation(int64_t simulation_id) {
+  latest_simulation_id_ = simulation_id;
+  if (!catalog_ || simulation_id == catalog_->simulation_id()) return;
+  if (!restart_ || restart_->new_simulation_id() != simulation_id)
+    restart_.emplace(catalog_->simulation_id(), simulation_id);
+}
+
+void Client::ThrowIfRestarted() const {
+  if (restart_) throw *restart_;
+}
+
+std::shared_ptr<const Catalog> Client::LearnModel(
+    double timeout, const std::function<bool(const model_t&)>& accept) {
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  uint64_t seen;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    seen = model_count_;
+  }
+  RequestModel();
+  auto next_request = Clock::now() + std::chrono::milliseconds(500);
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    if (model_count_ != seen && newest_model_ && accept(*newest_model_)) break;
+    const auto now = Clock::now();
+    if (now >= deadline) throw NoSim(options_.url, timeout);
+    if (now >= next_request) {
+      // A request can be lost on a busy bus: ask again.
+      lock.unlock();
+      RequestModel();
+      lock.lock();
+      next_request = now + std::chrono::milliseconds(500);
+      continue;
+    }
+    changed_.wait_until(lock, std::min(deadline, next_request));
+  }
+  auto catalog = std::make_shared<const Catalog>(Catalog::FromModel(*newest_model_));
+  model_ = newest_model_;
+  catalog_ = catalog;
+  readings_.clear();
+  replies_.clear();
+  // Followed; unless a still newer sim has shown up meanwhile.
+  restart_.reset();
+  if (latest_simulation_id_ != 0 && latest_simulation_id_ != catalog->simulation_id())
+    restart_.emplace(catalog->simulation_id(), latest_simulation_id_);
+  return catalog;
+}
+
+std::shared_ptr<const Catalog> Client::Relearn(double timeout) {
+  return LearnModel(timeout, [](const model_t&) { return true; });
+}
+
+std::shared_ptr<const Catalog> Client::catalog() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return catalog_ ? catalog_ : std::make_shared<const Catalog>();
+}
+
+std::shared_ptr<const model_t> Client::model() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return model_;
+}
+
+Target Client::Find(const std::string& name_or_port) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ThrowIfRestarted();
+  if (!catalog_) throw NoSim(options_.url, 0.0);
+  return catalog_->Resolve(name_or_port);
+}
+
+void Client::Publish(const std::string& channel, const void* data, int size) {
+  std::lock_guard<std::mutex> lock(publish_mutex_);
+  if (lcm_->publish(channel, data, static_cast<unsigned>(size)) != 0)
+    throw ClientError("publishing on " + channel + " failed (" + options_.url + ")");
+}
+
+void Client::RequestModel() {
+  model_request_t request{};
+  request.utime = WallMicros();
+  request.sender = sender_;
+  const std::vector<uint8_t> bytes = Encode(request);
+  Publish(channels::kModelRequest, bytes.data(), static_cast<int>(bytes.size()));
+}
+
+int64_t Client::Send(command_t command) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ThrowIfRestarted();
+    command.request_id = next_request_id_++;
+  }
+  command.utime = WallMicros();
+  command.sender = sender_;
+  command.num_values = static_cast<int32_t>(command.values.size());
+  const std::vector<uint8_t> bytes = Encode(command);
+  Publish(channels::kCommand, bytes.data(), static_cast<int>(bytes.size()));
+  return command.request_id;
+}
+
+int64_t Client::Send(const std::string& target, int action, const std::string& text,
+                     int64_t apply_at_step) {
+  return Send(BuildCommandFromText(Find(target), action, text, apply_at_step));
+}
+
+command_reply_t Client::Command(command_t command, double timeout) {
+  if (timeout < 0) timeout = options_.reply_timeout;
+  const std::string target = command.target.empty() ? "port " + std::to_string(command.port)
+                                                     : command.target;
+  const int64_t id = Send(std::move(command));
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    const auto it = replies_.find(id);
+    if (it != replies_.end()) {
+      command_reply_t reply = it->second;
+      replies_.erase(it);
+      if (!reply.accepted) throw Refused(target, reply.reason, id);
+      return reply;
+    }
+    ThrowIfRestarted();
+    if (changed_.wait_until(lock, deadline) == std::cv_status::timeout &&
+        replies_.count(id) == 0)
+      throw Timeout("reply from the sim to the command for " + target + " (request " +
+                        std::to_string(id) + ")",
+                    timeout, options_.url);
+  }
+}
+
+command_reply_t Client::Command(const std::string& target, int action, const std::string& text,
+                                int64_t apply_at_step, double timeout) {
+  return Command(BuildCommandFromText(Find(target), action, text, apply_at_step), timeout);
+}
+
+std::optional<command_reply_t> Client::TakeReply(int64_t request_id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = replies_.find(request_id);
+  if (it == replies_.end()) return std::nullopt;
+  command_reply_t reply = it->second;
+  replies_.erase(it);
+  return reply;
+}
+
+void Client::SendControl(int action, int64_t steps, double speed) {
+  control_t control{};
+  control.utime = WallMicros();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    control.request_id = next_request_id_++;
+  }
+  control.sender = sender_;
+  control.action = static_cast<int8_t>(action);
+  control.steps = steps;
+  control.speed = speed;
+  const std::vector<uint8_t> bytes = Encode(control);
+  Publish(channels::kControl, bytes.data(), static_cast<int>(bytes.size()));
+}
+
+void Client::Pause() { SendControl(control_t::ACTION_PAUSE, 0, 0); }
+void Client::Resume() { SendControl(control_t::ACTION_RESUME, 0, 0); }
+void Client::Quit() { SendControl(control_t::ACTION_QUIT, 0, 0); }
+
+void Client::Step(int64_t steps) {
+  if (steps < 1 || steps > 100000000)
+    throw BadValues("SIM_CONTROL", "steps", std::to_string(steps), "expected 1 to 100000000");
+  SendControl(control_t::ACTION_STEP, steps, 0);
+}
+
+void Client::SetSpeed(double real_time_factor) {
+  if (!std::isfinite(real_time_factor) || real_time_factor > 1000 ||
+      (real_time_factor > 0 && real_time_factor < 0.001))
+    throw BadValues("SIM_CONTROL", "speed", std::to_string(real_time_factor),
+                    "expected <= 0 (as fast as possible) or 0.001 to 1000 times real time");
+  SendControl(control_t::ACTION_SET_SPEED, 0, real_time_factor);
+}
+
+std::shared_ptr<const Catalog> Client::Reset(double timeout) {
+  int64_t old_id = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (catalog_) old_id = catalog_->simulation_id();
+  }
+  SendControl(control_t::ACTION_RESET, 0, 0);
+  return LearnModel(timeout, [old_id](const model_t& m) { return m.simulation_id != old_id; });
+}
+
+std::optional<state_t> Client::LatestState() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return state_;
+}
+
+std::optional<status_t> Client::LatestStatus() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return status_;
+}
+
+std::optional<sensor_reading_t> Client::LatestReading(const std::string& sensor) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!catalog_) return std::nullopt;
+  const Target& target = catalog_->Resolve(sensor);
+  if (!target.is_sensor())
+    throw UnknownTarget(sensor, {}, "'" + sensor + "' is an actuator, not a sensor");
+  const auto it = readings_.find(target.index);
+  if (it == readings_.end()) return std::nullopt;
+  return it->second;
+}
+
+sensor_reading_t Client::WaitForReading(const std::string& sensor, int64_t after_step,
+                                        double timeout) {
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  std::unique_lock<std::mutex> lock(mutex_);
+  ThrowIfRestarted();
+  if (!catalog_) throw NoSim(options_.url, 0.0);
+  const Target target = catalog_->Resolve(sensor);
+  if (!target.is_sensor())
+    throw UnknownTarget(sensor, {}, "'" + sensor + "' is an actuator, not a sensor");
+  for (;;) {
+    ThrowIfRestarted();
+    const auto it = readings_.find(target.index);
+    if (it != readings_.end() && it->second.step > after_step) return it->second;
+    if (changed_.wait_until(lock, deadline) == std::cv_status::timeout) {
+      const auto again = readings_.find(target.index);
+      if (again != readings_.end() && again->second.step > after_step) return again->second;
+      throw Timeout("SIM_SENSOR reading of " + target.name + " after step " +
+                        std::to_string(after_step),
+                    timeout, options_.url);
+    }
+  }
+}
+
+state_t Client::WaitUntilSimTime(double sim_time, double timeout) {
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (!catalog_) throw NoSim(options_.url, 0.0);
+  const double tolerance = catalog_->step_size() / 2;
+  auto reached = [&] {
+    return state_ && state_->simulation_id == catalog_->simulation_id() &&
+           state_->sim_time >= sim_time - tolerance;
+  };
+  for (;;) {
+    ThrowIfRestarted();
+    if (reached()) return *state_;
+    if (changed_.wait_until(lock, deadline) == std::cv_status::timeout) {
+      if (reached()) return *state_;
+      char text[64];
+      std::snprintf(text, sizeof text, "%g", sim_time);
+      throw Timeout(std::string("SIM_STATE at sim time ") + text + " s" +
+                        (state_ ? " (the sim is at " + std::to_string(state_->sim_time) + " s)"
+                                : std::string(" (no SIM_STATE yet)")),
+                    timeout, options_.url);
+    }
+  }
+}
+
+status_t Client::WaitForStatus(double timeout) {
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  std::unique_lock<std::mutex> lock(mutex_);
+  const uint64_t seen = status_count_;
+  if (!changed_.wait_until(lock, deadline, [&] { return status_count_ != seen; }))
+    throw Timeout("SIM_STATUS", timeout, options_.url);
+  return *status_;
+}
+
+void Client::OnState(std::function<void(const state_t&)> callback) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  on_state_ = std::move(callback);
+}
+
+void Client::OnReading(std::function<void(const sensor_reading_t&)> callback) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  on_reading_ = std::move(callback);
+}
+
+double Client::SecondsSinceHeard() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!last_heard_) return std::numeric_limits<double>::infinity();
+  return std::chrono::duration<double>(Clock::now() - *last_heard_).count();
+}
+
+std::optional<SimRestarted> Client::PendingRestart() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return restart_;
+}
+
+std::string Client::BadMessageSummary() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return bad_messages_.Summary();
+}
+
+}  // namespace simpartner::client

@@ -1,0 +1,418 @@
+#include "simpartner/client/cmd.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <optional>
+#include <sstream>
+
+#include "simpartner/client/client.h"
+#include "simpartner/command_t.hpp"
+#include "simpartner/sensor_t.hpp"
+#include "simpartner/status_t.hpp"
+
+namespace simpartner::client {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct UsageError : ClientError {
+  using ClientError::ClientError;
+};
+
+std::string Num(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+std::string Join(const std::vector<double>& values) {
+  std::string out;
+  for (size_t k = 0; k < values.size(); ++k) out += (k ? "," : "") + Num(values[k]);
+  return out;
+}
+
+const char* RunStateName(int run_state) {
+  switch (run_state) {
+    case status_t::RUN_RUNNING: return "running";
+    case status_t::RUN_PAUSED: return "paused";
+    case status_t::RUN_STOPPED: return "stopped";
+    case status_t::RUN_FAULTED: return "faulted (paused by the health check)";
+    default: return "unknown";
+  }
+}
+
+std::string FormatStatus(const status_t& s) {
+  std::ostringstream out;
+  out << RunStateName(s.run_state) << ", step " << s.step << ", t = " << Num(s.sim_time)
+      << " s, " << Num(s.real_time_factor) << "x real time (target "
+      << (s.target_speed <= 0 ? std::string("as fast as possible") : Num(s.target_speed) + "x")
+      << "), simulation " << s.simulation_id << " on " << s.host << ", commands "
+      << s.commands_accepted << " accepted / " << s.commands_rejected << " refused, "
+      << s.bad_messages << " bad messages";
+  for (const warning_t& w : s.warnings)
+    out << "\n  step " << w.step << " " << w.source << ": " << w.message;
+  return out.str();
+}
+
+std::string FormatBody(const std::string& name, const body_state_t& b) {
+  std::ostringstream out;
+  out << name << " position " << Num(b.position[0]) << "," << Num(b.position[1]) << ","
+      << Num(b.position[2]) << " orientation " << Num(b.orientation[0]) << ","
+      << Num(b.orientation[1]) << "," << Num(b.orientation[2]) << "," << Num(b.orientation[3])
+      << " velocity " << Num(b.linear_velocity[0]) << "," << Num(b.linear_velocity[1]) << ","
+      << Num(b.linear_velocity[2]);
+  return out.str();
+}
+
+std::string FormatState(const state_t& s, const Catalog& catalog, int body) {
+  std::ostringstream out;
+  out << "step " << s.step << ", t = " << Num(s.sim_time) << " s";
+  const auto& names = catalog.body_names();
+  for (size_t i = 0; i < s.bodies.size(); ++i) {
+    if (body >= 0 && static_cast<int>(i) != body) continue;
+    out << "\n  " << FormatBody(i < names.size() ? names[i] : "body " + std::to_string(i),
+                               s.bodies[i]);
+  }
+  if (body < 0) {
+    const auto& joints = catalog.joint_names();
+    for (size_t j = 0; j < s.joints.size() && j < joints.size(); ++j)
+      out << "\n  joint " << joints[j] << " position " << Num(s.joints[j].position[0]) << ","
+          << Num(s.joints[j].position[1]) << " rate " << Num(s.joints[j].rate[0]) << ","
+          << Num(s.joints[j].rate[1]);
+  }
+  return out.str();
+}
+
+// Waits for a SIM_STATUS sent after the call that satisfies `done`.
+std::optional<status_t> AwaitStatus(Client& client, double timeout,
+                                    const std::function<bool(const status_t&)>& done) {
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  for (;;) {
+    const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+    if (left <= 0) return std::nullopt;
+    try {
+      status_t s = client.WaitForStatus(left);
+      if (done(s)) return s;
+    } catch (const Timeout&) {
+      return std::nullopt;
+    }
+  }
+}
+
+struct Options {
+  std::string url = kDefaultUrl;
+  double timeout = 2.0;
+  std::vector<std::string> words;  // command and its arguments
+  std::string body;
+  bool follow = false;
+  long count = -1;  // --follow: stop after this many (tests), -1 = forever
+};
+
+double ParseNumber(const std::string& what, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v))
+    throw UsageError(what + " '" + text + "' is not a number");
+  return v;
+}
+
+Options ParseArgs(const std::vector<std::string>& args) {
+  Options o;
+  for (size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    auto value = [&](const std::string& name) -> std::string {
+      if (a.size() > name.size() && a.compare(0, name.size() + 1, name + "=") == 0)
+        return a.substr(name.size() + 1);
+      if (k + 1 >= args.size()) throw UsageError(name + " needs a value");
+      return args[++k];
+    };
+    auto is = [&](const std::string& name) {
+      return a == name || a.compare(0, name.size() + 1, name + "=") == 0;
+    };
+    if (is("--lcm-url")) {
+      o.url = value("--lcm-url");
+    } else if (is("--timeout")) {
+      o.timeout = ParseNumber("--timeout", value("--timeout"));
+      if (o.timeout <= 0 || o.timeout > 3600) throw UsageError("--timeout must be in (0, 3600] s");
+    } else if (is("--body")) {
+      o.body = value("--body");
+    } else if (a == "--follow") {
+      o.follow = true;
+    } else if (is("--count")) {
+      o.count = static_cast<long>(ParseNumber("--count", value("--count")));
+    } else if (a.size() > 1 && a[0] == '-' && !std::isdigit(static_cast<unsigned char>(a[1])) &&
+               a[1] != '.') {
+      throw UsageError("unknown option '" + a + "'");
+    } else {
+      o.words.push_back(a);
+    }
+  }
+  return o;
+}
+
+void ExpectWords(const Options& o, size_t low, size_t high) {
+  if (o.words.size() < low || o.words.size() > high)
+    throw UsageError("'" + o.words[0] + "' takes " +
+                     (low == high ? std::to_string(low - 1)
+                                  : std::to_string(low - 1) + " to " + std::to_string(high - 1)) +
+                     " argument(s), got " + std::to_string(o.words.size() - 1));
+}
+
+ClientOptions MakeClientOptions(const Options& o, bool learn_model) {
+  ClientOptions c;
+  c.url = o.url;
+  c.program = "simpartner-cmd";
+  c.model_timeout = o.timeout;
+  c.reply_timeout = o.timeout;
+  c.learn_model = learn_model;
+  return c;
+}
+
+// A command that waits for its reply; a paused sim answers only when it
+// steps, which the timeout message says.
+command_reply_t SendAndWait(Client& client, const command_t& command, double timeout) {
+  try {
+    return client.Command(command, timeout);
+  } catch (const Timeout& e) {
+    const auto status = client.LatestStatus();
+    if (status && status->run_state != status_t::RUN_RUNNING)
+      throw Timeout(e.awaited(), timeout, client.url(),
+                    std::string("the sim is ") + RunStateName(status->run_state) +
+                        ": it applies and answers commands when it steps");
+    throw;
+  }
+}
+
+int RunActuatorCommand(const Options& o, std::ostream& out) {
+  const std::string& verb = o.words[0];
+  Client client(MakeClientOptions(o, true));
+  const Target target = client.Find(o.words[1]);
+  command_t command;
+  if (verb == "set") {
+    ExpectWords(o, 3, 3);
+    // A sensor's "set" is its parameters, but an Echo sensor takes text.
+    const bool params = target.is_sensor() && target.lcm_kind != sensor_t::KIND_ECHO;
+    command = BuildCommandFromText(
+        target, params ? command_t::ACTION_SENSOR_PARAMS : command_t::ACTION_SET, o.words[2]);
+  } else if (verb == "hold") {
+    ExpectWords(o, 2, 3);
+    if (o.words.size() == 3) {
+      const std::vector<double> given = ParseValueText(target.name, o.words[2]);
+      std::vector<double> forces = given;
+      if (given.size() == 1 && target.num_axes > 1)
+        forces.assign(static_cast<size_t>(target.num_axes), given[0]);
+      command = BuildCommand(target, command_t::ACTION_HOLD, forces);
+    } else {
+      command = BuildCommand(target, command_t::ACTION_HOLD, {});
+    }
+  } else {  // stops
+    ExpectWords(o, 3, 3);
+    command = BuildCommandFromText(target, command_t::ACTION_SET_STOPS, o.words[2]);
+  }
+  const command_reply_t reply = SendAndWait(client, command, o.timeout);
+  out << reply.target << ": accepted, applied at step " << reply.applied_at_step;
+  if (!reply.previous_text.empty()) out << " (was " << reply.previous_text << ")";
+  out << "\n";
+  return kCmdOk;
+}
+
+int RunRead(const Options& o, std::ostream& out) {
+  ExpectWords(o, 2, 2);
+  Client client(MakeClientOptions(o, true));
+  const Target target = client.Find(o.words[1]);
+  if (!target.is_sensor())
+    throw UnknownTarget(o.words[1], {}, "'" + o.words[1] + "' is an actuator; read takes a sensor");
+  const command_reply_t reply = SendAndWait(client, Read(target), o.timeout);
+  const sensor_reading_t r =
+      client.WaitForReading(target.qualified_name(), reply.applied_at_step - 1, o.timeout);
+  out << target.name << " (" << target.kind_name() << ") step " << r.step << ", t = "
+      << Num(r.sim_time) << " s: ";
+  if (!r.text.empty() || r.values.empty()) out << "'" << r.text << "'";
+  else out << Join(r.values);
+  out << "\n";
+  return kCmdOk;
+}
+
+int RunControl(const Options& o, std::ostream& out) {
+  const std::string& verb = o.words[0];
+  Client client(MakeClientOptions(o, false));
+  // A first status tells that a sim is there and where it is.
+  std::optional<status_t> before = AwaitStatus(client, o.timeout, [](const status_t&) { return true; });
+  if (!before)
+    throw NoSim(o.url, o.timeout);
+  std::function<bool(const status_t&)> done;
+  std::string what;
+  if (verb == "pause") {
+    ExpectWords(o, 1, 1);
+    client.Pause();
+    done = [](const status_t& s) { return s.run_state == status_t::RUN_PAUSED; };
+  } else if (verb == "resume") {
+    ExpectWords(o, 1, 1);
+    client.Resume();
+    done = [](const status_t& s) { return s.run_state == status_t::RUN_RUNNING; };
+  } else if (verb == "step") {
+    ExpectWords(o, 2, 2);
+    const double n = ParseNumber("step count", o.words[1]);
+    if (n < 1 || n > 1e8 || n != std::floor(n))
+      throw UsageError("step count '" + o.words[1] + "' must be a whole number from 1 to 100000000");
+    const int64_t target_step = before->step + static_cast<int64_t>(n);
+    client.Step(static_cast<int64_t>(n));
+    // Done when the sim stands paused at or past the step it was sent to.
+    done = [target_step](const status_t& s) {
+      return s.run_state == status_t::RUN_PAUSED && s.step >= target_step;
+    };
+  } else if (verb == "speed") {
+    ExpectWords(o, 2, 2);
+    const double speed = ParseNumber("speed", o.words[1]);
+    client.SetSpeed(speed);
+    done = [speed](const status_t& s) {
+      return speed <= 0 ? s.target_speed <= 0 : std::abs(s.target_speed - speed) < 1e-9;
+    };
+  } else {  // quit
+    ExpectWords(o, 1, 1);
+    client.Quit();
+    done = [](const status_t& s) { return s.run_state == status_t::RUN_STOPPED; };
+  }
+  const std::optional<status_t> after = AwaitStatus(client, o.timeout, done);
+  if (!after)
+    throw Timeout("SIM_STATUS confirming '" + verb + "'", o.timeout, o.url);
+  out << "sim " << FormatStatus(*after) << "\n";
+  return kCmdOk;
+}
+
+int RunReset(const Options& o, std::ostream& out) {
+  ExpectWords(o, 1, 1);
+  Client client(MakeClientOptions(o, true));
+  const auto catalog = client.Reset(o.timeout);
+  out << "sim reset: simulation " << catalog->simulation_id() << "\n";
+  return kCmdOk;
+}
+
+int RunModel(const Options& o, std::ostream& out) {
+  ExpectWords(o, 1, 1);
+  Client client(MakeClientOptions(o, true));
+  out << client.catalog()->Describe();
+  return kCmdOk;
+}
+
+int RunState(const Options& o, std::ostream& out) {
+  ExpectWords(o, 1, 1);
+  Client client(MakeClientOptions(o, true));
+  const auto catalog = client.catalog();
+  const int body = o.body.empty() ? -1 : catalog->BodyIndex(o.body);
+  int64_t last_step = -1;
+  long printed = 0;
+  const double step_time = catalog->step_size() * catalog->state_every();
+  do {
+    // The next state after the last one printed (the newest, when not following).
+    const auto current = client.LatestState();
+    double wait_until = current ? current->sim_time + (last_step < 0 ? 0.0 : step_time) : 0.0;
+    const state_t s = client.WaitUntilSimTime(wait_until, o.timeout);
+    if (s.step == last_step) continue;
+    last_step = s.step;
+    out << FormatState(s, *catalog, body) << "\n" << std::flush;
+    ++printed;
+  } while (o.follow && (o.count < 0 || printed < o.count));
+  return kCmdOk;
+}
+
+int RunStatus(const Options& o, std::ostream& out) {
+  ExpectWords(o, 1, 1);
+  Client client(MakeClientOptions(o, false));
+  long printed = 0;
+  do {
+    const auto s = AwaitStatus(client, o.timeout, [](const status_t&) { return true; });
+    if (!s) throw Timeout("SIM_STATUS", o.timeout, o.url);
+    out << FormatStatus(*s) << "\n" << std::flush;
+    ++printed;
+  } while (o.follow && (o.count < 0 || printed < o.count));
+  return kCmdOk;
+}
+
+}  // namespace
+
+std::string CmdUsage() {
+  return R"(usage: simpartner-cmd [--lcm-url URL] [--timeout S] COMMAND [ARGS]
+Talks to a running simpartner-sim on the LCM bus.
+  set NAME VALUES          set an actuator, e.g. set Axle1Motor 1000,1000,100,0,0,0.2
+                           or per axis: set Axle1Motor 300,1.0 (fmax, velocity);
+                           a sensor: its parameters (rate, or rate,rays,halfSpan,range)
+  hold NAME [FMAX]         hold the joint where it is (force limit per axis, default 1000)
+  stops NAME LO1,HI1,...   joint stops (per slot x,y,z or per axis)
+  read SENSOR              ask a sensor for a reading and print it
+  pause | resume | reset | quit
+  step N                   take N steps, then stay paused
+  speed X                  real-time factor; 0 = as fast as possible
+  model                    robots, actuators (kind, port, value forms), sensors
+  state [--body NAME] [--follow]   newest SIM_STATE (or every one)
+  status [--follow]        newest SIM_STATUS (or every one)
+NAME is a name from 'model', robot/name, or a legacy port (1028).
+Options: --lcm-url URL (default udpm://239.255.76.67:7667?ttl=0), --timeout S (default 2),
+         --count N (with --follow: stop after N)
+Exit status: 0 accepted, 1 refused by the sim, 2 usage error, 3 no answer,
+             4 unknown name, 5 the sim restarted.
+)";
+}
+
+int RunCmd(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  const char* prefix = "simpartner-cmd: ";
+  try {
+    for (const std::string& a : args) {
+      if (a == "--help" || a == "-h") {
+        out << CmdUsage();
+        return kCmdOk;
+      }
+    }
+    const Options o = ParseArgs(args);
+    if (o.words.empty()) throw UsageError("no command given");
+    const std::string& verb = o.words[0];
+    if ((o.follow || o.count >= 0) && verb != "state" && verb != "status")
+      throw UsageError("--follow and --count go with 'state' and 'status' only");
+    if (!o.body.empty() && verb != "state") throw UsageError("--body goes with 'state' only");
+    if (verb == "set" || verb == "hold" || verb == "stops") {
+      if (o.words.size() < 2) throw UsageError("'" + verb + "' needs an actuator name");
+      return RunActuatorCommand(o, out);
+    }
+    if (verb == "read") {
+      if (o.words.size() < 2) throw UsageError("'read' needs a sensor name");
+      return RunRead(o, out);
+    }
+    if (verb == "pause" || verb == "resume" || verb == "step" || verb == "speed" ||
+        verb == "quit")
+      return RunControl(o, out);
+    if (verb == "reset") return RunReset(o, out);
+    if (verb == "model") return RunModel(o, out);
+    if (verb == "state") return RunState(o, out);
+    if (verb == "status") return RunStatus(o, out);
+    throw UsageError("unknown command '" + verb + "' (see --help)");
+  } catch (const UsageError& e) {
+    err << prefix << e.what() << "\n" << "run simpartner-cmd --help for usage\n";
+    return kCmdUsage;
+  } catch (const BadValues& e) {
+    err << prefix << e.what() << "\n";
+    return kCmdUsage;
+  } catch (const Refused& e) {
+    err << prefix << e.what() << "\n";
+    return kCmdRefused;
+  } catch (const UnknownTarget& e) {
+    err << prefix << e.what() << "\n";
+    return kCmdUnknownName;
+  } catch (const NoSim& e) {
+    err << prefix << e.what() << "\n";
+    return kCmdNoAnswer;
+  } catch (const Timeout& e) {
+    err << prefix << e.what() << "\n";
+    return kCmdNoAnswer;
+  } catch (const SimRestarted& e) {
+    err << prefix << e.what() << "\n";
+    return kCmdRestarted;
+  } catch (const ClientError& e) {
+    err << prefix << e.what() << "\n";
+    return kCmdUsage;
+  }
+}
+
+}  // namespace simpartner::client
