@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 namespace simpartner::logger {
 namespace {
@@ -74,12 +75,20 @@ Logger::Logger(LoggerOptions options, Reporter* reporter)
   if (waiting > 0)
     reporter_->Say("spool " + options_.spool_dir + " holds " + Megabytes(waiting) +
                    " from an earlier run; writing that first");
+  // LOAD DATA scratch files of a logger that was killed while writing.
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(options_.spool_dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("loaddata-", 0) == 0 && entry.path().extension() == ".tsv")
+      std::filesystem::remove(entry.path(), ec);
+  }
   queue_ = std::make_unique<RecordQueue>(options_.queue_bytes, spool_.get());
   lcm_ = std::make_unique<lcm::LCM>(options_.lcm_url);
   if (!lcm_->good()) throw Error("cannot open LCM at '" + options_.lcm_url + "'");
   ReceiverOptions receiver_options;
   receiver_options.log_interval = options_.log_interval;
   receiver_options.sender = options_.sender;
+  receiver_options.sim_silence = options_.sim_silence;
   receiver_ = std::make_unique<Receiver>(lcm_.get(), queue_.get(), receiver_options, reporter_);
 }
 
@@ -111,6 +120,51 @@ void Logger::ReportFailure(const std::string& problem, const std::string& key) {
                  "), retrying every " + retry + " s");
 }
 
+void Logger::CallStarted() {
+  call_seq_.fetch_add(1);
+  call_started_ns_.store(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                             Clock::now().time_since_epoch())
+                             .count());
+}
+
+void Logger::CallEnded() { call_started_ns_.store(0); }
+
+void Logger::CheckStall() {
+  const int64_t started = call_started_ns_.load();
+  const uint64_t seq = call_seq_.load();
+  const auto now = Clock::now();
+  const double waited =
+      started == 0 ? 0.0
+                   : static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                             now.time_since_epoch())
+                                             .count() -
+                                         started) /
+                         1e9;
+  if (stall_reported_seq_ != 0 && (started == 0 || seq != stall_reported_seq_)) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.0f s", std::max(waited, stall_reported_s_));
+    reporter_->Say("database server " + options_.db.Server() + " answers again (it had not answered for " +
+                   text + " or more)");
+    stall_reported_seq_ = 0;
+  }
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_.db_stalled_s = waited >= options_.stall_report ? waited : 0.0;
+  }
+  if (waited < options_.stall_report) return;
+  if (stall_reported_seq_ == seq && now - stall_reported_at_ < Seconds(5)) return;
+  stall_reported_seq_ = seq;
+  stall_reported_at_ = now;
+  stall_reported_s_ = waited;
+  const QueueStats q = queue_->Stats();
+  char text[64];
+  std::snprintf(text, sizeof text, "%.0f s", waited);
+  reporter_->Say("database server " + options_.db.Server() + " has not answered for " + text +
+                 " (stopped or overloaded?); keeping every record (" + Megabytes(q.memory_bytes) +
+                 " in memory, " + Megabytes(q.spool_stored_bytes) + " in the spool " +
+                 options_.spool_dir + ")");
+}
+
 void Logger::WriterLoop() {
   WriterOptions writer_options;
   writer_options.method = options_.insert_method;
@@ -136,11 +190,21 @@ void Logger::WriterLoop() {
       if (batch.empty() && writer.connected()) continue;
     }
     try {
+      struct CallMark {
+        Logger* logger;
+        explicit CallMark(Logger* l) : logger(l) { logger->CallStarted(); }
+        ~CallMark() { logger->CallEnded(); }
+      };
       if (batch.empty()) {
         // Nothing to write yet: connect early so a bad server shows at once.
+        CallMark mark(this);
         writer.Connect();
       } else {
-        const WriteResult result = writer.Write(batch.records);
+        WriteResult result;
+        {
+          CallMark mark(this);
+          result = writer.Write(batch.records);
+        }
         queue_->Commit(batch);
         batch = Batch();
         std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -149,6 +213,7 @@ void Logger::WriterLoop() {
         stats_.rows_written += result.rows_written;
         stats_.gaps += result.gaps;
         stats_.missing_steps += result.missing_steps;
+        stats_.states_repaired += result.states_repaired;
         stats_.unwritable += result.unwritable;
         ++stats_.transactions;
         for (int64_t lag : result.lags_us) stats_.lag.Add(lag);
@@ -214,6 +279,7 @@ int Logger::Run(int stop_fd) {
     if (ready > 0 && (fds[1].revents & (POLLIN | POLLHUP))) break;
     if (ready > 0 && (fds[0].revents & POLLIN)) lcm_->handle();
     receiver_->Tick();
+    CheckStall();
     if (Clock::now() >= next_status) {
       reporter_->Say(StatusLine());
       next_status = Clock::now() + Seconds(options_.status_period);
@@ -256,7 +322,7 @@ std::string Logger::StatusLine() const {
   line += "; queue " + Megabytes(s.queue.memory_bytes) + ", spool " +
           Megabytes(s.queue.spool_stored_bytes);
   line += "; gaps " + std::to_string(s.gaps) + " (" + std::to_string(s.missing_steps) +
-          " steps never received)";
+          " steps missing)";
   line += "; bad messages " + std::to_string(s.receiver.BadMessages());
   for (const auto& [channel, c] : s.receiver.channels)
     if (c.malformed + c.invalid > 0)
@@ -265,7 +331,18 @@ std::string Logger::StatusLine() const {
   if (s.receiver.dropped_no_model > 0)
     line += "; dropped " + std::to_string(s.receiver.dropped_no_model) + " without a model";
   if (s.receiver.lost_spool_failed > 0)
-    line += "; LOST " + std::to_string(s.receiver.lost_spool_failed) + " (spool failed)";
+    line += "; REFUSED " + std::to_string(s.receiver.lost_spool_failed) + " records (" +
+            Megabytes(s.receiver.lost_spool_bytes) + ", " + std::to_string(s.receiver.lost_states) +
+            " steps, in LogGap): memory queue and spool disk full";
+  if (s.receiver.simulations_silent > 0)
+    line += "; " + std::to_string(s.receiver.simulations_silent) + " simulations closed (sim silent)";
+  if (s.states_repaired > 0)
+    line += "; " + std::to_string(s.states_repaired) + " incomplete steps completed";
+  if (s.db_stalled_s > 0) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.0f s", s.db_stalled_s);
+    line += std::string("; DATABASE NOT ANSWERING for ") + text;
+  }
   if (s.db_failing) line += "; DATABASE FAILING: " + s.db_problem;
   return line;
 }

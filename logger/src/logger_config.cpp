@@ -43,6 +43,9 @@ std::vector<FlagSpec> LoggerFlags() {
       {"queue-mb", true, "memory queue before records spill to the spool [MB] (default 64)"},
       {"status-period", true, "seconds between status lines (default 10)"},
       {"drain-timeout", true, "seconds to go on writing after SIGINT/SIGTERM (default 10)"},
+      {"sim-silence", true,
+       "seconds without SIM_STATE or SIM_STATUS after which a simulation whose sim sent no "
+       "RUN_STOPPED is closed as dead (default 10)"},
   };
 }
 
@@ -69,6 +72,7 @@ LoggerOptions MakeLoggerOptions(const CommandLine& command_line, const Parameter
       PositiveNumber(command_line, "queue-mb", 64, 65536, &diagnostics) * 1e6);
   options.status_period = PositiveNumber(command_line, "status-period", 10, 86400, &diagnostics);
   options.drain_timeout = PositiveNumber(command_line, "drain-timeout", 10, 86400, &diagnostics);
+  options.sim_silence = PositiveNumber(command_line, "sim-silence", 10, 86400, &diagnostics);
   options.sender = "logger@" + HostName() + ":" + std::to_string(::getpid());
   if (!diagnostics.empty()) throw ConfigError(diagnostics);
   options.db = ResolveDbTarget(params, command_line.Value("db-options", ""), kPrivateLoggerOptions,

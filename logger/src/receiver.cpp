@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
@@ -103,7 +104,14 @@ bool FitsText(const std::string& text, size_t max_bytes) {
 
 ModelShape ShapeOf(const model_t& model) {
   return ModelShape{model.num_bodies, model.num_joints, model.num_sensors,
-                    std::max(1, model.state_every)};
+                    std::max(1, model.state_every), model.step_size};
+}
+
+int64_t StepAllowance(double step_size, int64_t elapsed_us) {
+  const double seconds = static_cast<double>(std::max<int64_t>(0, elapsed_us)) / 1e6 +
+                         kStepAllowanceMarginSeconds;
+  const double steps = std::ceil(kStepAllowanceFactor * seconds / step_size);
+  return steps >= 9e18 ? INT64_MAX : static_cast<int64_t>(steps);
 }
 
 std::string CheckModel(const model_t& m) {
@@ -233,25 +241,20 @@ Receiver::Receiver(lcm::LCM* lcm, RecordQueue* queue, ReceiverOptions options, R
 template <class Message>
 bool Receiver::Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel,
                       Message* message) {
-  const int size = static_cast<int>(buffer->data_size);
-  const int used = message->decode(buffer->data, 0, size);
-  std::string problem;
-  if (used < 0)
-    problem = "message of " + std::to_string(size) + " bytes is not a simpartner." +
-              Message::getTypeName() + " (foreign type, truncated or damaged)";
-  else if (used != size)
-    problem = "message has " + std::to_string(size - used) + " bytes after the end of its simpartner." +
-              Message::getTypeName();
+  const std::optional<DecodeFailure> failure =
+      DecodeLcm(buffer->data, static_cast<size_t>(buffer->data_size), message);
   uint64_t count = 0;
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     ChannelCounts& c = stats_.channels[channel];
     ++c.received;
-    if (!problem.empty()) count = ++c.malformed;
+    if (failure) count = ++c.malformed;
   }
-  if (problem.empty()) return true;
-  reporter_->SayLimited(channel + "/malformed", channel + ": " + problem + "; not written (" +
-                                                   std::to_string(count) + " malformed so far)");
+  if (!failure) return true;
+  reporter_->SayLimited(channel + "/malformed",
+                        DescribeRefusal(channel, Message::getTypeName(),
+                                        static_cast<size_t>(buffer->data_size), *failure) +
+                            "; not written (" + std::to_string(count) + " malformed so far)");
   return false;
 }
 
@@ -276,24 +279,79 @@ Record Receiver::MakeRecord(RecordKind kind, int64_t simulation_id,
   return r;
 }
 
-void Receiver::Push(Record record) {
+void Receiver::Push(Record record, int64_t step) {
   const bool is_state = record.kind == RecordKind::kState;
-  try {
-    queue_->Push(std::move(record));
-  } catch (const SpoolError& e) {
-    uint64_t lost = 0;
-    {
-      std::lock_guard<std::mutex> lock(stats_mutex_);
-      lost = ++stats_.lost_spool_failed;
+  const int64_t simulation = record.simulation_id;
+  const uint64_t bytes = record.ByteSize();
+  std::string cause;
+  // Steps refused earlier are recorded before anything newer, so the
+  // writer meets the gap where the steps would have been.
+  if (PushLostGaps()) {
+    try {
+      queue_->Push(std::move(record));
+      if (is_state) {
+        std::lock_guard<std::mutex> lock(stats_mutex_);
+        ++stats_.states_queued;
+      }
+      if (spool_failing_) {
+        spool_failing_ = false;
+        const ReceiverStats s = Stats();
+        reporter_->Say("the spool takes records again; " + std::to_string(s.lost_spool_failed) +
+                       " records (" + std::to_string(s.lost_states) +
+                       " steps) were refused while it was full, the steps recorded in LogGap");
+      }
+      return;
+    } catch (const SpoolError& e) {
+      cause = e.what();
     }
-    reporter_->SayLimited("spool", std::string("cannot keep a record: the memory queue is full and ") +
-                                       e.what() + " (" + std::to_string(lost) + " records lost)");
-    return;
   }
-  if (is_state) {
+  if (is_state && step >= 0) {
+    LostRange& lost = lost_[simulation];
+    if (lost.count == 0) lost.first = lost.last = step;
+    lost.first = std::min(lost.first, step);
+    lost.last = std::max(lost.last, step);
+    ++lost.count;
+    if (!cause.empty()) lost.cause = cause;
+  }
+  spool_failing_ = true;
+  uint64_t lost_records = 0, lost_bytes = 0, lost_states = 0;
+  {
     std::lock_guard<std::mutex> lock(stats_mutex_);
-    ++stats_.states_queued;
+    lost_records = ++stats_.lost_spool_failed;
+    lost_bytes = (stats_.lost_spool_bytes += bytes);
+    if (is_state) ++stats_.lost_states;
+    lost_states = stats_.lost_states;
   }
+  if (!cause.empty()) last_spool_cause_ = cause;
+  const QueueStats q = queue_->Stats();
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "cannot keep a record: the memory queue is full and the spool disk refuses it; "
+                "kept %.1f MB in memory and %.1f MB in the spool, refused %llu records (%.1f MB, "
+                "%llu steps) so far",
+                static_cast<double>(q.memory_bytes) / 1e6,
+                static_cast<double>(q.spool_stored_bytes) / 1e6,
+                static_cast<unsigned long long>(lost_records), static_cast<double>(lost_bytes) / 1e6,
+                static_cast<unsigned long long>(lost_states));
+  reporter_->SayLimited("spool", std::string(text) + " (" + last_spool_cause_ +
+                                     "); the steps refused go into LogGap");
+}
+
+bool Receiver::PushLostGaps() {
+  while (!lost_.empty()) {
+    const auto it = lost_.begin();
+    const LostRange& lost = it->second;
+    GapPayload gap{lost.first, lost.last, lost.count,
+                   "refused by the logger: memory queue full and spool disk full" +
+                       (lost.cause.empty() ? std::string() : " (" + lost.cause + ")")};
+    try {
+      queue_->Push(MakeGapRecord(it->first, NowMicros(), gap));
+    } catch (const SpoolError&) {
+      return false;
+    }
+    lost_.erase(it);
+  }
+  return true;
 }
 
 void Receiver::Wait(Record record) {
@@ -332,6 +390,55 @@ void Receiver::RequestModel() {
 void Receiver::Tick() {
   if (!waiting_.empty() && std::chrono::steady_clock::now() - last_request_ > kModelRequestPeriod)
     RequestModel();
+  if (!lost_.empty()) PushLostGaps();
+  CloseSilent();
+}
+
+void Receiver::CloseSilent() {
+  const auto now = std::chrono::steady_clock::now();
+  const auto silence = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(options_.sim_silence));
+  for (auto& [simulation, clock] : clocks_) {
+    if (ended_.count(simulation) > 0 || models_.count(simulation) == 0) continue;
+    if (now - clock.heard < silence) continue;
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%g", options_.sim_silence);
+    const std::string reason = std::string("the sim went silent: no SIM_STATE or SIM_STATUS for ") +
+                               seconds + " s and no RUN_STOPPED (last step seen " +
+                               std::to_string(clock.step) + ")";
+    ended_.insert(simulation);
+    {
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      ++stats_.simulations_silent;
+    }
+    reporter_->Say("bus simulation " + std::to_string(simulation) + ": " + reason +
+                   "; closing it");
+    Push(MakeEndedRecord(simulation, NowMicros(), EndedPayload{clock.step, EndKind::kSilent, reason}));
+  }
+}
+
+std::string Receiver::CheckStepRate(const state_t& s, int64_t received_us, const ModelShape& shape) {
+  SimClock& clock = clocks_[s.simulation_id];
+  if (clock.step >= 0 && s.step > clock.step) {
+    const int64_t elapsed = received_us - clock.received_us;
+    const int64_t allowed = StepAllowance(shape.step_size, elapsed);
+    if (s.step - clock.step > allowed) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "step = %lld is %lld steps after step %lld, which came %.3f s earlier: more "
+                    "than %g x real time allows (at most %lld steps of %g s); refused as forged "
+                    "or absurd",
+                    static_cast<long long>(s.step), static_cast<long long>(s.step - clock.step),
+                    static_cast<long long>(clock.step), static_cast<double>(elapsed) / 1e6,
+                    kStepAllowanceFactor, static_cast<long long>(allowed), shape.step_size);
+      return text;
+    }
+  }
+  if (s.step > clock.step) {
+    clock.step = s.step;
+    clock.received_us = received_us;
+  }
+  return "";
 }
 
 void Receiver::Deliver(Record record, const state_t* decoded) {
@@ -345,15 +452,23 @@ void Receiver::Deliver(Record record, const state_t* decoded) {
   if (record.kind == RecordKind::kState) {
     state_t waited;
     if (decoded == nullptr) {
-      waited.decode(record.payload.data(), 0, static_cast<int>(record.payload.size()));
+      // A record that waited for its model: decoded once already when it
+      // came, so this cannot fail unless memory was damaged.
+      if (const auto failure = DecodeLcm(record.payload.data(), record.payload.size(), &waited)) {
+        Invalid(channels::kState, DescribeRefusal(channels::kState, state_t::getTypeName(),
+                                                  record.payload.size(), *failure));
+        return;
+      }
       decoded = &waited;
     }
     const state_t& s = *decoded;
-    const std::string problem = CheckState(s, shape);
+    std::string problem = CheckState(s, shape);
+    if (problem.empty()) problem = CheckStepRate(s, record.received_us, shape);
     if (!problem.empty()) {
       Invalid(channels::kState, problem);
       return;
     }
+    const int64_t step = s.step;
     {
       std::lock_guard<std::mutex> lock(stats_mutex_);
       if (s.simulation_id == stats_.simulation_id) {
@@ -365,10 +480,16 @@ void Receiver::Deliver(Record record, const state_t* decoded) {
         return;
       }
     }
+    Push(std::move(record), step);
+    return;
   } else if (record.kind == RecordKind::kSensor) {
     sensor_reading_t r;
-    r.decode(record.payload.data(), 0, static_cast<int>(record.payload.size()));
-    const std::string problem = CheckSensorReading(r, shape);
+    std::string problem;
+    if (const auto failure = DecodeLcm(record.payload.data(), record.payload.size(), &r))
+      problem = DescribeRefusal(channels::kSensor, sensor_reading_t::getTypeName(),
+                                record.payload.size(), *failure);
+    else
+      problem = CheckSensorReading(r, shape);
     if (!problem.empty()) {
       Invalid(channels::kSensor, problem);
       return;
@@ -399,6 +520,7 @@ void Receiver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& chan
     return;  // announced again
   }
   models_[model.simulation_id] = shape;
+  clocks_[model.simulation_id].heard = std::chrono::steady_clock::now();
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     stats_.simulation_id = model.simulation_id;
@@ -431,6 +553,8 @@ void Receiver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& chan
 void Receiver::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   state_t state;
   if (!Decode(buffer, channel, &state)) return;
+  if (models_.count(state.simulation_id) > 0)
+    clocks_[state.simulation_id].heard = std::chrono::steady_clock::now();
   Deliver(MakeRecord(RecordKind::kState, state.simulation_id, buffer), &state);
 }
 
@@ -478,10 +602,13 @@ void Receiver::OnReply(const lcm::ReceiveBuffer* buffer, const std::string& chan
 void Receiver::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   status_t status;
   if (!Decode(buffer, channel, &status)) return;
+  if (models_.count(status.simulation_id) == 0) return;
+  clocks_[status.simulation_id].heard = std::chrono::steady_clock::now();
   if (status.run_state != status_t::RUN_STOPPED) return;
-  if (models_.count(status.simulation_id) == 0 || ended_.count(status.simulation_id) > 0) return;
+  if (ended_.count(status.simulation_id) > 0) return;
   ended_.insert(status.simulation_id);
-  Push(MakeEndedRecord(status.simulation_id, NowMicros(), EndedPayload{status.step}));
+  Push(MakeEndedRecord(status.simulation_id, NowMicros(),
+                       EndedPayload{status.step, EndKind::kStopped, ""}));
 }
 
 ReceiverStats Receiver::Stats() const {

@@ -20,11 +20,17 @@ int64_t GetI64(const std::vector<uint8_t>& in, size_t offset) {
   return value;
 }
 
-void CheckSize(const Record& record, size_t size) {
-  if (record.payload.size() != size)
+void CheckSize(const Record& record, size_t size, bool more_allowed) {
+  if (record.payload.size() < size || (!more_allowed && record.payload.size() != size))
     throw std::runtime_error(std::string(RecordKindName(record.kind)) + " record has " +
                              std::to_string(record.payload.size()) + " payload bytes, expected " +
-                             std::to_string(size));
+                             (more_allowed ? "at least " : "") + std::to_string(size));
+}
+
+std::string TextFrom(const Record& record, size_t offset) {
+  if (record.payload.size() <= offset) return "";
+  return std::string(record.payload.begin() + static_cast<std::ptrdiff_t>(offset),
+                     record.payload.end());
 }
 
 }  // namespace
@@ -52,6 +58,7 @@ Record MakeGapRecord(int64_t simulation_id, int64_t received_us, const GapPayloa
   PutI64(&r.payload, gap.first_step);
   PutI64(&r.payload, gap.last_step);
   PutI64(&r.payload, gap.missing);
+  r.payload.insert(r.payload.end(), gap.reason.begin(), gap.reason.end());
   return r;
 }
 
@@ -61,18 +68,23 @@ Record MakeEndedRecord(int64_t simulation_id, int64_t received_us, const EndedPa
   r.simulation_id = simulation_id;
   r.received_us = received_us;
   PutI64(&r.payload, ended.last_step);
+  PutI64(&r.payload, static_cast<int64_t>(ended.kind));
+  r.payload.insert(r.payload.end(), ended.reason.begin(), ended.reason.end());
   return r;
 }
 
 GapPayload ReadGap(const Record& record) {
-  CheckSize(record, 24);
+  CheckSize(record, 24, true);
   return GapPayload{GetI64(record.payload, 0), GetI64(record.payload, 8),
-                    GetI64(record.payload, 16)};
+                    GetI64(record.payload, 16), TextFrom(record, 24)};
 }
 
 EndedPayload ReadEnded(const Record& record) {
-  CheckSize(record, 8);
-  return EndedPayload{GetI64(record.payload, 0)};
+  if (record.payload.size() == 8) return EndedPayload{GetI64(record.payload, 0), EndKind::kStopped, ""};
+  CheckSize(record, 16, true);
+  const int64_t kind = GetI64(record.payload, 8);
+  return EndedPayload{GetI64(record.payload, 0), kind == 1 ? EndKind::kSilent : EndKind::kStopped,
+                      TextFrom(record, 16)};
 }
 
 }  // namespace simpartner::logger

@@ -242,7 +242,33 @@ std::vector<Migration> BuildMigrations() {
                       " UNIQUE KEY reply (simulationID, sender(191), requestID, receivedUtime)"
                       ")") + kTableOptions,
       }});
+  m.push_back(Migration{
+      3,
+      "LogGap.reason: why the steps are missing (never received, or refused by the logger)",
+      {
+          std::string("ALTER TABLE LogGap ADD COLUMN IF NOT EXISTS reason VARCHAR(255) NOT NULL"
+                      " DEFAULT 'never received (lost on the bus, or sent while no logger ran)'"
+                      " COMMENT 'never received, or received but refused (the spool disk full)'"),
+      }});
   return m;
+}
+
+// "CREATE TABLE Pose", "ALTER TABLE LogGap": what a migration statement
+// does, for messages.
+std::string StatementName(const std::string& statement) {
+  std::string words;
+  int count = 0;
+  size_t i = 0;
+  while (i < statement.size() && count < 3) {
+    const size_t end = statement.find(' ', i);
+    std::string word = statement.substr(i, end == std::string::npos ? std::string::npos : end - i);
+    i = end == std::string::npos ? statement.size() : end + 1;
+    if (word == "IF" || word == "NOT" || word == "EXISTS" || word.empty()) continue;
+    if (!words.empty()) words += " ";
+    words += word;
+    ++count;
+  }
+  return words;
 }
 
 }  // namespace
@@ -288,11 +314,9 @@ int MigrateSchema(DbConnection* db, const std::function<void(const std::string&)
                   0, "");
   for (const Migration& migration : Migrations()) {
     if (migration.version <= before) continue;
-    for (const std::string& statement : migration.statements) {
-      const size_t name_start = statement.find("EXISTS ") + 7;
-      const std::string table = statement.substr(name_start, statement.find(' ', name_start) - name_start);
-      db->Execute(statement, "migration " + std::to_string(migration.version) + ": CREATE TABLE " + table);
-    }
+    for (const std::string& statement : migration.statements)
+      db->Execute(statement, "migration " + std::to_string(migration.version) + ": " +
+                                 StatementName(statement));
     db->Execute("INSERT INTO SchemaVersion (version, description, appliedAt) VALUES (" +
                     std::to_string(migration.version) + ", " + Quoted(migration.description) +
                     ", UTC_TIMESTAMP(6))",

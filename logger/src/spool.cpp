@@ -389,7 +389,19 @@ void Spool::Commit(Position end) {
     Remove(segment->seq);
     if (segments_.empty()) read_offset_ = 0;
   } else {
-    WriteDone(*segment);
+    // The mark only saves a restart from replaying committed records (which
+    // the writer skips): a full disk must not stop the commit, or the
+    // segment would never be freed.
+    try {
+      WriteDone(*segment);
+      done_mark_failing_ = false;
+    } catch (const SpoolError& e) {
+      if (!done_mark_failing_)
+        notice_(std::string(e.what()) + "; until it can be written, a restart would write up to " +
+                std::to_string(segment->committed) +
+                " committed bytes of this segment again (skipped as already there)");
+      done_mark_failing_ = true;
+    }
   }
 }
 

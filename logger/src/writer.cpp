@@ -14,9 +14,11 @@
 
 #include <cppconn/exception.h>
 
+#include "simpartner/bus_decode.h"
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
 #include "simpartner/logger/axis_angle.h"
+#include "simpartner/logger/receiver.h"
 #include "simpartner/logger/schema.h"
 #include "simpartner/logger/sql_text.h"
 #include "simpartner/model_t.hpp"
@@ -52,14 +54,39 @@ int64_t NowMicros() {
       .count();
 }
 
+// Decodes a record's payload through the shared total decoder (the spool
+// on disk is no more trusted than the bus). A record that does not decode
+// is reported and skipped: retrying it could never succeed.
 template <class Message>
-Message Decode(const Record& record) {
-  Message message;
-  if (message.decode(record.payload.data(), 0, static_cast<int>(record.payload.size())) < 0)
-    throw Error(std::string("a ") + RecordKindName(record.kind) +
-                " record does not decode (the receiver let it through: a bug)");
-  return message;
+bool DecodeRecord(const Record& record, Message* message, const DbWriter::Notice& notice) {
+  const std::optional<DecodeFailure> failure =
+      DecodeLcm(record.payload.data(), record.payload.size(), message);
+  if (!failure) return true;
+  notice(std::string("a ") + RecordKindName(record.kind) + " record of bus simulation " +
+         std::to_string(record.simulation_id) + " does not decode; not written: " +
+         DescribeRefusal("spool", Message::getTypeName(), record.payload.size(), *failure));
+  return false;
 }
+
+// Text for a VARCHAR column from the logger's own messages (which may hold
+// a path): valid UTF-8 of at most max_bytes bytes, other bytes as '?'.
+std::string ColumnText(const std::string& text, size_t max_bytes) {
+  if (FitsText(text, max_bytes)) return text;
+  std::string out;
+  for (const char c : text) {
+    if (out.size() >= max_bytes) break;
+    const unsigned char u = static_cast<unsigned char>(c);
+    out.push_back(u >= 0x20 && u < 0x80 ? c : '?');
+  }
+  return out;
+}
+
+// The LOAD DATA scratch file could not be written (the spool disk full):
+// the batch is rolled back and goes again as INSERTs.
+class ScratchFileError : public Error {
+ public:
+  using Error::Error;
+};
 
 const char* GeometryName(int8_t kind) {
   switch (kind) {
@@ -225,6 +252,12 @@ class DbWriter::RowSink {
     if (load_data_) {
       // Numbers only (the per-step tables have no text): read as bytes.
       WriteFile(what);
+      // The file goes as soon as the server has read it: nothing stays in
+      // the spool directory, and its space is free for the spool.
+      struct RemoveFile {
+        const std::string& path;
+        ~RemoveFile() { ::unlink(path.c_str()); }
+      } remove{scratch_path_};
       db_->Execute("LOAD DATA LOCAL INFILE " + Quoted(scratch_path_) + " INTO TABLE " + table_ +
                        " CHARACTER SET binary FIELDS TERMINATED BY '\\t' LINES TERMINATED BY "
                        "'\\n' (" + columns_ + ")",
@@ -238,7 +271,7 @@ class DbWriter::RowSink {
   void WriteFile(const std::string& what) {
     const int fd = ::open(scratch_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
     if (fd < 0)
-      throw Error(what + ": cannot write " + scratch_path_ + ": " + std::strerror(errno));
+      throw ScratchFileError(what + ": cannot write " + scratch_path_ + ": " + std::strerror(errno));
     size_t done = 0;
     while (done < buffer_.size()) {
       const ssize_t n = ::write(fd, buffer_.data() + done, buffer_.size() - done);
@@ -246,11 +279,16 @@ class DbWriter::RowSink {
       if (n < 0) {
         const std::string cause = std::strerror(errno);
         ::close(fd);
-        throw Error(what + ": cannot write " + scratch_path_ + ": " + cause);
+        ::unlink(scratch_path_.c_str());
+        throw ScratchFileError(what + ": cannot write " + scratch_path_ + ": " + cause);
       }
       done += static_cast<size_t>(n);
     }
-    ::close(fd);
+    if (::close(fd) != 0) {
+      const std::string cause = std::strerror(errno);
+      ::unlink(scratch_path_.c_str());
+      throw ScratchFileError(what + ": cannot write " + scratch_path_ + ": " + cause);
+    }
   }
 
   DbConnection* db_;
@@ -304,30 +342,54 @@ WriteResult DbWriter::Write(const std::vector<Record>& records) {
           run.push_back(&records[i]);
           ++i;
         }
-        try {
-          WriteRun(run, false, &result);
-        } catch (const DbError& e) {
-          db_->Rollback();
-          if (e.code() == kDuplicateKey) {
-            WriteRun(run, true, &result);
-          } else if (options_.method == InsertMethod::kAuto && IsLoadDataRefused(e.code()) &&
-                     !load_data_refused_) {
-            load_data_refused_ = true;
-            notice_("server " + target_.Server() + " refuses LOAD DATA LOCAL (" + e.cause() +
-                    "); using multi-row INSERTs only");
-            WriteRun(run, false, &result);
-          } else {
-            throw;
-          }
-        }
+        WriteRunAtomically(run, &result);
       }
     }
   } catch (const DbError& e) {
     if (db_) db_->Rollback();
     if (e.kind() == DbErrorKind::kUnreachable) db_.reset();
     throw;
+  } catch (...) {
+    // Whatever failed, the open transaction must not survive: the next
+    // START TRANSACTION would commit it half done.
+    if (db_) db_->Rollback();
+    throw;
   }
   return result;
+}
+
+void DbWriter::WriteRunAtomically(const std::vector<const Record*>& run, WriteResult* result) {
+  bool check_present = false;
+  bool force_insert = false;
+  while (true) {
+    try {
+      WriteRun(run, check_present, force_insert, result);
+      return;
+    } catch (const ScratchFileError& e) {
+      db_->Rollback();
+      if (force_insert) throw;
+      force_insert = true;
+      ++scratch_failures_;
+      const auto now = std::chrono::steady_clock::now();
+      if (scratch_failures_ == 1 || now - last_scratch_notice_ > std::chrono::seconds(10)) {
+        last_scratch_notice_ = now;
+        notice_(std::string(e.what()) + "; the batch was rolled back and goes as multi-row "
+                "INSERTs (" + std::to_string(scratch_failures_) + " batches so far)");
+      }
+    } catch (const DbError& e) {
+      db_->Rollback();
+      if (e.code() == kDuplicateKey && !check_present) {
+        check_present = true;
+      } else if (options_.method == InsertMethod::kAuto && IsLoadDataRefused(e.code()) &&
+                 !load_data_refused_) {
+        load_data_refused_ = true;
+        notice_("server " + target_.Server() + " refuses LOAD DATA LOCAL (" + e.cause() +
+                "); using multi-row INSERTs only");
+      } else {
+        throw;
+      }
+    }
+  }
 }
 
 bool DbWriter::LoadSimulation(const std::string& where, SimInfo* info) {
@@ -416,8 +478,12 @@ void DbWriter::CloseOthers(const SimInfo& keep, const std::string& host, const s
   }
 }
 
-void DbWriter::WriteModel(const Record& record, WriteResult* /*result*/) {
-  const model_t model = Decode<model_t>(record);
+void DbWriter::WriteModel(const Record& record, WriteResult* result) {
+  model_t model;
+  if (!DecodeRecord(record, &model, notice_)) {
+    ++result->unwritable;
+    return;
+  }
   auto cached = simulations_.find(model.simulation_id);
   if (cached != simulations_.end()) return;  // announced again
 
@@ -601,20 +667,39 @@ void DbWriter::WriteModel(const Record& record, WriteResult* /*result*/) {
 void DbWriter::CloseSimulation(const Record& record) {
   SimInfo* sim = FindSimulation(record.simulation_id);
   if (sim == nullptr) return;
+  const EndedPayload ended = ReadEnded(record);
   const std::string sid = std::to_string(sim->id);
-  db_->Execute("UPDATE Simulation SET endTime = UTC_TIMESTAMP(6), endReason = 'the sim stopped', "
-               "lastStep = (SELECT MAX(step) FROM SimulationRow WHERE simulationID = " + sid +
-                   ") WHERE simulationID = " + sid + " AND endTime IS NULL",
+  const std::string reason =
+      ended.reason.empty() ? std::string("the sim stopped") : ColumnText(ended.reason, 255);
+  const std::string logged = "(SELECT MAX(step) FROM SimulationRow WHERE simulationID = " + sid + ")";
+  // A sim that went silent ends at the last step seen (a step refused
+  // after it was received is in LogGap, not in SimulationRow).
+  const std::string last_step =
+      ended.kind == EndKind::kSilent
+          ? "GREATEST(COALESCE(" + logged + ", -1), " + std::to_string(ended.last_step) + ")"
+          : logged;
+  db_->Execute("UPDATE Simulation SET endTime = UTC_TIMESTAMP(6), endReason = " + Quoted(reason) +
+                   ", lastStep = " + last_step + " WHERE simulationID = " + sid +
+                   " AND endTime IS NULL",
                "UPDATE Simulation (close " + sid + ")");
-  notice_("closed simulation " + sid + ": the sim stopped at step " +
-          std::to_string(ReadEnded(record).last_step));
+  if (db_->QueryInt("SELECT ROW_COUNT()", "SELECT ROW_COUNT()", 0) == 0) return;  // closed before
+  notice_("closed simulation " + sid + ": " + reason +
+          (ended.kind == EndKind::kStopped
+               ? " at step " + std::to_string(ended.last_step)
+               : std::string()));
 }
 
 void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_present,
-                        WriteResult* result) {
-  // States by simulation, in arrival order.
-  std::map<int64_t, std::vector<state_t>> states;
+                        bool force_insert, WriteResult* result) {
+  // States and gap records by simulation, in arrival order.
+  struct Item {
+    state_t state;
+    bool is_gap = false;
+    GapPayload gap;
+  };
+  std::map<int64_t, std::vector<Item>> items;
   std::vector<const Record*> others;
+  uint64_t undecodable = 0;
   for (const Record* r : run) {
     if (FindSimulation(r->simulation_id) == nullptr) {
       ++result->unwritable;
@@ -623,78 +708,138 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
               " has no Simulation row (its SIM_MODEL never reached the database); not written");
       continue;
     }
-    if (r->kind == RecordKind::kState) states[r->simulation_id].push_back(Decode<state_t>(*r));
-    else others.push_back(r);
+    if (r->kind == RecordKind::kState) {
+      Item item;
+      if (!DecodeRecord(*r, &item.state, notice_)) {
+        ++undecodable;
+        continue;
+      }
+      items[r->simulation_id].push_back(std::move(item));
+    } else if (r->kind == RecordKind::kGap) {
+      Item item;
+      item.is_gap = true;
+      item.gap = ReadGap(*r);
+      items[r->simulation_id].push_back(std::move(item));
+    } else {
+      others.push_back(r);
+    }
   }
-  if (states.empty() && others.empty()) return;
+  if (items.empty() && others.empty()) return;
 
   db_->Begin();
   std::vector<int64_t> published;  // publish times of the states written
   std::map<int64_t, int64_t> new_last_step;
   WriteResult pending;
-  for (auto& [bus_id, list] : states) {
+  pending.unwritable = undecodable;
+  for (auto& [bus_id, list] : items) {
     SimInfo* sim = FindSimulation(bus_id);
     const std::string sid = std::to_string(sim->id);
-    int64_t lo = list.front().step, hi = list.front().step;
-    for (const state_t& s : list) {
-      lo = std::min(lo, s.step);
-      hi = std::max(hi, s.step);
+    bool any_state = false;
+    int64_t lo = 0, hi = 0;
+    size_t bodies = 0, joints = 0;
+    for (const Item& item : list) {
+      if (item.is_gap) continue;
+      const int64_t step = item.state.step;
+      if (!any_state) {
+        lo = hi = step;
+        bodies = item.state.bodies.size();
+        joints = item.state.joints.size();
+      }
+      any_state = true;
+      lo = std::min(lo, step);
+      hi = std::max(hi, step);
     }
     const std::string range = " WHERE simulationID = " + sid + " AND step BETWEEN " +
                               std::to_string(lo) + " AND " + std::to_string(hi);
+    // Steps already in the database with all their rows, and steps whose
+    // SimulationRow is there without all of its rows (left by a logger
+    // before transactions covered every failure): those get their rows.
     std::set<int64_t> present;
-    if (check_present || lo <= sim->last_step) {
-      std::unique_ptr<sql::ResultSet> rows =
-          db_->Query("SELECT step FROM SimulationRow" + range, "SELECT step FROM SimulationRow");
+    std::unordered_map<int64_t, int64_t> incomplete;  // step -> simulationRowID
+    if (any_state && (check_present || lo <= sim->last_step)) {
+      std::unique_ptr<sql::ResultSet> rows = db_->Query(
+          "SELECT r.step, r.simulationRowID,"
+          " (SELECT COUNT(*) FROM Pose p WHERE p.simulationRowID = r.simulationRowID),"
+          " (SELECT COUNT(*) FROM ForceAndTorque f WHERE f.simulationRowID = r.simulationRowID),"
+          " (SELECT COUNT(*) FROM JointPose j WHERE j.simulationRowID = r.simulationRowID)"
+          " FROM SimulationRow r" + range,
+          "SELECT step FROM SimulationRow");
       try {
-        while (rows->next()) present.insert(rows->getInt64(1));
+        while (rows->next()) {
+          const int64_t step = rows->getInt64(1);
+          if (rows->getUInt64(3) == bodies && rows->getUInt64(4) == bodies &&
+              rows->getUInt64(5) == joints)
+            present.insert(step);
+          else
+            incomplete[step] = static_cast<int64_t>(rows->getUInt64(2));
+        }
       } catch (const sql::SQLException&) {
         db_->Rethrow("read SimulationRow");
       }
     }
     std::vector<const state_t*> fresh;
+    std::vector<const state_t*> repaired;
     int64_t last = sim->last_step;
     RowSink gaps(db_.get(), InsertMethod::kMultiRowInsert, "", "LogGap",
-                 "simulationID,firstStep,lastStep,missing,detectedAt",
-                 "lastStep = VALUES(lastStep), missing = VALUES(missing)");
-    for (const state_t& s : list) {
-      if (last >= 0 && s.step > last + sim->stride) {
-        const int64_t missing = (s.step - last) / sim->stride - 1;
-        gaps.BeginRow();
-        gaps.Int(sim->id);
-        gaps.Int(last + sim->stride);
-        gaps.Int(s.step - sim->stride);
-        gaps.Int(missing);
-        gaps.Expression("UTC_TIMESTAMP(6)");
-        gaps.EndRow();
-        ++pending.gaps;
-        pending.missing_steps += static_cast<uint64_t>(missing);
+                 "simulationID,firstStep,lastStep,missing,detectedAt,reason",
+                 "lastStep = VALUES(lastStep), missing = VALUES(missing), reason = VALUES(reason)");
+    auto gap_row = [&](int64_t first, int64_t last_missing, int64_t missing,
+                       const std::string& reason) {
+      gaps.BeginRow();
+      gaps.Int(sim->id);
+      gaps.Int(first);
+      gaps.Int(last_missing);
+      gaps.Int(missing);
+      gaps.Expression("UTC_TIMESTAMP(6)");
+      gaps.Text(ColumnText(reason, 255));
+      gaps.EndRow();
+      ++pending.gaps;
+      pending.missing_steps += static_cast<uint64_t>(missing);
+    };
+    for (const Item& item : list) {
+      if (item.is_gap) {
+        // Steps the receiver had but could not keep; any steps before them
+        // that never came are a gap of their own.
+        const GapPayload& g = item.gap;
+        if (last >= 0 && g.first_step > last + sim->stride)
+          gap_row(last + sim->stride, g.first_step - sim->stride,
+                  (g.first_step - last) / sim->stride - 1, kGapNotReceived);
+        if (g.last_step > last) {
+          gap_row(g.first_step, g.last_step, g.missing, g.reason);
+          last = g.last_step;
+        }
+        continue;
       }
+      const state_t& s = item.state;
+      if (last >= 0 && s.step > last + sim->stride)
+        gap_row(last + sim->stride, s.step - sim->stride, (s.step - last) / sim->stride - 1,
+                kGapNotReceived);
       last = std::max(last, s.step);
       if (!present.insert(s.step).second) {
         ++pending.states_present;
         continue;
       }
-      fresh.push_back(&s);
+      if (incomplete.count(s.step) > 0) repaired.push_back(&s);
+      else fresh.push_back(&s);
     }
     gaps.Finish();
     pending.rows_written += gaps.rows();
     new_last_step[bus_id] = last;
-    if (fresh.empty()) continue;
+    if (fresh.empty() && repaired.empty()) continue;
 
+    std::unordered_map<int64_t, int64_t> row_ids = incomplete;
     RowSink steps(db_.get(), InsertMethod::kMultiRowInsert, "", "SimulationRow",
                   "simulationID,step,simulationTime,publishedUtime");
-    for (const state_t* s : fresh) {
-      steps.BeginRow();
-      steps.Int(sim->id);
-      steps.Int(s->step);
-      steps.Double(s->sim_time);
-      steps.Int(s->utime);
-      steps.EndRow();
-    }
-    steps.Finish();
-    std::unordered_map<int64_t, int64_t> row_ids;
-    {
+    if (!fresh.empty()) {
+      for (const state_t* s : fresh) {
+        steps.BeginRow();
+        steps.Int(sim->id);
+        steps.Int(s->step);
+        steps.Double(s->sim_time);
+        steps.Int(s->utime);
+        steps.EndRow();
+      }
+      steps.Finish();
       std::unique_ptr<sql::ResultSet> rows = db_->Query(
           "SELECT step, simulationRowID FROM SimulationRow" + range, "SELECT FROM SimulationRow");
       try {
@@ -703,52 +848,68 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
         db_->Rethrow("read SimulationRow");
       }
     }
-    const InsertMethod method = MethodFor(fresh.size());
-    RowSink poses(db_.get(), method, options_.scratch_dir, "Pose",
-                  "simulationRowID,bodyID,x,y,z,axisX,axisY,axisZ,angle");
-    RowSink forces(db_.get(), method, options_.scratch_dir, "ForceAndTorque",
-                   "simulationRowID,bodyID,F_x,F_y,F_z,T_x,T_y,T_z");
-    RowSink joints(db_.get(), method, options_.scratch_dir, "JointPose",
-                   "simulationRowID,jointID,anchorx,anchory,anchorz,angle,angle2,angle3,rate,"
-                   "rate2,rate3,F_x,F_y,F_z,T_x,T_y,T_z");
-    for (const state_t* s : fresh) {
-      const int64_t row = row_ids.at(s->step);
-      for (size_t b = 0; b < s->bodies.size(); ++b) {
-        const body_state_t& body = s->bodies[b];
-        const AxisAngle aa = AxisAngleFromQuaternion(body.orientation);
-        poses.BeginRow();
-        poses.Int(row);
-        poses.Int(sim->body_ids[b]);
-        for (double p : body.position) poses.Double(p);
-        for (double a : aa.axis) poses.Double(a);
-        poses.Double(aa.angle);
-        poses.EndRow();
-        forces.BeginRow();
-        forces.Int(row);
-        forces.Int(sim->body_ids[b]);
-        for (double f : body.contact_force) forces.Double(f);
-        for (double t : body.contact_torque) forces.Double(t);
-        forces.EndRow();
+    // The per-step rows of a list of states, into one sink per table.
+    auto write_rows = [&](const std::vector<const state_t*>& states, InsertMethod method,
+                          bool keep_existing) {
+      const std::string poses_dup = keep_existing ? "x = x" : "";
+      const std::string forces_dup = keep_existing ? "F_x = F_x" : "";
+      const std::string joints_dup = keep_existing ? "angle = angle" : "";
+      RowSink poses(db_.get(), method, options_.scratch_dir, "Pose",
+                    "simulationRowID,bodyID,x,y,z,axisX,axisY,axisZ,angle", poses_dup);
+      RowSink forces(db_.get(), method, options_.scratch_dir, "ForceAndTorque",
+                     "simulationRowID,bodyID,F_x,F_y,F_z,T_x,T_y,T_z", forces_dup);
+      RowSink joint_rows(db_.get(), method, options_.scratch_dir, "JointPose",
+                         "simulationRowID,jointID,anchorx,anchory,anchorz,angle,angle2,angle3,rate,"
+                         "rate2,rate3,F_x,F_y,F_z,T_x,T_y,T_z",
+                         joints_dup);
+      for (const state_t* s : states) {
+        const int64_t row = row_ids.at(s->step);
+        for (size_t b = 0; b < s->bodies.size(); ++b) {
+          const body_state_t& body = s->bodies[b];
+          const AxisAngle aa = AxisAngleFromQuaternion(body.orientation);
+          poses.BeginRow();
+          poses.Int(row);
+          poses.Int(sim->body_ids[b]);
+          for (double p : body.position) poses.Double(p);
+          for (double a : aa.axis) poses.Double(a);
+          poses.Double(aa.angle);
+          poses.EndRow();
+          forces.BeginRow();
+          forces.Int(row);
+          forces.Int(sim->body_ids[b]);
+          for (double f : body.contact_force) forces.Double(f);
+          for (double t : body.contact_torque) forces.Double(t);
+          forces.EndRow();
+        }
+        for (size_t j = 0; j < s->joints.size(); ++j) {
+          const joint_state_t& joint = s->joints[j];
+          joint_rows.BeginRow();
+          joint_rows.Int(row);
+          joint_rows.Int(sim->joint_ids[j]);
+          for (double a : joint.anchor) joint_rows.Double(a);
+          for (double p : joint.position) joint_rows.Double(p);
+          for (double r : joint.rate) joint_rows.Double(r);
+          for (double f : joint.force1) joint_rows.Double(f);
+          for (double t : joint.torque1) joint_rows.Double(t);
+          joint_rows.EndRow();
+        }
+        published.push_back(s->utime);
       }
-      for (size_t j = 0; j < s->joints.size(); ++j) {
-        const joint_state_t& joint = s->joints[j];
-        joints.BeginRow();
-        joints.Int(row);
-        joints.Int(sim->joint_ids[j]);
-        for (double a : joint.anchor) joints.Double(a);
-        for (double p : joint.position) joints.Double(p);
-        for (double r : joint.rate) joints.Double(r);
-        for (double f : joint.force1) joints.Double(f);
-        for (double t : joint.torque1) joints.Double(t);
-        joints.EndRow();
-      }
-      published.push_back(s->utime);
+      poses.Finish();
+      forces.Finish();
+      joint_rows.Finish();
+      return poses.rows() + forces.rows() + joint_rows.rows();
+    };
+    uint64_t rows = steps.rows();
+    if (!fresh.empty())
+      rows += write_rows(fresh, force_insert ? InsertMethod::kMultiRowInsert : MethodFor(fresh.size()),
+                         false);
+    if (!repaired.empty()) {
+      rows += write_rows(repaired, InsertMethod::kMultiRowInsert, true);
+      pending.states_repaired += repaired.size();
     }
-    poses.Finish();
-    forces.Finish();
-    joints.Finish();
-    pending.states_written += fresh.size();
-    pending.rows_written += steps.rows() + poses.rows() + forces.rows() + joints.rows();
+    pending.states_written += fresh.size() + repaired.size();
+    pending.rows_written += rows;
   }
 
   // Sensor readings, commands and replies: few, keyed so a replay is a no-op.
@@ -766,7 +927,8 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
   for (const Record* r : others) {
     const SimInfo* sim = FindSimulation(r->simulation_id);
     if (r->kind == RecordKind::kSensor) {
-      const sensor_reading_t reading = Decode<sensor_reading_t>(*r);
+      sensor_reading_t reading;
+      if (!DecodeRecord(*r, &reading, notice_)) continue;
       if (reading.sensor < 0 || reading.sensor >= static_cast<int32_t>(sim->sensor_ids.size()))
         continue;  // the receiver checks this against the model
       readings.BeginRow();
@@ -779,7 +941,8 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
       readings.Text(reading.text);
       readings.EndRow();
     } else if (r->kind == RecordKind::kCommand) {
-      const command_t c = Decode<command_t>(*r);
+      command_t c;
+      if (!DecodeRecord(*r, &c, notice_)) continue;
       commands.BeginRow();
       commands.Int(sim->id);
       commands.Int(r->received_us);
@@ -795,7 +958,8 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
       commands.Text(c.text);
       commands.EndRow();
     } else if (r->kind == RecordKind::kCommandReply) {
-      const command_reply_t c = Decode<command_reply_t>(*r);
+      command_reply_t c;
+      if (!DecodeRecord(*r, &c, notice_)) continue;
       replies.BeginRow();
       replies.Int(sim->id);
       replies.Int(r->received_us);
@@ -823,6 +987,8 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
   result->rows_written += pending.rows_written;
   result->gaps += pending.gaps;
   result->missing_steps += pending.missing_steps;
+  result->states_repaired += pending.states_repaired;
+  result->unwritable += pending.unwritable;
   for (int64_t p : published) result->lags_us.push_back(committed - p);
 }
 

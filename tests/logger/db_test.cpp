@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -89,12 +90,21 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
                "VARCHAR(1024) NOT NULL, appliedAt DATETIME(6) NOT NULL)", "");
   for (const std::string& statement : Migrations().at(0).statements) old->Execute(statement, "");
   old->Execute("INSERT INTO SchemaVersion VALUES (1, 'v1', NOW())", "");
+  old->Execute("INSERT INTO LogGap VALUES (1, 11, 14, 4, NOW())", "");  // a gap of that logger
   std::vector<std::string> notices;
   auto b = DbConnection::Open(server_->LoggerTarget("simpartner_b"), false);
   EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 1);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 2);
-  ASSERT_EQ(notices.size(), 1u);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 3);
+  ASSERT_EQ(notices.size(), 2u);
   EXPECT_NE(notices[0].find("applied schema migration 2"), std::string::npos);
+  EXPECT_NE(notices[1].find("applied schema migration 3 (LogGap.reason"), std::string::npos);
+  // The old gap got the reason old gaps had: never received.
+  EXPECT_EQ(QueryRows(old.get(), "SELECT firstStep, missing, reason FROM LogGap"),
+            (std::vector<std::string>{"11\t4\tnever received (lost on the bus, or sent while no logger ran)"}));
+  // A migration cut short after adding the column runs again harmlessly.
+  old->Execute("DELETE FROM SchemaVersion WHERE version = 3", "");
+  EXPECT_EQ(MigrateSchema(b.get(), nullptr), 2);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 3);
 
   // A database from a newer logger is left alone.
   old->Execute("INSERT INTO SchemaVersion VALUES (99, 'from the future', NOW())", "");
@@ -103,7 +113,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
     FAIL() << "a newer schema was accepted";
   } catch (const DbError& e) {
     EXPECT_NE(std::string(e.what()).find("database 'simpartner_b' has schema version 99, newer than "
-                                         "this program's 2"),
+                                         "this program's 3"),
               std::string::npos) << e.what();
   }
 }
@@ -223,7 +233,7 @@ TEST_F(DbTest, ARestartedSimIsANewSimulationAndTheOldOneIsClosed) {
   records.push_back(testing::MakeRecord(RecordKind::kCommand, 100, command, 556));
   records.push_back(second.ModelRecord());
   for (Record& r : second.StateRecords(1, 5)) records.push_back(std::move(r));
-  records.push_back(MakeEndedRecord(200, 0, EndedPayload{5}));
+  records.push_back(MakeEndedRecord(200, 0, EndedPayload{5, EndKind::kStopped, ""}));
   writer->Write(records);
   writer->Write(records);  // again: nothing new
   auto db = Admin();
@@ -282,6 +292,127 @@ TEST_F(DbTest, AutoUsesInsertWhenTheServerRefusesLoadData) {
   } catch (const DbError& e) {
     EXPECT_NE(std::string(e.what()).find("LOAD DATA LOCAL INTO Pose"), std::string::npos) << e.what();
   }
+  // The batch failed after its SimulationRow rows were sent: none of them
+  // was committed.
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow", "simpartner_s"), 0);
+}
+
+// The LOAD DATA scratch file cannot be written (its disk full, here its
+// directory missing): the batch is rolled back, not committed without its
+// Pose, ForceAndTorque and JointPose rows, and goes again as INSERTs.
+TEST_F(DbTest, AnUnwritableScratchFileRollsTheBatchBackAndItGoesAsInserts) {
+  const SimRun run = ArmRun(300, 3);
+  WriterOptions options;
+  options.method = InsertMethod::kLoadDataLocal;
+  options.lcm_url = "udpm://test";
+  options.scratch_dir = (dir_ / "no such directory").string();
+  DbWriter writer(server_->LoggerTarget("simpartner"), options,
+                  [this](const std::string& s) { notices_.push_back(s); });
+  writer.Write({run.ModelRecord()});
+  const std::vector<Record> states = run.StateRecords(1, 300);
+  for (size_t i = 0; i < states.size(); i += 100) {
+    const WriteResult result = writer.Write(std::vector<Record>(
+        states.begin() + static_cast<std::ptrdiff_t>(i), states.begin() + static_cast<std::ptrdiff_t>(i + 100)));
+    EXPECT_EQ(result.states_written, 100u);
+  }
+  ExpectEveryStepOnce("simpartner", 1, 1, 300, 3, 2);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
+  size_t told = 0;
+  for (const std::string& n : notices_)
+    if (n.find("cannot write " + options.scratch_dir + "/loaddata-Pose.tsv") != std::string::npos &&
+        n.find("rolled back and goes as multi-row INSERTs") != std::string::npos)
+      ++told;
+  EXPECT_EQ(told, 1u) << "told once, not for every batch";
+}
+
+// Scratch files go as soon as the server has read them.
+TEST_F(DbTest, LoadDataLeavesNoScratchFiles) {
+  const SimRun run = ArmRun(100, 3);
+  auto writer = Writer("simpartner", InsertMethod::kLoadDataLocal);
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(1, 100)) records.push_back(std::move(r));
+  writer->Write(records);
+  ExpectEveryStepOnce("simpartner", 1, 1, 100, 3, 2);
+  for (const auto& entry : std::filesystem::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().rfind("loaddata-", 0), std::string::npos) << entry.path();
+}
+
+// Steps whose SimulationRow is there without all of their rows (what the
+// logger before this one committed when its scratch file failed) are not
+// "already there": written again, they get their missing rows.
+TEST_F(DbTest, AStepWithoutAllItsRowsIsCompletedNotSkipped) {
+  const SimRun run = ArmRun(100, 8);
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(1, 100)) records.push_back(std::move(r));
+  Writer()->Write(records);
+  auto admin = Admin();
+  admin->Execute("DELETE p FROM Pose p JOIN SimulationRow r USING (simulationRowID) WHERE r.step BETWEEN 40 AND 49", "");
+  admin->Execute("DELETE f FROM ForceAndTorque f JOIN SimulationRow r USING (simulationRowID) WHERE r.step BETWEEN 45 AND 59", "");
+  admin->Execute("DELETE j FROM JointPose j JOIN SimulationRow r USING (simulationRowID) WHERE r.step = 70 AND j.jointID = 1", "");
+  const WriteResult result = Writer()->Write(records);
+  EXPECT_EQ(result.states_repaired, 21u);  // 40..59 and 70
+  EXPECT_EQ(result.states_present, 79u);
+  ExpectEveryStepOnce("simpartner", 1, 1, 100, 3, 2);
+}
+
+// Steps the receiver could not keep (its spool disk full) arrive as gap
+// records: LogGap holds them with the reason, steps that never came with
+// theirs, and each missing step is counted once.
+TEST_F(DbTest, GapRecordsGoIntoLogGapWithTheirReason) {
+  const SimRun run = ArmRun(60, 5);
+  auto writer = Writer();
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(1, 10)) records.push_back(std::move(r));
+  records.push_back(MakeGapRecord(5, 0, GapPayload{11, 20, 10, "refused: spool disk full"}));
+  for (Record& r : run.StateRecords(21, 30)) records.push_back(std::move(r));
+  // 31..33 lost on the bus, then 34..40 refused.
+  records.push_back(MakeGapRecord(5, 0, GapPayload{34, 40, 7, "refused again"}));
+  for (Record& r : run.StateRecords(41, 45)) records.push_back(std::move(r));
+  for (Record& r : run.StateRecords(48, 50)) records.push_back(std::move(r));  // 46, 47 lost
+  writer->Write(records);
+  // The gap record alone in a later batch, then the steps after it.
+  writer->Write({MakeGapRecord(5, 0, GapPayload{51, 55, 5, "refused at last"})});
+  writer->Write(run.StateRecords(56, 60));
+  auto db = Admin();
+  const std::string lost = "never received (lost on the bus, or sent while no logger ran)";
+  EXPECT_EQ(QueryRows(db.get(), "SELECT firstStep, lastStep, missing, reason FROM LogGap ORDER BY firstStep"),
+            (std::vector<std::string>{"11\t20\t10\trefused: spool disk full", "31\t33\t3\t" + lost,
+                                      "34\t40\t7\trefused again", "46\t47\t2\t" + lost,
+                                      "51\t55\t5\trefused at last"}));
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow") +
+                QueryInt("SELECT SUM(missing) FROM LogGap"),
+            60);
+  // simpartner-query list counts them as missing.
+  std::ostringstream list;
+  ListSimulations(db.get(), list);
+  std::stringstream listing(list.str());
+  std::string header_line, row_line;
+  std::getline(listing, header_line);
+  std::getline(listing, row_line);
+  std::vector<std::string> fields;
+  std::stringstream row(row_line);
+  for (std::string f; row >> f;) fields.push_back(f);
+  ASSERT_EQ(fields.size(), 11u) << list.str();
+  EXPECT_EQ(fields[7], "33") << list.str();  // steps
+  EXPECT_EQ(fields[9], "27") << list.str();  // missing
+}
+
+// A simulation whose sim went silent is closed at the last step seen,
+// with the reason.
+TEST_F(DbTest, ASilentSimulationIsClosedWithItsReason) {
+  const SimRun run = ArmRun(20, 5);
+  auto writer = Writer();
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(1, 20)) records.push_back(std::move(r));
+  records.push_back(MakeEndedRecord(5, 0, EndedPayload{20, EndKind::kSilent, "the sim went silent"}));
+  records.push_back(MakeEndedRecord(5, 0, EndedPayload{20, EndKind::kStopped, ""}));  // closed already
+  writer->Write(records);
+  auto db = Admin();
+  EXPECT_EQ(QueryRows(db.get(), "SELECT endTime IS NOT NULL, endReason, lastStep FROM Simulation"),
+            (std::vector<std::string>{"1\tthe sim went silent\t20"}));
+  size_t closed = 0;
+  for (const std::string& n : notices_) closed += n.find("closed simulation 1") != std::string::npos;
+  EXPECT_EQ(closed, 1u);
 }
 
 TEST_F(DbTest, TheLoggerUserHasOnlyTheRightsItNeeds) {
@@ -307,7 +438,9 @@ TEST_F(DbTest, TheLoggerUserHasOnlyTheRightsItNeeds) {
   reader_target.option_file = server_->reader_options();
   auto reader = DbConnection::Open(reader_target, false);
   reader->UseDatabase(false);
-  EXPECT_EQ(refused(reader.get(), "INSERT INTO LogGap VALUES (1, 1, 1, 1, NOW())"), 1142);
+  EXPECT_EQ(refused(reader.get(), "INSERT INTO LogGap (simulationID, firstStep, lastStep, missing, "
+                                  "detectedAt) VALUES (1, 1, 1, 1, NOW())"),
+            1142);
   EXPECT_EQ(reader->QueryInt("SELECT COUNT(*) FROM Pose", "", -1), 3);
 }
 

@@ -5,9 +5,11 @@
 #include <lcm/lcm-cpp.hpp>
 #include <unistd.h>
 
+#include <climits>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <thread>
 
 #include "simpartner/channels.h"
 #include "simpartner/command_t.hpp"
@@ -86,10 +88,11 @@ class ReceiverTest : public ::testing::Test {
     spool_.reset();
     std::filesystem::remove_all(dir_);
   }
-  void Start(int interval = 1) {
+  void Start(int interval = 1, double sim_silence = 10.0) {
     ReceiverOptions options;
     options.log_interval = interval;
     options.sender = "test";
+    options.sim_silence = sim_silence;
     receiver_ = std::make_unique<Receiver>(&lcm_, queue_.get(), options, &reporter_);
   }
   template <class M>
@@ -200,9 +203,10 @@ TEST_F(ReceiverTest, MalformedMessagesAreCountedReportedAndNeverQueued) {
   EXPECT_EQ(stats.channels.at(channels::kModel).malformed, 1u);
   EXPECT_TRUE(Queued().empty());
   const std::string text = out_.str();
-  EXPECT_NE(text.find("SIM_STATE: message of 7 bytes is not a simpartner.state_t"), std::string::npos)
+  // The shared decoder's description (bus_decode.h DescribeRefusal).
+  EXPECT_NE(text.find("SIM_STATE: 7 bytes refused as simpartner.state_t"), std::string::npos)
       << text;
-  EXPECT_NE(text.find("SIM_MODEL: message of 2 bytes is not a simpartner.model_t"), std::string::npos)
+  EXPECT_NE(text.find("SIM_MODEL: 2 bytes refused as simpartner.model_t"), std::string::npos)
       << text;
   EXPECT_NE(text.find("not written (1 malformed so far)"), std::string::npos) << text;
 }
@@ -271,6 +275,141 @@ TEST_F(ReceiverTest, StopStatusEndsTheSimulationAndCommandsFollowTheCurrentOne) 
   EXPECT_EQ(q[3].simulation_id, 6);
   EXPECT_EQ(q[4].kind, RecordKind::kSimulationEnded);
   EXPECT_EQ(ReadEnded(q[4]).last_step, 42);
+}
+
+template <class M>
+std::vector<uint8_t> Encode(const M& message) {
+  std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
+  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// Overwrites the big-endian int32 at `offset` (LCM's encoding).
+void PutInt32(std::vector<uint8_t>* bytes, size_t offset, int32_t value) {
+  const uint32_t v = static_cast<uint32_t>(value);
+  for (int i = 0; i < 4; ++i) (*bytes)[offset + static_cast<size_t>(i)] = static_cast<uint8_t>(v >> (24 - 8 * i));
+}
+
+// Datagrams lcm-gen's own decoder cannot survive (a string length of 0 or
+// less throws, a count of 2^31-1 allocates before it checks): the shared
+// decoder refuses each, the receiver counts and describes it, and goes on
+// with the valid states after it.
+TEST_F(ReceiverTest, HostileLengthsAndCountsAreRefusedAndLoggingGoesOn) {
+  Start();
+  Publish(channels::kModel, TwoBodyModel(5));
+  Publish(channels::kState, State(5, 1));
+  // command_t: 8-byte fingerprint, utime, request_id, then sender's length.
+  command_t command{};
+  command.sender = "";
+  command.robot = "";
+  command.target = "";
+  std::vector<uint8_t> sender_zero = Encode(command);
+  PutInt32(&sender_zero, 24, 0);
+  PublishRaw(channels::kCommand, sender_zero);
+  std::vector<uint8_t> sender_negative = Encode(command);
+  PutInt32(&sender_negative, 24, -5);
+  PublishRaw(channels::kCommand, sender_negative);
+  // command_t num_values: after three empty strings (5 bytes each), port
+  // (4), action (1) and apply_at_step (8): byte 24 + 15 + 13 = 52.
+  std::vector<uint8_t> values_huge = Encode(command);
+  PutInt32(&values_huge, 52, INT32_MAX);
+  PublishRaw(channels::kCommand, values_huge);
+  // state_t: fingerprint, utime, simulation_id, step, sim_time: num_bodies
+  // at byte 40.
+  std::vector<uint8_t> bodies_negative = Encode(State(5, 2));
+  PutInt32(&bodies_negative, 40, -1);
+  PublishRaw(channels::kState, bodies_negative);
+  std::vector<uint8_t> bodies_huge = Encode(State(5, 2));
+  PutInt32(&bodies_huge, 40, INT32_MAX);
+  PublishRaw(channels::kState, bodies_huge);
+  for (int step = 2; step <= 4; ++step) Publish(channels::kState, State(5, step));
+
+  const ReceiverStats stats = receiver_->Stats();
+  EXPECT_EQ(stats.channels.at(channels::kCommand).malformed, 3u);
+  EXPECT_EQ(stats.channels.at(channels::kState).malformed, 2u);
+  EXPECT_EQ(stats.channels.at(channels::kState).received, 6u);
+  EXPECT_EQ(stats.BadMessages(), 5u);
+  std::vector<int64_t> steps;
+  for (const Record& r : Queued())
+    if (r.kind == RecordKind::kState) steps.push_back(StepOf(r));
+  EXPECT_EQ(steps, (std::vector<int64_t>{1, 2, 3, 4}));
+  const std::string text = out_.str();
+  const std::string command_refused =
+      "SIM_COMMAND: " + std::to_string(sender_zero.size()) + " bytes refused as simpartner.command_t";
+  EXPECT_NE(text.find(command_refused + ": field 'sender' at byte 24: string length 0"),
+            std::string::npos) << text;
+  EXPECT_NE(text.find(command_refused + ": field 'sender' at byte 24: string length -5"),
+            std::string::npos) << text;
+  EXPECT_NE(text.find("field 'num_values' at byte 52: count 2147483647"), std::string::npos) << text;
+  EXPECT_NE(text.find("refused as simpartner.state_t: field 'num_bodies' at byte 40: count -1 is negative"),
+            std::string::npos) << text;
+  EXPECT_NE(text.find("field 'num_bodies' at byte 40: count 2147483647"), std::string::npos) << text;
+  EXPECT_NE(text.find("(3 malformed so far)"), std::string::npos) << text;
+}
+
+// A state whose step is beyond what the sim's rate allows since the last
+// one (5e8 right after 1000: 1000 x real time at 1 ms steps allows about a
+// million) is refused as invalid and described; the steps after it go on.
+TEST_F(ReceiverTest, AForgedStepNumberIsRefusedAndLoggingGoesOn) {
+  Start();
+  Publish(channels::kModel, TwoBodyModel(5));
+  for (int step = 1; step <= 1000; ++step) Publish(channels::kState, State(5, step));
+  Publish(channels::kState, State(5, 500000000));
+  for (int step = 1001; step <= 1010; ++step) Publish(channels::kState, State(5, step));
+  std::vector<int64_t> steps;
+  for (const Record& r : Queued())
+    if (r.kind == RecordKind::kState) steps.push_back(StepOf(r));
+  ASSERT_EQ(steps.size(), 1010u);
+  EXPECT_EQ(steps[999], 1000);
+  EXPECT_EQ(steps[1000], 1001);
+  EXPECT_EQ(steps.back(), 1010);
+  const ReceiverStats stats = receiver_->Stats();
+  EXPECT_EQ(stats.channels.at(channels::kState).invalid, 1u);
+  EXPECT_EQ(stats.last_step, 1010);
+  const std::string text = out_.str();
+  EXPECT_NE(text.find("SIM_STATE: step = 500000000 is 499999000 steps after step 1000"),
+            std::string::npos) << text;
+  EXPECT_NE(text.find("refused as forged or absurd"), std::string::npos) << text;
+}
+
+TEST(StepAllowanceTest, ThousandTimesRealTimePlusOneSecond) {
+  // 1 ms steps: 1000 x real time is a million steps per second of wall
+  // time, plus a second's worth.
+  EXPECT_EQ(StepAllowance(0.001, 0), 1000000);
+  EXPECT_EQ(StepAllowance(0.001, 500000), 1500000);
+  EXPECT_EQ(StepAllowance(0.02, 2000000), 150000);
+  EXPECT_EQ(StepAllowance(0.001, -5), 1000000);  // a clock step back counts as none
+}
+
+// A simulation whose sim falls silent (no SIM_STATE, no SIM_STATUS, no
+// RUN_STOPPED) is closed with the last step seen and the reason; one that
+// keeps sending SIM_STATUS (paused) is not.
+TEST_F(ReceiverTest, ASilentSimIsClosedAtTheLastStepSeen) {
+  Start(1, 0.3);
+  Publish(channels::kModel, TwoBodyModel(5));
+  Publish(channels::kModel, TwoBodyModel(6));
+  for (int step = 1; step <= 7; ++step) Publish(channels::kState, State(5, step));
+  status_t paused{};
+  paused.simulation_id = 6;
+  paused.run_state = status_t::RUN_PAUSED;
+  for (int i = 0; i < 5; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    Publish(channels::kStatus, paused);
+    receiver_->Tick();
+  }
+  std::vector<Record> ended;
+  for (Record& r : Queued())
+    if (r.kind == RecordKind::kSimulationEnded) ended.push_back(std::move(r));
+  ASSERT_EQ(ended.size(), 1u);
+  EXPECT_EQ(ended[0].simulation_id, 5);
+  const EndedPayload payload = ReadEnded(ended[0]);
+  EXPECT_EQ(payload.last_step, 7);
+  EXPECT_EQ(payload.kind, EndKind::kSilent);
+  EXPECT_NE(payload.reason.find("the sim went silent: no SIM_STATE or SIM_STATUS for 0.3 s"),
+            std::string::npos) << payload.reason;
+  EXPECT_EQ(receiver_->Stats().simulations_silent, 1u);
+  receiver_->Tick();  // once is enough
+  EXPECT_TRUE(Queued().empty());
 }
 
 TEST(ReceiverUrlTest, ReceiveBufferIsAddedToUdpmUrls) {

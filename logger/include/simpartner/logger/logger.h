@@ -38,6 +38,8 @@ struct LoggerOptions {
   double status_period = 10.0;  // [s] between status lines
   double drain_timeout = 10.0;  // [s] writing on after a stop request
   double retry_period = 1.0;    // [s] between attempts while the server fails
+  double sim_silence = 10.0;    // [s] without SIM_STATE/SIM_STATUS: the sim died, close it
+  double stall_report = 3.0;    // [s] a database call may take before it is reported
   std::string sender;           // in SIM_MODEL_REQUEST
 };
 
@@ -65,12 +67,14 @@ struct LoggerStats {
   uint64_t rows_written = 0;
   uint64_t gaps = 0;
   uint64_t missing_steps = 0;
+  uint64_t states_repaired = 0;
   uint64_t unwritable = 0;
   uint64_t transactions = 0;
   uint64_t write_failures = 0;
   LagHistogram lag;        // step published -> its rows committed
   bool db_failing = false;
   std::string db_problem;  // last failure, while failing
+  double db_stalled_s = 0; // a database call has waited this long (0: none waiting)
 };
 
 // The URL with recv_buf_size=4194304 added for udpm when it has none, so a
@@ -96,6 +100,14 @@ class Logger {
  private:
   void WriterLoop();
   void ReportFailure(const std::string& problem, const std::string& key);
+  // Receive thread: says when a database call has not returned for
+  // stall_report seconds (every few seconds while it waits), and when it
+  // returns.
+  void CheckStall();
+  // The writer marks each database call: its start (steady clock, ns; 0 =
+  // none under way) and a sequence number.
+  void CallStarted();
+  void CallEnded();
 
   LoggerOptions options_;
   Reporter* reporter_;
@@ -112,6 +124,11 @@ class Logger {
   mutable std::mutex stats_mutex_;
   LoggerStats stats_;  // writer's part
   std::string last_failure_key_;
+  std::atomic<int64_t> call_started_ns_{0};
+  std::atomic<uint64_t> call_seq_{0};
+  uint64_t stall_reported_seq_ = 0;  // receive thread: the call reported as stalled
+  std::chrono::steady_clock::time_point stall_reported_at_{};
+  double stall_reported_s_ = 0;
   std::chrono::steady_clock::time_point last_failure_report_{};
 };
 

@@ -1,10 +1,14 @@
-// The receive side of the logger: decodes and checks every message on its
+// The receive side of the logger: decodes (through simpartner::DecodeLcm,
+// common/include/simpartner/bus_decode.h) and checks every message on its
 // channels, learns each simulation's model from SIM_MODEL (asking for it
 // with SIM_MODEL_REQUEST while messages of an unknown simulation wait), and
 // hands good records to the queue. It never waits for the database. A
 // message that does not decode, has bytes left over, or does not fit the
 // model (counts, indices, non-finite numbers, text the database cannot
-// store) is counted per channel, reported, and never written.
+// store, a step number beyond what the sim's rate allows) is counted per
+// channel, reported, and never written. Steps the queue could not keep (its
+// spool disk full) are recorded as a gap with that reason; a simulation
+// whose sim goes silent is closed.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -29,7 +33,20 @@ struct ReceiverOptions {
   int log_interval = 1;           // keep states whose step is a multiple of this
   std::string sender;             // sender name in SIM_MODEL_REQUEST
   uint64_t max_waiting_bytes = 64u << 20;  // messages waiting for their model
+  // A simulation with no SIM_STATE or SIM_STATUS for this long (and no
+  // RUN_STOPPED) is closed: its sim died. [s]
+  double sim_silence = 10.0;
 };
+
+// The step-number rule: a state may be at most this many times real time
+// ahead of the last one of its simulation, counted from the wall time
+// between their arrivals plus kStepAllowanceMarginSeconds (so a burst, a
+// pause or a slow receive loop never trips it; a forged step 5e8 does).
+inline constexpr double kStepAllowanceFactor = 1000.0;
+inline constexpr double kStepAllowanceMarginSeconds = 1.0;
+// Steps a state may be ahead of the previous one (step_size [s], elapsed
+// wall time [us]).
+int64_t StepAllowance(double step_size, int64_t elapsed_us);
 
 struct ChannelCounts {
   uint64_t received = 0;
@@ -44,6 +61,9 @@ struct ReceiverStats {
   uint64_t waiting = 0;            // messages waiting for their simulation's model
   uint64_t dropped_no_model = 0;   // waited too long (more than max_waiting_bytes)
   uint64_t lost_spool_failed = 0;  // neither memory nor disk could take them
+  uint64_t lost_spool_bytes = 0;
+  uint64_t lost_states = 0;        // of which states (recorded in LogGap)
+  uint64_t simulations_silent = 0; // closed because their sim went silent
   uint64_t model_requests = 0;
   int64_t simulation_id = 0;       // the simulation followed (latest model)
   int64_t last_step = -1;          // its last state received
@@ -57,6 +77,7 @@ struct ModelShape {
   int32_t joints = 0;
   int32_t sensors = 0;
   int32_t state_every = 1;
+  double step_size = 0.001;  // [s]
 };
 
 // Problems of a decoded message, or "" when it can be written. Each names
@@ -78,7 +99,8 @@ class Receiver {
   // Asks the sim for SIM_MODEL now.
   void RequestModel();
   // Housekeeping between messages: asks for SIM_MODEL (at most 4 times a
-  // second) while messages wait for one.
+  // second) while messages wait for one; records steps the spool refused
+  // once it takes records again; closes simulations whose sim went silent.
   void Tick();
   ReceiverStats Stats() const;
 
@@ -94,12 +116,35 @@ class Receiver {
   template <class Message>
   bool Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel, Message* message);
   void Invalid(const std::string& channel, const std::string& problem);
+  // The step-number rule for a state that fits its model; "" if it passes.
+  std::string CheckStepRate(const state_t& state, int64_t received_us, const ModelShape& shape);
   Record MakeRecord(RecordKind kind, int64_t simulation_id, const lcm::ReceiveBuffer* buffer) const;
   // To the queue, or to the waiting list if the model is not known yet.
   // `decoded`: the state in the record, if the caller has decoded it.
   void Deliver(Record record, const state_t* decoded = nullptr);
-  void Push(Record record);
+  // `step`: the state's step for a state record (for the gap if it is
+  // refused), else -1.
+  void Push(Record record, int64_t step = -1);
+  // Pushes the gap records of steps the queue refused; false if it still
+  // refuses them.
+  bool PushLostGaps();
+  void CloseSilent();
   void Wait(Record record);
+
+  // Per simulation: the newest state accepted and when it came (for the
+  // step-number rule), and when the sim was last heard of (for silence).
+  struct SimClock {
+    int64_t step = -1;
+    int64_t received_us = 0;
+    std::chrono::steady_clock::time_point heard{};
+  };
+  // States the queue refused, per simulation: first..last, how many.
+  struct LostRange {
+    int64_t first = 0;
+    int64_t last = 0;
+    int64_t count = 0;
+    std::string cause;
+  };
 
   lcm::LCM* lcm_;
   RecordQueue* queue_;
@@ -107,6 +152,10 @@ class Receiver {
   Reporter* reporter_;
   std::map<int64_t, ModelShape> models_;  // by simulation id
   std::set<int64_t> ended_;
+  std::map<int64_t, SimClock> clocks_;   // by simulation id
+  std::map<int64_t, LostRange> lost_;    // by simulation id, not yet recorded
+  bool spool_failing_ = false;
+  std::string last_spool_cause_;
   std::deque<Record> waiting_;
   uint64_t waiting_bytes_ = 0;
   std::chrono::steady_clock::time_point last_request_{};

@@ -15,8 +15,8 @@ enum class RecordKind : uint8_t {
   kSensor = 3,           // payload: sensor_reading_t
   kCommand = 4,          // payload: command_t (simulation = the one followed)
   kCommandReply = 5,     // payload: command_reply_t
-  kSimulationEnded = 6,  // payload: EndedPayload (the sim said it stopped)
-  kGap = 7,              // payload: GapPayload (steps that never arrived)
+  kSimulationEnded = 6,  // payload: EndedPayload (the sim stopped, or went silent)
+  kGap = 7,              // payload: GapPayload (steps the logger could not keep)
 };
 
 const char* RecordKindName(RecordKind kind);
@@ -31,21 +31,31 @@ struct Record {
   size_t ByteSize() const { return payload.size() + 32; }
 };
 
-// Steps first_step..last_step (every `stride`-th) of a simulation never
-// reached the logger.
+// Steps first_step..last_step (every `stride`-th) of a simulation that the
+// logger received but could not keep (e.g. its spool disk was full), and
+// why: what LogGap.reason says.
 struct GapPayload {
   int64_t first_step = 0;
   int64_t last_step = 0;
   int64_t missing = 0;
+  std::string reason;
+};
+
+enum class EndKind : int64_t {
+  kStopped = 0,  // the sim said RUN_STOPPED
+  kSilent = 1,   // nothing from the sim for a while: it died
 };
 
 struct EndedPayload {
-  int64_t last_step = 0;
+  int64_t last_step = 0;  // the sim's last step (stopped) or the last one seen (silent)
+  EndKind kind = EndKind::kStopped;
+  std::string reason;     // for Simulation.endReason ("" = "the sim stopped")
 };
 
 Record MakeGapRecord(int64_t simulation_id, int64_t received_us, const GapPayload& gap);
 Record MakeEndedRecord(int64_t simulation_id, int64_t received_us, const EndedPayload& ended);
-// Throw std::runtime_error if the payload has the wrong size.
+// Throw std::runtime_error if the payload has the wrong size. Records of an
+// older spool (without kind and reason) read with the defaults.
 GapPayload ReadGap(const Record& record);
 EndedPayload ReadEnded(const Record& record);
 

@@ -101,6 +101,7 @@ class Spool {
   uint64_t read_seq_ = 0;
   uint64_t read_offset_ = 0;
   uint64_t damaged_ = 0;
+  bool done_mark_failing_ = false;  // a commit mark could not be written (reported once)
   // Read-ahead buffer of one segment.
   std::vector<uint8_t> buffer_;
   uint64_t buffer_seq_ = 0;

@@ -1,13 +1,19 @@
 // Writes records into the database: a model becomes a Simulation with its
 // Robot, Body, Joint, Sensor, Actuator and RobotComponent rows; states
 // become SimulationRow, Pose, ForceAndTorque and JointPose rows, many steps
-// per transaction, as multi-row INSERTs or LOAD DATA LOCAL files. Every
-// write is idempotent, keyed by (simulation, step, body/joint): a step that
-// is already in the database is skipped, so after any failure the same
-// records can simply be written again (a replayed spool, a restarted
-// logger) without duplicate rows.
+// per transaction, as multi-row INSERTs or LOAD DATA LOCAL files. A
+// transaction is committed whole or rolled back, whatever fails (the
+// server, the connection, the LOAD DATA scratch file: then the batch goes
+// again as INSERTs). Every write is idempotent, keyed by (simulation, step,
+// body/joint): a step that is already in the database with all its rows is
+// skipped (one with its SimulationRow but not all its rows gets the rest),
+// so after any failure the same records can simply be written again (a
+// replayed spool, a restarted logger) without duplicate rows. Steps that
+// never came, or that the receiver could not keep, go into LogGap with the
+// reason.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -37,12 +43,17 @@ struct WriterOptions {
   std::string scratch_dir;  // where LOAD DATA files are written
 };
 
+// LogGap.reason of steps that never reached the logger.
+inline constexpr const char* kGapNotReceived =
+    "never received (lost on the bus, or sent while no logger ran)";
+
 struct WriteResult {
   uint64_t states_written = 0;
   uint64_t states_present = 0;  // already in the database: skipped
   uint64_t rows_written = 0;    // all tables
   uint64_t gaps = 0;            // LogGap rows
   uint64_t missing_steps = 0;
+  uint64_t states_repaired = 0; // had their SimulationRow but not all rows: completed
   uint64_t unwritable = 0;      // records of a simulation whose model never came
   std::vector<int64_t> lags_us; // commit time minus publish time, per state written
 };
@@ -80,7 +91,12 @@ class DbWriter {
   // check_present: look up which steps are already there first. Without
   // it, steps above the last one committed are taken as new, and a
   // duplicate key (someone else wrote them) makes the caller retry with it.
-  void WriteRun(const std::vector<const Record*>& run, bool check_present, WriteResult* result);
+  // force_insert: no LOAD DATA (its scratch file could not be written).
+  void WriteRun(const std::vector<const Record*>& run, bool check_present, bool force_insert,
+                WriteResult* result);
+  // WriteRun in one transaction, again after a rollback where that can
+  // succeed (duplicate key, LOAD DATA refused or its file unwritable).
+  void WriteRunAtomically(const std::vector<const Record*>& run, WriteResult* result);
   SimInfo* FindSimulation(int64_t bus_id);
   bool LoadSimulation(const std::string& where, SimInfo* info);
   std::vector<int64_t> LoadIds(const char* table, const char* id_column, uint32_t simulation,
@@ -95,6 +111,8 @@ class DbWriter {
   std::unique_ptr<DbConnection> db_;
   std::map<int64_t, SimInfo> simulations_;  // by bus simulation id
   bool load_data_refused_ = false;          // kAuto fell back to INSERT
+  uint64_t scratch_failures_ = 0;           // batches whose LOAD DATA file could not be written
+  std::chrono::steady_clock::time_point last_scratch_notice_{};
 };
 
 }  // namespace simpartner::logger
