@@ -6,6 +6,7 @@
 #include <iostream>
 #include <lcm/lcm-cpp.hpp>
 #include <limits>
+#include <random>
 
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
@@ -40,6 +41,10 @@ constexpr size_t kMaxKeptReplies = 4096;
 Client::Client(ClientOptions options)
     : options_(std::move(options)),
       sender_(options_.program + "@" + HostName() + ":" + std::to_string(::getpid())) {
+  // Two clients of one process share the sender; request ids starting at a
+  // random point keep their replies apart.
+  std::random_device random;
+  next_request_id_ = (static_cast<int64_t>(random()) << 20) + 1;
   lcm_ = std::make_unique<lcm::LCM>(options_.url);
   if (!lcm_->good())
     throw ClientError("cannot open the LCM bus '" + options_.url +

@@ -46,6 +46,15 @@ class ReceiveBuffer;
 
 namespace simpartner::client {
 
+// The message types, so that `using namespace simpartner::client;` is all
+// a controller needs.
+using simpartner::command_reply_t;
+using simpartner::command_t;
+using simpartner::model_t;
+using simpartner::sensor_reading_t;
+using simpartner::state_t;
+using simpartner::status_t;
+
 inline constexpr const char* kDefaultUrl = "udpm://239.255.76.67:7667?ttl=0";
 
 struct ClientOptions {
