@@ -1,0 +1,54 @@
+// A parsed sequence checked against a model (the one the sim announces on
+// the bus, or one built offline from a world file): every name and port
+// exists, every command has the number of values its target's kind takes,
+// waits name joints and sensor values that exist. The result is the plan
+// the player sends, command_t by command_t.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "simpartner/client/catalog.h"
+#include "simpartner/command_t.hpp"
+#include "simpartner/diagnostic.h"
+#include "simpartner/model/model.h"
+#include "simpartner/model_t.hpp"
+#include "simpartner/sequencer/sequence.h"
+
+namespace simpartner::sequencer {
+
+struct PlannedCommand {
+  const Command* source = nullptr;  // file line, element, time
+  client::Target target;
+  command_t message;                // built by the client library; apply_at_step set when sent
+};
+
+struct PlannedWait {
+  const Wait* source = nullptr;
+  int joint = -1;                   // index into state_t.joints
+  int sensor = -1;                  // index into model_t.sensors
+  std::string sensor_name;
+  bool read_on_request = false;     // the sensor publishes only when asked
+};
+
+struct PlannedSegment {
+  std::vector<PlannedCommand> commands;
+  const Segment* source = nullptr;
+  PlannedWait wait;                 // when source->wait is set
+};
+
+struct Plan {
+  std::vector<PlannedSegment> segments;
+  std::vector<client::Target> wheel_motors;  // velocity-controlled actuators, stopped on failure
+};
+
+// Checks `sequence` against the model; fills *plan when there are no
+// diagnostics. Every problem is `file:line: element: message`.
+DiagnosticList CheckSequence(const Sequence& sequence, const model_t& model, Plan* plan);
+
+// The model the sim would announce for a world, as far as a sequence's
+// check needs it (robots, joints, bodies, sensors, actuators with kinds,
+// ports and axes); built without the physics.
+model_t ModelFromWorld(const model::World& world);
+
+}  // namespace simpartner::sequencer

@@ -1,0 +1,17 @@
+// simpartner-sequencer's command line, as a function the tests call.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace simpartner::sequencer {
+
+// Runs the program with `args` (without the program name); returns the
+// exit status (ExitCode).
+int RunSequencer(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+// The usage text of --help.
+std::string Usage();
+
+}  // namespace simpartner::sequencer
