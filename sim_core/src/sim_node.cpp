@@ -23,6 +23,8 @@ constexpr auto kMaxLag = std::chrono::milliseconds(100);
 // flood of messages (every one refused, and answered) cannot stop the
 // stepping; the rest waits in the socket for the next step.
 constexpr auto kInputBudget = std::chrono::microseconds(200);
+// Refused commands printed in full before printing thins out.
+constexpr int64_t kPrintFirstRefusals = 100;
 
 std::string FormatMs(double ms) {
   char text[32];
@@ -98,8 +100,19 @@ void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& cha
   if (!DecodeInput(buffer, channel, &command)) return;
   if (auto rejection = sim_->Submit(command)) {
     ++commands_rejected_;
-    std::cerr << "simpartner-sim: step " << sim_->step() << ": command " << command.request_id
-              << " from '" << command.sender << "' rejected: " << rejection->reason << "\n";
+    // Every sender gets its reply; the terminal gets the first refusals
+    // and then one in kPrintEvery, so a flood cannot drown it (or cost the
+    // sim its time in writes).
+    if (commands_rejected_ <= kPrintFirstRefusals ||
+        commands_rejected_ % BadMessageCounter::kPrintEvery == 0)
+      std::cerr << "simpartner-sim: step " << sim_->step() << ": command " << command.request_id
+                << " from '" << command.sender << "' rejected: " << rejection->reason
+                << (commands_rejected_ > kPrintFirstRefusals
+                        ? " (" + std::to_string(commands_rejected_) +
+                              " refused so far; only one in " +
+                              std::to_string(BadMessageCounter::kPrintEvery) + " is printed)"
+                        : std::string())
+                << "\n";
     lcm_->publish(channels::kCommandReply, &*rejection);
   }
 }

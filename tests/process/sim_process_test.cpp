@@ -266,6 +266,43 @@ TEST_F(SimProcessTest, BadInputOnTheBusIsRefusedAndSteppingGoesOn) {
   EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
 }
 
+// At the slowest speed a step is due every second; a control must not wait
+// for it (SET_SPEED 1e-4 used to block every control but QUIT for 10 s),
+// and speeds outside the range are refused naming the value.
+TEST_F(SimProcessTest, ControlsTakeEffectAtOnceEvenAtTheSlowestSpeed) {
+  const std::string url = UniqueUrl(9);
+  SimProcess sim(Args(url, {"--duration=60", "--statusPeriod=0.2"}), Log());
+  Listener bus(url);
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > 50; }, 5.0)) << LogText();
+  Control(bus.lcm(), control_t::ACTION_SET_SPEED, 0, 1e-4);   // refused: below 0.001
+  Control(bus.lcm(), control_t::ACTION_SET_SPEED, 0, 0.001);  // one step a second
+  ASSERT_TRUE(bus.Until(
+      [&] { return !bus.statuses.empty() && bus.statuses.back().target_speed == 0.001; }, 2.0))
+      << LogText();
+  bus.Until([] { return false; }, 0.3);  // now inside a one-second wait
+  const int64_t slow_step = bus.last_step;
+  const auto sent = Clock::now();
+  Control(bus.lcm(), control_t::ACTION_PAUSE);
+  ASSERT_TRUE(bus.Until(
+      [&] { return !bus.statuses.empty() && bus.statuses.back().run_state == status_t::RUN_PAUSED; },
+      0.5))
+      << "a pause at speed 0.001 waited for the next step";
+  const double pause_latency = std::chrono::duration<double>(Clock::now() - sent).count();
+  EXPECT_LT(pause_latency, 0.2);
+  EXPECT_LE(bus.last_step, slow_step + 1);
+  Control(bus.lcm(), control_t::ACTION_SET_SPEED, 0, 1.0);
+  Control(bus.lcm(), control_t::ACTION_RESUME);
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > slow_step + 200; }, 1.0))
+      << "back to real time after the slow speed";
+  const std::string log = LogText();
+  EXPECT_NE(log.find("SIM_CONTROL: speed 0.0001 from 'test' is out of range (<= 0 for as fast as "
+                     "possible, or 0.001 to 1000 times real time)"),
+            std::string::npos)
+      << log;
+  Control(bus.lcm(), control_t::ACTION_QUIT);
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
+}
+
 TEST_F(SimProcessTest, PauseStepResetQuit) {
   const std::string url = UniqueUrl(3);
   SimProcess sim(Args(url, {"--duration=60"}), Log());

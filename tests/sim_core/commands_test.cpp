@@ -211,5 +211,30 @@ TEST(Model, MessageDescribesEveryPart) {
   EXPECT_NE(m.parameters.find("stepsize=0.001"), std::string::npos);
 }
 
+// Commands dated far ahead wait in a bounded queue: 5,000 of them used to
+// take 256 MB. The one past the bound is refused, saying so; the queued
+// ones still apply in their step.
+TEST(CommandQueueTest, TheQueueOfFutureCommandsIsBoundedAndSaysSo) {
+  auto sim = MakeArmSim();
+  for (size_t i = 0; i < Simulation::kMaxPendingCommands; ++i) {
+    auto refusal = sim->Submit(Command("ArmMotor", command_t::ACTION_HOLD, {1000}, 1000000 + static_cast<int64_t>(i)));
+    ASSERT_FALSE(refusal) << "command " << i << ": " << refusal->reason;
+  }
+  auto refusal = sim->Submit(Command("ArmMotor", command_t::ACTION_HOLD, {1000}, 5));
+  ASSERT_TRUE(refusal);
+  EXPECT_NE(refusal->reason.find("the queue of commands waiting for their step is full (10000 "
+                                 "commands"),
+            std::string::npos)
+      << refusal->reason;
+  // A big text fills the byte bound long before the count bound.
+  auto other = MakeArmSim();
+  command_t big = Command("ArmMotor", command_t::ACTION_HOLD, {1000}, 2000000);
+  big.text = std::string(60000, ' ');
+  size_t accepted = 0;
+  while (!other->Submit(big)) ++accepted;
+  EXPECT_LT(accepted, 300u);  // 16 MiB / 60 kB
+  EXPECT_GT(accepted, 250u);
+}
+
 }  // namespace
 }  // namespace simpartner::sim
