@@ -38,7 +38,12 @@ function(sp_lcm_types)
   add_custom_target(${ARG_CPP_TARGET}_gen DEPENDS ${headers} ${schema})
   add_library(${ARG_CPP_TARGET} INTERFACE)
   add_dependencies(${ARG_CPP_TARGET} ${ARG_CPP_TARGET}_gen)
-  target_include_directories(${ARG_CPP_TARGET} SYSTEM INTERFACE ${cpp_dir})
+  target_include_directories(${ARG_CPP_TARGET} SYSTEM INTERFACE
+    $<BUILD_INTERFACE:${cpp_dir}> $<INSTALL_INTERFACE:include>)
+  # The generated headers (and lcm_schema.hpp) go with the installed client
+  # library: outside projects include them as the programs do.
+  install(DIRECTORY ${cpp_dir}/ DESTINATION include COMPONENT client
+          FILES_MATCHING PATTERN "*.hpp")
   target_link_libraries(${ARG_CPP_TARGET} INTERFACE PkgConfig::LCM)
 
   set(jar ${CMAKE_CURRENT_BINARY_DIR}/${ARG_JAR_TARGET}.jar)
