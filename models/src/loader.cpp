@@ -342,6 +342,97 @@ GeometryKind ParseGeometryKind(const std::string& type) {
   return GeometryKind::kNone;
 }
 
+std::string Range(double lo, double hi, const char* unit) {
+  return "[" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]" + unit;
+}
+
+std::string VectorText(const Eigen::Vector3d& v) {
+  return "(" + FormatNumber(v.x()) + ", " + FormatNumber(v.y()) + ", " + FormatNumber(v.z()) + ")";
+}
+
+// True when every coordinate of p is within limits::kMaxCoordinate.
+bool CoordinatesInRange(const Eigen::Vector3d& p) {
+  return p.cwiseAbs().maxCoeff() <= limits::kMaxCoordinate;
+}
+
+std::string CoordinateRangeText() {
+  return "|x|, |y|, |z| <= " + FormatNumber(limits::kMaxCoordinate) + " m";
+}
+
+// The physical ranges of one body (models/README.md, "Physical ranges"):
+// each problem at the line of the element that sets the value.
+void CheckBodyRanges(Reader& reader, const xmlNode* node, const Body& body,
+                     const std::string& what) {
+  using namespace limits;
+  const size_t errors_before = reader.ErrorCount();
+  auto child_or_node = [&](const char* name) {
+    const xmlNode* child = Reader::Child(node, name);
+    return child != nullptr ? child : node;
+  };
+  if (!body.is_static && (body.mass < kMinMass || body.mass > kMaxMass)) {
+    reader.Error(child_or_node("mass"), what + ": mass " + FormatNumber(body.mass) +
+                                            " kg is out of range " +
+                                            Range(kMinMass, kMaxMass, " kg"));
+  }
+  const Geometry& g = body.geometry;
+  auto size = [&](double value, const char* element, const std::string& field) {
+    if (value < kMinSize || value > kMaxSize)
+      reader.Error(child_or_node(element), what + ": " + field + " " + FormatNumber(value) +
+                                               " m is out of range " +
+                                               Range(kMinSize, kMaxSize, " m"));
+  };
+  switch (g.kind) {
+    case GeometryKind::kNone: break;
+    case GeometryKind::kBox:
+      for (int i = 0; i < 3; ++i) size(g.size[i], "size", std::string("size ") + "xyz"[i]);
+      break;
+    case GeometryKind::kSphere: size(g.size.x(), "radius", "radius"); break;
+    case GeometryKind::kCylinder:
+    case GeometryKind::kCapsule:
+      size(g.size.x(), "radius", "radius");
+      size(g.size.y(), "length", "length");
+      break;
+  }
+  if (!CoordinatesInRange(body.pose.translation()))
+    reader.Error(child_or_node("transformation"),
+                 what + ": position " + VectorText(body.pose.translation()) +
+                     " m is out of range: " + CoordinateRangeText());
+  if (!CoordinatesInRange(body.com))
+    reader.Error(child_or_node("centerOfMass"), what + ": centerOfMass " +
+                                                    VectorText(body.com) +
+                                                    " m is out of range: " + CoordinateRangeText());
+  if (body.linear_velocity.norm() > kMaxLinearSpeed)
+    reader.Error(child_or_node("translationalVelocity"),
+                 what + ": translationalVelocity " + VectorText(body.linear_velocity) +
+                     " m/s is out of range: speed at most " + FormatNumber(kMaxLinearSpeed) +
+                     " m/s");
+  if (body.angular_velocity.norm() > kMaxAngularSpeed)
+    reader.Error(child_or_node("rotationalVelocity"),
+                 what + ": rotationalVelocity " + VectorText(body.angular_velocity) +
+                     " rad/s is out of range: rotation at most " +
+                     FormatNumber(kMaxAngularSpeed) + " rad/s");
+  if (body.is_static || reader.ErrorCount() != errors_before) return;
+  // Inertia: of the file, or of the solid when computed (then a problem
+  // comes from the mass and size, so it is reported at the body).
+  const xmlNode* at = body.inertia_given ? child_or_node("inertia") : node;
+  const std::string source = body.inertia_given ? "" : " (of a uniform " +
+                                                          std::string(ToString(g.kind)) +
+                                                          " of this mass and size)";
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(body.inertia);
+  const Eigen::Vector3d moments = solver.eigenvalues();
+  const double smallest = moments.minCoeff(), largest = moments.maxCoeff();
+  if (smallest < kMinMoment || largest > kMaxMoment) {
+    reader.Error(at, what + ": principal moments of inertia " + VectorText(moments) +
+                         " kg m^2" + source + " are out of range " +
+                         Range(kMinMoment, kMaxMoment, " kg m^2"));
+  } else if (largest > kMaxInertiaRatio * smallest) {
+    reader.Error(at, what + ": principal moments of inertia " + VectorText(moments) +
+                         " kg m^2" + source + " differ by a factor of " +
+                         FormatNumber(largest / smallest) + "; at most " +
+                         FormatNumber(kMaxInertiaRatio));
+  }
+}
+
 // Reads <body> (robot) or <object> (world). Returns nullopt after
 // reporting when anything is wrong.
 std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* kind_word) {
@@ -468,6 +559,8 @@ std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* ki
   }
   if (reader.ErrorCount() != errors_before) return std::nullopt;
   if (!body.inertia_given) body.inertia = SolidInertia(body.geometry, body.mass);
+  CheckBodyRanges(reader, node, body, what);
+  if (reader.ErrorCount() != errors_before) return std::nullopt;
   return body;
 }
 
@@ -508,7 +601,12 @@ std::optional<Joint> ReadJoint(Reader& reader, const xmlNode* node,
   const xmlNode* anchor = Reader::Child(node, "anchor");
   const bool needs_anchor = joint.kind != JointKind::kFixed && joint.kind != JointKind::kSlider;
   if (anchor != nullptr) {
-    if (const auto a = reader.Vector(anchor, what + " anchor")) joint.anchor = *a;
+    if (const auto a = reader.Vector(anchor, what + " anchor")) {
+      joint.anchor = *a;
+      if (!CoordinatesInRange(*a))
+        reader.Error(anchor, what + ": anchor " + VectorText(*a) + " m is out of range: " +
+                                 CoordinateRangeText());
+    }
   } else if (needs_anchor) {
     reader.Error(node, what + ": a " + ToString(joint.kind) + " joint needs <anchor>");
   }
@@ -564,6 +662,48 @@ std::optional<Joint> ReadJoint(Reader& reader, const xmlNode* node,
   }
   if (reader.ErrorCount() != errors_before) return std::nullopt;
   return joint;
+}
+
+// Mass ratios ODE's solver can take (models/README.md): across each joint
+// between two moving bodies, and, when robot_wide, between the heaviest and
+// the lightest moving body.
+void CheckMassRatios(Reader& reader, const std::vector<Body>& bodies,
+                     const std::vector<Joint>& joints, bool robot_wide) {
+  using namespace limits;
+  auto find = [&](const std::string& name) -> const Body* {
+    for (const Body& b : bodies)
+      if (b.name == name) return &b;
+    return nullptr;
+  };
+  for (const Joint& joint : joints) {
+    const Body* b1 = find(joint.body1);
+    const Body* b2 = find(joint.body2);
+    if (b1 == nullptr || b2 == nullptr || b1->is_static || b2->is_static) continue;
+    const Body* heavy = b1->mass >= b2->mass ? b1 : b2;
+    const Body* light = heavy == b1 ? b2 : b1;
+    if (heavy->mass > kMaxJointMassRatio * light->mass)
+      reader.ErrorAt(joint.where, "joint",
+                     "joint '" + joint.name + "': body '" + heavy->name + "' (" +
+                         FormatNumber(heavy->mass) + " kg) is " +
+                         FormatNumber(heavy->mass / light->mass) + " times as heavy as body '" +
+                         light->name + "' (" + FormatNumber(light->mass) +
+                         " kg); across a joint at most " + FormatNumber(kMaxJointMassRatio));
+  }
+  if (!robot_wide) return;
+  const Body* heaviest = nullptr;
+  const Body* lightest = nullptr;
+  for (const Body& b : bodies) {
+    if (b.is_static) continue;
+    if (heaviest == nullptr || b.mass > heaviest->mass) heaviest = &b;
+    if (lightest == nullptr || b.mass < lightest->mass) lightest = &b;
+  }
+  if (heaviest != nullptr && heaviest->mass > kMaxRobotMassRatio * lightest->mass)
+    reader.ErrorAt(lightest->where, "body",
+                   "body '" + lightest->name + "' (" + FormatNumber(lightest->mass) +
+                       " kg) is " + FormatNumber(heaviest->mass / lightest->mass) +
+                       " times lighter than body '" + heaviest->name + "' (" +
+                       FormatNumber(heaviest->mass) + " kg); within a robot at most " +
+                       FormatNumber(kMaxRobotMassRatio));
 }
 
 // Legacy port attribute: integer in (1024, 65535].
@@ -924,6 +1064,7 @@ RobotLoadResult ParseRobot(const std::string& xml, const std::string& file_name)
   for (const xmlNode* n : Reader::Children(root, "actuator"))
     if (auto a = ReadActuator(reader, n, robot, declared)) robot.actuators.push_back(*a);
   CheckConnected(reader, root);
+  if (result.diagnostics.empty()) CheckMassRatios(reader, robot.bodies, robot.joints, true);
   std::map<int, std::string> ports;
   CheckUniquePorts(reader, robot, &ports, nullptr, "");
   if (result.diagnostics.empty()) result.robot = std::move(robot);
@@ -936,6 +1077,31 @@ RobotLoadResult LoadRobotFile(const std::string& path, const FileReader& read) {
   if (!ReadModelFile(path, read, "robot", &xml, &result.diagnostics)) return result;
   return ParseRobot(xml, path);
 }
+
+namespace {
+
+// A robot's bodies and joint anchors where the world places them must lie
+// within limits::kMaxCoordinate; reported once, at the placing <robot>.
+void CheckPlacement(Reader& reader, const xmlNode* robot_node, const RobotInstance& instance) {
+  const xmlNode* at = Reader::Child(robot_node, "transformation");
+  if (at == nullptr) at = robot_node;
+  auto report = [&](const std::string& what, const Eigen::Vector3d& where) {
+    reader.Error(at, "robot '" + instance.name + "': placed at " +
+                         VectorText(instance.placement.translation()) + " m, its " + what +
+                         " is at " + VectorText(where) + " m, out of range: " +
+                         CoordinateRangeText());
+  };
+  for (const Body& b : instance.robot.bodies) {
+    const Eigen::Vector3d p = instance.placement * b.pose.translation();
+    if (!CoordinatesInRange(p)) return report("body '" + b.name + "'", p);
+  }
+  for (const Joint& j : instance.robot.joints) {
+    const Eigen::Vector3d p = instance.placement * j.anchor;
+    if (!CoordinatesInRange(p)) return report("joint '" + j.name + "' anchor", p);
+  }
+}
+
+}  // namespace
 
 WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
                            const FileReader& read) {
@@ -1017,7 +1183,12 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
       reader.Error(Reader::Child(h, "thickness"), "heightfield thickness must be positive, got " +
                                                       FormatNumber(field.thickness));
     if (const xmlNode* p = Reader::Child(h, "position")) {
-      if (const auto position = reader.Vector(p, "heightfield position")) field.position = *position;
+      if (const auto position = reader.Vector(p, "heightfield position")) {
+        field.position = *position;
+        if (!CoordinatesInRange(*position))
+          reader.Error(p, "heightfield position " + VectorText(*position) +
+                              " m is out of range: " + CoordinateRangeText());
+      }
     }
     // Samples fill many lines (with comments between rows): a bad one is
     // reported at its own line, counted from <samples> through the text and
@@ -1080,6 +1251,7 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
                            "the world (objects or 'world')");
     if (joint) world.joints.push_back(*joint);
   }
+  CheckMassRatios(reader, world.objects, world.joints, false);
 
   // Robots: each file is loaded and its diagnostics kept as they are
   // (pointing into the robot file), plus one line at the placing element.
@@ -1107,6 +1279,7 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
       continue;
     }
     instance.robot = std::move(*loaded.robot);
+    CheckPlacement(reader, n, instance);
     CheckUniquePorts(reader, instance.robot, &ports, n, instance.name);
     world.robots.push_back(std::move(instance));
   }

@@ -165,6 +165,24 @@ struct World {
   const Material* FindMaterial(const std::string& name) const;
 };
 
+// What ODE can integrate in double precision with the sim's steppers: the
+// loader refuses anything outside, so that what --check passes the sim
+// runs. models/README.md ("Physical ranges") derives each number.
+namespace limits {
+inline constexpr double kMinMass = 1e-4;            // [kg] a moving body
+inline constexpr double kMaxMass = 1e6;             // [kg]
+inline constexpr double kMinSize = 1e-3;            // [m] box side, radius, length
+inline constexpr double kMaxSize = 1e4;             // [m]
+inline constexpr double kMaxCoordinate = 1e6;       // [m] |x|, |y|, |z| of anything placed
+inline constexpr double kMaxLinearSpeed = 1e4;      // [m/s] initial velocity
+inline constexpr double kMaxAngularSpeed = 1e4;     // [rad/s] initial rotation
+inline constexpr double kMinMoment = 1e-11;         // [kg m^2] principal moment of inertia
+inline constexpr double kMaxMoment = 1e14;          // [kg m^2]
+inline constexpr double kMaxInertiaRatio = 1e6;     // largest / smallest principal moment
+inline constexpr double kMaxJointMassRatio = 1e4;   // heavier / lighter body of a joint
+inline constexpr double kMaxRobotMassRatio = 1e6;   // heaviest / lightest moving body of a robot
+}  // namespace limits
+
 // Inertia tensor of a uniform solid of the geometry's shape about its centre.
 // A point mass (kNone) gets the inertia of a solid sphere of radius 0.1 m.
 Eigen::Matrix3d SolidInertia(const Geometry& geometry, double mass);
