@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
     std::cout << "simpartner-sim: running (step " << params.stepsize << " s, "
               << params.stepper << " stepper, speed " << params.speed << ") on "
               << params.lcmUrl << std::endl;
+    sim::ReportMessageSizes(simulation, std::cout);
     const int status = node.Run();
     signalfd_siginfo received{};
     if (::read(stop_fd, &received, sizeof received) == static_cast<ssize_t>(sizeof received))

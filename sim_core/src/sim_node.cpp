@@ -50,6 +50,26 @@ std::string SenderName(const std::string& program) {
   return program + "@" + HostName() + ":" + std::to_string(::getpid());
 }
 
+void ReportMessageSizes(const Simulation& sim, std::ostream& out) {
+  model_t model;
+  sim.FillModel(&model);
+  state_t state;
+  sim.FillState(&state);
+  const size_t model_bytes = static_cast<size_t>(model.getEncodedSize());
+  const size_t state_bytes = static_cast<size_t>(state.getEncodedSize());
+  out << "simpartner-sim: SIM_MODEL is " << model_bytes << " bytes, SIM_STATE " << state_bytes
+      << " bytes\n";
+  for (auto [channel, bytes] : {std::pair{channels::kModel, model_bytes},
+                                std::pair{channels::kState, state_bytes}}) {
+    if (bytes > kSafeMessageBytes)
+      out << "simpartner-sim: warning: " << channel << " (" << bytes / 1024
+          << " KiB) is above " << kSafeMessageBytes / 1024
+          << " KiB: a receiver loses it unless its LCM URL raises the socket buffer "
+             "(recv_buf_size=4194304 in its URL, as the logger does)\n";
+  }
+  out << std::flush;
+}
+
 SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd)
     : sim_(sim), lcm_(lcm), stop_fd_(stop_fd), host_(HostName()) {
   paused_ = sim->params().startPaused;

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <ostream>
 #include <string>
 
 #include "simpartner/bus_decode.h"
@@ -100,6 +101,13 @@ class SimNode {
   Clock::duration compute_time_{};
   int64_t compute_steps_ = 0;
 };
+
+// Prints the encoded sizes of SIM_MODEL and SIM_STATE, and a warning for
+// one above kSafeMessageBytes: LCM splits it into fragments that a
+// receiver whose socket buffer is the kernel's default (about 208 KiB)
+// loses whole and silently.
+inline constexpr size_t kSafeMessageBytes = 200 * 1024;
+void ReportMessageSizes(const Simulation& sim, std::ostream& out);
 
 // "name@host:pid", the sender name of this process on the bus.
 std::string SenderName(const std::string& program);
