@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "simpartner/check.h"
+#include "simpartner/model/model.h"
 
 namespace simpartner::sim {
 namespace {
@@ -18,15 +19,19 @@ constexpr size_t kFeedbackChunk = 1024;
 // directions (the direction of a smaller slip is noise).
 constexpr double kSlipDirectionSpeed = 1e-4;
 
-// ODE reports problems through process-wide handlers. They write into the
+// ODE's messages (dMessage: "LCP internal error", ODE goes on) go into the
 // sink of the OdeWorld stepping on this thread (set only during Step), and
 // to stderr otherwise, so nothing passes silently.
 thread_local std::vector<std::string>* t_message_sink = nullptr;
 
-void OdeMessage(int number, const char* format, va_list args) {
+std::string FormatOde(int number, const char* format, va_list args) {
   char text[512];
   std::vsnprintf(text, sizeof text, format, args);
-  std::string message = "ODE message " + std::to_string(number) + ": " + text;
+  return "ODE message " + std::to_string(number) + ": " + text;
+}
+
+void OdeMessage(int number, const char* format, va_list args) {
+  std::string message = FormatOde(number, format, args);
   if (t_message_sink != nullptr) {
     t_message_sink->push_back(std::move(message));
   } else {
@@ -34,13 +39,35 @@ void OdeMessage(int number, const char* format, va_list args) {
   }
 }
 
-void InitOdeOnce() {
-  static const bool initialized = [] {
-    dInitODE2(0);
-    dSetMessageHandler(&OdeMessage);
-    return true;
-  }();
-  (void)initialized;
+// dError and dDebug call abort() or exit() when their handler returns, so
+// the handler must not return: it throws. Debian's libode8 is C++ built
+// with unwind tables and with its assertions on (dIASSERT, dUASSERT and
+// dIVERIFY reach dDebug), and an exception passes through its frames;
+// what ODE leaves behind is abandoned with the dead world (see OdeError).
+[[noreturn]] void OdeFatal(int number, const char* format, va_list args) {
+  char text[512];
+  std::vsnprintf(text, sizeof text, format, args);
+  (void)number;  // 1 = internal assertion, 2 = usage error: the text says which
+  throw OdeError(text, "", {});
+}
+
+void OdeFatalHandler(int number, const char* format, va_list args) {
+  OdeFatal(number, format, args);
+}
+
+// Restores the thread's message sink on every path out of a step.
+class MessageSinkScope {
+ public:
+  explicit MessageSinkScope(std::vector<std::string>* sink) { t_message_sink = sink; }
+  ~MessageSinkScope() { t_message_sink = nullptr; }
+  MessageSinkScope(const MessageSinkScope&) = delete;
+  MessageSinkScope& operator=(const MessageSinkScope&) = delete;
+};
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
 }
 
 void ToOde(const Eigen::Matrix3d& r, dMatrix3 out) {
@@ -54,14 +81,59 @@ Eigen::Vector3d FromOde(const dReal* v) { return Eigen::Vector3d(v[0], v[1], v[2
 
 }  // namespace
 
+OdeError::OdeError(std::string ode_message, std::string during, std::vector<std::string> bodies)
+    : Error("ODE failed: " + ode_message + (during.empty() ? "" : " (during " + during + ")") +
+            "; bodies: " + (bodies.empty() ? std::string("none stands out") : Join(bodies))),
+      ode_message_(std::move(ode_message)),
+      during_(std::move(during)),
+      bodies_(std::move(bodies)) {}
+
+void InstallOdeHandlers() {
+  static const bool initialized = [] {
+    dInitODE2(0);
+    return true;
+  }();
+  (void)initialized;
+  if (dGetErrorHandler() != &OdeFatalHandler) dSetErrorHandler(&OdeFatalHandler);
+  if (dGetDebugHandler() != &OdeFatalHandler) dSetDebugHandler(&OdeFatalHandler);
+  if (dGetMessageHandler() != &OdeMessage) dSetMessageHandler(&OdeMessage);
+}
+
 OdeWorld::OdeWorld(const FlatModel& model, const Parameters& params)
     : model_(model), params_(params) {
-  InitOdeOnce();
+  InstallOdeHandlers();
+  try {
+    Build();
+  } catch (const OdeError& e) {
+    // No destructor runs for a constructor that throws: the ODE objects
+    // made so far are abandoned, as for a world that dies stepping.
+    const std::string during =
+        building_body_ >= 0 ? "building body '" + BodyName(static_cast<size_t>(building_body_)) + "'"
+                            : std::string("building the world");
+    throw OdeError(e.ode_message(), during,
+                   building_body_ >= 0
+                       ? std::vector<std::string>{BodyName(static_cast<size_t>(building_body_))}
+                       : std::vector<std::string>{});
+  }
+}
+
+std::string OdeWorld::BodyName(size_t body) const {
+  const FlatBody& b = model_.bodies[body];
+  if (b.robot < 0) return b.name;
+  return model_.world->robots[static_cast<size_t>(b.robot)].name + "/" + b.name;
+}
+
+void OdeWorld::Build() {
+  const Parameters& params = params_;
+  const FlatModel& model = model_;
   // dWorldQuickStep may reorder constraints with ODE's random generator:
   // seeding it makes every run of the same inputs identical.
   dRandSetSeed(0);
   const model::World& world = *model.world;
   world_ = dWorldCreate();
+  threading_ = dThreadingAllocateSelfThreadedImplementation();
+  dWorldSetStepThreadingImplementation(world_, dThreadingImplementationGetFunctions(threading_),
+                                       threading_);
   dWorldSetGravity(world_, world.gravity.x(), world.gravity.y(), world.gravity.z());
   dWorldSetERP(world_, params.globalERP);
   dWorldSetCFM(world_, params.globalCFM);
@@ -121,6 +193,7 @@ OdeWorld::OdeWorld(const FlatModel& model, const Parameters& params)
     const FlatBody& flat = model.bodies[i];
     const model::Body& src = *flat.source;
     Body& body = bodies_[i];
+    building_body_ = static_cast<int>(i);
     body.com = src.com;
     const model::Geometry& g = src.geometry;
     switch (g.kind) {
@@ -169,6 +242,7 @@ OdeWorld::OdeWorld(const FlatModel& model, const Parameters& params)
     }
   }
 
+  building_body_ = -1;
   // Joints, created in the initial pose so that ODE's zero angles are the
   // pose of the files.
   for (size_t j = 0; j < model.joints.size(); ++j) {
@@ -227,11 +301,39 @@ OdeWorld::OdeWorld(const FlatModel& model, const Parameters& params)
 }
 
 OdeWorld::~OdeWorld() {
+  // A dead world is abandoned: ODE's destroy functions would trip its own
+  // assertions on what the failed call left (a locked space, queued jobs).
+  if (dead_) return;
   if (ray_ != nullptr) dGeomDestroy(ray_);
   dJointGroupDestroy(contacts_);
   dSpaceDestroy(space_);  // destroys the geoms it holds (cleanup mode on)
   dWorldDestroy(world_);  // destroys bodies and joints
   if (heightfield_data_ != nullptr) dGeomHeightfieldDataDestroy(heightfield_data_);
+  dThreadingFreeImplementation(threading_);
+}
+
+std::vector<std::string> OdeWorld::SuspectBodies() const {
+  std::vector<std::string> names;
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    const dBodyID b = bodies_[i].body;
+    if (b == nullptr) continue;
+    const Eigen::Vector3d p = FromOde(dBodyGetPosition(b));
+    const Eigen::Vector3d v = FromOde(dBodyGetLinearVel(b));
+    const Eigen::Vector3d w = FromOde(dBodyGetAngularVel(b));
+    const dReal* q = dBodyGetQuaternion(b);
+    const bool finite = p.allFinite() && v.allFinite() && w.allFinite() &&
+                        std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]) &&
+                        std::isfinite(q[3]);
+    if (!finite || p.cwiseAbs().maxCoeff() > model::limits::kMaxCoordinate ||
+        v.norm() > model::limits::kMaxLinearSpeed || w.norm() > model::limits::kMaxAngularSpeed)
+      names.push_back(BodyName(i));
+  }
+  return names;
+}
+
+OdeError OdeWorld::Fail(const OdeError& raised, const std::string& during) {
+  dead_ = true;
+  return OdeError(raised.ode_message(), during, SuspectBodies());
 }
 
 SurfaceProperties ResolveSurface(const model::Material* material, const Parameters& params) {
@@ -351,18 +453,30 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
 }
 
 void OdeWorld::Step() {
+  if (dead_)
+    throw OdeError("the world failed in an earlier step and cannot go on", "step",
+                   SuspectBodies());
   messages_.clear();
   contact_records_.clear();
   feedback_used_ = 0;
   contact_count_ = 0;
-  t_message_sink = &messages_;
-  dSpaceCollide(space_, this, &OdeWorld::NearCallback);
-  if (params_.stepper == "quick") {
-    dWorldQuickStep(world_, params_.stepsize);
-  } else {
-    dWorldStep(world_, params_.stepsize);
+  {
+    const MessageSinkScope sink(&messages_);
+    try {
+      dSpaceCollide(space_, this, &OdeWorld::NearCallback);
+    } catch (const OdeError& e) {
+      throw Fail(e, "collision");
+    }
+    try {
+      if (params_.stepper == "quick") {
+        dWorldQuickStep(world_, params_.stepsize);
+      } else {
+        dWorldStep(world_, params_.stepsize);
+      }
+    } catch (const OdeError& e) {
+      throw Fail(e, "step");
+    }
   }
-  t_message_sink = nullptr;
   for (size_t i = 0; i < bodies_.size(); ++i) {
     contact_force_[i].setZero();
     contact_torque_[i].setZero();
@@ -514,6 +628,16 @@ void OdeWorld::SetStops(int joint, int axis, double lo, double hi) {
 
 double OdeWorld::CastRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                          double range, int exclude_body) {
+  if (dead_) return range;
+  try {
+    return CastRayUnguarded(origin, direction, range, exclude_body);
+  } catch (const OdeError& e) {
+    throw Fail(e, "a scanner ray");
+  }
+}
+
+double OdeWorld::CastRayUnguarded(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                  double range, int exclude_body) {
   dGeomRaySetLength(ray_, range);
   dGeomRaySet(ray_, origin.x(), origin.y(), origin.z(), direction.x(), direction.y(),
               direction.z());

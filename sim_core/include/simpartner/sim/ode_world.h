@@ -1,7 +1,9 @@
 // ODE objects built from a FlatModel: bodies, geoms, joints, the collision
 // space, plane and heightfield. One Step() is collide, step, empty the
 // contact group (ODE's demo_buggy loop), with contact forces summed per body
-// from joint feedback. Everything given to ODE was validated by the loader.
+// from joint feedback. Everything given to ODE was validated by the loader
+// (models/README.md, "Physical ranges"); what ODE still cannot integrate
+// (a state that explodes within one step) ends in an OdeError, not abort().
 #pragma once
 
 #include <ode/ode.h>
@@ -11,10 +13,43 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/diagnostic.h"
 #include "simpartner/parameters.h"
 #include "simpartner/sim/flat_model.h"
 
 namespace simpartner::sim {
+
+// ODE stopped on an internal error or a failed assertion (dError, dDebug:
+// ODE would abort() or exit() after its handler). The OdeWorld that raised
+// it is dead: every further Step() throws again, and its ODE objects are
+// abandoned, not freed (ODE left them mid-step: a locked space, a job list
+// not emptied), some KB per body. A new OdeWorld (the sim's reset) works.
+// what(): "ODE failed: <ODE's message> (during <what>); bodies: a, b".
+class OdeError : public Error {
+ public:
+  OdeError(std::string ode_message, std::string during, std::vector<std::string> bodies);
+  // ODE's own text, e.g. 'assertion "!bSafeNormalize4Fault" failed in
+  // dxNormalize4() [odemath.h:53]'.
+  const std::string& ode_message() const { return ode_message_; }
+  // "step", "collision", "building body 'Bot/Wheel1'", ...
+  const std::string& during() const { return during_; }
+  // Bodies (qualified "robot/body") whose state ODE could not integrate:
+  // non-finite or beyond the loader's ranges; empty when none stands out.
+  const std::vector<std::string>& bodies() const { return bodies_; }
+
+ private:
+  std::string ode_message_;
+  std::string during_;
+  std::vector<std::string> bodies_;
+};
+
+// Makes ODE's fatal errors (dError) and debug assertions (dDebug) throw
+// OdeError and its messages (dMessage) warnings of the stepping OdeWorld.
+// ODE keeps these handlers per process; installing them process-wide is
+// right because they hold no state: the exception goes up the stack of
+// whichever thread called ODE, to its own OdeWorld. Idempotent: every
+// OdeWorld calls it, and it re-installs them if something replaced them.
+void InstallOdeHandlers();
 
 struct BodyReadout {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // body frame origin, world
@@ -49,14 +84,17 @@ SurfaceProperties CombineSurfaces(const SurfaceProperties& a, const SurfacePrope
 
 class OdeWorld {
  public:
-  // model and its World must outlive this object.
+  // model and its World must outlive this object. Throws OdeError when
+  // ODE refuses a part (e.g. an inertia it finds not positive definite).
   OdeWorld(const FlatModel& model, const Parameters& params);
   ~OdeWorld();
   OdeWorld(const OdeWorld&) = delete;
   OdeWorld& operator=(const OdeWorld&) = delete;
 
   // Collide, step (dWorldStep or dWorldQuickStep), empty the contact group.
+  // Throws OdeError when ODE fails; the world is dead from then on.
   void Step();
+  bool dead() const { return dead_; }
   // Messages ODE printed (e.g. "LCP internal error") during the last Step.
   const std::vector<std::string>& last_messages() const { return messages_; }
   int last_contact_count() const { return contact_count_; }
@@ -80,6 +118,8 @@ class OdeWorld {
                  int exclude_body);
 
   // Raw handles for the benchmark's bare-ODE comparison.
+  // Note: this world steps with its own threading implementation (see
+  // threading_ below).
   dWorldID world() const { return world_; }
   dSpaceID space() const { return space_; }
 
@@ -99,6 +139,15 @@ class OdeWorld {
     dJointFeedback* feedback;
   };
 
+  void Build();
+  // Marks the world dead and returns the error to throw, naming the bodies
+  // whose state is out of range.
+  OdeError Fail(const OdeError& raised, const std::string& during);
+  std::vector<std::string> SuspectBodies() const;
+  std::string BodyName(size_t body) const;
+
+  double CastRayUnguarded(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                          double range, int exclude_body);
   static void NearCallback(void* data, dGeomID o1, dGeomID o2);
   void Collide(dGeomID o1, dGeomID o2);
   SurfaceProperties Surface(const std::string& material) const;
@@ -108,6 +157,13 @@ class OdeWorld {
 
   const FlatModel& model_;
   const Parameters& params_;
+  // Each world steps with its own (self-threaded) job list: ODE's default
+  // one is shared by the process, and an error thrown out of a step leaves
+  // jobs in it that would break every later world (and abort in
+  // dCloseODE). A dead world's list is abandoned with it.
+  dThreadingImplementationID threading_ = nullptr;
+  bool dead_ = false;
+  int building_body_ = -1;           // during construction, for messages
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;
   dJointGroupID contacts_ = nullptr;

@@ -1,0 +1,212 @@
+// Beyond the loader's ranges, ODE's own fatal errors: each value that made
+// ODE abort the sim (SimPartner issue 10) is built here directly as model
+// structs, bypassing the loader's checks, and must end in an OdeError
+// naming ODE's message and the bodies, not in abort(). Each case runs in a
+// child process (gtest's death-test machinery), so that an abort fails the
+// test instead of killing the test binary; after the error the child builds
+// and steps a healthy world, so a failed world does not break the process.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "simpartner/model/model.h"
+#include "simpartner/sim/flat_model.h"
+#include "simpartner/sim/ode_world.h"
+#include "simpartner/sim/simulation.h"
+
+namespace simpartner::sim {
+namespace {
+
+model::Body Box(const std::string& name, double mass, const Eigen::Vector3d& size,
+                const Eigen::Vector3d& position) {
+  model::Body b;
+  b.name = name;
+  b.geometry.kind = model::GeometryKind::kBox;
+  b.geometry.size = size;
+  b.mass = mass;
+  b.inertia = model::SolidInertia(b.geometry, mass);
+  b.pose.translation() = position;
+  return b;
+}
+
+// A world with the ground plane y = 0 (as the shipped worlds have).
+model::World Ground() {
+  model::World w;
+  w.name = "Crash";
+  w.has_plane = true;
+  return w;
+}
+
+struct CrashCase {
+  std::string name;
+  std::function<model::World()> world;
+  std::string during;  // regex of where ODE fails
+};
+
+std::vector<CrashCase> CrashCases() {
+  const Eigen::Vector3d one(1, 1, 1);
+  return {
+      {"mass_1e308_kg",
+       [=] {
+         model::World w = Ground();
+         w.objects.push_back(Box("Heavy", 1e308, one, {0, 0.5, 0}));
+         return w;
+       },
+       "during step"},
+      {"mass_4_9e_324_kg",
+       [=] {
+         model::World w = Ground();
+         w.objects.push_back(Box("Denormal", 4.9e-324, one, {0, 0.5, 0}));
+         return w;
+       },
+       "during building body 'Denormal'\\); bodies: Denormal"},
+      {"mass_1e_12_kg",
+       [=] {
+         model::World w = Ground();
+         w.objects.push_back(Box("Feather", 1e-12, one, {0, 0.5, 0}));
+         return w;
+       },
+       "during step"},
+      {"size_1e_310_m",
+       [=] {
+         model::World w = Ground();
+         model::Body ball;
+         ball.name = "Speck";
+         ball.geometry.kind = model::GeometryKind::kSphere;
+         ball.geometry.size.x() = 1e-310;
+         ball.mass = 1.0;
+         ball.inertia = model::SolidInertia(ball.geometry, 1.0);
+         ball.pose.translation() = Eigen::Vector3d(0, 1, 0);
+         w.objects.push_back(ball);
+         return w;
+       },
+       "during building body 'Speck'\\); bodies: Speck"},
+      {"size_1e100_m",
+       [=] {
+         model::World w = Ground();
+         w.objects.push_back(Box("Huge", 1, {1, 1e100, 1}, {0, 0.5e100, 0}));
+         model::Body b = Box("Block", 1, one, {3, 0.5, 0});
+         w.objects.push_back(b);
+         model::Joint j;
+         j.name = "Link";
+         j.kind = model::JointKind::kBall;
+         j.body1 = "Huge";
+         j.body2 = "Block";
+         j.anchor = Eigen::Vector3d(1.5, 0.5, 0);
+         w.joints.push_back(j);
+         return w;
+       },
+       "during step"},
+      {"placed_1e10_m_away",
+       [=] {
+         model::World w = Ground();
+         w.objects.push_back(Box("Far1", 1, one, {1e10, 0.5, 0}));
+         w.objects.push_back(Box("Far2", 1, one, {1e10, 0.5, 3}));
+         return w;
+       },
+       "during collision\\); bodies: Far1, Far2"},
+      {"velocity_1e308_m_per_s",
+       [=] {
+         model::World w = Ground();
+         model::Body b = Box("Bullet", 1, one, {0, 0.5, 0});
+         b.linear_velocity = Eigen::Vector3d(1e308, 0, 0);
+         b.angular_velocity = Eigen::Vector3d(0, 0, 1);
+         w.objects.push_back(b);
+         return w;
+       },
+       "bodies: Bullet"},
+  };
+}
+
+// Runs in the child: builds and steps the case's world until ODE fails;
+// exits 0 after an OdeError (and a healthy world stepped afterwards), 3
+// when ODE did not fail, 4 on any other exception.
+[[noreturn]] void RunCrashCase(const CrashCase& c) {
+  const model::World world = c.world();
+  const FlatModel flat = Flatten(world);
+  const Parameters params;
+  try {
+    std::unique_ptr<OdeWorld> ode = std::make_unique<OdeWorld>(flat, params);
+    for (int n = 0; n < 5000; ++n) ode->Step();
+    std::fprintf(stderr, "no ODE error in 5000 steps\n");
+    std::exit(3);
+  } catch (const OdeError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "other exception: %s\n", e.what());
+    std::exit(4);
+  }
+  // The process goes on: a new world (the sim's reset) steps as usual.
+  model::World healthy = Ground();
+  healthy.objects.push_back(Box("Cube", 1, {1, 1, 1}, {0, 0.5, 0}));
+  const FlatModel healthy_flat = Flatten(healthy);
+  OdeWorld ode(healthy_flat, params);
+  for (int n = 0; n < 1000; ++n) ode.Step();
+  const double y = ode.ReadBody(0).position.y();
+  std::fprintf(stderr, "healthy world after: cube at y = %.3f\n", y);
+  std::exit(std::abs(y - 0.5) < 0.01 ? 0 : 5);
+}
+
+class OdeFailure : public ::testing::TestWithParam<CrashCase> {};
+
+TEST_P(OdeFailure, IsAnOdeErrorNotAnAbort) {
+  const CrashCase& c = GetParam();
+  EXPECT_EXIT(RunCrashCase(c), ::testing::ExitedWithCode(0),
+              "ODE failed: .*" + c.during + "(.|\n)*healthy world after: cube at y = 0.5");
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue10Cases, OdeFailure, ::testing::ValuesIn(CrashCases()),
+                         [](const ::testing::TestParamInfo<CrashCase>& info) {
+                           return info.param.name;
+                         });
+
+// A dead world stays dead: a second Step() throws at once instead of
+// calling into what ODE left behind. In a child as well.
+TEST(OdeFailureDeadWorld, StepAfterAFailureThrowsAgain) {
+  EXPECT_EXIT(
+      {
+        model::World w = Ground();
+        w.objects.push_back(Box("Far1", 1, {1, 1, 1}, {1e10, 0.5, 0}));
+        w.objects.push_back(Box("Far2", 1, {1, 1, 1}, {1e10, 0.5, 3}));
+        const FlatModel flat = Flatten(w);
+        const Parameters params;
+        OdeWorld ode(flat, params);
+        try {
+          ode.Step();
+        } catch (const OdeError&) {
+        }
+        if (!ode.dead()) std::exit(6);
+        try {
+          ode.Step();
+        } catch (const OdeError& e) {
+          std::fprintf(stderr, "%s\n", e.what());
+          std::exit(0);
+        }
+        std::exit(7);
+      },
+      ::testing::ExitedWithCode(0), "failed in an earlier step and cannot go on");
+}
+
+// The handlers are installed once per process and again only when
+// something replaced them.
+TEST(OdeHandlers, InstallIsIdempotentAndRestoresThem) {
+  InstallOdeHandlers();
+  dMessageFunction* const debug = dGetDebugHandler();
+  dMessageFunction* const error = dGetErrorHandler();
+  ASSERT_NE(debug, nullptr);
+  ASSERT_NE(error, nullptr);
+  InstallOdeHandlers();
+  EXPECT_EQ(dGetDebugHandler(), debug);
+  EXPECT_EQ(dGetErrorHandler(), error);
+  dSetDebugHandler(nullptr);
+  InstallOdeHandlers();
+  EXPECT_EQ(dGetDebugHandler(), debug);
+}
+
+}  // namespace
+}  // namespace simpartner::sim
