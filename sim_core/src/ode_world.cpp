@@ -324,8 +324,12 @@ std::vector<std::string> OdeWorld::SuspectBodies() const {
     const bool finite = p.allFinite() && v.allFinite() && w.allFinite() &&
                         std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]) &&
                         std::isfinite(q[3]);
+    // A mass outside the loader's range (only a world built past the
+    // loader has one) is what breaks the solver even with a finite state.
+    const double mass = model_.bodies[i].source->mass;
     if (!finite || p.cwiseAbs().maxCoeff() > model::limits::kMaxCoordinate ||
-        v.norm() > model::limits::kMaxLinearSpeed || w.norm() > model::limits::kMaxAngularSpeed)
+        v.norm() > model::limits::kMaxLinearSpeed || w.norm() > model::limits::kMaxAngularSpeed ||
+        !(mass >= model::limits::kMinMass && mass <= model::limits::kMaxMass))
       names.push_back(BodyName(i));
   }
   return names;

@@ -33,8 +33,9 @@ class OdeError : public Error {
   const std::string& ode_message() const { return ode_message_; }
   // "step", "collision", "building body 'Bot/Wheel1'", ...
   const std::string& during() const { return during_; }
-  // Bodies (qualified "robot/body") whose state ODE could not integrate:
-  // non-finite or beyond the loader's ranges; empty when none stands out.
+  // Bodies (qualified "robot/body") ODE could not integrate: a state that
+  // is non-finite or beyond the loader's ranges, or a mass beyond them;
+  // empty when none stands out.
   const std::vector<std::string>& bodies() const { return bodies_; }
 
  private:
