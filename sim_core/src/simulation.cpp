@@ -368,7 +368,17 @@ bool Simulation::Step() {
     for (int k = 0; k < axes; ++k) ode_->SetMotor(joint, k, out.velocity[k], out.max_force[k]);
   }
 
-  ode_->Step();
+  try {
+    ode_->Step();
+  } catch (const OdeError& e) {
+    // ODE gave up inside the step (its state is lost): pause as for an
+    // exploding state, naming ODE's message and the bodies; a reset builds
+    // a new world.
+    faulted_ = true;
+    AddWarning(warning_t::SEVERITY_ERROR, "ode",
+               std::string(e.what()) + "; the sim is paused: reset to go on", e.bodies());
+    return false;
+  }
   ++step_;
   for (const std::string& message : ode_->last_messages())
     AddWarning(warning_t::SEVERITY_WARNING, "ode", message);
