@@ -177,7 +177,14 @@ command_reply_t SendAndWait(Client& client, const command_t& command, double tim
   try {
     return client.Command(command, timeout);
   } catch (const Timeout& e) {
-    const auto status = client.LatestStatus();
+    // Why no reply? A paused sim says so in its status (once a second).
+    std::optional<status_t> status = client.LatestStatus();
+    if (!status) {
+      try {
+        status = client.WaitForStatus(1.5);
+      } catch (const Timeout&) {
+      }
+    }
     if (status && status->run_state != status_t::RUN_RUNNING)
       throw Timeout(e.awaited(), timeout, client.url(),
                     std::string("the sim is ") + RunStateName(status->run_state) +
@@ -188,17 +195,17 @@ command_reply_t SendAndWait(Client& client, const command_t& command, double tim
 
 int RunActuatorCommand(const Options& o, std::ostream& out) {
   const std::string& verb = o.words[0];
+  if (verb == "hold") ExpectWords(o, 2, 3);
+  else ExpectWords(o, 3, 3);
   Client client(MakeClientOptions(o, true));
   const Target target = client.Find(o.words[1]);
   command_t command;
   if (verb == "set") {
-    ExpectWords(o, 3, 3);
     // A sensor's "set" is its parameters, but an Echo sensor takes text.
     const bool params = target.is_sensor() && target.lcm_kind != sensor_t::KIND_ECHO;
     command = BuildCommandFromText(
         target, params ? command_t::ACTION_SENSOR_PARAMS : command_t::ACTION_SET, o.words[2]);
   } else if (verb == "hold") {
-    ExpectWords(o, 2, 3);
     if (o.words.size() == 3) {
       const std::vector<double> given = ParseValueText(target.name, o.words[2]);
       std::vector<double> forces = given;
@@ -209,7 +216,6 @@ int RunActuatorCommand(const Options& o, std::ostream& out) {
       command = BuildCommand(target, command_t::ACTION_HOLD, {});
     }
   } else {  // stops
-    ExpectWords(o, 3, 3);
     command = BuildCommandFromText(target, command_t::ACTION_SET_STOPS, o.words[2]);
   }
   const command_reply_t reply = SendAndWait(client, command, o.timeout);

@@ -1,0 +1,196 @@
+// simpartner-cmd against a real sim: each outcome has its exit status and
+// a message saying which (accepted, refused and why, no answer, usage,
+// unknown name). RunCmd in-process for most, the real binary for the
+// README's shell commands.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "client_test_support.h"
+#include "simpartner/client/client.h"
+#include "simpartner/client/cmd.h"
+
+namespace simpartner::client {
+namespace {
+
+using testing::ReadFile;
+using testing::SimProcess;
+using testing::TestDir;
+using testing::UniqueUrl;
+
+struct CmdResult {
+  int status;
+  std::string out, err;
+};
+
+CmdResult RunInProcess(std::vector<std::string> args) {
+  std::ostringstream out, err;
+  const int status = RunCmd(args, out, err);
+  return {status, out.str(), err.str()};
+}
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+class CmdTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = TestDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+  }
+  void TearDown() override {
+    if (!HasFailure()) std::filesystem::remove_all(dir_);
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(CmdTest, OutcomesAndExitStatuses) {
+  const std::string url = UniqueUrl(11);
+  SimProcess sim("scanner_wall.xml", url, (dir_ / "sim.log").string());
+  auto cmd = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"--lcm-url", url});
+    return RunInProcess(args);
+  };
+  CmdResult r = cmd({"set", "Axle1Motor", "300,1.0"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "Axle1Motor: accepted, applied at step ")) << r.out;
+  EXPECT_TRUE(Contains(r.out, "(was 0,0,1000)")) << r.out;
+
+  // By legacy port, and the three-slot form of the original.
+  r = cmd({"set", "1029", "1000,1000,100,0,0,0.2"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "Axle2Motor: accepted")) << r.out;
+
+  r = cmd({"set", "Axle1Motor", "300,1e9"});
+  EXPECT_EQ(r.status, kCmdRefused);
+  EXPECT_TRUE(Contains(r.err, "simpartner-cmd: Axle1Motor: refused by the sim: ")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "1000000000")) << r.err;
+
+  r = cmd({"set", "Axle1Mottor", "300,1"});
+  EXPECT_EQ(r.status, kCmdUnknownName);
+  EXPECT_TRUE(Contains(r.err, "did you mean 'Axle1Motor'")) << r.err;
+
+  // Wrong count: refused before sending (usage), naming the forms.
+  r = cmd({"set", "Axle1Motor", "300,1,2"});
+  EXPECT_EQ(r.status, kCmdUsage);
+  EXPECT_TRUE(Contains(r.err, "fmax,vel (2)")) << r.err;
+  r = cmd({"set", "Axle1Motor", "300,fast"});
+  EXPECT_EQ(r.status, kCmdUsage);
+  EXPECT_TRUE(Contains(r.err, "values[1] = 'fast'")) << r.err;
+
+  r = cmd({"hold", "TurnerMotor", "800"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  r = cmd({"stops", "TurnerMotor", "-0.5,0.5"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  r = cmd({"stops", "TurnerMotor", "0.5,-0.5"});
+  EXPECT_EQ(r.status, kCmdRefused) << r.err;
+
+  r = cmd({"read", "Scanner"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "Scanner (scanner) step ")) << r.out;
+  r = cmd({"read", "Axle1Motor"});
+  EXPECT_EQ(r.status, kCmdUnknownName) << r.err;
+
+  r = cmd({"model"});
+  EXPECT_EQ(r.status, kCmdOk);
+  EXPECT_TRUE(Contains(r.out, "robot WorkPartner (WorkPartner gen2)")) << r.out;
+  EXPECT_TRUE(Contains(r.out, "Axle1Motor  velocity controller, port 1028, joint Axle1")) << r.out;
+  EXPECT_TRUE(Contains(r.out, "Scanner  scanner, port 1027")) << r.out;
+
+  r = cmd({"state", "--body", "Torso"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "Torso position ")) << r.out;
+  r = cmd({"state", "--body", "Torsoo"});
+  EXPECT_EQ(r.status, kCmdUnknownName);
+  r = cmd({"state", "--follow", "--count", "3"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  size_t lines = 0;
+  for (size_t p = r.out.find("step "); p != std::string::npos; p = r.out.find("\nstep ", p + 1))
+    ++lines;
+  EXPECT_EQ(lines, 3u) << r.out;
+
+  r = cmd({"pause"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "sim paused")) << r.out;
+  r = cmd({"step", "25"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  r = cmd({"--timeout", "0.5", "set", "Axle1Motor", "300,0"});
+  EXPECT_EQ(r.status, kCmdNoAnswer);
+  EXPECT_TRUE(Contains(r.err, "the sim is paused")) << r.err;
+  r = cmd({"resume"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "sim running")) << r.out;
+  r = cmd({"speed", "0"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "as fast as possible")) << r.out;
+  r = cmd({"status"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "running, step ")) << r.out;
+  r = cmd({"reset"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "sim reset: simulation ")) << r.out;
+  r = cmd({"quit"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "sim stopped")) << r.out;
+  EXPECT_TRUE(sim.child().Wait(std::chrono::seconds(10)).has_value());
+}
+
+TEST_F(CmdTest, UsageErrorsAndNoSim) {
+  const std::string url = UniqueUrl(12);
+  CmdResult r = RunInProcess({"--help"});
+  EXPECT_EQ(r.status, kCmdOk);
+  EXPECT_TRUE(Contains(r.out, "usage: simpartner-cmd")) << r.out;
+  for (const std::vector<std::string>& args :
+       std::vector<std::vector<std::string>>{{},
+                                             {"fly"},
+                                             {"set"},
+                                             {"set", "Axle1Motor"},
+                                             {"--timeout", "x", "status"},
+                                             {"--frobnicate", "status"},
+                                             {"pause", "--follow"},
+                                             {"model", "--body", "Torso"}}) {
+    r = RunInProcess(args);
+    EXPECT_EQ(r.status, kCmdUsage) << r.err;
+    EXPECT_TRUE(Contains(r.err, "simpartner-cmd: ")) << r.err;
+  }
+  r = RunInProcess({"--lcm-url", url, "--timeout", "0.3", "set", "Axle1Motor", "300,1"});
+  EXPECT_EQ(r.status, kCmdNoAnswer);
+  EXPECT_TRUE(Contains(r.err, "no sim on " + url)) << r.err;
+  r = RunInProcess({"--lcm-url", url, "--timeout", "0.3", "pause"});
+  EXPECT_EQ(r.status, kCmdNoAnswer);
+  r = RunInProcess({"--lcm-url", url, "--timeout", "0.3", "status"});
+  EXPECT_EQ(r.status, kCmdNoAnswer);
+  EXPECT_TRUE(Contains(r.err, "no SIM_STATUS within 0.3 s on " + url)) << r.err;
+}
+
+// The README's shell commands, as a user types them: the real binary.
+TEST_F(CmdTest, TheProgramFromAShell) {
+  const std::string url = UniqueUrl(13);
+  SimProcess sim("gen1_flat.xml", url, (dir_ / "sim.log").string(), {"--speed=0"});
+  const std::string program = std::string(SP_BINARY_DIR) + "/client/simpartner-cmd";
+  auto run = [&](std::vector<std::string> args, const std::string& log) {
+    args.insert(args.begin(), {program, "--lcm-url", url});
+    ChildProcess child(args, (dir_ / log).string());
+    return child.Wait(std::chrono::seconds(20)).value_or(-1);
+  };
+  EXPECT_EQ(run({"set", "Axle1Motor", "300,1.0"}, "set.log"), kCmdOk);
+  EXPECT_TRUE(Contains(ReadFile((dir_ / "set.log").string()), "Axle1Motor: accepted"));
+  EXPECT_EQ(run({"set", "Axle1Motor", "300,1e9"}, "refused.log"), kCmdRefused);
+  EXPECT_TRUE(Contains(ReadFile((dir_ / "refused.log").string()), "refused by the sim"));
+  EXPECT_EQ(run({"set", "Wheel1", "300,1"}, "unknown.log"), kCmdUnknownName);
+  EXPECT_EQ(run({"sett", "Axle1Motor", "300,1"}, "usage.log"), kCmdUsage);
+  // The wheel turns: its joint rate in SIM_STATE.
+  ClientOptions o;
+  o.url = url;
+  o.program = "cmd_test";
+  Client client(o);
+  const state_t now = *client.LatestState();
+  const state_t s = client.WaitUntilSimTime(now.sim_time + 0.5, 10.0);
+  EXPECT_NEAR(s.joints[static_cast<size_t>(client.catalog()->JointIndex("Axle1"))].rate[0], 1.0,
+              0.1);
+  EXPECT_EQ(run({"--timeout", "0.3", "--lcm-url", UniqueUrl(14), "status"}, "nosim.log"),
+            kCmdNoAnswer);
+}
+
+}  // namespace
+}  // namespace simpartner::client
