@@ -281,39 +281,53 @@ Record Receiver::MakeRecord(RecordKind kind, int64_t simulation_id,
 
 void Receiver::Push(Record record, int64_t step) {
   const bool is_state = record.kind == RecordKind::kState;
-  const int64_t simulation = record.simulation_id;
   const uint64_t bytes = record.ByteSize();
   std::string cause;
-  // Steps refused earlier are recorded before anything newer, so the
-  // writer meets the gap where the steps would have been.
-  if (PushLostGaps()) {
+  // What was refused before goes first, so the writer meets a gap where
+  // its steps would have been and a held record where it came.
+  if (PushPending()) {
     try {
-      queue_->Push(std::move(record));
+      queue_->Push(std::move(record));  // left as it was if refused
       if (is_state) {
         std::lock_guard<std::mutex> lock(stats_mutex_);
         ++stats_.states_queued;
       }
-      if (spool_failing_) {
-        spool_failing_ = false;
-        const ReceiverStats s = Stats();
-        reporter_->Say("the spool takes records again; " + std::to_string(s.lost_spool_failed) +
-                       " records (" + std::to_string(s.lost_states) +
-                       " steps) were refused while it was full, the steps recorded in LogGap");
-      }
+      SpoolRecovered();
       return;
     } catch (const SpoolError& e) {
       cause = e.what();
     }
   }
-  if (is_state && step >= 0) {
-    LostRange& lost = lost_[simulation];
-    if (lost.count == 0) lost.first = lost.last = step;
-    lost.first = std::min(lost.first, step);
-    lost.last = std::max(lost.last, step);
-    ++lost.count;
-    if (!cause.empty()) lost.cause = cause;
-  }
+  if (!cause.empty()) last_spool_cause_ = cause;
   spool_failing_ = true;
+  if (!is_state || step < 0) {
+    // Few and small (models, ends of simulations, commands): held in
+    // memory until the queue takes them, up to a bound.
+    if (pending_bytes_ + bytes <= options_.max_held_bytes) {
+      pending_bytes_ += bytes;
+      Pending held;
+      held.record = std::move(record);
+      pending_.push_back(std::move(held));
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      ++stats_.held;
+      return;
+    }
+  } else {
+    const int64_t simulation = record.simulation_id;
+    if (pending_.empty() || !pending_.back().is_gap ||
+        pending_.back().record.simulation_id != simulation) {
+      Pending gap;
+      gap.is_gap = true;
+      gap.record.simulation_id = simulation;
+      gap.first = gap.last = step;
+      pending_.push_back(std::move(gap));
+    }
+    Pending& gap = pending_.back();
+    gap.first = std::min(gap.first, step);
+    gap.last = std::max(gap.last, step);
+    ++gap.count;
+    if (!cause.empty()) gap.cause = cause;
+  }
   uint64_t lost_records = 0, lost_bytes = 0, lost_states = 0;
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -322,7 +336,6 @@ void Receiver::Push(Record record, int64_t step) {
     if (is_state) ++stats_.lost_states;
     lost_states = stats_.lost_states;
   }
-  if (!cause.empty()) last_spool_cause_ = cause;
   const QueueStats q = queue_->Stats();
   char text[320];
   std::snprintf(text, sizeof text,
@@ -337,21 +350,35 @@ void Receiver::Push(Record record, int64_t step) {
                                      "); the steps refused go into LogGap");
 }
 
-bool Receiver::PushLostGaps() {
-  while (!lost_.empty()) {
-    const auto it = lost_.begin();
-    const LostRange& lost = it->second;
-    GapPayload gap{lost.first, lost.last, lost.count,
-                   "refused by the logger: memory queue full and spool disk full" +
-                       (lost.cause.empty() ? std::string() : " (" + lost.cause + ")")};
+bool Receiver::PushPending() {
+  while (!pending_.empty()) {
+    Pending& p = pending_.front();
     try {
-      queue_->Push(MakeGapRecord(it->first, NowMicros(), gap));
+      if (p.is_gap) {
+        GapPayload gap{p.first, p.last, p.count,
+                       "refused by the logger: memory queue full and spool disk full" +
+                           (p.cause.empty() ? std::string() : " (" + p.cause + ")")};
+        queue_->Push(MakeGapRecord(p.record.simulation_id, NowMicros(), gap));
+      } else {
+        const uint64_t bytes = p.record.ByteSize();
+        queue_->Push(std::move(p.record));
+        pending_bytes_ -= bytes;
+      }
     } catch (const SpoolError&) {
       return false;
     }
-    lost_.erase(it);
+    pending_.pop_front();
   }
   return true;
+}
+
+void Receiver::SpoolRecovered() {
+  if (!spool_failing_) return;
+  spool_failing_ = false;
+  const ReceiverStats s = Stats();
+  reporter_->Say("the spool takes records again; " + std::to_string(s.lost_spool_failed) +
+                 " records (" + std::to_string(s.lost_states) +
+                 " steps) were refused while it was full, the steps recorded in LogGap");
 }
 
 void Receiver::Wait(Record record) {
@@ -390,7 +417,7 @@ void Receiver::RequestModel() {
 void Receiver::Tick() {
   if (!waiting_.empty() && std::chrono::steady_clock::now() - last_request_ > kModelRequestPeriod)
     RequestModel();
-  if (!lost_.empty()) PushLostGaps();
+  if (!pending_.empty() && PushPending()) SpoolRecovered();
   CloseSilent();
 }
 

@@ -10,7 +10,7 @@ RecordQueue::RecordQueue(uint64_t max_memory_bytes, Spool* spool)
   spilling_ = spool_->HasUnread();
 }
 
-void RecordQueue::Push(Record record) {
+void RecordQueue::Push(Record&& record) {
   std::lock_guard<std::mutex> lock(mutex_);
   const uint64_t size = record.ByteSize();
   if (spilling_ || memory_bytes_ + size > max_memory_bytes_) {

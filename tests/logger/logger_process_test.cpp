@@ -2,12 +2,17 @@
 // beside real simpartner-sim processes (or the test publishing as a sim),
 // writing into a real private MariaDB server, through the faults it must
 // survive: the server away for 30 s, SIGKILL and restart, a restarted sim,
-// bad messages, a server refusing writes, a stop while the server is away.
+// bad messages, a server refusing writes, a stop while the server is away,
+// its spool disk full while the server is away, a forged step number, a
+// stopped (SIGSTOP) server, a sim that dies without a word.
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 #include <signal.h>
+#include <sys/mount.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -163,6 +168,19 @@ class LoggerProcessTest : public testing::ServerTest {
     }
   }
   std::string TestUrl() const { return url_ + "&recv_buf_size=4194304"; }
+  // After a clean stop the spool holds no records and no LOAD DATA scratch
+  // files (its lock file stays).
+  void ExpectSpoolEmpty() {
+    std::vector<std::string> left;
+    for (const auto& e : std::filesystem::directory_iterator(dir_ / "spool"))
+      if (e.path().filename() != "lock") left.push_back(e.path().filename().string());
+    EXPECT_TRUE(left.empty()) << "left in the spool: " << ::testing::PrintToString(left);
+  }
+  std::string ServerPid() {
+    std::string pid = ReadFile(server_->dir() + "/mariadbd.pid");
+    while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
+    return pid;
+  }
 
   std::string url_;
   std::vector<std::unique_ptr<ChildProcess>> loggers_;
@@ -191,7 +209,8 @@ TEST_F(LoggerProcessTest, ServerAwayFor30SecondsMidRunLosesNothing) {
   EXPECT_NE(log.find("database server unix://" + server_->socket() + " is unreachable"),
             std::string::npos) << log;
   EXPECT_NE(log.find("takes writes again"), std::string::npos) << log;
-  EXPECT_EQ(log.find("LOST"), std::string::npos) << log;
+  EXPECT_EQ(log.find("REFUSED"), std::string::npos) << log;
+  ExpectSpoolEmpty();
 }
 
 // SIGKILL in the middle of a run, then a new logger on the same spool: the
@@ -385,6 +404,171 @@ TEST_F(LoggerProcessTest, StopWhileTheServerIsAwayKeepsEverythingForTheNextRun) 
   EXPECT_EQ(StopLogger(second), 0);
   ExpectEveryStepOnce(1, 1, 300, 3, 2);
   EXPECT_NE(ReadFile(LoggerLog(1)).find("from an earlier run; writing that first"), std::string::npos);
+}
+
+// The spool on a 2 MB tmpfs, the memory queue 0.5 MB, the server away
+// while 8000 steps come: memory and disk fill up and the logger refuses the
+// rest, says so (how much it kept in memory and on disk, how much it
+// refused) and records the refused steps in LogGap with the reason. Once
+// the server is back, every step is either in the database with all its
+// rows or in LogGap, never both, never neither.
+TEST_F(LoggerProcessTest, SpoolDiskFullWhileTheServerIsAwayLosesNoStepSilently) {
+  const std::filesystem::path spool = dir_ / "spool";
+  std::filesystem::create_directories(spool);
+  if (::mount("tmpfs", spool.c_str(), "tmpfs", 0, "size=2m") != 0)
+    FAIL() << "cannot mount a 2 MB tmpfs on " << spool << " (" << std::strerror(errno)
+           << "): this test needs root and mount rights (mount -t tmpfs -o size=2m tmpfs DIR)";
+  struct Unmount {
+    std::filesystem::path dir;
+    std::vector<std::unique_ptr<ChildProcess>>* loggers;
+    ~Unmount() {
+      loggers->clear();  // nothing may hold files there
+      ::umount2(dir.c_str(), MNT_DETACH);
+    }
+  } unmount{spool, &loggers_};
+  ChildProcess& logger = StartLogger({"--queue-mb", "0.5", "--sim-silence", "120"});
+  const SimRun run = testing::ArmRun(9000, 31);
+  lcm::LCM bus(TestUrl());
+  ASSERT_TRUE(WaitForReady(0));
+  Publish(&bus, channels::kModel, run.model);
+  PublishStates(&bus, run, 1, 100);
+  ASSERT_TRUE(WaitFor([&] { return Steps() == 100; }, 30)) << ReadFile(LoggerLog(0));
+  server_->Stop();
+  PublishStates(&bus, run, 101, 8000);
+  ASSERT_TRUE(WaitFor([&] { return ReadFile(LoggerLog(0)).find("spool disk refuses it") != std::string::npos; }, 30))
+      << ReadFile(LoggerLog(0));
+  server_->Start();
+  // Caught up: memory and spool empty (status lines every second).
+  ASSERT_TRUE(WaitFor([&] {
+    const std::string log = ReadFile(LoggerLog(0));
+    const size_t back = log.find("takes writes again");
+    return back != std::string::npos && log.find("queue 0.0 MB, spool 0.0 MB", back) != std::string::npos;
+  }, 60)) << ReadFile(LoggerLog(0));
+  PublishStates(&bus, run, 8001, 9000);
+  PublishStopped(&bus, run, 9000);
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 60)) << ReadFile(LoggerLog(0));
+  EXPECT_EQ(StopLogger(logger), 0);
+  const std::string log = ReadFile(LoggerLog(0));
+
+  // Every step in the database with all its rows, or in LogGap with a
+  // reason; none in both.
+  ExpectRowsPerStep(1, 3, 2);
+  const int64_t logged = Steps();
+  const int64_t missing = QueryInt("SELECT COALESCE(SUM(missing), 0) FROM LogGap WHERE simulationID = 1");
+  EXPECT_EQ(logged + missing, 9000) << log;
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow r JOIN LogGap g ON g.simulationID = "
+                     "r.simulationID AND r.step BETWEEN g.firstStep AND g.lastStep"),
+            0) << "a step both logged and in LogGap";
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap WHERE reason = ''"), 0);
+  EXPECT_EQ(QueryInt("SELECT MAX(step) FROM SimulationRow"), 9000);
+  // The disk did fill: steps were refused, and recorded as such.
+  EXPECT_GT(QueryInt("SELECT COALESCE(SUM(missing), 0) FROM LogGap WHERE reason LIKE "
+                     "'refused by the logger: memory queue full and spool disk full%'"),
+            1000) << log;
+  EXPECT_LT(missing, 7900) << "the memory queue and the spool kept some";
+  EXPECT_NE(log.find("cannot keep a record: the memory queue is full and the spool disk refuses it; kept "),
+            std::string::npos) << log;
+  EXPECT_NE(log.find("No space left on device"), std::string::npos) << log;
+  EXPECT_NE(log.find("the spool takes records again"), std::string::npos) << log;
+  EXPECT_EQ(QueryInt("SELECT lastStep FROM Simulation WHERE simulationID = 1"), 9000);
+  ExpectSpoolEmpty();
+}
+
+// One forged state (step 5e8 right after step 1000) is refused as a bad
+// message, counted and described; the run is logged as if it never came:
+// no LogGap, lastStep the real last step.
+TEST_F(LoggerProcessTest, AForgedStepNumberIsRefusedAndLoggingGoesOn) {
+  ChildProcess& logger = StartLogger();
+  const SimRun run = testing::ArmRun(2000, 4343);
+  lcm::LCM bus(TestUrl());
+  ASSERT_TRUE(WaitForReady(0));
+  Publish(&bus, channels::kModel, run.model);
+  PublishStates(&bus, run, 1, 1000);
+  state_t forged = run.states[999];
+  forged.step = 500000000;
+  forged.sim_time = 500000.0;
+  Publish(&bus, channels::kState, forged);
+  PublishStates(&bus, run, 1001, 2000);
+  PublishStopped(&bus, run, 2000);
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(0));
+  EXPECT_EQ(StopLogger(logger), 0);
+  ExpectEveryStepOnce(1, 1, 2000, 3, 2);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
+  EXPECT_EQ(QueryInt("SELECT lastStep FROM Simulation WHERE simulationID = 1"), 2000);
+  const std::string log = ReadFile(LoggerLog(0));
+  EXPECT_NE(log.find("SIM_STATE: step = 500000000 is 499999000 steps after step 1000"),
+            std::string::npos) << log;
+  const size_t stopped = log.find("stopped: ");
+  ASSERT_NE(stopped, std::string::npos) << log;
+  EXPECT_NE(log.find("bad messages 1 [SIM_STATE: 0 malformed, 1 invalid]", stopped), std::string::npos)
+      << log.substr(stopped);
+}
+
+// The server stopped (SIGSTOP: it keeps its connections but answers
+// nothing) for 10 s under a running sim: reported within a few seconds,
+// its recovery too, and every step logged once.
+TEST_F(LoggerProcessTest, AStoppedServerIsReportedAndNothingIsLost) {
+  ChildProcess& logger = StartLogger();
+  ASSERT_TRUE(WaitForReady(0));
+  ChildProcess& sim = StartSim({"--duration=20"});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 1000; }, 30)) << ReadFile(LoggerLog(0));
+  const std::string pid_text = ServerPid();
+  ASSERT_FALSE(pid_text.empty());
+  const pid_t pid = static_cast<pid_t>(std::stol(pid_text));
+  struct Continue {
+    pid_t pid;
+    ~Continue() { ::kill(pid, SIGCONT); }
+  } resume{pid};
+  ASSERT_EQ(::kill(pid, SIGSTOP), 0);
+  const auto stopped_at = Clock::now();
+  ASSERT_TRUE(WaitFor([&] { return ReadFile(LoggerLog(0)).find("has not answered for") != std::string::npos; }, 15))
+      << ReadFile(LoggerLog(0));
+  EXPECT_LT(Clock::now() - stopped_at, std::chrono::seconds(8)) << "reported after a few seconds";
+  std::this_thread::sleep_for(std::chrono::seconds(10) - (Clock::now() - stopped_at));
+  const std::string during = ReadFile(LoggerLog(0));
+  EXPECT_NE(during.find("DATABASE NOT ANSWERING for"), std::string::npos) << during;
+  ASSERT_EQ(::kill(pid, SIGCONT), 0);
+  ASSERT_EQ(sim.Wait(std::chrono::seconds(60)).value_or(-1), 0);
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 60)) << ReadFile(LoggerLog(0));
+  EXPECT_EQ(StopLogger(logger), 0);
+  ExpectEveryStepOnce(1, 1, 20000, 3, 2);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
+  const std::string log = ReadFile(LoggerLog(0));
+  EXPECT_NE(log.find("database server unix://" + server_->socket() + " has not answered for "),
+            std::string::npos) << log;
+  EXPECT_NE(log.find("database server unix://" + server_->socket() + " answers again"),
+            std::string::npos) << log;
+}
+
+// A sim killed mid-run says nothing (no RUN_STOPPED): after --sim-silence
+// seconds without SIM_STATE or SIM_STATUS its simulation is closed at the
+// last step seen, with the reason, and simpartner-query list shows it.
+TEST_F(LoggerProcessTest, AKilledSimsSimulationIsClosed) {
+  ChildProcess& logger = StartLogger({"--sim-silence", "3"});
+  ASSERT_TRUE(WaitForReady(0));
+  ChildProcess& sim = StartSim({});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 1000; }, 30)) << ReadFile(LoggerLog(0));
+  sim.Signal(SIGKILL);
+  sim.Wait(std::chrono::seconds(10));
+  const auto killed = Clock::now();
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(0));
+  EXPECT_GE(Clock::now() - killed, std::chrono::milliseconds(2500));
+  EXPECT_EQ(StopLogger(logger), 0);
+  const int64_t logged = Steps();
+  auto db = Admin();
+  const std::vector<std::string> row =
+      QueryRows(db.get(), "SELECT endReason, lastStep FROM Simulation WHERE simulationID = 1");
+  ASSERT_EQ(row.size(), 1u);
+  EXPECT_EQ(row[0].rfind("the sim went silent: no SIM_STATE or SIM_STATUS for 3 s and no RUN_STOPPED", 0), 0u)
+      << row[0];
+  EXPECT_EQ(row[0].substr(row[0].rfind('\t') + 1), std::to_string(logged)) << row[0];
+  ExpectEveryStepOnce(1, 1, logged, 3, 2);
+  const std::string list_log = (dir_ / "list.txt").string();
+  ChildProcess list({std::string(SP_BINARY_DIR) + "/logger/simpartner-query", "--params", "/dev/null",
+                     "--db-options", server_->reader_options(), "list"},
+                    list_log);
+  ASSERT_EQ(list.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile(list_log);
+  EXPECT_NE(ReadFile(list_log).find("the sim went silent"), std::string::npos) << ReadFile(list_log);
 }
 
 }  // namespace

@@ -36,6 +36,9 @@ struct ReceiverOptions {
   // A simulation with no SIM_STATE or SIM_STATUS for this long (and no
   // RUN_STOPPED) is closed: its sim died. [s]
   double sim_silence = 10.0;
+  // Records other than states that the queue refused (its spool disk
+  // full), held in memory until it takes them again.
+  uint64_t max_held_bytes = 8u << 20;
 };
 
 // The step-number rule: a state may be at most this many times real time
@@ -63,6 +66,7 @@ struct ReceiverStats {
   uint64_t lost_spool_failed = 0;  // neither memory nor disk could take them
   uint64_t lost_spool_bytes = 0;
   uint64_t lost_states = 0;        // of which states (recorded in LogGap)
+  uint64_t held = 0;               // other records refused, held in memory to be queued later
   uint64_t simulations_silent = 0; // closed because their sim went silent
   uint64_t model_requests = 0;
   int64_t simulation_id = 0;       // the simulation followed (latest model)
@@ -125,9 +129,11 @@ class Receiver {
   // `step`: the state's step for a state record (for the gap if it is
   // refused), else -1.
   void Push(Record record, int64_t step = -1);
-  // Pushes the gap records of steps the queue refused; false if it still
-  // refuses them.
-  bool PushLostGaps();
+  // Queues what the queue refused before (gap records for states, the
+  // other records themselves), oldest first; false if it still refuses.
+  bool PushPending();
+  // Says once that the queue takes records again after refusing some.
+  void SpoolRecovered();
   void CloseSilent();
   void Wait(Record record);
 
@@ -138,8 +144,12 @@ class Receiver {
     int64_t received_us = 0;
     std::chrono::steady_clock::time_point heard{};
   };
-  // States the queue refused, per simulation: first..last, how many.
-  struct LostRange {
+  // What the queue refused, in order: a run of states of one simulation
+  // (first..last, how many: queued later as a gap record), or another
+  // record (a model, an end of simulation, a command...) held in memory.
+  struct Pending {
+    bool is_gap = false;
+    Record record;
     int64_t first = 0;
     int64_t last = 0;
     int64_t count = 0;
@@ -153,7 +163,8 @@ class Receiver {
   std::map<int64_t, ModelShape> models_;  // by simulation id
   std::set<int64_t> ended_;
   std::map<int64_t, SimClock> clocks_;   // by simulation id
-  std::map<int64_t, LostRange> lost_;    // by simulation id, not yet recorded
+  std::deque<Pending> pending_;
+  uint64_t pending_bytes_ = 0;
   bool spool_failing_ = false;
   std::string last_spool_cause_;
   std::deque<Record> waiting_;

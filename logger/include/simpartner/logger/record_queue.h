@@ -41,8 +41,9 @@ class RecordQueue {
   RecordQueue(uint64_t max_memory_bytes, Spool* spool);
 
   // Never blocks on the writer. Throws SpoolError if the record has to go to
-  // disk and cannot (e.g. the disk is full).
-  void Push(Record record);
+  // disk and cannot (e.g. the disk is full); `record` is then left as it
+  // was (moved from only when taken).
+  void Push(Record&& record);
   // Oldest records first, up to the limits; waits up to `wait` for the
   // first, then up to `linger` for at least `min_records` (bigger batches
   // cost the database less per row, for a few milliseconds of lag).
