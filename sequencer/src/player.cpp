@@ -140,7 +140,7 @@ class Player {
     out_ << sequence_.file << ": version " << sequence_.version << ", "
          << sequence_.CommandCount() << " commands, " << sequence_.segments.size()
          << " segment(s); world '" << model_->world_file << "', sim at step " << now
-         << (paused ? " (paused)" : "") << "; first step of the sequence " << anchor << "\n";
+         << (paused ? " (paused)" : "") << "; first step of the sequence " << anchor << std::endl;
     bool resumed = !options_.resume;
     std::map<int64_t, InFlight> by_request;
     for (size_t s = 0; s < plan_.segments.size(); ++s) {
@@ -210,7 +210,7 @@ class Player {
           const Note& note = segment.source->notes[next_note++];
           if (!options_.quiet)
             out_ << "t=" << Fixed(now * dt_, 3) << " s  line " << note.line << ": # " << note.text
-                 << "\n";
+                 << std::endl;
         }
         const bool all_sent = next == segment.commands.size();
         if (segment.source->wait) {
@@ -221,14 +221,14 @@ class Player {
             wait_from = anchor + Steps(source.start);
             if (!options_.quiet)
               out_ << "t=" << Fixed(now * dt_, 3) << " s  line " << source.line << ": wait for "
-                   << source.Describe() << "\n";
+                   << source.Describe() << std::endl;
           }
           if (waiting) {
             std::optional<int64_t> met = Met(w, wait_from, now, &last_read);
             if (met) {
               if (!options_.quiet)
                 out_ << "t=" << Fixed(*met * dt_, 3) << " s  line " << source.line << ": "
-                     << source.Describe() << ": met at step " << *met << "\n";
+                     << source.Describe() << ": met at step " << *met << std::endl;
               anchor = std::max(*met, now) + Lead(paused);
               break;  // on to the next segment; replies are still collected there
             }
@@ -306,7 +306,7 @@ class Player {
     out_ << "t=" << Fixed(applied_at_step * dt_, 3) << " s  line " << c.source->line << ": "
          << ActionName(c.message.action) << " " << c.target.name;
     if (!c.source->text.empty()) out_ << " " << Short(c.message.text.empty() ? c.source->text : c.message.text);
-    out_ << "\n";
+    out_ << std::endl;  // a user or a test follows the lines as they come
   }
 
   void Fail(const Stop& stop) {

@@ -1,0 +1,404 @@
+// simpartner-sequencer as a real process against real simpartner-sim
+// processes on real LCM multicast (udpm, ttl=0): the same SIM_STATE stream
+// at speed 1 and as fast as possible, a refusal, a killed and a restarted
+// sim stop the sequence and the wheels, a wrong file sends nothing, and the
+// gen3 pole task ends with the pole on the second pair of cubes, in the
+// same final pose as an in-process run of the same commands.
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "simpartner/channels.h"
+#include "simpartner/child_process.h"
+#include "simpartner/command_t.hpp"
+#include "simpartner/model/loader.h"
+#include "simpartner/model_t.hpp"
+#include "simpartner/sequencer/sequence.h"
+#include "simpartner/sim/simulation.h"
+#include "simpartner/state_t.hpp"
+
+namespace simpartner {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+const std::string kSource = SP_SOURCE_DIR;
+const std::string kBinary = SP_BINARY_DIR;
+
+std::string UniqueUrl(int offset) {
+  const int port = 20000 + (static_cast<int>(::getpid()) * 13 + 7919 + offset * 31) % 20000;
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=8388608";
+}
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// What the test sees on the bus: states (bytes without utime and
+// simulation id, for comparing runs), the model, and the commands sent.
+class Listener {
+ public:
+  explicit Listener(const std::string& url, bool keep_all_states) : lcm_(url), keep_all_(keep_all_states) {
+    EXPECT_TRUE(lcm_.good());
+    lcm_.subscribe(channels::kState, &Listener::OnState, this)->setQueueCapacity(200000);
+    lcm_.subscribe(channels::kModel, &Listener::OnModel, this);
+    lcm_.subscribe(channels::kCommand, &Listener::OnCommand, this)->setQueueCapacity(100000);
+  }
+  bool Until(const std::function<bool()>& pred, double seconds) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (!pred() && Clock::now() < end) lcm_.handleTimeout(10);
+    return pred();
+  }
+  void Drain(double seconds) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < end) lcm_.handleTimeout(10);
+  }
+
+  std::map<int64_t, std::vector<uint8_t>> states;
+  state_t last_state{};
+  int64_t last_step = -1;
+  std::vector<model_t> models;
+  std::vector<command_t> commands;
+
+ private:
+  void OnState(const lcm::ReceiveBuffer*, const std::string&, const state_t* s) {
+    last_state = *s;
+    last_step = s->step;
+    if (!keep_all_) return;
+    state_t copy = *s;
+    copy.utime = 0;
+    copy.simulation_id = 0;
+    std::vector<uint8_t> bytes(static_cast<size_t>(copy.getEncodedSize()));
+    copy.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    states[s->step] = std::move(bytes);
+  }
+  void OnModel(const lcm::ReceiveBuffer*, const std::string&, const model_t* m) {
+    models.push_back(*m);
+  }
+  void OnCommand(const lcm::ReceiveBuffer*, const std::string&, const command_t* c) {
+    commands.push_back(*c);
+  }
+  lcm::LCM lcm_;
+  bool keep_all_;
+};
+
+class SequencerProcessTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("sp_sequencer_process_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  std::unique_ptr<ChildProcess> StartSim(const std::string& url, const std::string& world,
+                                         std::vector<std::string> extra, const std::string& log) {
+    std::vector<std::string> args = {kBinary + "/sim_core/simpartner-sim", "--params", "/dev/null",
+                                     "--environment=" + kSource + "/models/worlds/" + world,
+                                     "--lcm-url", url};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return std::make_unique<ChildProcess>(args, (dir_ / log).string());
+  }
+  std::unique_ptr<ChildProcess> StartSequencer(const std::string& url, const std::string& file,
+                                               std::vector<std::string> extra,
+                                               const std::string& log = "sequencer.log") {
+    std::vector<std::string> args = {kBinary + "/sequencer/simpartner-sequencer", file,
+                                     "--lcm-url", url};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return std::make_unique<ChildProcess>(args, (dir_ / log).string());
+  }
+  std::string Write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+  std::string Log(const std::string& name = "sequencer.log") { return ReadText(dir_ / name); }
+  // Waits until the log holds `text`.
+  bool LogHas(const std::string& text, double seconds, const std::string& name = "sequencer.log") {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < end) {
+      if (Log(name).find(text) != std::string::npos) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+  }
+  fs::path dir_;
+};
+
+// Zero-velocity commands the sequencer sent to the wheel motors when it stopped.
+std::set<std::string> StoppedWheels(const std::vector<command_t>& commands) {
+  std::set<std::string> wheels;
+  for (const command_t& c : commands) {
+    if (c.sender.rfind("sequencer", 0) != 0 || c.action != command_t::ACTION_SET) continue;
+    if (c.apply_at_step != -1 || c.values.size() != 2 || c.values[1] != 0.0) continue;
+    wheels.insert(c.target);
+  }
+  return wheels;
+}
+
+const std::set<std::string> kGen1Wheels = {"Axle1Motor", "Axle2Motor", "Axle3Motor",
+                                           "Axle4Motor"};
+
+// The original's format, unchanged: ports of workpartner_gen1.xml, pauses
+// on port 0.
+const char* kVersionOneDrive = R"(<?xml version="1.0"?>
+<sequence version="1">
+  <command><commandString>1000,0.2,100,100,0</commandString><port>1032</port></command>
+  <command><commandString>0.3</commandString><port>0</port></command>
+  <repeat count="2">
+    <command><commandString>1000,1000,100,0,0,2</commandString><port>1028</port></command>
+    <command><commandString>1000,1000,100,0,0,2</commandString><port>1029</port></command>
+    <command><commandString>1000,1000,100,0,0,2</commandString><port>1030</port></command>
+    <command><commandString>1000,1000,100,0,0,2</commandString><port>1031</port></command>
+    <command><commandString>0.25</commandString><port>0</port></command>
+    <command><commandString>1000,1000,100,0,0,0</commandString><port>1028</port></command>
+    <command><commandString>1000,1000,100,0,0,0</commandString><port>1031</port></command>
+    <command><commandString>0.1</commandString><port>0</port></command>
+  </repeat>
+</sequence>
+)";
+
+TEST_F(SequencerProcessTest, SameStateStreamAtSpeedOneAndAsFastAsPossible) {
+  const std::string file = Write("drive.xml", kVersionOneDrive);
+  constexpr int64_t kLast = 1000;  // the sequence lasts 0.3 + 2 x 0.35 s
+  std::map<int64_t, std::vector<uint8_t>> runs[2];
+  const char* speeds[2] = {"1", "0"};
+  for (int run = 0; run < 2; ++run) {
+    const std::string url = UniqueUrl(1 + run);
+    Listener bus(url, true);
+    auto sim = StartSim(url, "gen1_flat.xml",
+                        {"--startPaused=1", std::string("--speed=") + speeds[run], "--duration=1.2"},
+                        "sim" + std::to_string(run) + ".log");
+    auto sequencer = StartSequencer(url, file, {"--from-zero", "--resume"},
+                                    "sequencer" + std::to_string(run) + ".log");
+    const std::optional<int> status = sequencer->Wait(std::chrono::seconds(30));
+    ASSERT_EQ(status, std::optional<int>(0)) << Log("sequencer" + std::to_string(run) + ".log");
+    ASSERT_EQ(sim->Wait(std::chrono::seconds(30)), std::optional<int>(0));
+    bus.Drain(0.3);
+    // Progress lines name the file line and the sim time of each command.
+    const std::string log = Log("sequencer" + std::to_string(run) + ".log");
+    EXPECT_NE(log.find("t=0.300 s  line 6: set Axle1Motor"), std::string::npos) << log;
+    EXPECT_NE(log.find("t=0.650 s  line 6: set Axle1Motor"), std::string::npos) << log;
+    runs[run] = std::move(bus.states);
+  }
+  size_t compared = 0;
+  for (const auto& [step, bytes] : runs[0]) {
+    if (step > kLast) continue;
+    const auto other = runs[1].find(step);
+    if (other == runs[1].end()) continue;
+    ASSERT_EQ(bytes, other->second) << "SIM_STATE of step " << step << " differs";
+    ++compared;
+  }
+  // A few states may be lost on a busy machine; nearly all must be compared.
+  EXPECT_GE(compared, 950u);
+  // The commands took effect: the robot drove (wheels at 2 rad/s x 0.235 m).
+  state_t first, last;
+  ASSERT_TRUE(runs[0].count(1) && runs[0].count(kLast));
+  first.decode(runs[0][1].data(), 0, static_cast<int>(runs[0][1].size()));
+  last.decode(runs[0][kLast].data(), 0, static_cast<int>(runs[0][kLast].size()));
+  double moved = 0;
+  for (size_t b = 0; b < first.bodies.size(); ++b)
+    moved = std::max(moved, std::abs(last.bodies[b].position[0] - first.bodies[b].position[0]));
+  EXPECT_GT(moved, 0.1);
+}
+
+TEST_F(SequencerProcessTest, RefusalStopsTheSequenceAndTheWheels) {
+  const std::string url = UniqueUrl(3);
+  Listener bus(url, false);
+  auto sim = StartSim(url, "gen1_flat.xml", {"--duration=30"}, "sim.log");
+  const std::string file = Write("refused.xml", R"(<sequence version="2">
+  <set target="Axle1Motor">1000,1</set>
+  <pause seconds="2"/>
+  <set target="Axle2Motor">1000,5000</set>
+  <pause seconds="5"/>
+</sequence>
+)");
+  auto sequencer = StartSequencer(url, file, {});
+  ASSERT_TRUE(bus.Until([&] { return sequencer->Wait(std::chrono::milliseconds(0)).has_value(); }, 20));
+  EXPECT_EQ(sequencer->Wait(std::chrono::seconds(0)), std::optional<int>(1));
+  bus.Drain(0.3);
+  const std::string log = Log();
+  EXPECT_NE(log.find(file + ":4: stopped: set Axle2Motor '1000,5000' refused by the sim: "),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("velocity"), std::string::npos) << log;  // the sim's reason names the value
+  EXPECT_NE(log.find("line 2: set Axle1Motor"), std::string::npos) << log;
+  EXPECT_NE(log.find("sent zero velocity to 4 wheel motor(s)"), std::string::npos) << log;
+  EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
+}
+
+TEST_F(SequencerProcessTest, KilledSimStopsTheSequenceWithinTwoSecondsOfSilence) {
+  const std::string url = UniqueUrl(4);
+  Listener bus(url, false);
+  auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");
+  const std::string file = Write("long.xml", R"(<sequence version="2">
+  <set target="Axle1Motor">1000,1</set>
+  <pause seconds="30"/>
+  <set target="Axle1Motor">1000,0</set>
+</sequence>
+)");
+  auto sequencer = StartSequencer(url, file, {});
+  ASSERT_TRUE(LogHas("line 2: set Axle1Motor", 10)) << Log();
+  sim->Signal(SIGKILL);
+  const auto killed = Clock::now();
+  const std::optional<int> status = sequencer->Wait(std::chrono::seconds(10));
+  const double took = std::chrono::duration<double>(Clock::now() - killed).count();
+  ASSERT_EQ(status, std::optional<int>(1)) << Log();
+  EXPECT_GE(took, 1.9);
+  EXPECT_LT(took, 4.0);
+  const std::string log = Log();
+  EXPECT_NE(log.find(file + ":4: stopped: the sim went silent: nothing on SIM_STATE or "
+                            "SIM_STATUS for 2.0 s"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("sent zero velocity to 4 wheel motor(s)"), std::string::npos) << log;
+  bus.Drain(0.3);
+  EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
+}
+
+TEST_F(SequencerProcessTest, RestartedSimStopsTheSequence) {
+  const std::string url = UniqueUrl(5);
+  Listener bus(url, false);
+  auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");
+  const std::string file = Write("long.xml", R"(<sequence version="2">
+  <set target="Axle1Motor">1000,1</set>
+  <pause seconds="30"/>
+  <set target="Axle1Motor">1000,0</set>
+</sequence>
+)");
+  auto sequencer = StartSequencer(url, file, {});
+  ASSERT_TRUE(LogHas("line 2: set Axle1Motor", 10)) << Log();
+  sim->Signal(SIGKILL);
+  sim->Wait(std::chrono::seconds(5));
+  auto restarted = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim2.log");
+  ASSERT_TRUE(bus.Until([&] { return sequencer->Wait(std::chrono::milliseconds(0)).has_value(); }, 15))
+      << Log();
+  EXPECT_EQ(sequencer->Wait(std::chrono::seconds(0)), std::optional<int>(1));
+  const std::string log = Log();
+  EXPECT_NE(log.find(file + ":4: stopped: the sim restarted under the sequence"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("sent zero velocity to 4 wheel motor(s)"), std::string::npos) << log;
+  bus.Drain(0.3);
+  EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
+}
+
+TEST_F(SequencerProcessTest, WrongFileAgainstTheBusModelSendsNothing) {
+  const std::string url = UniqueUrl(6);
+  Listener bus(url, false);
+  auto sim = StartSim(url, "gen1_flat.xml", {"--duration=30"}, "sim.log");
+  // gen1 has no scanner and no port 1041 (gen3's TorsoTurnMotor).
+  const std::string file = Write("wrong.xml", R"(<sequence version="2">
+  <set target="Axle1Motor">1000,1</set>
+  <set port="1041">1000,0.1,10,0,0</set>
+  <wait sensor="Scanner" below="1" timeout="10"/>
+</sequence>
+)");
+  auto sequencer = StartSequencer(url, file, {});
+  ASSERT_TRUE(bus.Until([&] { return sequencer->Wait(std::chrono::milliseconds(0)).has_value(); }, 15));
+  EXPECT_EQ(sequencer->Wait(std::chrono::seconds(0)), std::optional<int>(2));
+  const std::string log = Log();
+  EXPECT_NE(log.find(file + ":3: set: port 1041 is not an actuator or sensor of the model"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find(file + ":4: wait: 'Scanner' is not an actuator or sensor of the model"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("nothing was sent"), std::string::npos) << log;
+  bus.Drain(0.3);
+  EXPECT_TRUE(bus.commands.empty()) << bus.commands.size() << " commands on the bus";
+}
+
+TEST_F(SequencerProcessTest, NoSimOnTheBus) {
+  const std::string url = UniqueUrl(7);
+  const std::string file = Write("one.xml", R"(<sequence version="2">
+  <set target="Axle1Motor">1000,1</set>
+</sequence>
+)");
+  auto sequencer = StartSequencer(url, file, {"--model-timeout", "0.5"});
+  EXPECT_EQ(sequencer->Wait(std::chrono::seconds(10)), std::optional<int>(3)) << Log();
+  EXPECT_NE(Log().find(file + ": not played: "), std::string::npos) << Log();
+}
+
+// The validation's pole task, as shipped, through the sequencer process
+// against a real sim as fast as possible.
+TEST_F(SequencerProcessTest, PoleTaskEndsWithThePoleOnTheSecondPairOfCubes) {
+  constexpr double kDuration = 19.0;  // the sequence ends at 18.6 s
+  const int64_t last_step = std::llround(kDuration / 0.001);
+  const std::string url = UniqueUrl(8);
+  Listener bus(url, false);
+  auto sim = StartSim(url, "pole_task.xml",
+                      {"--startPaused=1", "--speed=0", "--duration=" + std::to_string(kDuration)},
+                      "sim.log");
+  auto sequencer = StartSequencer(url, kSource + "/sequences/gen3_pole_task.xml",
+                                  {"--from-zero", "--resume", "--quiet"});
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step >= last_step; }, 240)) << Log();
+  EXPECT_EQ(sequencer->Wait(std::chrono::seconds(10)), std::optional<int>(0)) << Log();
+  ASSERT_EQ(sim->Wait(std::chrono::seconds(10)), std::optional<int>(0)) << Log("sim.log");
+  ASSERT_FALSE(bus.models.empty());
+  const model_t& model = bus.models.back();
+  int pole = -1;
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    if (model.bodies[b].name == "Pole") pole = static_cast<int>(b);
+  ASSERT_GE(pole, 0);
+  ASSERT_EQ(bus.last_state.step, last_step);
+  const body_state_t& p = bus.last_state.bodies[static_cast<size_t>(pole)];
+  // pole_task.xml: the second pair of 1 m cubes is centred at x 4.2; the
+  // pole (r 0.05 m) rests on their tops at 1.05 m, still.
+  EXPECT_NEAR(p.position[1], 1.05, 0.005);
+  EXPECT_NEAR(p.position[0], 4.2, 0.5);
+  EXPECT_LT(std::hypot(p.linear_velocity[0], p.linear_velocity[1], p.linear_velocity[2]), 0.001);
+
+  // The same commands through the sim library in this process, each in
+  // the step the file gives it (as simpartner-validate runs them): the
+  // same final pose of every body.
+  const sequencer::SequenceParseResult parsed =
+      sequencer::LoadSequenceFile(kSource + "/sequences/gen3_pole_task.xml");
+  ASSERT_TRUE(parsed.sequence);
+  Parameters params;
+  params.environment = kSource + "/models/worlds/pole_task.xml";
+  sim::Simulation local(model::LoadWorldOrThrow(params.environment), params, 1);
+  int64_t id = 0;
+  for (const sequencer::Command& c : parsed.sequence->segments.at(0).commands) {
+    command_t m{};
+    m.request_id = ++id;
+    m.sender = "test";
+    m.target = c.target;
+    m.action = c.action;
+    m.apply_at_step = std::llround(c.time / 0.001);
+    m.text = c.text;
+    const std::optional<command_reply_t> refused = local.Submit(m);
+    ASSERT_FALSE(refused.has_value()) << c.line << ": " << refused->reason;
+  }
+  while (local.step() < last_step) {
+    ASSERT_TRUE(local.Step());
+    local.TakeReplies();
+    local.TakeSensorReadings();
+  }
+  state_t mine{};
+  local.FillState(&mine);
+  ASSERT_EQ(mine.bodies.size(), bus.last_state.bodies.size());
+  for (size_t b = 0; b < mine.bodies.size(); ++b) {
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(mine.bodies[b].position[k], bus.last_state.bodies[b].position[k], 1e-9)
+          << model.bodies[b].name;
+  }
+}
+
+}  // namespace
+}  // namespace simpartner
