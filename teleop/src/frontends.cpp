@@ -1,0 +1,450 @@
+#include "simpartner/teleop/frontends.h"
+
+#include <SDL2/SDL.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "simpartner/client/errors.h"
+#include "simpartner/teleop/session.h"
+
+namespace simpartner::teleop {
+
+// ---- Gamepad ----
+
+Gamepad::~Gamepad() {
+  if (controller_) SDL_GameControllerClose(controller_);
+}
+
+void Gamepad::OpenFirst() {
+  if (controller_) return;
+  for (int i = 0; i < SDL_NumJoysticks(); ++i) {
+    if (!SDL_IsGameController(i)) continue;
+    controller_ = SDL_GameControllerOpen(i);
+    if (!controller_) {
+      log_ << "teleop: cannot open game controller " << i << ": " << SDL_GetError() << std::endl;
+      continue;
+    }
+    instance_id_ = SDL_JoystickInstanceID(SDL_GameControllerGetJoystick(controller_));
+    log_ << "teleop: controller connected: " << name() << std::endl;
+    return;
+  }
+}
+
+void Gamepad::Handle(const SDL_Event& event) {
+  if (event.type == SDL_CONTROLLERDEVICEADDED) {
+    OpenFirst();
+  } else if (event.type == SDL_CONTROLLERDEVICEREMOVED && controller_ &&
+             event.cdevice.which == instance_id_) {
+    log_ << "teleop: controller unplugged: " << name() << std::endl;
+    SDL_GameControllerClose(controller_);
+    controller_ = nullptr;
+    instance_id_ = -1;
+    OpenFirst();  // another one, if there is
+  }
+}
+
+InputState Gamepad::Read() const {
+  InputState in;
+  if (!controller_ || !SDL_GameControllerGetAttached(controller_)) return in;
+  in.connected = true;
+  for (int a = 0; a < kAxisCount; ++a)
+    in.axis[a] = AxisFromSdl(
+        SDL_GameControllerGetAxis(controller_, static_cast<SDL_GameControllerAxis>(a)));
+  for (int b = 0; b < kButtonCount; ++b)
+    in.button[b] =
+        SDL_GameControllerGetButton(controller_, static_cast<SDL_GameControllerButton>(b)) != 0;
+  return in;
+}
+
+std::string Gamepad::name() const {
+  const char* n = controller_ ? SDL_GameControllerName(controller_) : nullptr;
+  return n ? n : (controller_ ? "(unnamed controller)" : "");
+}
+
+std::vector<std::string> ListControllers() {
+  std::vector<std::string> names;
+  for (int i = 0; i < SDL_NumJoysticks(); ++i) {
+    if (!SDL_IsGameController(i)) continue;
+    const char* n = SDL_GameControllerNameForIndex(i);
+    names.push_back(std::to_string(i) + ": " + (n ? n : "(unnamed controller)"));
+  }
+  return names;
+}
+
+// ---- Keyboard ----
+
+InputState KeyboardInput(const Plan* plan) {
+  InputState in;
+  in.connected = true;
+  const Uint8* keys = SDL_GetKeyboardState(nullptr);
+  auto held = [&](SDL_Scancode a, SDL_Scancode b = SDL_SCANCODE_UNKNOWN) {
+    return keys[a] || (b != SDL_SCANCODE_UNKNOWN && keys[b]);
+  };
+  const double forward = held(SDL_SCANCODE_UP, SDL_SCANCODE_W) ? 1.0 : 0.0;
+  const double back = held(SDL_SCANCODE_DOWN, SDL_SCANCODE_S) ? 1.0 : 0.0;
+  const double left = held(SDL_SCANCODE_LEFT, SDL_SCANCODE_A) ? 1.0 : 0.0;
+  const double right = held(SDL_SCANCODE_RIGHT, SDL_SCANCODE_D) ? 1.0 : 0.0;
+  // A stick pushed up reads negative on SDL's y axes.
+  in.axis[SDL_CONTROLLER_AXIS_LEFTY] = back - forward;
+  in.axis[SDL_CONTROLLER_AXIS_LEFTX] = right - left;
+  if (!plan) return in;
+  // The mapping's own axes and buttons, so the keyboard follows any file.
+  if (plan->drive_axis >= 0 && plan->drive_axis != SDL_CONTROLLER_AXIS_LEFTY)
+    in.axis[plan->drive_axis] = back - forward;
+  if (plan->steer && plan->steer->axis >= 0 && plan->steer->axis != SDL_CONTROLLER_AXIS_LEFTX)
+    in.axis[plan->steer->axis] = right - left;
+  if (plan->deadman_button >= 0) in.button[plan->deadman_button] = held(SDL_SCANCODE_SPACE);
+  const SDL_Scancode level_keys[3][2] = {{SDL_SCANCODE_R, SDL_SCANCODE_F},
+                                         {SDL_SCANCODE_Q, SDL_SCANCODE_E},
+                                         {SDL_SCANCODE_O, SDL_SCANCODE_C}};
+  for (size_t k = 0; k < plan->levels.size() && k < 3; ++k) {
+    const Plan::Level& level = plan->levels[k];
+    if (level.button_plus >= 0) in.button[level.button_plus] |= held(level_keys[k][0]);
+    if (level.button_minus >= 0) in.button[level.button_minus] |= held(level_keys[k][1]);
+  }
+  return in;
+}
+
+// ---- Virtual pad ----
+
+VirtualPad::~VirtualPad() { Detach(); }
+
+void VirtualPad::Attach() {
+  if (joystick_) return;
+  SDL_VirtualJoystickDesc desc;
+  SDL_zero(desc);
+  desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
+  desc.type = SDL_JOYSTICK_TYPE_GAMECONTROLLER;
+  desc.naxes = SDL_CONTROLLER_AXIS_MAX;
+  desc.nbuttons = SDL_CONTROLLER_BUTTON_MAX;
+  desc.axis_mask = (1u << SDL_CONTROLLER_AXIS_MAX) - 1;
+  desc.button_mask = (1u << SDL_CONTROLLER_BUTTON_MAX) - 1;
+  desc.name = "SimPartner virtual pad";
+  device_index_ = SDL_JoystickAttachVirtualEx(&desc);
+  if (device_index_ < 0)
+    throw std::runtime_error(std::string("cannot attach a virtual joystick: ") + SDL_GetError());
+  joystick_ = SDL_JoystickOpen(device_index_);
+  if (!joystick_)
+    throw std::runtime_error(std::string("cannot open the virtual joystick: ") + SDL_GetError());
+  log_ << "vpad: attached" << std::endl;
+}
+
+void VirtualPad::Detach() {
+  if (!joystick_) return;
+  const SDL_JoystickID id = SDL_JoystickInstanceID(joystick_);
+  SDL_JoystickClose(joystick_);
+  joystick_ = nullptr;
+  for (int i = 0; i < SDL_NumJoysticks(); ++i)
+    if (SDL_JoystickIsVirtual(i) && SDL_JoystickGetDeviceInstanceID(i) == id) {
+      SDL_JoystickDetachVirtual(i);
+      break;
+    }
+  log_ << "vpad: detached" << std::endl;
+}
+
+bool VirtualPad::Apply(const std::string& line) {
+  std::istringstream in(line);
+  std::string verb, name, value;
+  in >> verb >> name >> value;
+  if (verb.empty() || verb[0] == '#') return true;
+  auto bad = [&](const std::string& why) {
+    return std::runtime_error("vpad script line '" + line + "': " + why);
+  };
+  if (verb == "quit") return false;
+  if (verb == "attach") {
+    Attach();
+    return true;
+  }
+  if (verb == "detach") {
+    Detach();
+    return true;
+  }
+  if (!joystick_) throw bad("the pad is detached");
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || *end != '\0' || !std::isfinite(v)) throw bad("'" + value + "' is not a number");
+  if (verb == "axis") {
+    const SDL_GameControllerAxis axis = SDL_GameControllerGetAxisFromString(name.c_str());
+    if (axis == SDL_CONTROLLER_AXIS_INVALID) throw bad("unknown axis '" + name + "'");
+    if (v < -1 || v > 1) throw bad("axis value " + value + " is outside -1..1");
+    SDL_JoystickSetVirtualAxis(joystick_, axis, static_cast<Sint16>(std::lround(v * 32767)));
+  } else if (verb == "button") {
+    const SDL_GameControllerButton button = SDL_GameControllerGetButtonFromString(name.c_str());
+    if (button == SDL_CONTROLLER_BUTTON_INVALID) throw bad("unknown button '" + name + "'");
+    SDL_JoystickSetVirtualButton(joystick_, button, v != 0 ? 1 : 0);
+  } else {
+    throw bad("unknown command '" + verb + "' (axis, button, attach, detach, quit)");
+  }
+  return true;
+}
+
+// ---- The program ----
+
+namespace {
+
+std::string Usage() {
+  return "usage: simpartner-teleop [options]\n"
+         "  Drives the robot of the sim on the bus from the first game controller\n"
+         "  (hot-plug), or with --keyboard from a small window. Hold the dead-man\n"
+         "  button (keyboard: space) to move.\n"
+         "  --lcm-url URL       the bus (default " + std::string(client::kDefaultUrl) + ")\n"
+         "  --mapping FILE      mapping file (default: the shipped one for the robot's model)\n"
+         "  --mapping-dir DIR   where the shipped mappings are\n"
+         "  --max-speed R       wheel speed at full stick [rad/s] (overrides the mapping)\n"
+         "  --max-steer A       Turner angle at full stick [rad] (overrides the mapping)\n"
+         "  --keyboard          keyboard window instead of a game controller\n"
+         "  --list              name the connected game controllers and exit\n"
+         "  --check --environment WORLD [--mapping FILE]\n"
+         "                      check a mapping against a world's robot offline\n"
+         "  (simpartner-teleop-vpad, the test build: --script FILE, default stdin, with\n"
+         "  lines 'axis <name> <-1..1>', 'button <name> <0|1>', detach, attach, quit)\n";
+}
+
+// Reads what stdin has (non-blocking), returns the complete lines.
+std::vector<std::string> ReadAvailableLines(int input_fd, std::string* pending, bool* eof) {
+  std::vector<std::string> lines;
+  pollfd fd{input_fd, POLLIN, 0};
+  while (!*eof && ::poll(&fd, 1, 0) > 0) {
+    char buffer[4096];
+    const ssize_t n = ::read(input_fd, buffer, sizeof buffer);
+    if (n <= 0) {
+      *eof = true;
+      break;
+    }
+    pending->append(buffer, static_cast<size_t>(n));
+  }
+  for (size_t nl; (nl = pending->find('\n')) != std::string::npos;) {
+    lines.push_back(pending->substr(0, nl));
+    pending->erase(0, nl + 1);
+  }
+  return lines;
+}
+
+}  // namespace
+
+int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostream& out,
+              std::ostream& err) {
+  SessionOptions options;
+  options.program = virtual_pad ? "teleop-vpad" : "teleop";
+#ifdef SP_TELEOP_MAPPING_DIR
+  options.mapping_dir = SP_TELEOP_MAPPING_DIR;
+#endif
+  bool keyboard = false, list = false, check = false;
+  std::string environment, script;
+  double max_speed = NAN, max_steer = NAN;
+  for (size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    auto value = [&](std::string* v) {
+      if (k + 1 >= args.size()) throw std::invalid_argument(a + " needs a value");
+      *v = args[++k];
+    };
+    auto number = [&](double* v) {
+      std::string text;
+      value(&text);
+      char* end = nullptr;
+      *v = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !(*v > 0) || !std::isfinite(*v))
+        throw std::invalid_argument(a + ": '" + text + "' is not a positive number");
+    };
+    try {
+      if (a == "--lcm-url") value(&options.url);
+      else if (a == "--mapping") value(&options.mapping_file);
+      else if (a == "--mapping-dir") value(&options.mapping_dir);
+      else if (a == "--environment") value(&environment);
+      else if (a == "--script" && virtual_pad) value(&script);
+      else if (a == "--max-speed") number(&max_speed);
+      else if (a == "--max-steer") number(&max_steer);
+      else if (a == "--keyboard") keyboard = true;
+      else if (a == "--list") list = true;
+      else if (a == "--check") check = true;
+      else if (a == "--help" || a == "-h") {
+        out << Usage();
+        return 0;
+      }
+      else throw std::invalid_argument("unknown option '" + a + "'");
+    } catch (const std::invalid_argument& e) {
+      err << "simpartner-teleop: " << e.what() << "\n" << Usage();
+      return 2;
+    }
+  }
+  options.max_speed = max_speed;
+  options.max_steer = max_steer;
+
+  if (check) {
+    if (environment.empty()) {
+      err << "simpartner-teleop: --check needs --environment WORLD\n";
+      return 2;
+    }
+    try {
+      const model_t model = ModelFromWorldFile(environment);
+      if (model.robots.empty()) {
+        err << environment << ": the world has no robot\n";
+        return 1;
+      }
+      const std::string file = options.mapping_file.empty()
+                                   ? MappingFileFor(model.robots[0].model, options.mapping_dir)
+                                   : options.mapping_file;
+      const Plan plan = BuildPlan(LoadMapping(file), model);
+      out << file << ": fits robot " << plan.robot << " (" << model.robots[0].model << ") of "
+          << environment << ": " << plan.wheels.size() << " wheels (signs";
+      for (const Plan::Wheel& w : plan.wheels) out << " " << w.target.name << (w.sign > 0 ? " +" : " -");
+      out << ")" << (plan.steer ? ", steering " + plan.steer->target.name : std::string()) << ", "
+          << plan.levels.size() << " levels\n";
+      return 0;
+    } catch (const MappingError& e) {
+      err << e.what() << "\n";
+      return 1;
+    } catch (const std::exception& e) {
+      err << "simpartner-teleop: " << e.what() << "\n";
+      return 1;
+    }
+  }
+
+  // SIGINT and SIGTERM are taken synchronously (sigtimedwait in the loop):
+  // blocked here, before any thread starts, so every thread inherits it.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+  SDL_SetHint(SDL_HINT_NO_SIGNAL_HANDLERS, "1");
+  SDL_SetHint(SDL_HINT_JOYSTICK_ALLOW_BACKGROUND_EVENTS, "1");
+  const Uint32 subsystems =
+      keyboard ? SDL_INIT_VIDEO | SDL_INIT_EVENTS : SDL_INIT_GAMECONTROLLER | SDL_INIT_EVENTS;
+  if (SDL_Init(subsystems) != 0) {
+    err << "simpartner-teleop: SDL cannot start: " << SDL_GetError() << "\n";
+    return 1;
+  }
+  struct SdlQuit {
+    ~SdlQuit() { SDL_Quit(); }
+  } sdl_quit;
+
+  if (list) {
+    const std::vector<std::string> names = ListControllers();
+    if (names.empty()) out << "no game controller connected\n";
+    for (const std::string& n : names) out << n << "\n";
+    return 0;
+  }
+
+  std::unique_ptr<Session> session;
+  try {
+    session = std::make_unique<Session>(options, out);
+  } catch (const client::ClientError& e) {
+    err << "simpartner-teleop: " << e.what() << "\n";
+    return 1;
+  }
+
+  Gamepad gamepad(out);
+  VirtualPad pad(out);
+  SDL_Window* window = nullptr;
+  SDL_Renderer* renderer = nullptr;
+  if (keyboard) {
+    window = SDL_CreateWindow("simpartner-teleop", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
+                              640, 160, SDL_WINDOW_SHOWN);
+    if (!window) {
+      err << "simpartner-teleop: cannot open the keyboard window: " << SDL_GetError() << "\n";
+      return 1;
+    }
+    renderer = SDL_CreateRenderer(window, -1, SDL_RENDERER_SOFTWARE);
+    out << "teleop: keyboard window open (hold space and use the arrows or WASD)" << std::endl;
+  } else {
+    if (virtual_pad) {
+      try {
+        pad.Attach();
+      } catch (const std::exception& e) {
+        err << "simpartner-teleop-vpad: " << e.what() << "\n";
+        return 1;
+      }
+    }
+    gamepad.OpenFirst();
+    if (gamepad.name().empty())
+      out << "teleop: no game controller yet; plug one in (or use --keyboard)" << std::endl;
+  }
+
+  // The test build's script: a file or FIFO (--script), else stdin.
+  int script_fd = STDIN_FILENO;
+  if (virtual_pad && !script.empty()) {
+    script_fd = ::open(script.c_str(), O_RDONLY | O_CLOEXEC);
+    if (script_fd < 0) {
+      err << "simpartner-teleop-vpad: cannot open script " << script << ": " << std::strerror(errno)
+          << "\n";
+      return 1;
+    }
+  }
+  std::string pending;
+  bool eof = false;
+  int exit_status = 0;
+  auto last_status = std::chrono::steady_clock::now();
+  std::string last_line;
+  InputState input;
+  for (bool running = true; running;) {
+    SDL_Event event;
+    while (SDL_PollEvent(&event)) {
+      if (event.type == SDL_QUIT) running = false;
+      if (keyboard && event.type == SDL_KEYDOWN && event.key.keysym.sym == SDLK_ESCAPE)
+        running = false;
+      if (!keyboard) gamepad.Handle(event);
+    }
+    if (virtual_pad) {
+      for (const std::string& line : ReadAvailableLines(script_fd, &pending, &eof)) {
+        try {
+          if (!pad.Apply(line)) running = false;
+        } catch (const std::exception& e) {
+          err << "simpartner-teleop-vpad: " << e.what() << std::endl;
+        }
+      }
+      if (eof) running = false;
+      // The virtual pad's values reach the controller in the next pump.
+      SDL_PumpEvents();
+      while (SDL_PollEvent(&event)) gamepad.Handle(event);
+    }
+    const Plan* plan = session->controller() ? &session->controller()->plan() : nullptr;
+    input = keyboard ? KeyboardInput(plan) : gamepad.Read();
+    timespec no_wait{0, 0};
+    const int signal = sigtimedwait(&stop_signals, nullptr, &no_wait);
+    if (signal > 0) {
+      out << "teleop: " << (signal == SIGINT ? "SIGINT" : "SIGTERM")
+          << ": stopping the wheels and holding the joints" << std::endl;
+      break;
+    }
+    session->Tick(input);
+
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_status > std::chrono::milliseconds(500)) {
+      last_status = now;
+      const std::string line = session->StatusLine();
+      if (line != last_line) out << "teleop: " << line << std::endl;
+      last_line = line;
+      if (window) SDL_SetWindowTitle(window, ("teleop: " + line).c_str());
+    }
+    if (renderer) {
+      // Green while moving, amber when stopped by the dead-man, red else.
+      const StopReason stop = session->demand().stop;
+      if (stop == StopReason::kNone) SDL_SetRenderDrawColor(renderer, 40, 160, 60, 255);
+      else if (stop == StopReason::kDeadman) SDL_SetRenderDrawColor(renderer, 200, 150, 30, 255);
+      else SDL_SetRenderDrawColor(renderer, 170, 40, 40, 255);
+      SDL_RenderClear(renderer);
+      SDL_RenderPresent(renderer);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  session->StopAndFlush(input);
+  out << "teleop: stopped (" << session->batches_sent() << " command batches sent)" << std::endl;
+  if (script_fd != STDIN_FILENO) ::close(script_fd);
+  if (renderer) SDL_DestroyRenderer(renderer);
+  if (window) SDL_DestroyWindow(window);
+  return exit_status;
+}
+
+}  // namespace simpartner::teleop
