@@ -1,0 +1,74 @@
+// `cmake --install` gives an outside project what it needs: a project in
+// its own tree (tests/client/outside_project) finds the package in a
+// temporary prefix, builds, and turns a wheel of a real sim.
+#include <gtest/gtest.h>
+
+#include "client_test_support.h"
+#include "simpartner/client/client.h"
+
+namespace simpartner::client {
+namespace {
+
+using testing::ReadFile;
+using testing::SimProcess;
+using testing::TestDir;
+using testing::UniqueUrl;
+
+int RunLogged(const std::vector<std::string>& args, const std::string& log, int seconds = 300) {
+  ChildProcess child(args, log);
+  return child.Wait(std::chrono::seconds(seconds)).value_or(-1);
+}
+
+TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
+  const auto dir = TestDir("install");
+  const std::string prefix = (dir / "prefix").string();
+  const std::string build = (dir / "build").string();
+  const std::string log = (dir / "steps.log").string();
+  ASSERT_EQ(RunLogged({SP_CMAKE, "--install", SP_BINARY_DIR, "--prefix", prefix, "--component",
+                       "client"},
+                      log),
+            0)
+      << ReadFile(log);
+  // What an outside project includes: the client, the generated messages.
+  for (const char* file : {"include/simpartner/client/client.h", "include/simpartner/command_t.hpp",
+                           "include/simpartner/lcm_schema.hpp", "include/simpartner/bus_decode.h",
+                           "lib/cmake/SimPartner/SimPartnerConfig.cmake"})
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(prefix) / file)) << file;
+  // The installed package names no path of this build or source tree, so
+  // the prefix can move (or the build be deleted).
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::filesystem::path(prefix) / "lib/cmake/SimPartner")) {
+    const std::string text = ReadFile(entry.path().string());
+    EXPECT_EQ(text.find(SP_BINARY_DIR), std::string::npos) << entry.path();
+    EXPECT_EQ(text.find(std::string(SP_SOURCE_DIR) + "/"), std::string::npos) << entry.path();
+  }
+  const std::string configure_log = (dir / "configure.log").string();
+  ASSERT_EQ(RunLogged({SP_CMAKE, "-S", std::string(SP_SOURCE_DIR) + "/tests/client/outside_project",
+                       "-B", build, "-G", SP_GENERATOR, "-DCMAKE_PREFIX_PATH=" + prefix,
+                       "-DCMAKE_BUILD_TYPE=Release"},
+                      configure_log),
+            0)
+      << ReadFile(configure_log);
+  const std::string build_log = (dir / "build.log").string();
+  ASSERT_EQ(RunLogged({SP_CMAKE, "--build", build}, build_log), 0) << ReadFile(build_log);
+
+  const std::string url = UniqueUrl(31);
+  SimProcess sim("gen1_flat.xml", url, (dir / "sim.log").string(), {"--speed=0"});
+  const std::string run_log = (dir / "turn_wheel.log").string();
+  ASSERT_EQ(RunLogged({build + "/turn_wheel", url, "Axle2Motor", "1.5"}, run_log, 30), 0)
+      << ReadFile(run_log);
+  EXPECT_NE(ReadFile(run_log).find("Axle2Motor accepted at step "), std::string::npos);
+  // The effect, seen on the bus: wheel 2's joint turns at 1.5 rad/s.
+  ClientOptions o;
+  o.url = url;
+  o.program = "install_test";
+  o.model_timeout = 10;
+  Client client(o);
+  const state_t s = client.WaitUntilSimTime(client.LatestState()->sim_time + 0.5, 10);
+  EXPECT_NEAR(s.joints[static_cast<size_t>(client.catalog()->JointIndex("Axle2"))].rate[0], 1.5,
+              0.1);
+  if (!::testing::Test::HasFailure()) std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace simpartner::client
