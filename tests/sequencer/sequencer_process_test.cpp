@@ -335,6 +335,95 @@ TEST_F(SequencerProcessTest, NoSimOnTheBus) {
   EXPECT_NE(Log().find(file + ": not played: "), std::string::npos) << Log();
 }
 
+int JointIndex(const model_t& model, const std::string& name) {
+  for (size_t j = 0; j < model.joints.size(); ++j)
+    if (model.joints[j].name == name) return static_cast<int>(j);
+  return -1;
+}
+
+TEST_F(SequencerProcessTest, WaitsForAJointAngleThenGoesOn) {
+  const std::string url = UniqueUrl(9);
+  Listener bus(url, true);
+  auto sim = StartSim(url, "gen1_flat.xml", {"--duration=30"}, "sim.log");
+  const std::string file = Write("wait.xml", R"(<sequence version="2">
+  <set target="TurnerMotor">1000,0.2,100,100,0</set>
+  <wait joint="Turner" angle="0.2" tolerance="0.002" timeout="5"/>
+  <comment>steered</comment>
+  <set target="Axle1Motor">1000,1</set>
+  <pause seconds="0.2"/>
+</sequence>
+)");
+  auto sequencer = StartSequencer(url, file, {});
+  ASSERT_TRUE(bus.Until([&] { return sequencer->Wait(std::chrono::milliseconds(0)).has_value(); }, 20));
+  ASSERT_EQ(sequencer->Wait(std::chrono::seconds(0)), std::optional<int>(0)) << Log();
+  const std::string log = Log();
+  const std::string met = "line 3: joint Turner within 0.002 of 0.2: met at step ";
+  const size_t at = log.find(met);
+  ASSERT_NE(at, std::string::npos) << log;
+  const int64_t met_step = std::stoll(log.substr(at + met.size()));
+  EXPECT_NE(log.find("line 4: # steered"), std::string::npos) << log;
+  EXPECT_NE(log.find("line 5: set Axle1Motor"), std::string::npos) << log;
+  // The state of that step has the joint there; the wheel command came after.
+  ASSERT_FALSE(bus.models.empty());
+  const int turner = JointIndex(bus.models.back(), "Turner");
+  ASSERT_GE(turner, 0);
+  const auto state = bus.states.find(met_step);
+  ASSERT_NE(state, bus.states.end());
+  state_t s;
+  s.decode(state->second.data(), 0, static_cast<int>(state->second.size()));
+  EXPECT_NEAR(s.joints[static_cast<size_t>(turner)].position[0], 0.2, 0.002);
+  bool after = false;
+  for (const command_t& c : bus.commands)
+    if (c.target == "Axle1Motor") after = c.apply_at_step > met_step;
+  EXPECT_TRUE(after);
+}
+
+TEST_F(SequencerProcessTest, WaitThatTimesOutStopsTheSequence) {
+  const std::string url = UniqueUrl(10);
+  Listener bus(url, false);
+  auto sim = StartSim(url, "gen1_flat.xml", {"--duration=30"}, "sim.log");
+  const std::string file = Write("timeout.xml", R"(<sequence version="2">
+  <set target="Axle1Motor">1000,1</set>
+  <wait joint="Turner" angle="1" tolerance="0.001" timeout="0.5"/>
+  <set target="Axle1Motor">1000,2</set>
+</sequence>
+)");
+  auto sequencer = StartSequencer(url, file, {});
+  ASSERT_TRUE(bus.Until([&] { return sequencer->Wait(std::chrono::milliseconds(0)).has_value(); }, 20));
+  EXPECT_EQ(sequencer->Wait(std::chrono::seconds(0)), std::optional<int>(1));
+  const std::string log = Log();
+  EXPECT_NE(log.find(file + ":3: stopped: wait for joint Turner within 0.001 of 1: not met within "
+                            "0.500 s of sim time"),
+            std::string::npos)
+      << log;
+  bus.Drain(0.3);
+  EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
+}
+
+// gen2 stands 6 m from a wall (scanner_wall.xml): the scanner's middle
+// ray reads 5.335 m (SPEC 8).
+TEST_F(SequencerProcessTest, WaitsForAScannerReading) {
+  const std::string url = UniqueUrl(11);
+  Listener bus(url, false);
+  auto sim = StartSim(url, "scanner_wall.xml", {"--duration=30"}, "sim.log");
+  const std::string file = Write("scan.xml", R"(<sequence version="2">
+  <wait sensor="Scanner" index="5" below="5.4" timeout="2"/>
+  <wait sensor="Scanner" index="5" above="5.3" timeout="2"/>
+  <wait sensor="Scanner" index="5" below="5.0" timeout="0.3"/>
+</sequence>
+)");
+  auto sequencer = StartSequencer(url, file, {});
+  ASSERT_TRUE(bus.Until([&] { return sequencer->Wait(std::chrono::milliseconds(0)).has_value(); }, 20));
+  EXPECT_EQ(sequencer->Wait(std::chrono::seconds(0)), std::optional<int>(1)) << Log();
+  const std::string log = Log();
+  EXPECT_NE(log.find("line 2: sensor Scanner value 5 below 5.4: met at step"), std::string::npos) << log;
+  EXPECT_NE(log.find("line 3: sensor Scanner value 5 above 5.3: met at step"), std::string::npos) << log;
+  EXPECT_NE(log.find(file + ":4: stopped: wait for sensor Scanner value 5 below 5: not met within "
+                            "0.300 s of sim time"),
+            std::string::npos)
+      << log;
+}
+
 // The validation's pole task, as shipped, through the sequencer process
 // against a real sim as fast as possible.
 TEST_F(SequencerProcessTest, PoleTaskEndsWithThePoleOnTheSecondPairOfCubes) {
