@@ -1,8 +1,12 @@
 // libFuzzer target: arbitrary bytes as a robot file and as a world file
-// whose robot reference resolves to one small valid robot in memory.
+// whose robot references resolve to one small valid robot in memory (or,
+// for a name ending in ".fifo", to a file the reader refuses). Invariants:
+// a failure says why, and whatever loads is within the physical ranges
+// (models/README.md), so the sim can run it.
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "simpartner/model/loader.h"
 
@@ -20,19 +24,42 @@ const char* kRobot = R"(<robot name="Tiny">
   <actuator type="JointController" name="M" port="1028"><jointRef>J</jointRef></actuator>
 </robot>)";
 
+bool InRange(double value, double lo, double hi) { return value >= lo && value <= hi; }
+
+// Traps unless every moving body is within the loader's ranges.
+void CheckRanges(const std::vector<simpartner::model::Body>& bodies) {
+  namespace limits = simpartner::model::limits;
+  for (const simpartner::model::Body& b : bodies) {
+    if (b.pose.translation().cwiseAbs().maxCoeff() > limits::kMaxCoordinate) __builtin_trap();
+    if (b.is_static) continue;
+    if (!InRange(b.mass, limits::kMinMass, limits::kMaxMass)) __builtin_trap();
+    if (b.linear_velocity.norm() > limits::kMaxLinearSpeed) __builtin_trap();
+    if (b.angular_velocity.norm() > limits::kMaxAngularSpeed) __builtin_trap();
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   const simpartner::model::RobotLoadResult robot = simpartner::model::ParseRobot(text, "fuzz.xml");
   if (!robot.robot && robot.diagnostics.empty()) __builtin_trap();  // failure must say why
-  const simpartner::model::FileReader reader = [](const std::string&, std::string* out) {
+  if (robot.robot) CheckRanges(robot.robot->bodies);
+  const simpartner::model::FileReader reader = [](const std::string& path, std::string* out) {
+    const std::string refused = ".fifo";
+    if (path.size() >= refused.size() &&
+        path.compare(path.size() - refused.size(), refused.size(), refused) == 0)
+      throw simpartner::model::ModelFileError(
+          "not a regular file (FIFO); model files must be regular files", false);
     *out = kRobot;
     return true;
   };
   const simpartner::model::WorldLoadResult world =
       simpartner::model::ParseWorld(text, "fuzz.xml", reader);
   if (!world.world && world.diagnostics.empty()) __builtin_trap();
-  if (world.world) (void)simpartner::model::DescribeWorld(*world.world);
+  if (world.world) {
+    CheckRanges(world.world->objects);
+    (void)simpartner::model::DescribeWorld(*world.world);
+  }
   return 0;
 }
