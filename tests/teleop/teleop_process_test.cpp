@@ -1,0 +1,434 @@
+// simpartner-teleop as real processes, no hardware: the test build
+// (simpartner-teleop-vpad) attaches an SDL virtual game controller and
+// takes its stick and button values from a FIFO this test writes; a real
+// simpartner-sim runs on a udpm port of its own (ttl=0). What the robot
+// does is read from SIM_STATE, what teleop sends from SIM_COMMAND. The
+// keyboard window runs on a private Xvfb with real key presses (xdotool).
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "simpartner/bus_decode.h"
+#include "simpartner/channels.h"
+#include "simpartner/child_process.h"
+#include "simpartner/command_t.hpp"
+#include "simpartner/control_t.hpp"
+#include "simpartner/model_t.hpp"
+#include "simpartner/state_t.hpp"
+#include "simpartner/status_t.hpp"
+#include "simpartner/viewer/xvfb.h"
+
+namespace simpartner {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+const std::string kSource = SP_SOURCE_DIR;
+const std::string kBinary = SP_BINARY_DIR;
+
+std::string UniqueUrl(int offset) {
+  const int port = 20000 + (static_cast<int>(::getpid()) * 17 + 4001 + offset * 37) % 20000;
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=8388608";
+}
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void Control(const std::string& url, int8_t action) {
+  lcm::LCM lcm(url);
+  control_t control{};
+  control.sender = "teleop_process_test";
+  control.action = action;
+  ASSERT_EQ(lcm.publish(channels::kControl, &control), 0);
+}
+
+struct SeenCommand {
+  command_t command;
+  Clock::time_point when;
+};
+
+// What the test sees on the bus, decoded through DecodeLcm.
+class Bus {
+ public:
+  explicit Bus(const std::string& url) : lcm_(url) {
+    EXPECT_TRUE(lcm_.good());
+    lcm_.subscribe(channels::kState, &Bus::OnState, this)->setQueueCapacity(100000);
+    lcm_.subscribe(channels::kModel, &Bus::OnModel, this);
+    lcm_.subscribe(channels::kStatus, &Bus::OnStatus, this);
+    lcm_.subscribe(channels::kCommand, &Bus::OnCommand, this)->setQueueCapacity(100000);
+  }
+  bool Until(const std::function<bool()>& pred, double seconds) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (!pred() && Clock::now() < end) lcm_.handleTimeout(10);
+    return pred();
+  }
+  void Drain(double seconds) {
+    Until([] { return false; }, seconds);
+  }
+  bool HaveModelAndState() {
+    return model.simulation_id != 0 && state.simulation_id == model.simulation_id;
+  }
+  int Body(const std::string& name) const {
+    for (size_t k = 0; k < model.bodies.size(); ++k)
+      if (model.bodies[k].name == name) return static_cast<int>(k);
+    ADD_FAILURE() << "no body " << name;
+    return 0;
+  }
+  int Joint(const std::string& name) const {
+    for (size_t k = 0; k < model.joints.size(); ++k)
+      if (model.joints[k].name == name) return static_cast<int>(k);
+    ADD_FAILURE() << "no joint " << name;
+    return 0;
+  }
+  double X(const std::string& body) const { return state.bodies[Body(body)].position[0]; }
+  double Z(const std::string& body) const { return state.bodies[Body(body)].position[2]; }
+  // Heading about +y (left positive) of a body's +x axis.
+  double Heading(const std::string& body) const {
+    const double* q = state.bodies[Body(body)].orientation;  // w x y z
+    const double fx = 1 - 2 * (q[2] * q[2] + q[3] * q[3]);
+    const double fz = 2 * (q[1] * q[3] - q[0] * q[2]);
+    return std::atan2(-fz, fx);
+  }
+  double JointPosition(const std::string& joint) const {
+    return state.joints[Joint(joint)].position[0];
+  }
+  double MaxWheelRate() const {
+    double rate = 0;
+    for (const char* axle : {"Axle1", "Axle2", "Axle3", "Axle4"})
+      rate = std::max(rate, std::abs(state.joints[Joint(axle)].rate[0]));
+    return rate;
+  }
+
+  model_t model{};
+  state_t state{};
+  status_t status{};
+  std::vector<SeenCommand> commands;
+  int refused = 0;
+
+ private:
+  template <class T>
+  bool Decode(const lcm::ReceiveBuffer* b, const std::string& channel, T* out) {
+    if (DecodeFromBus(channel, b->data, b->data_size, out, &counter_)) {
+      ++refused;
+      return false;
+    }
+    return true;
+  }
+  void OnState(const lcm::ReceiveBuffer* b, const std::string& channel) {
+    state_t s;
+    if (Decode(b, channel, &s)) state = std::move(s);
+  }
+  void OnModel(const lcm::ReceiveBuffer* b, const std::string& channel) {
+    model_t m;
+    if (Decode(b, channel, &m)) model = std::move(m);
+  }
+  void OnStatus(const lcm::ReceiveBuffer* b, const std::string& channel) {
+    status_t s;
+    if (Decode(b, channel, &s)) status = std::move(s);
+  }
+  void OnCommand(const lcm::ReceiveBuffer* b, const std::string& channel) {
+    command_t c;
+    if (Decode(b, channel, &c)) commands.push_back({std::move(c), Clock::now()});
+  }
+  lcm::LCM lcm_;
+  BadMessageCounter counter_;
+};
+
+class TeleopProcessTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("sp_teleop_process_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (pad_fd_ >= 0) ::close(pad_fd_);
+    teleop_.reset();
+    sim_.reset();
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  void StartSim(const std::string& url, const std::string& world,
+                const std::string& log = "sim.log") {
+    sim_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{kBinary + "/sim_core/simpartner-sim", "--params", "/dev/null",
+                                 "--environment=" + kSource + "/models/worlds/" + world,
+                                 "--lcm-url", url},
+        (dir_ / log).string());
+  }
+  // The test build with its virtual pad, reading the FIFO `pad`.
+  void StartVirtualPad(const std::string& url) {
+    const std::string fifo = (dir_ / "pad").string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    // Held open for writing (O_RDWR does not wait for a reader), so the
+    // reader never sees the end of the script before the test is done.
+    pad_fd_ = ::open(fifo.c_str(), O_RDWR | O_CLOEXEC);
+    ASSERT_GE(pad_fd_, 0);
+    teleop_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{"/usr/bin/env", "SDL_VIDEODRIVER=dummy",
+                                 kBinary + "/teleop/simpartner-teleop-vpad", "--lcm-url", url,
+                                 "--script", fifo},
+        (dir_ / "teleop.log").string());
+  }
+  void Pad(const std::string& lines) {
+    ASSERT_EQ(::write(pad_fd_, lines.data(), lines.size()), static_cast<ssize_t>(lines.size()));
+  }
+  std::string Log(const std::string& name = "teleop.log") { return ReadText(dir_ / name); }
+  bool LogHas(const std::string& text, double seconds, const std::string& name = "teleop.log") {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < end) {
+      if (Log(name).find(text) != std::string::npos) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+  }
+  // Until teleop drives `model` with the pad connected.
+  void WaitReady(Bus& bus, const std::string& model) {
+    ASSERT_TRUE(bus.Until([&] { return bus.HaveModelAndState(); }, 15)) << Log("sim.log");
+    ASSERT_TRUE(LogHas("(" + model + "), mapping", 15)) << Log();
+    ASSERT_TRUE(LogHas("controller connected", 5)) << Log();
+  }
+  // Dead-man held, stick fully forward, until RearChassis is `metres`
+  // ahead of where it was (in +x, the robot's heading in these worlds).
+  void DriveForward(Bus& bus, double metres, double timeout) {
+    const double x0 = bus.X("RearChassis"), z0 = bus.Z("RearChassis");
+    Pad("button rightshoulder 1\naxis lefty -1\n");
+    ASSERT_TRUE(bus.Until([&] { return bus.X("RearChassis") - x0 >= metres; }, timeout))
+        << "moved " << bus.X("RearChassis") - x0 << " m\n" << Log();
+    EXPECT_LT(std::abs(bus.Z("RearChassis") - z0), 0.1 * metres);  // straight on
+  }
+
+  fs::path dir_;
+  std::unique_ptr<ChildProcess> sim_;
+  std::unique_ptr<ChildProcess> teleop_;
+  int pad_fd_ = -1;
+};
+
+// Commands per target in each whole second of [from, to).
+int MostCommandsOfATargetInASecond(const std::vector<SeenCommand>& commands, Clock::time_point from,
+                                   Clock::time_point to, std::string* which) {
+  int most = 0;
+  for (auto start = from; start + std::chrono::seconds(1) <= to;
+       start += std::chrono::milliseconds(100)) {
+    std::map<std::string, int> count;
+    for (const SeenCommand& c : commands)
+      if (c.when >= start && c.when < start + std::chrono::seconds(1)) ++count[c.command.target];
+    for (const auto& [target, n] : count)
+      if (n > most) most = n, *which = target;
+  }
+  return most;
+}
+
+TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanStopsWithinATenthOfASecondSignalExits) {
+  const std::string url = UniqueUrl(1);
+  Bus bus(url);
+  StartSim(url, "gen1_flat.xml");
+  StartVirtualPad(url);
+  WaitReady(bus, "WorkPartner gen1");
+
+  // Without the dead-man the stick does nothing.
+  const double x_start = bus.X("RearChassis");
+  Pad("axis lefty -1\n");
+  bus.Drain(1.5);
+  EXPECT_LT(std::abs(bus.X("RearChassis") - x_start), 0.02);
+  EXPECT_LT(bus.MaxWheelRate(), 0.05);
+
+  const auto moving_from = Clock::now();
+  DriveForward(bus, 1.0, 15);
+  // The shipped gen1 mapping: 2 rad/s at full stick.
+  EXPECT_NEAR(bus.MaxWheelRate(), 2.0, 0.2);
+
+  // Stick right: the Turner turns to -0.6 rad and the heading turns right.
+  const double heading0 = bus.Heading("RearChassis");
+  Pad("axis leftx 1\n");
+  ASSERT_TRUE(bus.Until([&] { return std::abs(bus.JointPosition("Turner") + 0.6) < 0.05; }, 5))
+      << "Turner at " << bus.JointPosition("Turner");
+  bus.Drain(3);
+  EXPECT_LT(bus.Heading("RearChassis") - heading0, -0.1) << "heading " << bus.Heading("RearChassis");
+  const auto moving_to = Clock::now();
+
+  // Never more than 10 commands a second to any actuator, while the input
+  // changed and while it did not.
+  std::string busiest;
+  const int most = MostCommandsOfATargetInASecond(bus.commands, moving_from, moving_to, &busiest);
+  EXPECT_LE(most, 10) << busiest;
+  EXPECT_GE(most, 8) << busiest;  // and repeated
+  EXPECT_EQ(bus.refused, 0);
+
+  // Release: wheels stopped within 0.2 s of sim time, the Turner held.
+  ASSERT_GT(bus.MaxWheelRate(), 1.0);
+  const double released_at = bus.state.sim_time;
+  Pad("button rightshoulder 0\n");
+  ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() < 0.05; }, 5));
+  const double stopped_after = bus.state.sim_time - released_at;
+  EXPECT_LE(stopped_after, 0.2) << "wheels stopped " << stopped_after << " s (sim) after release";
+  RecordProperty("deadman_stop_sim_seconds", std::to_string(stopped_after));
+  const double turner_held = bus.JointPosition("Turner");
+  bus.Drain(1.0);
+  EXPECT_LT(bus.MaxWheelRate(), 0.05);
+  EXPECT_NEAR(bus.JointPosition("Turner"), turner_held, 0.02);
+  bool held = false;
+  for (const SeenCommand& c : bus.commands)
+    held |= c.command.target == "TurnerMotor" && c.command.action == command_t::ACTION_HOLD;
+  EXPECT_TRUE(held);
+
+  // Moving again, then SIGTERM: the wheels stop and teleop exits 0.
+  Pad("button rightshoulder 1\naxis leftx 0\n");
+  ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() > 1.0; }, 5));
+  teleop_->Signal(SIGTERM);
+  EXPECT_EQ(teleop_->Wait(std::chrono::seconds(3)).value_or(-1), 0) << Log();
+  ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() < 0.05; }, 2)) << Log();
+  EXPECT_NE(Log().find("SIGTERM: stopping the wheels"), std::string::npos);
+}
+
+TEST_F(TeleopProcessTest, UnpluggingTheControllerStopsTheRobot) {
+  const std::string url = UniqueUrl(2);
+  Bus bus(url);
+  StartSim(url, "gen1_flat.xml");
+  StartVirtualPad(url);
+  WaitReady(bus, "WorkPartner gen1");
+  DriveForward(bus, 0.3, 10);
+  Pad("detach\n");
+  ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() < 0.05; }, 2)) << Log();
+  EXPECT_TRUE(LogHas("controller unplugged", 2));
+  const double x = bus.X("RearChassis");
+  bus.Drain(1.5);
+  EXPECT_NEAR(bus.X("RearChassis"), x, 0.02);
+  // Plugged in again with the stick still forward: nothing moves until the
+  // dead-man is pressed again (the new device starts released).
+  Pad("attach\naxis lefty -1\n");
+  ASSERT_TRUE(LogHas("controller connected: SimPartner virtual pad\nteleop", 3) ||
+              LogHas("vpad: attached\nteleop: controller connected", 3))
+      << Log();
+  bus.Drain(1.0);
+  EXPECT_LT(bus.MaxWheelRate(), 0.05);
+  DriveForward(bus, 0.3, 10);
+}
+
+TEST_F(TeleopProcessTest, FollowsASimThatIsKilledAndStartedAgainAndAPausedOne) {
+  const std::string url = UniqueUrl(3);
+  Bus bus(url);
+  StartSim(url, "gen1_flat.xml");
+  StartVirtualPad(url);
+  WaitReady(bus, "WorkPartner gen1");
+
+  // Paused: only SIM_STATUS comes, once a second; teleop keeps the sim as
+  // heard and the robot moves on when it resumes.
+  DriveForward(bus, 0.2, 10);
+  const size_t before_pause = Log().size();
+  Control(url, control_t::ACTION_PAUSE);
+  ASSERT_TRUE(bus.Until([&] { return bus.status.run_state == status_t::RUN_PAUSED; }, 3));
+  bus.Drain(3.5);
+  const std::string during_pause = Log().substr(before_pause);
+  EXPECT_NE(during_pause.find("sim paused"), std::string::npos) << during_pause;
+  EXPECT_EQ(during_pause.find("not heard"), std::string::npos) << during_pause;
+  const double x_paused = bus.X("RearChassis");
+  Control(url, control_t::ACTION_RESUME);
+  ASSERT_TRUE(bus.Until([&] { return bus.X("RearChassis") > x_paused + 0.2; }, 5)) << Log();
+
+  // Killed: teleop stops (sim not heard) and drives the new one, another
+  // generation on the same bus.
+  const int64_t first = bus.model.simulation_id;
+  sim_->Signal(SIGKILL);
+  sim_->Wait(std::chrono::seconds(5));
+  EXPECT_TRUE(LogHas("stopped: sim not heard", 3)) << Log();
+  StartSim(url, "flat_ground_gen2.xml", "sim2.log");
+  ASSERT_TRUE(bus.Until([&] { return bus.model.simulation_id != first && bus.HaveModelAndState(); },
+                        15));
+  ASSERT_TRUE(LogHas("(WorkPartner gen2), mapping", 15)) << Log();
+  DriveForward(bus, 0.5, 15);
+}
+
+// gen1 to gen4, each in its world, driven forward 1 m by the stick.
+TEST_F(TeleopProcessTest, EveryGenerationDrivesForwardOneMetre) {
+  const std::pair<const char*, const char*> generations[] = {
+      {"gen1_flat.xml", "WorkPartner gen1"},
+      {"flat_ground_gen2.xml", "WorkPartner gen2"},
+      {"flat_ground.xml", "WorkPartner gen3"},
+      {"gen4_flat.xml", "WorkPartner gen4"}};
+  int offset = 10;
+  for (const auto& [world, model] : generations) {
+    SCOPED_TRACE(world);
+    const std::string url = UniqueUrl(offset++);
+    Bus bus(url);
+    StartSim(url, world);
+    if (pad_fd_ >= 0) ::close(pad_fd_), pad_fd_ = -1;
+    fs::remove(dir_ / "pad");
+    fs::remove(dir_ / "teleop.log");
+    StartVirtualPad(url);
+    WaitReady(bus, model);
+    const auto start = Clock::now();
+    DriveForward(bus, 1.0, 20);
+    RecordProperty(std::string(model) + " seconds for 1 m",
+                   std::to_string(std::chrono::duration<double>(Clock::now() - start).count()));
+    Pad("button rightshoulder 0\n");
+    ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() < 0.05; }, 2));
+    EXPECT_EQ(bus.refused, 0);
+    teleop_.reset();
+    sim_.reset();
+  }
+}
+
+// The keyboard window on a private X server, with real key presses: space
+// held is the dead-man, Up drives, Right steers right; letting go stops.
+TEST_F(TeleopProcessTest, KeyboardWindowDrivesWithRealKeyPresses) {
+  const std::string url = UniqueUrl(4);
+  Bus bus(url);
+  StartSim(url, "gen1_flat.xml");
+  viewer::XvfbServer xvfb(1280, 720, (dir_ / "xvfb.log").string());
+  teleop_ = std::make_unique<ChildProcess>(
+      std::vector<std::string>{"/usr/bin/env", "DISPLAY=" + xvfb.display(),
+                               kBinary + "/teleop/simpartner-teleop", "--keyboard", "--lcm-url",
+                               url},
+      (dir_ / "teleop.log").string());
+  ASSERT_TRUE(bus.Until([&] { return bus.HaveModelAndState(); }, 15)) << Log("sim.log");
+  ASSERT_TRUE(LogHas("keyboard window open", 10)) << Log();
+  ASSERT_TRUE(LogHas("(WorkPartner gen1), mapping", 15)) << Log();
+  auto xdotool = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"/usr/bin/env", "DISPLAY=" + xvfb.display(), "/usr/bin/xdotool"});
+    ChildProcess run(args, (dir_ / "xdotool.log").string());
+    EXPECT_EQ(run.Wait(std::chrono::seconds(10)).value_or(-1), 0) << Log("xdotool.log");
+  };
+  // No window manager: keyboard focus follows the pointer onto the window,
+  // which is centred on the screen.
+  xdotool({"mousemove", "640", "360"});
+  bus.Drain(0.5);
+
+  // Up without space: nothing moves.
+  const double x0 = bus.X("RearChassis");
+  xdotool({"keydown", "Up"});
+  bus.Drain(1.0);
+  EXPECT_LT(std::abs(bus.X("RearChassis") - x0), 0.02);
+  xdotool({"keydown", "space"});
+  ASSERT_TRUE(bus.Until([&] { return bus.X("RearChassis") - x0 > 0.5; }, 10)) << Log();
+  xdotool({"keydown", "Right"});
+  ASSERT_TRUE(bus.Until([&] { return bus.JointPosition("Turner") < -0.4; }, 5))
+      << "Turner at " << bus.JointPosition("Turner") << "\n" << Log();
+  xdotool({"keyup", "space"});
+  ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() < 0.05; }, 2)) << Log();
+  xdotool({"keyup", "Up"});
+  xdotool({"keyup", "Right"});
+  EXPECT_TRUE(LogHas("stopped: dead-man released", 2)) << Log();
+  xdotool({"key", "Escape"});
+  EXPECT_EQ(teleop_->Wait(std::chrono::seconds(5)).value_or(-1), 0) << Log();
+}
+
+}  // namespace
+}  // namespace simpartner
