@@ -189,6 +189,115 @@ def pole_task():
     w.write()
 
 
+# ------------------------------------------------------------------ gaits
+# experiments_gen1.cpp RunGait: the leg angle targets and wheel speeds of
+# a statically stable gait on the 18 kg gen1. The experiment sends them
+# every step; a file of 350,000 commands is not something a user reads or
+# plays, so they are sampled every GAIT_EVERY steps (50 Hz) with the
+# experiment's formulas (targets one P time constant ahead), and every
+# phase change's hold is kept.
+GAIT_EVERY = 20
+
+
+def foot_at(front, dx):
+    link, height = 0.3, 0.48
+    d = math.hypot(dx, height)
+    beta = math.acos(d / (2.0 * link))
+    gamma = math.atan2(-height, dx)
+    thigh = gamma - beta if front else gamma + beta
+    calf = gamma + beta if front else gamma - beta
+    thigh0 = math.atan2(-0.24, -0.18 if front else 0.18)
+    calf0 = math.atan2(-0.24, 0.18 if front else -0.18)
+    return thigh - thigh0, (calf - calf0) - (thigh - thigh0)
+
+
+def ease(u):
+    return 0.5 - 0.5 * math.cos(math.pi * min(max(u, 0.0), 1.0))
+
+
+def gait(name, description, cycle, cycles):
+    """cycle: (duration, foot_from[4], foot_to[4], rolling[4], body_moves)."""
+    w = Writer(name, "models/worlds/slippery_ground.xml", description)
+    leg_p, dt = 100.0, 0.001
+    cycle_time = 0.0
+    for p in cycle:
+        cycle_time += p[0]
+
+    def phase_at(t):
+        in_cycle = math.fmod(max(0.0, t - 1.0), cycle_time)
+        for index, p in enumerate(cycle):
+            if in_cycle < p[0]:
+                return index, in_cycle / p[0]
+            in_cycle -= p[0]
+        return len(cycle) - 1, 1.0
+
+    def foot(t, leg):
+        if t < 1.0:
+            return cycle[0][1][leg]
+        index, u = phase_at(t)
+        p = cycle[index]
+        return p[1][leg] + (p[2][leg] - p[1][leg]) * ease(u)
+
+    state = {"last_phase": None}
+
+    def command(t, sample):
+        ahead = t + 1.0 / leg_p
+        if sample:
+            for leg in range(4):
+                hip, knee = foot_at(leg < 2, foot(ahead, leg))
+                n = str(leg + 1)
+                angle(w, t, "Hip" + n + "Motor", hip, 1000.0, leg_p, 0.0, 0.0)
+                angle(w, t, "Knee" + n + "Motor", knee, 1000.0, leg_p, 0.0, 0.0)
+        if t < 1.0:
+            return
+        index, u = phase_at(t)
+        p = cycle[index]
+        h = 1e-3
+        relative, body = [0.0] * 4, 0.0
+        for leg in range(4):
+            relative[leg] = (foot(t + h, leg) - foot(t - h, leg)) / (2 * h)
+            if not p[3][leg] and p[4]:
+                body = -relative[leg]
+        for leg in range(4):
+            motor = "Axle%dMotor" % (leg + 1)
+            if not p[3][leg]:
+                if state["last_phase"] != index:
+                    w.hold(t, motor, WHEEL_TORQUE)
+                continue
+            if sample:
+                velocity(w, t, motor, (body + relative[leg]) / WHEEL_RADIUS)
+        state["last_phase"] = index
+
+    end = 1.0 + cycles * cycle_time
+    last = int(round(end / dt))
+    command(0.0, True)
+    for step in range(1, last + 1):
+        command(step * dt, step % GAIT_EVERY == 0)
+    w.end(end)
+    w.write()
+
+
+def caterpillar():
+    s = 0.25
+    gait("gen1_light_caterpillar.xml",
+         "gen1 18 kg on ice: caterpillar gait, 6 cycles of 5 s (front feet reach 0.25 m, then "
+         "the body follows over the held front wheels); leg targets at 50 Hz",
+         [(1.5, [0, 0, 0, 0], [s, s, 0, 0], [True, True, False, False], False),
+          (3.5, [s, s, 0, 0], [0, 0, 0, 0], [False, False, True, True], True)], 6)
+
+
+def rolking():
+    s = 0.25
+    gait("gen1_light_rolking.xml",
+         "gen1 18 kg on ice: rolling walking, 5 cycles of 7 s (legs 1, 3, 2, 4 reach 0.25 m one "
+         "at a time, then the body follows); leg targets at 50 Hz",
+         [(1.0, [0, 0, 0, 0], [s, 0, 0, 0], [True, False, False, False], False),
+          (1.0, [s, 0, 0, 0], [s, 0, s, 0], [False, False, True, False], False),
+          (1.0, [s, 0, s, 0], [s, s, s, 0], [False, True, False, False], False),
+          (1.0, [s, s, s, 0], [s, s, s, s], [False, False, False, True], False),
+          (3.0, [s, s, s, s], [0, 0, 0, 0], [False, False, False, False], True)], 5)
+
+
 def main():
     circle("gen1_circle_equal_speeds.xml", 0.2972, 1.0, 1.0, 8.0, 30.0,
            "gen1 circle: steering 0.2972 rad, all wheels 1 m/s (play with the sim's "
@@ -199,6 +308,8 @@ def main():
     test_track()
     scanner()
     pole_task()
+    caterpillar()
+    rolking()
 
 
 if __name__ == "__main__":
