@@ -103,6 +103,9 @@ OdeWorld::OdeWorld(const FlatModel& model, const Parameters& params)
     : model_(model), params_(params) {
   InstallOdeHandlers();
   try {
+    // ODE's messages while building (e.g. why dMassCheck failed) become
+    // warnings of the first step instead of going to stderr.
+    const MessageSinkScope sink(&messages_);
     Build();
   } catch (const OdeError& e) {
     // No destructor runs for a constructor that throws: the ODE objects
@@ -110,7 +113,10 @@ OdeWorld::OdeWorld(const FlatModel& model, const Parameters& params)
     const std::string during =
         building_body_ >= 0 ? "building body '" + BodyName(static_cast<size_t>(building_body_)) + "'"
                             : std::string("building the world");
-    throw OdeError(e.ode_message(), during,
+    // ODE says why in a message just before the assertion (dMassCheck:
+    // "inertia must be positive definite"); keep the last one.
+    const std::string why = messages_.empty() ? "" : " after \"" + messages_.back() + "\"";
+    throw OdeError(e.ode_message() + why, during,
                    building_body_ >= 0
                        ? std::vector<std::string>{BodyName(static_cast<size_t>(building_body_))}
                        : std::vector<std::string>{});
@@ -460,7 +466,9 @@ void OdeWorld::Step() {
   if (dead_)
     throw OdeError("the world failed in an earlier step and cannot go on", "step",
                    SuspectBodies());
-  messages_.clear();
+  // Messages of the construction are reported with the first step.
+  if (!first_step_) messages_.clear();
+  first_step_ = false;
   contact_records_.clear();
   feedback_used_ = 0;
   contact_count_ = 0;
@@ -470,6 +478,9 @@ void OdeWorld::Step() {
       dSpaceCollide(space_, this, &OdeWorld::NearCallback);
     } catch (const OdeError& e) {
       throw Fail(e, "collision");
+    } catch (...) {
+      dead_ = true;  // our own callback threw: the space stays locked
+      throw;
     }
     try {
       if (params_.stepper == "quick") {

@@ -96,7 +96,8 @@ class OdeWorld {
   // Throws OdeError when ODE fails; the world is dead from then on.
   void Step();
   bool dead() const { return dead_; }
-  // Messages ODE printed (e.g. "LCP internal error") during the last Step.
+  // Messages ODE printed (e.g. "LCP internal error") during the last Step
+  // (the first Step's include those of the construction).
   const std::vector<std::string>& last_messages() const { return messages_; }
   int last_contact_count() const { return contact_count_; }
 
@@ -164,6 +165,7 @@ class OdeWorld {
   // dCloseODE). A dead world's list is abandoned with it.
   dThreadingImplementationID threading_ = nullptr;
   bool dead_ = false;
+  bool first_step_ = true;
   int building_body_ = -1;           // during construction, for messages
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;
