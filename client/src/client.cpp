@@ -87,67 +87,98 @@ void Client::ReceiveLoop() {
 }
 
 void Client::OnMessage(const void* data, size_t size, const std::string& channel) {
-  auto refused = [&](const std::optional<std::string>& why, bool print) {
+  bool print = false;
+  // Counts a message that decodes but does not fit the model it claims.
+  auto nonsense = [&](const std::string& what) {
+    const std::string description = channel + ": " + what + "; ignored";
+    if (bad_messages_.Count(channel, description))
+      std::cerr << "simpartner client: " << description << "\n";
+  };
+  auto refused = [&](const std::optional<std::string>& why) {
     if (why && print) std::cerr << "simpartner client: " << *why << "\n";
     return why.has_value();
   };
-  bool print = false;
   if (channel == channels::kModel) {
     auto model = std::make_shared<model_t>();
-    std::unique_lock<std::mutex> lock(mutex_);
-    if (refused(DecodeFromBus(channel, data, size, model.get(), &bad_messages_, &print), print))
-      return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (refused(DecodeFromBus(channel, data, size, model.get(), &bad_messages_, &print))) return;
+    std::shared_ptr<const Catalog> catalog;
+    if (catalog_ && model->simulation_id == catalog_->simulation_id()) {
+      catalog = catalog_;  // the periodic announcement of the model we have
+    } else {
+      try {
+        catalog = std::make_shared<const Catalog>(Catalog::FromModel(*model));
+      } catch (const ClientError& e) {
+        nonsense(e.what());
+        return;
+      }
+    }
     newest_model_ = model;
+    newest_catalog_ = catalog;
     ++model_count_;
     NoteSimulation(model->simulation_id);
     changed_.notify_all();
   } else if (channel == channels::kState) {
     state_t state;
-    std::function<void(const state_t&)> callback;
     {
-      std::unique_lock<std::mutex> lock(mutex_);
-      if (refused(DecodeFromBus(channel, data, size, &state, &bad_messages_, &print), print))
-        return;
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (refused(DecodeFromBus(channel, data, size, &state, &bad_messages_, &print))) return;
+      if (catalog_) {
+        // Another simulation's states (a new one announces itself with
+        // SIM_MODEL first) and states that do not fit the model are not
+        // the state of the sim we talk to.
+        if (state.simulation_id != catalog_->simulation_id()) return;
+        if (state.bodies.size() != model_->bodies.size() ||
+            state.joints.size() != model_->joints.size()) {
+          nonsense("state of step " + std::to_string(state.step) + " has " +
+                   std::to_string(state.bodies.size()) + " bodies and " +
+                   std::to_string(state.joints.size()) + " joints, the model " +
+                   std::to_string(model_->bodies.size()) + " and " +
+                   std::to_string(model_->joints.size()));
+          return;
+        }
+      }
       last_heard_ = Clock::now();
-      NoteSimulation(state.simulation_id);
       state_ = state;
-      if (catalog_ && state.simulation_id == catalog_->simulation_id()) callback = on_state_;
       changed_.notify_all();
     }
-    if (callback) callback(state);
+    std::lock_guard<std::mutex> callback_lock(callback_mutex_);
+    if (on_state_ && catalog_known_) on_state_(state);
   } else if (channel == channels::kStatus) {
     status_t status;
-    std::unique_lock<std::mutex> lock(mutex_);
-    if (refused(DecodeFromBus(channel, data, size, &status, &bad_messages_, &print), print))
-      return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (refused(DecodeFromBus(channel, data, size, &status, &bad_messages_, &print))) return;
     last_heard_ = Clock::now();
-    // A status carries the id too, but a quitting sim's last status is no
-    // restart; SIM_MODEL and SIM_STATE tell.
     status_ = status;
     ++status_count_;
     changed_.notify_all();
   } else if (channel == channels::kCommandReply) {
     command_reply_t reply;
-    std::unique_lock<std::mutex> lock(mutex_);
-    if (refused(DecodeFromBus(channel, data, size, &reply, &bad_messages_, &print), print))
-      return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (refused(DecodeFromBus(channel, data, size, &reply, &bad_messages_, &print))) return;
     if (reply.sender != sender_) return;  // every client sees every reply
     replies_[reply.request_id] = reply;
     while (replies_.size() > kMaxKeptReplies) replies_.erase(replies_.begin());
     changed_.notify_all();
   } else if (channel == channels::kSensor) {
     sensor_reading_t reading;
-    std::function<void(const sensor_reading_t&)> callback;
     {
-      std::unique_lock<std::mutex> lock(mutex_);
-      if (refused(DecodeFromBus(channel, data, size, &reading, &bad_messages_, &print), print))
-        return;
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (refused(DecodeFromBus(channel, data, size, &reading, &bad_messages_, &print))) return;
       if (!catalog_ || reading.simulation_id != catalog_->simulation_id()) return;
+      const bool known = reading.sensor >= 0 &&
+                         static_cast<size_t>(reading.sensor) < model_->sensors.size() &&
+                         model_->sensors[static_cast<size_t>(reading.sensor)].name == reading.name;
+      if (!known) {
+        nonsense("reading of sensor " + std::to_string(reading.sensor) + " '" + reading.name +
+                 "', which the model does not have");
+        return;
+      }
       readings_[reading.sensor] = reading;
-      callback = on_reading_;
       changed_.notify_all();
     }
-    if (callback) callback(reading);
+    std::lock_guard<std::mutex> callback_lock(callback_mutex_);
+    if (on_reading_) on_reading_(reading);
   }
 }
 
@@ -188,9 +219,10 @@ std::shared_ptr<const Catalog> Client::LearnModel(
     }
     changed_.wait_until(lock, std::min(deadline, next_request));
   }
-  auto catalog = std::make_shared<const Catalog>(Catalog::FromModel(*newest_model_));
+  const std::shared_ptr<const Catalog> catalog = newest_catalog_;
   model_ = newest_model_;
   catalog_ = catalog;
+  catalog_known_ = true;
   readings_.clear();
   replies_.clear();
   // Followed; unless a still newer sim has shown up meanwhile.
@@ -417,12 +449,12 @@ status_t Client::WaitForStatus(double timeout) {
 }
 
 void Client::OnState(std::function<void(const state_t&)> callback) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<std::mutex> lock(callback_mutex_);
   on_state_ = std::move(callback);
 }
 
 void Client::OnReading(std::function<void(const sensor_reading_t&)> callback) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<std::mutex> lock(callback_mutex_);
   on_reading_ = std::move(callback);
 }
 

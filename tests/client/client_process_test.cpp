@@ -9,7 +9,11 @@
 #include <cmath>
 #include <thread>
 
+#include <lcm/lcm-cpp.hpp>
+
+#include "../support/hostile_corpus.h"
 #include "client_test_support.h"
+#include "simpartner/channels.h"
 #include "simpartner/client/client.h"
 
 namespace simpartner::client {
@@ -262,6 +266,41 @@ TEST_F(ClientProcessTest, ConcurrentSendersAndClientsGetTheirOwnReplies) {
   for (std::thread& t : senders) t.join();
   EXPECT_EQ(refused, k);
   EXPECT_EQ(sent.load(), 400);
+}
+
+// Anyone on the segment can send to the group: every hostile datagram on
+// the channels the client reads is counted and ignored, none fakes a
+// restart or replaces the state, and the client goes on working.
+TEST_F(ClientProcessTest, HostileInputIsCountedAndIgnored) {
+  const std::string url = UniqueUrl(7);
+  SimProcess sim("scanner_wall.xml", url, Log("sim.log"));
+  Client client(Options(url));
+  const auto catalog = client.catalog();
+  const size_t bodies = client.model()->bodies.size();
+  lcm::LCM attacker(url);
+  ASSERT_TRUE(attacker.good());
+  int sent = 0;
+  for (const auto& message : simpartner::testing::HostileCorpus(catalog->simulation_id())) {
+    const std::string& c = message.channel;
+    if (c != channels::kModel && c != channels::kState && c != channels::kStatus &&
+        c != channels::kCommandReply && c != channels::kSensor)
+      continue;
+    attacker.publish(c, message.bytes.data(), static_cast<unsigned>(message.bytes.size()));
+    ++sent;
+  }
+  ASSERT_GT(sent, 15);
+  // Everything sent before this reply has been handled by then.
+  const command_reply_t reply = client.Command(SetVelocity(client.Find("Axle1Motor"), {1.0}));
+  EXPECT_TRUE(reply.accepted);
+  const std::string summary = client.BadMessageSummary();
+  for (const char* channel : {"SIM_MODEL", "SIM_STATE", "SIM_STATUS", "SIM_SENSOR",
+                              "SIM_COMMAND_REPLY"})
+    EXPECT_NE(summary.find(channel), std::string::npos) << channel << " in '" << summary << "'";
+  EXPECT_FALSE(client.PendingRestart().has_value());
+  const state_t s = client.WaitUntilSimTime(client.LatestState()->sim_time + 0.05, 5.0);
+  EXPECT_EQ(s.bodies.size(), bodies);
+  EXPECT_EQ(s.simulation_id, catalog->simulation_id());
+  EXPECT_FALSE(client.LatestReading("Scanner").has_value());  // the forged one was not kept
 }
 
 }  // namespace

@@ -6,9 +6,16 @@
 // any thread (teleop's UI loop, a sequencer's main loop); they only lock a
 // mutex briefly and publish, or wait on a condition variable fed by the
 // receive thread. Callbacks (OnState, OnReading) run on the receive thread:
-// keep them short and do not call waiting methods from them.
+// keep them short, and do not call waiting methods, OnState or OnReading
+// from them.
 //
-// Restarts: when a SIM_MODEL or SIM_STATE with a new simulation id arrives,
+// Input: every message is decoded through DecodeFromBus; messages that
+// decode but do not fit the model (a state with other body counts, a
+// reading of a sensor the model lacks, a model whose indices contradict
+// it) are counted as bad too (BadMessageSummary) and ignored.
+//
+// Restarts: when a SIM_MODEL with a new simulation id arrives (a sim sends
+// it when it starts or resets, and every modelPeriod),
 // every call that depends on the model (Send, Command, Wait*) throws
 // SimRestarted until Relearn() takes the new model; then the client goes
 // on. Reset() does this by itself. Run control (Pause, Resume, ...) and the
@@ -135,8 +142,10 @@ class Client {
   void OnState(std::function<void(const state_t&)> callback);
   void OnReading(std::function<void(const sensor_reading_t&)> callback);
 
-  // Seconds since the last SIM_STATE or SIM_STATUS (a running or paused
-  // sim sends a status every second); infinity before the first.
+  // Seconds since the last SIM_STATE or SIM_STATUS; infinity before the
+  // first. A running sim sends states every stateEvery steps; a paused one
+  // only its status, every statusPeriod (1 s): tell a paused sim from a
+  // silent one with LatestStatus()->run_state.
   double SecondsSinceHeard() const;
   // The restart noticed and not yet followed, if any (does not throw).
   std::optional<SimRestarted> PendingRestart() const;
@@ -172,6 +181,7 @@ class Client {
   std::shared_ptr<const Catalog> catalog_;
   std::shared_ptr<const model_t> model_;         // learned
   std::shared_ptr<const model_t> newest_model_;  // last seen on the bus
+  std::shared_ptr<const Catalog> newest_catalog_;  // built from it (it is valid)
   std::optional<state_t> state_;
   std::optional<status_t> status_;
   uint64_t status_count_ = 0;
@@ -181,8 +191,12 @@ class Client {
   std::optional<SimRestarted> restart_;
   int64_t latest_simulation_id_ = 0;
   std::optional<Clock::time_point> last_heard_;
+  // Held while a callback runs, so that once OnState/OnReading returns the
+  // old callback is not running any more.
+  std::mutex callback_mutex_;
   std::function<void(const state_t&)> on_state_;
   std::function<void(const sensor_reading_t&)> on_reading_;
+  std::atomic<bool> catalog_known_{false};
   BadMessageCounter bad_messages_;
   int64_t next_request_id_ = 1;
   std::atomic<bool> stop_{false};
