@@ -345,7 +345,7 @@ TEST_F(LoggerProcessTest, BadMessagesAreCountedReportedAndNeverWritten) {
   EXPECT_NE(summary.find("[SIM_MODEL: 0 malformed, 1 invalid]"), std::string::npos) << summary;
   EXPECT_NE(summary.find("[SIM_COMMAND: 1 malformed, 0 invalid]"), std::string::npos) << summary;
   EXPECT_NE(summary.find("[SIM_SENSOR: 1 malformed, 0 invalid]"), std::string::npos) << summary;
-  EXPECT_NE(log.find("SIM_STATE: message of 7 bytes is not a simpartner.state_t"), std::string::npos) << log;
+  EXPECT_NE(log.find("SIM_STATE: 7 bytes refused as simpartner.state_t"), std::string::npos) << log;
   EXPECT_NE(log.find("SIM_MODEL: model of simulation 777: sensors[0].joint = 99 (no such joint)"),
             std::string::npos) << log;
 }
