@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <climits>
+#include <map>
+#include <set>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -17,6 +19,7 @@
 #include "simpartner/logger/receiver.h"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "../support/hostile_corpus.h"
 
 namespace simpartner::logger {
 namespace {
@@ -345,6 +348,44 @@ TEST_F(ReceiverTest, HostileLengthsAndCountsAreRefusedAndLoggingGoesOn) {
             std::string::npos) << text;
   EXPECT_NE(text.find("field 'num_bodies' at byte 40: count 2147483647"), std::string::npos) << text;
   EXPECT_NE(text.find("(3 malformed so far)"), std::string::npos) << text;
+}
+
+// Every datagram of the shared hostile corpus on the logger's channels,
+// each followed by a valid state: every undecodable one is counted as
+// malformed on its channel, nothing of them reaches the queue but what
+// fits (a command with odd values is still a command seen on the bus), and
+// every valid state after them is queued, in order.
+TEST_F(ReceiverTest, TheHostileCorpusIsRefusedAndTheValidStatesAroundItAreKept) {
+  Start();
+  Publish(channels::kModel, TwoBodyModel(5));
+  ASSERT_EQ(Queued().size(), 1u);  // the model
+  const std::set<std::string> subscribed = {channels::kModel, channels::kState, channels::kSensor,
+                                            channels::kCommand, channels::kCommandReply,
+                                            channels::kStatus};
+  std::map<std::string, uint64_t> undecodable;
+  int64_t step = 0;
+  Publish(channels::kState, State(5, ++step));
+  for (const simpartner::testing::HostileMessage& m : simpartner::testing::HostileCorpus(5)) {
+    if (subscribed.count(m.channel) == 0) continue;
+    if (m.undecodable) ++undecodable[m.channel];
+    PublishRaw(m.channel.c_str(), m.bytes);
+    Publish(channels::kState, State(5, ++step));
+  }
+  ASSERT_GT(undecodable.size(), 4u) << "the corpus covers the logger's channels";
+  const ReceiverStats stats = receiver_->Stats();
+  for (const auto& [channel, count] : undecodable)
+    EXPECT_EQ(stats.channels.at(channel).malformed, count) << channel;
+  std::vector<int64_t> steps, expected;
+  for (const Record& r : Queued()) {
+    if (r.kind == RecordKind::kState) steps.push_back(StepOf(r));
+    EXPECT_NE(r.kind, RecordKind::kModel) << "a hostile model was queued";
+    EXPECT_NE(r.kind, RecordKind::kSensor) << "a hostile sensor reading was queued";
+  }
+  for (int64_t s = 1; s <= step; ++s) expected.push_back(s);
+  EXPECT_EQ(steps, expected);
+  const std::string text = out_.str();
+  for (const auto& [channel, count] : undecodable)
+    EXPECT_NE(text.find(channel + ": "), std::string::npos) << channel << "\n" << text;
 }
 
 // A state whose step is beyond what the sim's rate allows since the last
