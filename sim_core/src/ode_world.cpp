@@ -44,15 +44,11 @@ void OdeMessage(int number, const char* format, va_list args) {
 // with unwind tables and with its assertions on (dIASSERT, dUASSERT and
 // dIVERIFY reach dDebug), and an exception passes through its frames;
 // what ODE leaves behind is abandoned with the dead world (see OdeError).
-[[noreturn]] void OdeFatal(int number, const char* format, va_list args) {
+[[noreturn]] void OdeFatalHandler(int number, const char* format, va_list args) {
   char text[512];
   std::vsnprintf(text, sizeof text, format, args);
   (void)number;  // 1 = internal assertion, 2 = usage error: the text says which
   throw OdeError(text, "", {});
-}
-
-void OdeFatalHandler(int number, const char* format, va_list args) {
-  OdeFatal(number, format, args);
 }
 
 // Restores the thread's message sink on every path out of a step.
