@@ -219,8 +219,8 @@ XmlDocPtr ParseAndValidate(const std::string& xml, const std::string& file_name,
 // Walks a valid document into segments, keeping every problem it finds.
 class Builder {
  public:
-  Builder(Sequence* sequence, DiagnosticList* diagnostics)
-      : sequence_(sequence), diagnostics_(diagnostics) {
+  Builder(Sequence* sequence, DiagnosticList* diagnostics, size_t max_commands)
+      : sequence_(sequence), diagnostics_(diagnostics), max_commands_(max_commands) {
     sequence_->segments.emplace_back();
   }
 
@@ -279,8 +279,8 @@ class Builder {
   Segment& Current() { return sequence_->segments.back(); }
 
   bool Room(const xmlNode* node, size_t more) {
-    if (commands_ + more > kMaxCommands) {
-      Error(node, "the sequence unrolls to more than " + std::to_string(kMaxCommands) +
+    if (commands_ + more > max_commands_) {
+      Error(node, "the sequence unrolls to more than " + std::to_string(max_commands_) +
                       " commands (repeats and ramps included)");
       stopped_ = true;
       return false;
@@ -450,8 +450,8 @@ class Builder {
       return;
     }
     const double passes = std::floor(*duration / *every + 1e-9);
-    if (passes + 1 > static_cast<double>(kMaxCommands)) {
-      Room(node, kMaxCommands + 1);
+    if (passes + 1 > static_cast<double>(max_commands_)) {
+      Room(node, max_commands_ + 1);
       return;
     }
     const size_t n = static_cast<size_t>(passes);
@@ -568,8 +568,8 @@ class Builder {
     const double first = cursor_;
     if (period) ++in_period_repeat_;
     for (int pass = 0; pass < static_cast<int>(*count) && !stopped_; ++pass) {
-      if (++passes_ > kMaxCommands * 4) {
-        Error(node, "the repeats nest to more than " + std::to_string(kMaxCommands * 4) +
+      if (++passes_ > max_commands_ * 4) {
+        Error(node, "the repeats nest to more than " + std::to_string(max_commands_ * 4) +
                         " passes");
         stopped_ = true;
         break;
@@ -589,6 +589,7 @@ class Builder {
 
   Sequence* sequence_;
   DiagnosticList* diagnostics_;
+  size_t max_commands_;
   double block_start_ = 0.0;
   double cursor_ = 0.0;
   size_t commands_ = 0;
@@ -659,7 +660,8 @@ const std::string& SequenceDtd(int version) {
   return version == 1 ? v1 : v2;
 }
 
-SequenceParseResult ParseSequence(const std::string& xml, const std::string& file_name) {
+SequenceParseResult ParseSequence(const std::string& xml, const std::string& file_name,
+                                  size_t max_commands) {
   SequenceParseResult result;
   int version = 0;
   XmlDocPtr doc = ParseAndValidate(xml, file_name, &result, &version);
@@ -672,7 +674,7 @@ SequenceParseResult ParseSequence(const std::string& xml, const std::string& fil
   sequence.name = Attribute(root, "name").value_or("");
   sequence.robot = Trim(Attribute(root, "robot").value_or(""));
   sequence.description = Attribute(root, "description").value_or("");
-  Builder builder(&sequence, &result.diagnostics);
+  Builder builder(&sequence, &result.diagnostics, std::min(max_commands, kMaxCommands));
   builder.Block(root, 0.0);
   builder.Finish();
   if (result.diagnostics.empty()) result.sequence = std::move(sequence);

@@ -84,7 +84,10 @@ struct SequenceParseResult {
 // file cannot take the memory of the machine.
 inline constexpr size_t kMaxCommands = 250000;
 
-SequenceParseResult ParseSequence(const std::string& xml, const std::string& file_name);
+// max_commands: a lower bound than kMaxCommands (the fuzz target's, so
+// that each input stays fast).
+SequenceParseResult ParseSequence(const std::string& xml, const std::string& file_name,
+                                  size_t max_commands = kMaxCommands);
 SequenceParseResult LoadSequenceFile(const std::string& path);
 
 // The DTD texts built into the program (sequencer/dtd/), version 1 or 2.
