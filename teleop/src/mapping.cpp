@@ -158,7 +158,8 @@ Mapping ParseMapping(const std::string& text, const std::string& file) {
       m.forward_line = line;
     } else if (key == "deadman") {
       if (!arity(1, 1, "<button>")) continue;
-      if (p.Button(line, w[1], &m.deadman_button)) m.deadman_line = line;
+      m.deadman_line = line;  // present even if its name is wrong (said above)
+      p.Button(line, w[1], &m.deadman_button);
     } else if (key == "deadzone") {
       if (!arity(1, 1, "<0..0.9>")) continue;
       double v = 0;
@@ -170,11 +171,10 @@ Mapping ParseMapping(const std::string& text, const std::string& file) {
       m.deadzone = v;
     } else if (key == "drive") {
       if (!arity(2, 2, "<axis> <scale rad/s>")) continue;
+      m.drive_line = line;
       if (p.Axis(line, w[1], &m.drive_axis) &&
-          p.Number(line, "drive scale", w[2], &m.drive_scale)) {
-        m.drive_line = line;
-        if (m.drive_scale == 0) p.Error(line, "drive scale 0 would never move the robot");
-      }
+          p.Number(line, "drive scale", w[2], &m.drive_scale) && m.drive_scale == 0)
+        p.Error(line, "drive scale 0 would never move the robot");
     } else if (key == "wheel") {
       if (!arity(1, 2, "<actuator> [<max force>]")) continue;
       Mapping::Wheel wheel;

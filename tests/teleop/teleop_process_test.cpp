@@ -212,7 +212,7 @@ class TeleopProcessTest : public ::testing::Test {
     Pad("button rightshoulder 1\naxis lefty -1\n");
     ASSERT_TRUE(bus.Until([&] { return bus.X("RearChassis") - x0 >= metres; }, timeout))
         << "moved " << bus.X("RearChassis") - x0 << " m\n" << Log();
-    EXPECT_LT(std::abs(bus.Z("RearChassis") - z0), 0.1 * metres);  // straight on
+    EXPECT_LT(std::abs(bus.Z("RearChassis") - z0), std::max(0.05, 0.1 * metres));  // straight on
   }
 
   fs::path dir_;
@@ -221,22 +221,29 @@ class TeleopProcessTest : public ::testing::Test {
   int pad_fd_ = -1;
 };
 
-// Commands per target in each whole second of [from, to).
-int MostCommandsOfATargetInASecond(const std::vector<SeenCommand>& commands, Clock::time_point from,
-                                   Clock::time_point to, std::string* which) {
+int64_t WallMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// The most commands one target got in any second of [from, to) (wall
+// clock micros), by the utime their sender stamped on them: the time they
+// were sent, not when this test got round to reading them.
+int MostCommandsOfATargetInASecond(const std::vector<SeenCommand>& commands, int64_t from,
+                                   int64_t to, std::string* which) {
   int most = 0;
-  for (auto start = from; start + std::chrono::seconds(1) <= to;
-       start += std::chrono::milliseconds(100)) {
+  for (int64_t start = from; start + 1000000 <= to; start += 50000) {
     std::map<std::string, int> count;
     for (const SeenCommand& c : commands)
-      if (c.when >= start && c.when < start + std::chrono::seconds(1)) ++count[c.command.target];
+      if (c.command.utime >= start && c.command.utime < start + 1000000) ++count[c.command.target];
     for (const auto& [target, n] : count)
       if (n > most) most = n, *which = target;
   }
   return most;
 }
 
-TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanStopsWithinATenthOfASecondSignalExits) {
+TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanReleaseStopsTheWheelsSignalExits) {
   const std::string url = UniqueUrl(1);
   Bus bus(url);
   StartSim(url, "gen1_flat.xml");
@@ -250,7 +257,7 @@ TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanStopsWithinATenthOfASecondS
   EXPECT_LT(std::abs(bus.X("RearChassis") - x_start), 0.02);
   EXPECT_LT(bus.MaxWheelRate(), 0.05);
 
-  const auto moving_from = Clock::now();
+  const int64_t moving_from = WallMicros();
   DriveForward(bus, 1.0, 15);
   // The shipped gen1 mapping: 2 rad/s at full stick.
   EXPECT_NEAR(bus.MaxWheelRate(), 2.0, 0.2);
@@ -262,7 +269,7 @@ TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanStopsWithinATenthOfASecondS
       << "Turner at " << bus.JointPosition("Turner");
   bus.Drain(3);
   EXPECT_LT(bus.Heading("RearChassis") - heading0, -0.1) << "heading " << bus.Heading("RearChassis");
-  const auto moving_to = Clock::now();
+  const int64_t moving_to = WallMicros();
 
   // Never more than 10 commands a second to any actuator, while the input
   // changed and while it did not.

@@ -90,6 +90,9 @@ TEST(MappingTest, ErrorsNameFileLineAndValue) {
             std::string::npos);
   EXPECT_NE(ErrorOf(Replace(kGen1, "-0.2 0.3", "0.2 0.3")).find("m.map:10: level 'body': need min"),
             std::string::npos);
+  // A wrong name is not also reported as missing.
+  EXPECT_EQ(ErrorOf(Replace(kGen1, "deadman rightshoulder", "deadman rightshoulda")).find("no 'deadman"),
+            std::string::npos);
   // Several problems: all of them, in line order.
   const std::string two =
       ErrorOf(Replace(Replace(kGen1, "lefty -2", "lefty x"), "wheel Axle4Motor 500",
