@@ -393,6 +393,55 @@ TEST_F(TeleopProcessTest, EveryGenerationDrivesForwardOneMetre) {
   }
 }
 
+// gen3's buttons: body up and down (hips and knees together), torso left,
+// claws open; each press one step of the shipped mapping.
+TEST_F(TeleopProcessTest, ButtonsRaiseTheBodyTurnTheTorsoAndOpenTheClaws) {
+  const std::string url = UniqueUrl(5);
+  Bus bus(url);
+  StartSim(url, "flat_ground.xml");
+  StartVirtualPad(url);
+  WaitReady(bus, "WorkPartner gen3");
+  bus.Drain(1.0);  // settled on its wheels
+  const double height0 = bus.state.bodies[bus.Body("RearChassis")].position[1];
+  auto press = [&](const std::string& button, int times) {
+    for (int k = 0; k < times; ++k) {
+      Pad("button " + button + " 1\n");
+      bus.Drain(0.25);  // more than a period: each press is seen
+      Pad("button " + button + " 0\n");
+      bus.Drain(0.25);
+    }
+  };
+  Pad("button rightshoulder 1\n");
+  press("dpup", 3);  // body +0.3: hips +-0.3, knees -+0.6
+  bus.Drain(2.0);
+  EXPECT_NEAR(bus.JointPosition("Hip1"), 0.3, 0.05);
+  EXPECT_NEAR(bus.JointPosition("Knee1"), -0.6, 0.05);
+  EXPECT_NEAR(bus.JointPosition("Hip3"), -0.3, 0.05);
+  EXPECT_NEAR(bus.JointPosition("Knee3"), 0.6, 0.05);
+  // Thigh and calf 0.3 m at 36.87 deg from vertical: straightening each by
+  // 0.3 rad lifts the hips by 2 * 0.3 * (cos(0.6435 - 0.3) - cos(0.6435)).
+  const double lift = 2 * 0.3 * (std::cos(0.6435 - 0.3) - std::cos(0.6435));
+  const double height1 = bus.state.bodies[bus.Body("RearChassis")].position[1];
+  EXPECT_NEAR(height1 - height0, lift, 0.03) << "from " << height0 << " to " << height1;
+  press("dpdown", 1);
+  bus.Drain(1.5);
+  EXPECT_NEAR(bus.JointPosition("Hip1"), 0.2, 0.05);
+  press("dpleft", 2);  // torso +0.4 rad (to the left)
+  press("x", 2);       // claws +0.2: upper up, lower down (open)
+  bus.Drain(2.0);
+  EXPECT_NEAR(bus.JointPosition("TorsoTurn"), 0.4, 0.05);
+  EXPECT_NEAR(bus.JointPosition("RightGripUpper"), 0.2, 0.05);
+  EXPECT_NEAR(bus.JointPosition("RightGripLower"), -0.2, 0.05);
+  EXPECT_NEAR(bus.JointPosition("LeftGripUpper"), 0.2, 0.05);
+  // Without the dead-man the buttons do nothing; the pose is held.
+  Pad("button rightshoulder 0\n");
+  press("dpleft", 2);
+  bus.Drain(1.0);
+  EXPECT_NEAR(bus.JointPosition("TorsoTurn"), 0.4, 0.05);
+  EXPECT_NEAR(bus.JointPosition("Hip1"), 0.2, 0.05);
+  EXPECT_EQ(bus.refused, 0);
+}
+
 // The keyboard window on a private X server, with real key presses: space
 // held is the dead-man, Up drives, Right steers right; letting go stops.
 TEST_F(TeleopProcessTest, KeyboardWindowDrivesWithRealKeyPresses) {
