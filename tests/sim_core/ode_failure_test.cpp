@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <functional>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,9 @@ struct CrashCase {
   std::function<model::World()> world;
   std::string during;  // regex of where ODE fails
 };
+
+// gtest prints a case by its name (not as bytes) in test lists and failures.
+void PrintTo(const CrashCase& c, std::ostream* out) { *out << c.name; }
 
 std::vector<CrashCase> CrashCases() {
   const Eigen::Vector3d one(1, 1, 1);
