@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "simpartner/client/client.h"
+#include "simpartner/diagnostic.h"
+#include "simpartner/parameters.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/sensor_t.hpp"
 #include "simpartner/status_t.hpp"
@@ -103,7 +105,8 @@ std::optional<status_t> AwaitStatus(Client& client, double timeout,
 }
 
 struct Options {
-  std::string url = kDefaultUrl;
+  std::string url;                 // --lcm-url, else lcmUrl of the parameters file
+  std::string params_file;         // --params FILE ("" = parameters.txt if present)
   double timeout = 2.0;
   std::vector<std::string> words;  // command and its arguments
   std::string body;
@@ -134,6 +137,8 @@ Options ParseArgs(const std::vector<std::string>& args) {
     };
     if (is("--lcm-url")) {
       o.url = value("--lcm-url");
+    } else if (is("--params")) {
+      o.params_file = value("--params");
     } else if (is("--timeout")) {
       o.timeout = ParseNumber("--timeout", value("--timeout"));
       if (o.timeout <= 0 || o.timeout > 3600) throw UsageError("--timeout must be in (0, 3600] s");
@@ -149,6 +154,17 @@ Options ParseArgs(const std::vector<std::string>& args) {
     } else {
       o.words.push_back(a);
     }
+  }
+  if (o.url.empty()) {
+    // The bus the other programs use: lcmUrl of the parameters file
+    // (./parameters.txt when present, or --params FILE), else the default.
+    CommandLine command_line;
+    command_line.program = "simpartner-cmd";
+    if (!o.params_file.empty()) {
+      command_line.params_file = o.params_file;
+      command_line.params_file_given = true;
+    }
+    o.url = LoadParameters(command_line).lcmUrl;
   }
   return o;
 }
@@ -341,7 +357,7 @@ int RunStatus(const Options& o, std::ostream& out) {
 }  // namespace
 
 std::string CmdUsage() {
-  return R"(usage: simpartner-cmd [--lcm-url URL] [--timeout S] COMMAND [ARGS]
+  return R"(usage: simpartner-cmd [--lcm-url URL | --params FILE] [--timeout S] COMMAND [ARGS]
 Talks to a running simpartner-sim on the LCM bus.
   set NAME VALUES          set an actuator, e.g. set Axle1Motor 1000,1000,100,0,0,0.2
                            or per axis: set Axle1Motor 300,1.0 (fmax, velocity);
@@ -356,7 +372,8 @@ Talks to a running simpartner-sim on the LCM bus.
   state [--body NAME] [--follow]   newest SIM_STATE (or every one)
   status [--follow]        newest SIM_STATUS (or every one)
 NAME is a name from 'model', robot/name, or a legacy port (1028).
-Options: --lcm-url URL (default udpm://239.255.76.67:7667?ttl=0), --timeout S (default 2),
+Options: --lcm-url URL (default: lcmUrl of ./parameters.txt or --params FILE, else
+         udpm://239.255.76.67:7667?ttl=0), --timeout S (default 2),
          --count N (with --follow: stop after N)
 Exit status: 0 accepted, 1 refused by the sim, 2 usage error, 3 no answer,
              4 unknown name, 5 the sim restarted.
@@ -417,6 +434,9 @@ int RunCmd(const std::vector<std::string>& args, std::ostream& out, std::ostream
     return kCmdRestarted;
   } catch (const ClientError& e) {
     err << prefix << e.what() << "\n";
+    return kCmdUsage;
+  } catch (const DiagnosticError& e) {  // the parameters file
+    err << e.diagnostics().Format() << "\n" << prefix << "bad parameters; nothing sent\n";
     return kCmdUsage;
   }
 }

@@ -4,6 +4,7 @@
 // README's shell commands.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <sstream>
 
 #include "client_test_support.h"
@@ -161,6 +162,18 @@ TEST_F(CmdTest, UsageErrorsAndNoSim) {
   r = RunInProcess({"--lcm-url", url, "--timeout", "0.3", "status"});
   EXPECT_EQ(r.status, kCmdNoAnswer);
   EXPECT_TRUE(Contains(r.err, "no SIM_STATUS within 0.3 s on " + url)) << r.err;
+
+  // Without --lcm-url: the bus of the parameters file the other programs read.
+  const std::string params = (dir_ / "params.txt").string();
+  std::ofstream(params) << "lcmUrl=" << url << "\n";
+  r = RunInProcess({"--params", params, "--timeout", "0.3", "status"});
+  EXPECT_EQ(r.status, kCmdNoAnswer);
+  EXPECT_TRUE(Contains(r.err, " on " + url)) << r.err;
+  const std::string bad = (dir_ / "bad.txt").string();
+  std::ofstream(bad) << "# comment\nlcmUrl=" << url << "\nstepsise=0.01\n";
+  r = RunInProcess({"--params", bad, "status"});
+  EXPECT_EQ(r.status, kCmdUsage);
+  EXPECT_TRUE(Contains(r.err, bad + ":3")) << r.err;
 }
 
 // The README's shell commands, as a user types them: the real binary.
