@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -193,6 +194,19 @@ bool VirtualPad::Apply(const std::string& line) {
 
 namespace {
 
+// Installed: <prefix>/share/simpartner/teleop/mappings beside <prefix>/bin;
+// in the build tree: the sources' teleop/mappings.
+std::string DefaultMappingDir() {
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const std::filesystem::path installed =
+        exe.parent_path().parent_path() / "share/simpartner/teleop/mappings";
+    if (std::filesystem::is_directory(installed, error)) return installed.string();
+  }
+  return SP_TELEOP_MAPPING_DIR;
+}
+
 std::string Usage() {
   return "usage: simpartner-teleop [options]\n"
          "  Drives the robot of the sim on the bus from the first game controller\n"
@@ -200,7 +214,8 @@ std::string Usage() {
          "  button (keyboard: space) to move.\n"
          "  --lcm-url URL       the bus (default " + std::string(client::kDefaultUrl) + ")\n"
          "  --mapping FILE      mapping file (default: the shipped one for the robot's model)\n"
-         "  --mapping-dir DIR   where the shipped mappings are\n"
+         "  --mapping-dir DIR   where the shipped mappings are (default: " + DefaultMappingDir() +
+         ")\n"
          "  --max-speed R       wheel speed at full stick [rad/s] (overrides the mapping)\n"
          "  --max-steer A       Turner angle at full stick [rad] (overrides the mapping)\n"
          "  --keyboard          keyboard window instead of a game controller\n"
@@ -237,9 +252,7 @@ int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostre
               std::ostream& err) {
   SessionOptions options;
   options.program = virtual_pad ? "teleop-vpad" : "teleop";
-#ifdef SP_TELEOP_MAPPING_DIR
-  options.mapping_dir = SP_TELEOP_MAPPING_DIR;
-#endif
+  options.mapping_dir = DefaultMappingDir();
   bool keyboard = false, list = false, check = false;
   std::string environment, script;
   double max_speed = NAN, max_steer = NAN;
