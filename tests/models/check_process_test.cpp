@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -153,6 +154,93 @@ TEST(CheckProcess, PrintParametersShowsTheFileWithTheOverrides) {
   EXPECT_NE(bad.err.find("command line: stepsize: value '2' is out of range"), std::string::npos)
       << bad.err;
   EXPECT_EQ(bad.out, "");
+}
+
+// SimPartner issue 10: values that --check passed and that then made ODE
+// abort the sim. Each is refused by --check itself (exit 2) with the
+// diagnostic at its line naming the allowed range.
+struct CheckRangeCase {
+  const char* name;
+  std::string object;      // the <object>'s inner elements, one per line after line 3
+  std::string diagnostic;  // after "<file>:"
+};
+
+std::string Transformation(const std::string& x, const std::string& y) {
+  return "<transformation><T00>1</T00><T01>0</T01><T02>0</T02><T03>" + x +
+         "</T03><T10>0</T10><T11>1</T11><T12>0</T12><T13>" + y +
+         "</T13><T20>0</T20><T21>0</T21><T22>1</T22><T23>0</T23></transformation>";
+}
+
+TEST(CheckProcess, Issue10ValuesAreRefusedWithTheirRange) {
+  const std::string box = "<size><x>1</x><y>1</y><z>1</z></size>";
+  const std::string at_rest = Transformation("0", "0.5");
+  const std::vector<CheckRangeCase> cases = {
+      {"mass 1e308 kg", "<mass>1e308</mass>\n" + box + "\n" + at_rest,
+       "4: mass: object 'Thing': mass 1e+308 kg is out of range [0.0001, 1000000] kg"},
+      {"mass 4.9e-324 kg", "<mass>4.9e-324</mass>\n" + box + "\n" + at_rest,
+       "4: mass: object 'Thing': mass 4.940656458e-324 kg is out of range [0.0001, 1000000] kg"},
+      {"mass 1e-12 kg", "<mass>1e-12</mass>\n" + box + "\n" + at_rest,
+       "4: mass: object 'Thing': mass 1e-12 kg is out of range [0.0001, 1000000] kg"},
+      {"size 1e-310 m", "<mass>1</mass>\n<size><x>1e-310</x><y>1</y><z>1</z></size>\n" + at_rest,
+       "5: size: object 'Thing': size x 1e-310 m is out of range [0.001, 10000] m"},
+      {"size 1e100 m", "<mass>1</mass>\n<size><x>1</x><y>1e100</y><z>1</z></size>\n" + at_rest,
+       "5: size: object 'Thing': size y 1e+100 m is out of range [0.001, 10000] m"},
+      {"placed 1e10 m away", "<mass>1</mass>\n" + box + "\n" + Transformation("1e10", "0.5"),
+       "6: transformation: object 'Thing': position (1e+10, 0.5, 0) m is out of range: |x|, "
+       "|y|, |z| <= 1000000 m"},
+      {"velocity 1e308 m/s",
+       "<mass>1</mass>\n" + box + "\n" + at_rest +
+           "\n<translationalVelocity><vx>1e308</vx><vy>0</vy><vz>0</vz></translationalVelocity>",
+       "7: translationalVelocity: object 'Thing': translationalVelocity (1e+308, 0, 0) m/s is out "
+       "of range: speed at most 10000 m/s"},
+  };
+  char dir_template[] = "/tmp/sp_check_ranges.XXXXXX";
+  const char* dir = mkdtemp(dir_template);
+  ASSERT_NE(dir, nullptr);
+  for (const CheckRangeCase& c : cases) {
+    const fs::path world = fs::path(dir) / "world.xml";
+    std::ofstream(world) << "<world name=\"W\">\n<surface><a>0</a><b>1</b><c>0</c><d>0</d></surface>\n"
+                            "<object type=\"Box\" name=\"Thing\">\n"
+                         << c.object << "\n</object>\n</world>\n";
+    const SimRun run = RunSim(Check(world));
+    EXPECT_EQ(run.status, 2) << c.name << ": stderr:\n" << run.err;
+    EXPECT_TRUE(HasLine(run.err, world.string() + ":" + c.diagnostic))
+        << c.name << ": stderr:\n" << run.err;
+  }
+  // The shipped gen1 robot placed 1e10 m away: refused at the placement.
+  const fs::path world = fs::path(dir) / "far_robot.xml";
+  std::ofstream(world) << "<world name=\"W\">\n<robot name=\"WorkPartner\" file=\""
+                       << (kSource / "models/robots/workpartner_gen1.xml").string() << "\">\n"
+                       << Transformation("1e10", "0") << "\n</robot>\n</world>\n";
+  const SimRun run = RunSim(Check(world));
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_TRUE(HasLine(run.err, world.string() +
+                                   ":3: transformation: robot 'WorkPartner': placed at (1e+10, 0, "
+                                   "0) m, its body 'FrontChassis' is at (1e+10, 0.715, 0) m, out "
+                                   "of range: |x|, |y|, |z| <= 1000000 m"))
+      << run.err;
+  fs::remove_all(dir);
+}
+
+// A device or a FIFO as the world: refused at once (before: /dev/zero was
+// read until allocation failed, a FIFO blocked --check forever).
+TEST(CheckProcess, DeviceOrFifoWorldIsRefusedAtOnce) {
+  const SimRun zero = RunSim(Check("/dev/zero"));
+  EXPECT_EQ(zero.status, 2);
+  EXPECT_TRUE(HasLine(zero.err, "/dev/zero: not a regular file (character device); model files "
+                                "must be regular files"))
+      << zero.err;
+  char dir_template[] = "/tmp/sp_check_fifo.XXXXXX";
+  const char* dir = mkdtemp(dir_template);
+  ASSERT_NE(dir, nullptr);
+  const fs::path fifo = fs::path(dir) / "world.xml";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const SimRun run = RunSim(Check(fifo));  // RunSim fails the test after 30 s
+  EXPECT_EQ(run.status, 2);
+  EXPECT_TRUE(HasLine(run.err, fifo.string() + ": not a regular file (FIFO); model files must "
+                                               "be regular files"))
+      << run.err;
+  fs::remove_all(dir);
 }
 
 }  // namespace
