@@ -58,6 +58,21 @@ TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
   ASSERT_EQ(RunLogged({build + "/turn_wheel", url, "Axle2Motor", "1.5"}, run_log, 30), 0)
       << ReadFile(run_log);
   EXPECT_NE(ReadFile(run_log).find("Axle2Motor accepted at step "), std::string::npos);
+  // The installed programs (component programs; those this build has).
+  const std::string programs_log = (dir / "programs.log").string();
+  ASSERT_EQ(RunLogged({SP_CMAKE, "--install", SP_BINARY_DIR, "--prefix", prefix, "--component",
+                       "programs"},
+                      programs_log),
+            0)
+      << ReadFile(programs_log);
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(prefix) /
+                                      "share/simpartner/models/worlds/gen1_flat.xml"));
+  const std::string cmd_log = (dir / "cmd.log").string();
+  EXPECT_EQ(RunLogged({prefix + "/bin/simpartner-cmd", "--lcm-url", url, "set", "Axle3Motor",
+                       "1000,-0.5"},
+                      cmd_log, 30),
+            0)
+      << ReadFile(cmd_log);
   // The effect, seen on the bus: wheel 2's joint turns at 1.5 rad/s.
   ClientOptions o;
   o.url = url;
@@ -66,6 +81,8 @@ TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
   Client client(o);
   const state_t s = client.WaitUntilSimTime(client.LatestState()->sim_time + 0.5, 10);
   EXPECT_NEAR(s.joints[static_cast<size_t>(client.catalog()->JointIndex("Axle2"))].rate[0], 1.5,
+              0.1);
+  EXPECT_NEAR(s.joints[static_cast<size_t>(client.catalog()->JointIndex("Axle3"))].rate[0], -0.5,
               0.1);
   if (!::testing::Test::HasFailure()) std::filesystem::remove_all(dir);
 }
