@@ -327,6 +327,11 @@ TEST_F(TeleopProcessTest, UnpluggingTheControllerStopsTheRobot) {
   bus.Drain(1.0);
   EXPECT_LT(bus.MaxWheelRate(), 0.05);
   DriveForward(bus, 0.3, 10);
+  // SIGINT while moving: the wheels stop and teleop exits 0.
+  teleop_->Signal(SIGINT);
+  EXPECT_EQ(teleop_->Wait(std::chrono::seconds(3)).value_or(-1), 0) << Log();
+  ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() < 0.05; }, 2)) << Log();
+  EXPECT_NE(Log().find("SIGINT: stopping the wheels"), std::string::npos) << Log();
 }
 
 TEST_F(TeleopProcessTest, FollowsASimThatIsKilledAndStartedAgainAndAPausedOne) {
@@ -349,6 +354,33 @@ TEST_F(TeleopProcessTest, FollowsASimThatIsKilledAndStartedAgainAndAPausedOne) {
   const double x_paused = bus.X("RearChassis");
   Control(url, control_t::ACTION_RESUME);
   ASSERT_TRUE(bus.Until([&] { return bus.X("RearChassis") > x_paused + 0.2; }, 5)) << Log();
+
+  // Frozen (SIGSTOP): after 0.5 s without a word from it teleop commands
+  // zero wheel velocity; when it wakes the dead-man is still held and the
+  // robot goes on.
+  ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() > 1.0; }, 5));
+  const int64_t frozen_at = WallMicros();
+  sim_->Signal(SIGSTOP);
+  bus.Drain(1.5);
+  int64_t first_zero = -1;
+  for (const SeenCommand& c : bus.commands) {
+    if (c.command.target != "Axle1Motor" || c.command.values.size() != 2) continue;
+    if (c.command.utime < frozen_at + 200000)
+      continue;  // sent before the freeze (or just after, the period's last)
+    if (c.command.values[1] == 0.0) {
+      first_zero = c.command.utime;
+      break;
+    }
+  }
+  ASSERT_GT(first_zero, 0) << Log();
+  const double silent_for = (first_zero - frozen_at) * 1e-6;
+  EXPECT_GE(silent_for, 0.45);
+  EXPECT_LE(silent_for, 0.75);
+  RecordProperty("silence_stop_wall_seconds", std::to_string(silent_for));
+  EXPECT_TRUE(LogHas("stopped: sim not heard", 2)) << Log();
+  const double x_frozen = bus.X("RearChassis");
+  sim_->Signal(SIGCONT);
+  ASSERT_TRUE(bus.Until([&] { return bus.X("RearChassis") > x_frozen + 0.2; }, 5)) << Log();
 
   // Killed: teleop stops (sim not heard) and drives the new one, another
   // generation on the same bus.
