@@ -1175,6 +1175,13 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     };
     field.width = positive("width");
     field.depth = positive("depth");
+    for (const char* tag : {"width", "depth"}) {
+      const double extent = std::string(tag) == "width" ? field.width : field.depth;
+      if (extent > limits::kMaxCoordinate)
+        reader.Error(Reader::Child(h, tag), std::string("heightfield ") + tag + " " +
+                                                FormatNumber(extent) + " m is out of range (0, " +
+                                                FormatNumber(limits::kMaxCoordinate) + "] m");
+    }
     bool ok = true;
     field.scale = reader.NumberOr(h, "scale", 1.0, "heightfield", &ok);
     field.offset = reader.NumberOr(h, "offset", 0.0, "heightfield", &ok);
@@ -1182,6 +1189,10 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     if (field.thickness <= 0.0)
       reader.Error(Reader::Child(h, "thickness"), "heightfield thickness must be positive, got " +
                                                       FormatNumber(field.thickness));
+    else if (field.thickness > limits::kMaxCoordinate)
+      reader.Error(Reader::Child(h, "thickness"),
+                   "heightfield thickness " + FormatNumber(field.thickness) +
+                       " m is out of range (0, " + FormatNumber(limits::kMaxCoordinate) + "] m");
     if (const xmlNode* p = Reader::Child(h, "position")) {
       if (const auto position = reader.Vector(p, "heightfield position")) {
         field.position = *position;
@@ -1213,7 +1224,11 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
         const std::string token = text.substr(start, i - start);
         char* end = nullptr;
         const double value = std::strtod(token.c_str(), &end);
-        if (*end != '\0' || !std::isfinite(value)) {
+        const bool finite = *end == '\0' && std::isfinite(value);
+        // The height ODE builds: offset + scale x sample, in the range of
+        // every other coordinate.
+        const double height = field.offset + field.scale * value;
+        if (!finite || !(std::abs(height) <= limits::kMaxCoordinate)) {
           const size_t index = field.samples.size();
           const std::string place =
               field.columns > 0 ? " (row " + std::to_string(index / field.columns + 1) +
@@ -1221,7 +1236,11 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
                                 : "";
           reader.ErrorAt(SourceLocation{reader.file(), line}, "samples",
                          "heightfield sample " + std::to_string(index + 1) + place + " '" +
-                             token + "' is not a finite number");
+                             token + "' " +
+                             (!finite ? std::string("is not a finite number")
+                                      : "gives a height of " + FormatNumber(height) +
+                                            " m (offset + scale x sample), out of range: |y| <= " +
+                                            FormatNumber(limits::kMaxCoordinate) + " m"));
           bad_sample = true;
           break;
         }

@@ -239,5 +239,32 @@ TEST(PhysicalRanges, RobotPlacedOutOfRangeIsRefusedAtThePlacement) {
   EXPECT_TRUE(ParseWorld(near, "w.xml", reader).world.has_value());
 }
 
+// A heightfield's heights (offset + scale x sample) are coordinates too: a
+// sample of 1e300 passed --check and made ODE fail in the first step.
+TEST(PhysicalRanges, HeightfieldHeightsAndExtentAreLimited) {
+  auto field = [](const std::string& width, const std::string& scale,
+                  const std::string& second_row) {
+    return "<world name=\"W\">\n<heightfield rows=\"2\" columns=\"2\">\n<width>" + width +
+           "</width>\n<depth>10</depth>\n<scale>" + scale + "</scale>\n<samples>\n0 0\n" +
+           second_row + "\n</samples>\n</heightfield>\n</world>\n";
+  };
+  const WorldLoadResult huge = ParseWorld(field("10", "1", "0 1e300"), "w.xml");
+  ASSERT_EQ(huge.diagnostics.size(), 1u) << huge.diagnostics.Format();
+  EXPECT_EQ(huge.diagnostics.items()[0].Format(),
+            "w.xml:8: samples: heightfield sample 4 (row 2, column 2) '1e300' gives a height of "
+            "1e+300 m (offset + scale x sample), out of range: |y| <= 1000000 m");
+  // The scale counts: 2000 mm samples at 1000 m per unit are 2e6 m high.
+  const WorldLoadResult scaled = ParseWorld(field("10", "1000", "2000 0"), "w.xml");
+  ASSERT_EQ(scaled.diagnostics.size(), 1u) << scaled.diagnostics.Format();
+  EXPECT_EQ(scaled.diagnostics.items()[0].Format(),
+            "w.xml:8: samples: heightfield sample 3 (row 2, column 1) '2000' gives a height of "
+            "2000000 m (offset + scale x sample), out of range: |y| <= 1000000 m");
+  const WorldLoadResult wide = ParseWorld(field("1e7", "1", "0 0"), "w.xml");
+  ASSERT_EQ(wide.diagnostics.size(), 1u) << wide.diagnostics.Format();
+  EXPECT_EQ(wide.diagnostics.items()[0].Format(),
+            "w.xml:3: width: heightfield width 10000000 m is out of range (0, 1000000] m");
+  EXPECT_TRUE(ParseWorld(field("1e6", "0.001", "1e9 -1e9"), "w.xml").world.has_value());
+}
+
 }  // namespace
 }  // namespace simpartner::model
