@@ -774,8 +774,12 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
                                  robot.model_name + "'");
   }
   if (const xmlNode* t = Reader::Child(node, "transformation")) {
-    if (const auto mount = reader.Transformation(t, what + " transformation"))
+    if (const auto mount = reader.Transformation(t, what + " transformation")) {
       sensor.mount = *mount;
+      if (!CoordinatesInRange(mount->translation()))
+        reader.Error(t, what + ": mount position " + VectorText(mount->translation()) +
+                            " m is out of range: " + CoordinateRangeText());
+    }
   }
   if (const xmlNode* rate = Reader::Child(node, "rate")) {
     if (const auto r = reader.Number(rate, what + " rate")) {

@@ -218,6 +218,19 @@ TEST(PhysicalRanges, JointAnchorOutOfRangeIsRefused) {
             "|z| <= 1000000 m");
 }
 
+// A scanner's rays start at its mount: a mount 1e10 m off is refused.
+TEST(PhysicalRanges, SensorMountOutOfRangeIsRefused) {
+  std::string robot = PairRobot(1, 1);
+  robot.insert(robot.rfind("</robot>"),
+               "<sensor type=\"Scanner\" name=\"S\"><bodyRef>A</bodyRef>" + Pose(1e10, 0, 0) +
+                   "</sensor>\n");
+  const RobotLoadResult result = ParseRobot(robot, "r.xml");
+  ASSERT_EQ(result.diagnostics.size(), 1u) << result.diagnostics.Format();
+  EXPECT_EQ(result.diagnostics.items()[0].Format(),
+            "r.xml:5: transformation: sensor 'S': mount position (1e+10, 0, 0) m is out of "
+            "range: |x|, |y|, |z| <= 1000000 m");
+}
+
 // The robot files are fine; the world places the robot out of range.
 TEST(PhysicalRanges, RobotPlacedOutOfRangeIsRefusedAtThePlacement) {
   const std::string world = "<world name=\"W\">\n<robot name=\"R\" file=\"pair.xml\">\n" +
