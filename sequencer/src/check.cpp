@@ -47,7 +47,12 @@ DiagnosticList CheckSequence(const Sequence& sequence, const model_t& model, Pla
   if (!sequence.robot.empty()) {
     bool known = false;
     for (const std::string& r : catalog.robot_names()) known |= r == sequence.robot;
-    if (!known) add(0, "sequence", "robot '" + sequence.robot + "' is not in the model");
+    if (!known) {
+      std::string robots;
+      for (const std::string& r : catalog.robot_names()) robots += (robots.empty() ? "'" : ", '") + r + "'";
+      add(sequence.line, "sequence", "robot '" + sequence.robot + "' is not in the model (it has " +
+                                         (robots.empty() ? std::string("none") : robots) + ")");
+    }
   }
   for (const Segment& segment : sequence.segments) {
     PlannedSegment planned;

@@ -671,6 +671,7 @@ SequenceParseResult ParseSequence(const std::string& xml, const std::string& fil
   sequence.version = version;
   sequence.rootless = !result.notes.empty();
   const xmlNode* root = xmlDocGetRootElement(doc.get());
+  sequence.line = Line(root);
   sequence.name = Attribute(root, "name").value_or("");
   sequence.robot = Trim(Attribute(root, "robot").value_or(""));
   sequence.description = Attribute(root, "description").value_or("");

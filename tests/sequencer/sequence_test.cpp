@@ -244,6 +244,9 @@ const std::map<std::string, std::string>& Expected() {
       {"v2_unknown_robot.xml",
        "v2_unknown_robot.xml:3: set: robot 'WorkPartner2' of 'WorkPartner2/Axle1Motor' is not in "
        "the model; did you mean 'WorkPartner'?"},
+      {"v2_sequence_robot.xml",
+       "v2_sequence_robot.xml:3: sequence: robot 'WorkPartner3' is not in the model (it has "
+       "'WorkPartner')"},
       {"v2_wait_no_timeout.xml",
        "v2_wait_no_timeout.xml:4: wait: timeout is missing"},
       {"v2_wait_unknown_joint.xml",
@@ -253,7 +256,7 @@ const std::map<std::string, std::string>& Expected() {
   return expected;
 }
 
-TEST(MalformedCorpus, EveryFileIsRefusedWithItsFileLineAndMessage) {
+TEST(SequenceMalformedCorpus, EveryFileIsRefusedWithItsFileLineAndMessage) {
   const fs::path dir = kSource + "/tests/sequencer/malformed";
   std::set<std::string> seen;
   for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
@@ -286,7 +289,7 @@ TEST(MalformedCorpus, EveryFileIsRefusedWithItsFileLineAndMessage) {
 }
 
 // Each shipped sequence with the world it was written for.
-TEST(ShippedSequences, EveryFileChecksAgainstItsWorld) {
+TEST(SequenceShipped, EveryFileChecksAgainstItsWorld) {
   const std::map<std::string, std::string> worlds = {
       {"gen1_circle_equal_speeds.xml", "gen1_flat.xml"},
       {"gen1_circle_differential.xml", "gen1_flat.xml"},
@@ -314,7 +317,7 @@ TEST(ShippedSequences, EveryFileChecksAgainstItsWorld) {
 }
 
 // The pole task as written: the validation's timeline (experiments_robot.cpp).
-TEST(ShippedSequences, PoleTaskKeepsTheValidationsTimes) {
+TEST(SequenceShipped, PoleTaskKeepsTheValidationsTimes) {
   const SequenceParseResult r = LoadSequenceFile(kSource + "/sequences/gen3_pole_task.xml");
   ASSERT_TRUE(r.sequence) << r.diagnostics.Format();
   const Segment& s = r.sequence->segments.at(0);
@@ -339,7 +342,7 @@ TEST(ShippedSequences, PoleTaskKeepsTheValidationsTimes) {
   EXPECT_TRUE(found);
 }
 
-TEST(OfflineCheck, WithoutAWorldOnlyTheFormIsChecked) {
+TEST(SequenceOfflineCheck, WithoutAWorldOnlyTheFormIsChecked) {
   std::ostringstream out, err;
   EXPECT_EQ(RunSequencer({"--check", kSource + "/tests/sequencer/malformed/v2_unknown_name.xml"},
                          out, err),
@@ -348,7 +351,7 @@ TEST(OfflineCheck, WithoutAWorldOnlyTheFormIsChecked) {
   EXPECT_NE(out.str().find("names and ports not checked"), std::string::npos) << out.str();
 }
 
-TEST(OfflineCheck, ModelFromWorldHasTheRobotsTargets) {
+TEST(SequenceOfflineCheck, ModelFromWorldHasTheRobotsTargets) {
   const model::World world = model::LoadWorldOrThrow(kGen3World);
   const model_t m = ModelFromWorld(world);
   ASSERT_EQ(m.robots.size(), 1u);
@@ -374,7 +377,7 @@ TEST(OfflineCheck, ModelFromWorldHasTheRobotsTargets) {
   EXPECT_TRUE(scanner);
 }
 
-TEST(CommandLine, BadOptionsAreUsageErrors) {
+TEST(SequencerCommandLine, BadOptionsAreUsageErrors) {
   std::ostringstream out, err;
   EXPECT_EQ(RunSequencer({"--speed", "fast", "x.xml"}, out, err), 2);
   EXPECT_NE(err.str().find("--speed needs a number"), std::string::npos) << err.str();
@@ -386,7 +389,7 @@ TEST(CommandLine, BadOptionsAreUsageErrors) {
   EXPECT_NE(help.str().find("Exit status"), std::string::npos);
 }
 
-TEST(CommandLine, MissingFileIsNamed) {
+TEST(SequencerCommandLine, MissingFileIsNamed) {
   std::ostringstream out, err;
   EXPECT_EQ(RunSequencer({"--check", "/nonexistent/seq.xml"}, out, err), 2);
   EXPECT_NE(err.str().find("/nonexistent/seq.xml: cannot be read"), std::string::npos) << err.str();

@@ -69,6 +69,7 @@ struct Sequence {
   std::string file;
   int version = 0;
   std::string name, robot, description;
+  int line = 0;                     // of the <sequence> element
   bool rootless = false;            // a bare list of <command>s, read as version 1
   std::vector<Segment> segments;    // at least one
   size_t CommandCount() const;
