@@ -425,6 +425,45 @@ TEST_F(TeleopProcessTest, EveryGenerationDrivesForwardOneMetre) {
   }
 }
 
+// The program's offline answers: --check against a world, --list, usage.
+TEST_F(TeleopProcessTest, CheckListAndUsageAsAProgram) {
+  auto run = [&](std::vector<std::string> args, std::string* output) {
+    args.insert(args.begin(), {"/usr/bin/env", "SDL_VIDEODRIVER=dummy",
+                               kBinary + "/teleop/simpartner-teleop"});
+    ChildProcess program(args, (dir_ / "run.log").string());
+    const int status = program.Wait(std::chrono::seconds(20)).value_or(-1);
+    *output = Log("run.log");
+    return status;
+  };
+  std::string out;
+  EXPECT_EQ(run({"--check", "--environment", kSource + "/models/worlds/gen4_flat.xml"}, &out), 0);
+  EXPECT_NE(out.find("workpartner_gen4.map: fits robot WorkPartner (WorkPartner gen4)"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(run({"--check", "--environment", kSource + "/models/worlds/gen1_flat.xml", "--mapping",
+                 kSource + "/teleop/mappings/workpartner_gen3.map"},
+                &out),
+            1);
+  EXPECT_NE(out.find("workpartner_gen3.map:4: the mapping is for model 'WorkPartner gen3'; the "
+                     "sim's robots are 'WorkPartner gen1'"),
+            std::string::npos)
+      << out;
+  std::ofstream(dir_ / "bad.map") << "model WorkPartner gen1\nforward RearChassis +x\n"
+                                     "deadman rightshoulder\ndrive lefty -2\nwheel Axle9Motor\n";
+  EXPECT_EQ(run({"--check", "--environment", kSource + "/models/worlds/gen1_flat.xml", "--mapping",
+                 (dir_ / "bad.map").string()},
+                &out),
+            1);
+  EXPECT_NE(out.find("bad.map:5: robot 'WorkPartner' (WorkPartner gen1) has no actuator "
+                     "'Axle9Motor'"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(run({"--list"}, &out), 0);
+  EXPECT_NE(out.find("no game controller connected"), std::string::npos) << out;
+  EXPECT_EQ(run({"--max-speed", "-1"}, &out), 2);
+  EXPECT_NE(out.find("--max-speed: '-1' is not a positive number"), std::string::npos) << out;
+}
+
 // gen3's buttons: body up and down (hips and knees together), torso left,
 // claws open; each press one step of the shipped mapping.
 TEST_F(TeleopProcessTest, ButtonsRaiseTheBodyTurnTheTorsoAndOpenTheClaws) {
