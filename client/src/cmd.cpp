@@ -323,16 +323,31 @@ int RunModel(const Options& o, std::ostream& out) {
 int RunState(const Options& o, std::ostream& out) {
   ExpectWords(o, 1, 1);
   Client client(MakeClientOptions(o, true));
-  const auto catalog = client.catalog();
-  const int body = o.body.empty() ? -1 : catalog->BodyIndex(o.body);
+  auto catalog = client.catalog();
+  int body = o.body.empty() ? -1 : catalog->BodyIndex(o.body);
   int64_t last_step = -1;
   long printed = 0;
-  const double step_time = catalog->step_size() * catalog->state_every();
   do {
     // The next state after the last one printed (the newest, when not following).
     const auto current = client.LatestState();
-    double wait_until = current ? current->sim_time + (last_step < 0 ? 0.0 : step_time) : 0.0;
-    const state_t s = client.WaitUntilSimTime(wait_until, o.timeout);
+    const double step_time = catalog->step_size() * catalog->state_every();
+    const double wait_until =
+        current ? current->sim_time + (last_step < 0 ? 0.0 : step_time) : 0.0;
+    state_t s;
+    try {
+      s = client.WaitUntilSimTime(wait_until, o.timeout);
+    } catch (const Timeout&) {
+      // Following a paused sim: go on while it is heard (its status).
+      if (o.follow && printed > 0 && client.SecondsSinceHeard() < o.timeout) continue;
+      throw;
+    } catch (const SimRestarted& e) {
+      if (!o.follow) throw;
+      catalog = client.Relearn(o.timeout);
+      body = o.body.empty() ? -1 : catalog->BodyIndex(o.body);
+      out << e.what() << "; following simulation " << catalog->simulation_id() << "\n";
+      last_step = -1;
+      continue;
+    }
     if (s.step == last_step) continue;
     last_step = s.step;
     out << FormatState(s, *catalog, body) << "\n" << std::flush;

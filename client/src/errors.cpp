@@ -47,8 +47,11 @@ Timeout::Timeout(std::string awaited, double seconds, std::string url, std::stri
       seconds_(seconds) {}
 
 NoSim::NoSim(std::string url, double seconds)
-    : ClientError("no sim on " + url + ": no SIM_MODEL within " + Seconds(seconds) +
-                  " (is simpartner-sim running with this --lcm-url?)"),
+    : ClientError(seconds > 0 ? "no sim on " + url + ": no SIM_MODEL within " + Seconds(seconds) +
+                                    " (is simpartner-sim running with this --lcm-url?)"
+                              : "no model learned from " + url +
+                                    " yet (the client was made with learn_model = false: "
+                                    "call Relearn())"),
       url_(std::move(url)),
       seconds_(seconds) {}
 

@@ -54,6 +54,8 @@ class Timeout : public ClientError {
 };
 
 // No SIM_MODEL on the bus: no sim runs there (or it cannot be reached).
+// seconds 0: a client made with learn_model = false was asked for a name
+// before any Relearn().
 class NoSim : public ClientError {
  public:
   NoSim(std::string url, double seconds);
