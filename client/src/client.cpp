@@ -123,6 +123,7 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     {
       std::lock_guard<std::mutex> lock(mutex_);
       if (refused(DecodeFromBus(channel, data, size, &state, &bad_messages_, &print))) return;
+      last_heard_ = Clock::now();  // a sim is there, whichever
       if (catalog_) {
         // Another simulation's states (a new one announces itself with
         // SIM_MODEL first) and states that do not fit the model are not
@@ -138,7 +139,6 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
           return;
         }
       }
-      last_heard_ = Clock::now();
       state_ = state;
       changed_.notify_all();
     }

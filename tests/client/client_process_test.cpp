@@ -200,6 +200,7 @@ TEST_F(ClientProcessTest, FollowsASimThatRestartsAndNoticesSilence) {
   const auto catalog = client.Relearn(10.0);
   EXPECT_NE(catalog->simulation_id(), first_id);
   EXPECT_FALSE(client.PendingRestart().has_value());
+  client.WaitUntilSimTime(0.0, 10.0);  // a state of the new sim
   EXPECT_LT(client.SecondsSinceHeard(), 0.5);
   // The new sim holds its wheels again: the previous setting is the hold.
   const command_reply_t reply = client.Command(SetVelocity(client.Find("Axle1Motor"), {1.0}));

@@ -83,12 +83,12 @@ TEST_F(ExamplesTest, StopAtWallStopsWithinAMetre) {
   const auto [status, output] = RunExample("stop_at_wall", {url});
   ASSERT_EQ(status, 0) << output;
   EXPECT_NE(output.find("stopped: nearest "), std::string::npos) << output;
-  // It reacted to the first scan under 1 m: at 100 Hz and 1 m/s, scans
-  // are 1 cm apart.
+  // It reacted to a scan under 1 m: at 100 Hz and 1 m/s scans are 1 cm
+  // apart, but a loaded machine may hand the example only the newest.
   std::smatch m;
   ASSERT_TRUE(std::regex_search(output, m, std::regex("something at ([0-9.]+) m"))) << output;
   EXPECT_LE(std::stod(m[1]), 1.0);
-  EXPECT_GE(std::stod(m[1]), 0.98);
+  EXPECT_GE(std::stod(m[1]), 0.8);
   // scanner_wall.xml: the wall's near face at x = 6.0; the scanner on the
   // torso's turning axis. Stopped 1 m from the wall, less what the robot
   // rolled while the stop took effect: braking, and at full speed the sim

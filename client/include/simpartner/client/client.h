@@ -142,7 +142,8 @@ class Client {
   void OnState(std::function<void(const state_t&)> callback);
   void OnReading(std::function<void(const sensor_reading_t&)> callback);
 
-  // Seconds since the last SIM_STATE or SIM_STATUS; infinity before the
+  // Seconds since the last SIM_STATE (of any simulation: a restarted sim is
+  // there before it is followed) or SIM_STATUS; infinity before the
   // first. A running sim sends states every stateEvery steps; a paused one
   // only its status, every statusPeriod (1 s): tell a paused sim from a
   // silent one with LatestStatus()->run_state.
