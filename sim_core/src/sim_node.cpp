@@ -23,6 +23,8 @@ constexpr auto kMaxLag = std::chrono::milliseconds(100);
 // flood of messages (every one refused, and answered) cannot stop the
 // stepping; the rest waits in the socket for the next step.
 constexpr auto kInputBudget = std::chrono::microseconds(200);
+// Steps in one status period that left input waiting before the sim says so.
+constexpr int64_t kDeferralsWorthAWarning = 100;
 // Refused commands printed in full before printing thins out.
 constexpr int64_t kPrintFirstRefusals = 100;
 
@@ -247,7 +249,10 @@ void SimNode::HandleIncoming(Clock::duration timeout) {
 }
 
 void SimNode::ReportInputDeferrals() {
-  if (input_deferrals_ == reported_deferrals_) return;
+  // A message left for the next step now and then (a burst, a busy
+  // machine) costs one step of latency and is not worth a warning; a
+  // sustained flood is.
+  if (input_deferrals_ - reported_deferrals_ < kDeferralsWorthAWarning) return;
   Warn(warning_t::SEVERITY_WARNING, "bus",
        "more input than the step budget (" +
            std::to_string(std::chrono::duration_cast<std::chrono::microseconds>(kInputBudget).count()) +
