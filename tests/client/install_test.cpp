@@ -3,6 +3,9 @@
 // temporary prefix, builds, and turns a wheel of a real sim.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <regex>
+
 #include "client_test_support.h"
 #include "simpartner/client/client.h"
 
@@ -42,17 +45,29 @@ TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
     EXPECT_EQ(text.find(SP_BINARY_DIR), std::string::npos) << entry.path();
     EXPECT_EQ(text.find(std::string(SP_SOURCE_DIR) + "/"), std::string::npos) << entry.path();
   }
+  // The README's first controller, as printed, but on this test's bus.
+  const std::string url = UniqueUrl(31);
+  const std::string readme = ReadFile(std::string(SP_SOURCE_DIR) + "/README.md");
+  std::smatch block;
+  ASSERT_TRUE(std::regex_search(readme, block, std::regex("```cpp\n([^`]*Client sim;[^`]*)```")))
+      << "README.md has no controller example with 'Client sim;'";
+  std::string controller = block[1];
+  const size_t at = controller.find("Client sim;");
+  controller.replace(at, std::string("Client sim;").size(),
+                     "ClientOptions o; o.url = \"" + url + "\"; Client sim(o);");
+  const std::string controller_file = (dir / "first_controller.cpp").string();
+  std::ofstream(controller_file) << controller;
+
   const std::string configure_log = (dir / "configure.log").string();
   ASSERT_EQ(RunLogged({SP_CMAKE, "-S", std::string(SP_SOURCE_DIR) + "/tests/client/outside_project",
                        "-B", build, "-G", SP_GENERATOR, "-DCMAKE_PREFIX_PATH=" + prefix,
-                       "-DCMAKE_BUILD_TYPE=Release"},
+                       "-DCMAKE_BUILD_TYPE=Release", "-DREADME_CONTROLLER=" + controller_file},
                       configure_log),
             0)
       << ReadFile(configure_log);
   const std::string build_log = (dir / "build.log").string();
   ASSERT_EQ(RunLogged({SP_CMAKE, "--build", build}, build_log), 0) << ReadFile(build_log);
 
-  const std::string url = UniqueUrl(31);
   SimProcess sim("gen1_flat.xml", url, (dir / "sim.log").string(), {"--speed=0"});
   const std::string run_log = (dir / "turn_wheel.log").string();
   ASSERT_EQ(RunLogged({build + "/turn_wheel", url, "Axle2Motor", "1.5"}, run_log, 30), 0)
@@ -84,6 +99,18 @@ TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
               0.1);
   EXPECT_NEAR(s.joints[static_cast<size_t>(client.catalog()->JointIndex("Axle3"))].rate[0], -0.5,
               0.1);
+
+  // The README's controller: all four wheels at 2 rad/s for 3 s of sim
+  // time, on 0.235 m wheels (SPEC 7): the front half 1.41 m further on.
+  const double x0 = client.model()->bodies[static_cast<size_t>(
+                                               client.catalog()->BodyIndex("FrontChassis"))]
+                        .initial_position[0];
+  const std::string first_log = (dir / "first_controller.log").string();
+  ASSERT_EQ(RunLogged({build + "/first_controller"}, first_log, 60), 0) << ReadFile(first_log);
+  std::smatch m;
+  const std::string printed = ReadFile(first_log);
+  ASSERT_TRUE(std::regex_search(printed, m, std::regex("front is at x = ([-0-9.]+) m"))) << printed;
+  EXPECT_NEAR(std::stod(m[1]) - x0, 3 * 2.0 * 0.235, 0.15) << printed;
   if (!::testing::Test::HasFailure()) std::filesystem::remove_all(dir);
 }
 
