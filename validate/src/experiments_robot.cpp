@@ -216,53 +216,15 @@ ExperimentResult PoleTask(const Context& context) {
   const double pole_mass = run.sim().flat().bodies[static_cast<size_t>(pole)].source->mass;
   int wheel[4];
   for (int k = 0; k < 4; ++k) wheel[k] = run.Body("Wheel" + std::to_string(k + 1));
-  const char* arms[2] = {"Right", "Left"};
-  // The sequence, as a sequencer file would send it (open loop, timed).
-  constexpr double kWheel = 1.0;          // [rad/s] = 0.235 m/s
-  constexpr double kCarry = 2.0;          // [rad/s] = 0.47 m/s with the pole
-  constexpr double kTorque = 1000.0;      // wheel motors [N m]
-  constexpr double kArmP = 2.0;           // arm angle controllers: 0.5 s time constant
-  constexpr double kGripTorque = 10.0;    // [N m] claws squeeze, not crush
-  constexpr double kLift = 0.3;           // [rad] elbows up: the claws rise ~0.13 m
-  double t = 0.5;
-  // Drives `distance` [m] at `speed` [rad/s] (negative: backwards) from
-  // `at`, ramping the wheel speed up and down over 0.5 s at 100 Hz as a
-  // sequence for the real robot would (a jump to full speed within one step
-  // tosses the loads about); returns when it has stopped.
-  auto drive = [&](double at, double speed, double distance) {
-    constexpr int kRampSteps = 50;
-    constexpr double kRampTime = 0.5;  // each ramp covers half its full-speed distance
-    const double cruise = distance / (std::abs(speed) * 0.235) - kRampTime;
-    if (cruise < 0.0) throw Error("pole task: drive of " + Num(distance) + " m is too short");
-    for (int r = 1; r <= kRampSteps; ++r) {
-      const double up = speed * r / kRampSteps, down = speed * (kRampSteps - r) / kRampSteps;
-      const double offset = kRampTime * (r - 1) / kRampSteps;
-      for (int k = 1; k <= 4; ++k) {
-        const std::string motor = "Axle" + std::to_string(k) + "Motor";
-        run.Velocity(at + offset, motor, up, kTorque);
-        if (r == kRampSteps) run.Hold(at + kRampTime + cruise + offset, motor, kTorque);
-        else run.Velocity(at + kRampTime + cruise + offset, motor, down, kTorque);
-      }
-    }
-    return at + 2.0 * kRampTime + cruise;
-  };
-  auto arm = [&](double at, const std::string& joint, double angle, double force) {
-    for (const char* side : arms)
-      run.Angle(at, std::string(side) + joint + "Motor", angle, force, kArmP, 0.0, 0.0);
-  };
-  t = drive(t, 0.5, 0.1);                  // into the pole: 0.1 m
-  arm(t += 0.3, "GripUpper", -0.3, kGripTorque);
-  arm(t, "GripLower", 0.3, kGripTorque);
-  arm(t += 1.0, "Elbow", kLift, 1000.0);
-  const double carry_start = t += 2.0;
-  t = drive(t, kCarry, 3.0);               // 3 m to the second pair
-  // Elbows back to where the pole was picked up: it touches the cubes
-  // there, so the arms do not press it down.
-  arm(t += 0.5, "Elbow", 0.0, 1000.0);
-  arm(t += 2.0, "GripUpper", 0.2, 100.0);  // open
-  arm(t, "GripLower", -0.2, 100.0);
-  t = drive(t + 1.0, -kWheel, 0.25);       // back away
-  const double end = t + 1.5;
+  // The sequence a user replays (sequences/gen3_pole_task.xml, written by
+  // sequences/make_sequences.py): open loop, timed: drive 0.1 m into the
+  // pole with the wheels ramped at 100 Hz, close the claws (at most
+  // 10 N m), lift the elbows 0.3 rad, carry it 3 m at 2 rad/s, lower the
+  // elbows, open the claws, back away 0.25 m.
+  const SimRun::SequenceTimes sequence = run.PlaySequence("gen3_pole_task.xml");
+  const double carry_start =
+      sequence.PhaseStart("carry the pole 3 m to the second pair of cubes");
+  const double end = sequence.end;
 
   Series load[4];
   for (int k = 0; k < 4; ++k) load[k].title = "Wheel" + std::to_string(k + 1);

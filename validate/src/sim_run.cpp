@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "simpartner/model/loader.h"
+#include "simpartner/sequencer/sequence.h"
 
 namespace simpartner::validate {
 namespace {
@@ -71,6 +72,35 @@ void SimRun::Angle(double t, const std::string& actuator, double angle, double m
 
 void SimRun::Hold(double t, const std::string& actuator, double max_force) {
   Command(t, actuator, command_t::ACTION_HOLD, {max_force});
+}
+
+double SimRun::SequenceTimes::PhaseStart(const std::string& comment) const {
+  for (const auto& [text, start] : phases)
+    if (text == comment) return start;
+  throw Error("sequence: no comment '" + comment + "'");
+}
+
+SimRun::SequenceTimes SimRun::PlaySequence(const std::string& file) {
+  const std::string path = (fs::path(context_.models_dir).parent_path() / "sequences" / file).string();
+  const sequencer::SequenceParseResult parsed = sequencer::LoadSequenceFile(path);
+  if (!parsed.sequence) throw Error(parsed.diagnostics.Format());
+  if (parsed.sequence->segments.size() != 1)
+    throw Error(path + ": waits on conditions cannot be replayed in a timed run");
+  const sequencer::Segment& segment = parsed.sequence->segments.front();
+  SequenceTimes times;
+  times.end = segment.end;
+  for (const sequencer::Command& c : segment.commands) {
+    if (c.target.empty() || c.action == sequencer::kOriginal)
+      throw Error(path + ":" + std::to_string(c.line) + ": only named version-2 commands here");
+    CommandText(c.time, c.target, c.action, c.text);
+  }
+  for (const sequencer::Note& note : segment.notes) {
+    double start = times.end;
+    for (const sequencer::Command& c : segment.commands)
+      if (c.line > note.line) start = std::min(start, c.time);
+    times.phases.emplace_back(note.text, start);
+  }
+  return times;
 }
 
 void SimRun::RunUntil(double t, const std::function<void()>& each_step) {

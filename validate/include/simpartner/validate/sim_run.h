@@ -36,6 +36,17 @@ class SimRun {
   void Angle(double t, const std::string& actuator, double angle, double max_force, double p,
              double i, double d);
   void Hold(double t, const std::string& actuator, double max_force);
+  // Queues every command of a shipped sequence (sequences/<file>, next to
+  // models_dir) at its time, as simpartner-sequencer --from-zero sends it.
+  // The file must be timed only (no waits). Returns the sequence's end [s]
+  // and, per <comment>, the time of the first command after it (so that an
+  // experiment can find a phase of the sequence by its comment).
+  struct SequenceTimes {
+    double end = 0.0;
+    std::vector<std::pair<std::string, double>> phases;  // comment text, start [s]
+    double PhaseStart(const std::string& comment) const;  // throws simpartner::Error
+  };
+  SequenceTimes PlaySequence(const std::string& file);
 
   // Steps until sim time t (to the nearest step), calling each_step after
   // every step. Throws simpartner::Error with the sim's warnings when the
