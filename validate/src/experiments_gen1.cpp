@@ -34,20 +34,27 @@ struct CircleRunResult {
 // gen1 on flat ground: steer to alpha with TurnerMotor while standing, then
 // drive the left (inner) wheels at v_left and the right ones at v_right
 // [m/s], and fit circles to the axle midpoints once the turn is steady.
+// sequence: the shipped file with these commands (sequences/), or "" for a
+// setting no file has.
 CircleRunResult RunCircle(const Context& context, double mu, double alpha, double v_left,
-                          double v_right, double settle, double duration) {
+                          double v_right, double settle, double duration,
+                          const std::string& sequence) {
   Parameters params = context.params;
   params.contactMu = mu;  // gen1_flat.xml's ground takes its friction from contactMu
   SimRun run(context, "gen1_flat.xml", params);
   const int wheel[4] = {run.Body("Wheel1"), run.Body("Wheel2"), run.Body("Wheel3"),
                         run.Body("Wheel4")};
   constexpr double kSteerTime = 2.0;
-  run.Angle(0.0, "TurnerMotor", alpha, 1000.0, kTurnerP, kTurnerI, kTurnerD);
-  // Wheels 2 and 3 are on the left (inner for a left turn).
-  run.Velocity(kSteerTime, "Axle1Motor", v_right / kWheelRadius, kWheelTorque);
-  run.Velocity(kSteerTime, "Axle2Motor", v_left / kWheelRadius, kWheelTorque);
-  run.Velocity(kSteerTime, "Axle3Motor", v_left / kWheelRadius, kWheelTorque);
-  run.Velocity(kSteerTime, "Axle4Motor", v_right / kWheelRadius, kWheelTorque);
+  if (!sequence.empty()) {
+    run.PlaySequence(sequence);
+  } else {
+    run.Angle(0.0, "TurnerMotor", alpha, 1000.0, kTurnerP, kTurnerI, kTurnerD);
+    // Wheels 2 and 3 are on the left (inner for a left turn).
+    run.Velocity(kSteerTime, "Axle1Motor", v_right / kWheelRadius, kWheelTorque);
+    run.Velocity(kSteerTime, "Axle2Motor", v_left / kWheelRadius, kWheelTorque);
+    run.Velocity(kSteerTime, "Axle3Motor", v_left / kWheelRadius, kWheelTorque);
+    run.Velocity(kSteerTime, "Axle4Motor", v_right / kWheelRadius, kWheelTorque);
+  }
   CircleRunResult out;
   for (const sim::FlatBody& b : run.sim().flat().bodies) out.mass += b.source->mass;
   std::vector<Eigen::Vector2d> front, rear;
@@ -131,7 +138,8 @@ ExperimentResult CircleEqualSpeeds(const Context& context) {
   errors.ylabel = "rear axle midpoint: distance to centre - r [mm]";
   std::string figures;
   for (const double mu : {0.5, 1.0}) {
-    const CircleRunResult run = RunCircle(context, mu, kAlpha, kSpeed, kSpeed, settle, duration);
+    const CircleRunResult run = RunCircle(context, mu, kAlpha, kSpeed, kSpeed, settle, duration,
+                                          "gen1_circle_equal_speeds.xml");
     result.sim_seconds += run.sim_seconds;
     result.checks.push_back(Relative("radius, mu " + Num(mu) + " (axle midpoints)", run.Radius(),
                                      kinematic, 0.10, "m"));
@@ -180,8 +188,9 @@ ExperimentResult CircleDifferentialSpeeds(const Context& context) {
   const double settle = context.quick ? 3.0 : 8.0, duration = context.quick ? 8.0 : 38.0;
   // Outer wheels at the speed that matches the steering: (r + t) / (r - t).
   const double matched = (kinematic + 0.3) / (kinematic - 0.3);
-  const CircleRunResult run = RunCircle(context, 1.0, kAlpha, 1.00, 1.10, settle, duration);
-  const CircleRunResult exact = RunCircle(context, 1.0, kAlpha, 1.00, matched, settle, duration);
+  const CircleRunResult run = RunCircle(context, 1.0, kAlpha, 1.00, 1.10, settle, duration,
+                                            "gen1_circle_differential.xml");
+  const CircleRunResult exact = RunCircle(context, 1.0, kAlpha, 1.00, matched, settle, duration, "");
   result.sim_seconds = run.sim_seconds + exact.sim_seconds;
   result.checks.push_back(Relative("radius, 1.00 / 1.10 m/s (axle midpoints)", run.Radius(),
                                    kinematic, 0.0025, "m"));
@@ -375,8 +384,7 @@ struct SkidRun {
 SkidRun RunSkid(const Context& context, double duration) {
   constexpr double kStart = 1.0;
   SimRun run(context, "slippery_ground.xml");
-  for (int k = 1; k <= 4; ++k)
-    run.Velocity(kStart, "Axle" + std::to_string(k) + "Motor", 1.0, kWheelTorque);
+  run.PlaySequence("gen1_light_skid.xml");  // the wheels at 1 rad/s from kStart
   const int chassis = run.Body("RearChassis");
   SkidRun out;
   out.velocity.title = "rear chassis speed";

@@ -322,8 +322,7 @@ ExperimentResult TestTrack(const Context& context) {
   constexpr double kStart = 1.0;           // [s] standing before the wheels turn
   constexpr double kSample = 0.1;          // [s]
   SimRun run(context, "test_track.xml");
-  for (int k = 1; k <= 4; ++k)
-    run.Velocity(kStart, "Axle" + std::to_string(k) + "Motor", kWheelSpeed, kTorque);
+  run.PlaySequence("gen4_test_track.xml");  // the wheels at kWheelSpeed from kStart
   int wheel[4];
   for (int k = 0; k < 4; ++k) wheel[k] = run.Body("Wheel" + std::to_string(k + 1));
   // The robot's place on the track: the mean of its four wheel centres
