@@ -11,6 +11,8 @@
 #include <map>
 #include <sstream>
 
+#include "simpartner/edit_distance.h"
+
 namespace simpartner {
 namespace {
 
@@ -178,26 +180,11 @@ const Entry* FindEntry(const std::vector<Entry>& entries, const std::string& key
 
 // Closest known key, for "did you mean" hints on typos.
 std::string ClosestKey(const std::vector<Entry>& entries, const std::string& key) {
-  auto distance = [](const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-      size_t diagonal = row[0];
-      row[0] = i;
-      for (size_t j = 1; j <= b.size(); ++j) {
-        const size_t above = row[j];
-        const bool same = std::tolower(a[i - 1]) == std::tolower(b[j - 1]);
-        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
-        diagonal = above;
-      }
-    }
-    return row[b.size()];
-  };
   std::string best;
   // Suggest only close matches: about one edit per three characters.
   size_t best_distance = std::max<size_t>(2, key.size() / 3 + 1);
   for (const Entry& e : entries) {
-    const size_t d = distance(key, e.key);
+    const size_t d = EditDistance(key, e.key);
     if (d < best_distance) {
       best_distance = d;
       best = e.key;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "simpartner/command_shape.h"
+#include "simpartner/edit_distance.h"
 #include "simpartner/model_t.hpp"
 
 namespace simpartner::client {
@@ -100,6 +101,6 @@ class Catalog {
 };
 
 // Edit distance (Levenshtein, case-insensitive) for did-you-mean.
-size_t EditDistance(const std::string& a, const std::string& b);
+using ::simpartner::EditDistance;
 
 }  // namespace simpartner::client
