@@ -5,6 +5,7 @@
 #include "simpartner/actuator_t.hpp"
 #include "simpartner/client/command.h"
 #include "simpartner/client/errors.h"
+#include "simpartner/model/model_message.h"
 #include "simpartner/sensor_t.hpp"
 
 namespace simpartner::sequencer {
@@ -128,93 +129,6 @@ DiagnosticList CheckSequence(const Sequence& sequence, const model_t& model, Pla
   return diagnostics;
 }
 
-model_t ModelFromWorld(const model::World& world) {
-  model_t m{};
-  m.world_file = world.file;
-  m.world_name = world.name;
-  m.step_size = 0.001;
-  m.state_every = 1;
-  for (const model::Body& b : world.objects) {
-    body_t body{};
-    body.name = b.name;
-    body.robot = -1;
-    m.bodies.push_back(body);
-  }
-  for (const model::Joint& j : world.joints) {
-    joint_t joint{};
-    joint.name = j.name;
-    joint.robot = -1;
-    joint.num_axes = static_cast<int8_t>(model::AxisCount(j.kind));
-    m.joints.push_back(joint);
-  }
-  for (size_t r = 0; r < world.robots.size(); ++r) {
-    const model::RobotInstance& instance = world.robots[r];
-    const int16_t robot_index = static_cast<int16_t>(r);
-    robot_t robot{};
-    robot.name = instance.name;
-    robot.model = instance.robot.model_name;
-    robot.file = instance.file;
-    robot.total_mass = instance.robot.TotalMass();
-    m.robots.push_back(robot);
-    const int32_t first_joint = static_cast<int32_t>(m.joints.size());
-    for (const model::Body& b : instance.robot.bodies) {
-      body_t body{};
-      body.name = b.name;
-      body.robot = robot_index;
-      m.bodies.push_back(body);
-    }
-    for (const model::Joint& j : instance.robot.joints) {
-      joint_t joint{};
-      joint.name = j.name;
-      joint.robot = robot_index;
-      joint.num_axes = static_cast<int8_t>(model::AxisCount(j.kind));
-      m.joints.push_back(joint);
-    }
-    auto joint_index = [&](const std::string& name) -> int32_t {
-      for (size_t k = 0; k < instance.robot.joints.size(); ++k)
-        if (instance.robot.joints[k].name == name) return first_joint + static_cast<int32_t>(k);
-      return -1;
-    };
-    for (const model::Actuator& a : instance.robot.actuators) {
-      actuator_t actuator{};
-      actuator.id = static_cast<int32_t>(m.actuators.size());
-      actuator.name = a.name;
-      actuator.robot = robot_index;
-      actuator.kind = static_cast<int8_t>(a.kind);
-      actuator.joint = joint_index(a.joint);
-      actuator.port = a.port;
-      const model::Joint* joint = instance.robot.FindJoint(a.joint);
-      actuator.num_axes = static_cast<int8_t>(joint ? model::AxisCount(joint->kind) : 0);
-      for (int axis = 0; axis < 2 && joint; ++axis) {
-        const Eigen::Vector3d direction = instance.placement.linear() * joint->axis[axis];
-        Eigen::Index slot = 0;
-        direction.cwiseAbs().maxCoeff(&slot);
-        actuator.axis_slot[axis] = static_cast<int8_t>(slot);
-      }
-      m.actuators.push_back(actuator);
-    }
-    for (const model::Sensor& s : instance.robot.sensors) {
-      sensor_t sensor{};
-      sensor.id = static_cast<int32_t>(m.sensors.size());
-      sensor.name = s.name;
-      sensor.robot = robot_index;
-      sensor.kind = static_cast<int8_t>(s.kind);
-      sensor.body = -1;
-      sensor.joint = s.joint.empty() ? -1 : joint_index(s.joint);
-      sensor.port = s.port;
-      sensor.rate = s.rate;
-      if (s.kind == model::SensorKind::kScanner)
-        sensor.params = {static_cast<double>(s.rays), s.half_span, s.range};
-      sensor.num_params = static_cast<int32_t>(sensor.params.size());
-      m.sensors.push_back(sensor);
-    }
-  }
-  m.num_robots = static_cast<int16_t>(m.robots.size());
-  m.num_bodies = static_cast<int32_t>(m.bodies.size());
-  m.num_joints = static_cast<int32_t>(m.joints.size());
-  m.num_sensors = static_cast<int32_t>(m.sensors.size());
-  m.num_actuators = static_cast<int32_t>(m.actuators.size());
-  return m;
-}
+model_t ModelFromWorld(const model::World& world) { return model::ModelMessageFromWorld(world); }
 
 }  // namespace simpartner::sequencer

@@ -15,6 +15,7 @@
 #include "simpartner/actuator_t.hpp"
 #include "simpartner/client/errors.h"
 #include "simpartner/model/loader.h"
+#include "simpartner/model/model_message.h"
 
 namespace simpartner::teleop {
 namespace {
@@ -375,92 +376,7 @@ Plan BuildPlan(const Mapping& mapping, const model_t& model) {
 }
 
 model_t ModelFromWorldFile(const std::string& world_path) {
-  const model::World world = model::LoadWorldOrThrow(world_path);
-  model_t m{};
-  m.world_file = world.file;
-  m.world_name = world.name;
-  m.step_size = 0.001;
-  m.state_every = 1;
-  const Eigen::Vector3d up = world.Up();
-  for (int k = 0; k < 3; ++k) {
-    m.up[k] = up[k];
-    m.gravity[k] = world.gravity[k];
-  }
-  for (size_t r = 0; r < world.robots.size(); ++r) {
-    const model::RobotInstance& instance = world.robots[r];
-    const int16_t robot_index = static_cast<int16_t>(r);
-    robot_t robot{};
-    robot.name = instance.name;
-    robot.model = instance.robot.model_name;
-    robot.file = instance.file;
-    m.robots.push_back(robot);
-    const int32_t first_body = static_cast<int32_t>(m.bodies.size());
-    const int32_t first_joint = static_cast<int32_t>(m.joints.size());
-    for (const model::Body& b : instance.robot.bodies) {
-      body_t body{};
-      body.id = static_cast<int32_t>(m.bodies.size());
-      body.name = b.name;
-      body.robot = robot_index;
-      const Eigen::Isometry3d pose = instance.placement * b.pose;
-      const Eigen::Quaterniond q(pose.linear());
-      for (int k = 0; k < 3; ++k) body.initial_position[k] = pose.translation()[k];
-      body.initial_orientation[0] = q.w();
-      body.initial_orientation[1] = q.x();
-      body.initial_orientation[2] = q.y();
-      body.initial_orientation[3] = q.z();
-      m.bodies.push_back(body);
-    }
-    auto body_index = [&](const std::string& name) -> int32_t {
-      for (size_t k = 0; k < instance.robot.bodies.size(); ++k)
-        if (instance.robot.bodies[k].name == name) return first_body + static_cast<int32_t>(k);
-      return -1;
-    };
-    for (const model::Joint& j : instance.robot.joints) {
-      joint_t joint{};
-      joint.id = static_cast<int32_t>(m.joints.size());
-      joint.name = j.name;
-      joint.robot = robot_index;
-      joint.body1 = body_index(j.body1);
-      joint.body2 = body_index(j.body2);
-      joint.num_axes = static_cast<int8_t>(model::AxisCount(j.kind));
-      const Eigen::Vector3d anchor = instance.placement * j.anchor;
-      for (int k = 0; k < 3; ++k) joint.anchor[k] = anchor[k];
-      for (int a = 0; a < 2; ++a) {
-        const Eigen::Vector3d axis = instance.placement.linear() * j.axis[a];
-        for (int k = 0; k < 3; ++k) joint.axis[a][k] = axis[k];
-      }
-      m.joints.push_back(joint);
-    }
-    auto joint_index = [&](const std::string& name) -> int32_t {
-      for (size_t k = 0; k < instance.robot.joints.size(); ++k)
-        if (instance.robot.joints[k].name == name) return first_joint + static_cast<int32_t>(k);
-      return -1;
-    };
-    for (const model::Actuator& a : instance.robot.actuators) {
-      actuator_t actuator{};
-      actuator.id = static_cast<int32_t>(m.actuators.size());
-      actuator.name = a.name;
-      actuator.robot = robot_index;
-      actuator.kind = static_cast<int8_t>(a.kind);
-      actuator.joint = joint_index(a.joint);
-      actuator.port = a.port;
-      const model::Joint* joint = instance.robot.FindJoint(a.joint);
-      actuator.num_axes = static_cast<int8_t>(joint ? model::AxisCount(joint->kind) : 0);
-      for (int axis = 0; axis < 2 && joint; ++axis) {
-        const Eigen::Vector3d direction = instance.placement.linear() * joint->axis[axis];
-        Eigen::Index slot = 0;
-        direction.cwiseAbs().maxCoeff(&slot);
-        actuator.axis_slot[axis] = static_cast<int8_t>(slot);
-      }
-      m.actuators.push_back(actuator);
-    }
-  }
-  m.num_robots = static_cast<int16_t>(m.robots.size());
-  m.num_bodies = static_cast<int32_t>(m.bodies.size());
-  m.num_joints = static_cast<int32_t>(m.joints.size());
-  m.num_sensors = 0;
-  m.num_actuators = static_cast<int32_t>(m.actuators.size());
-  return m;
+  return model::ModelMessageFromWorld(model::LoadWorldOrThrow(world_path));
 }
 
 }  // namespace simpartner::teleop

@@ -46,9 +46,8 @@ struct Plan {
 // diagnostics. Every problem is `file:line: element: message`.
 DiagnosticList CheckSequence(const Sequence& sequence, const model_t& model, Plan* plan);
 
-// The model the sim would announce for a world, as far as a sequence's
-// check needs it (robots, joints, bodies, sensors, actuators with kinds,
-// ports and axes); built without the physics.
+// The model the sim would announce for a world, built without the physics
+// (model::ModelMessageFromWorld, shared with teleop's --check).
 model_t ModelFromWorld(const model::World& world);
 
 }  // namespace simpartner::sequencer

@@ -1,0 +1,19 @@
+// A world as the sim announces it on SIM_MODEL, built without a sim: names,
+// kinds, legacy ports, initial poses, joint anchors and axes, sensors and
+// actuators with their axis slots. For checking files offline against a
+// world (simpartner-sequencer --check, simpartner-teleop --check), where
+// the same catalogue of targets is needed as from the bus. What only a
+// built world knows (materials, inertia, a run's simulation id,
+// parameters) is left empty.
+#pragma once
+
+#include "simpartner/model/model.h"
+#include "simpartner/model_t.hpp"
+
+namespace simpartner::model {
+
+// World objects and joints first, then each robot's bodies, joints,
+// actuators and sensors in file order, as the sim numbers them.
+model_t ModelMessageFromWorld(const World& world);
+
+}  // namespace simpartner::model
