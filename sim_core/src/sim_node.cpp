@@ -25,6 +25,8 @@ constexpr auto kMaxLag = std::chrono::milliseconds(100);
 constexpr auto kInputBudget = std::chrono::microseconds(200);
 // Steps in one status period that left input waiting before the sim says so.
 constexpr int64_t kDeferralsWorthAWarning = 100;
+// Replies to refused commands sent in one second, at most.
+constexpr int kRefusalRepliesPerSecond = 1000;
 // Refused commands printed in full before printing thins out.
 constexpr int64_t kPrintFirstRefusals = 100;
 
@@ -135,7 +137,20 @@ void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& cha
                               std::to_string(BadMessageCounter::kPrintEvery) + " is printed)"
                         : std::string())
                 << "\n";
-    lcm_->publish(channels::kCommandReply, &*rejection);
+    // Refusals are answered at up to kRefusalRepliesPerSecond: a flood of
+    // bad commands must not double itself into a flood of replies (which
+    // every process on the bus, the sim included, would have to read).
+    const auto now = Clock::now();
+    if (now - refusal_window_start_ >= std::chrono::seconds(1)) {
+      refusal_window_start_ = now;
+      refusal_replies_in_window_ = 0;
+    }
+    if (refusal_replies_in_window_ < kRefusalRepliesPerSecond) {
+      ++refusal_replies_in_window_;
+      lcm_->publish(channels::kCommandReply, &*rejection);
+    } else {
+      ++refusal_replies_withheld_;
+    }
   }
 }
 
@@ -259,7 +274,9 @@ void SimNode::ReportInputDeferrals() {
            " us past each due step): " + std::to_string(input_deferrals_ - reported_deferrals_) +
            " steps left messages waiting for the next step (" + std::to_string(input_deferrals_) +
            " since start; bad messages so far: " + std::to_string(bad_message_counter_.total()) +
-           ", commands refused: " + std::to_string(commands_rejected_) + ")");
+           ", commands refused: " + std::to_string(commands_rejected_) +
+           ", replies to refusals withheld beyond " + std::to_string(kRefusalRepliesPerSecond) +
+           "/s: " + std::to_string(refusal_replies_withheld_) + ")");
   reported_deferrals_ = input_deferrals_;
 }
 

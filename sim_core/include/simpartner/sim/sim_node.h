@@ -89,6 +89,9 @@ class SimNode {
   BadMessageCounter bad_message_counter_;
   int64_t input_deferrals_ = 0;
   int64_t reported_deferrals_ = 0;
+  Clock::time_point refusal_window_start_{};
+  int refusal_replies_in_window_ = 0;
+  int64_t refusal_replies_withheld_ = 0;
   bool wake_ = false;            // a control arrived: stop waiting for the deadline
   std::deque<warning_t> recent_warnings_;
   // Pacing and figures.
