@@ -10,6 +10,7 @@
 #include <signal.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -30,6 +31,14 @@ namespace simpartner {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The caller's ASan options, and no complaint that the preloaded library
+// (tests/viewer/keep_libraries_loaded.c) comes before ASan's runtime.
+std::string AsanOptions() {
+  const char* given = std::getenv("ASAN_OPTIONS");
+  return (given != nullptr && *given != '\0' ? std::string(given) + ":" : std::string()) +
+         "verify_asan_link_order=0";
+}
 
 std::string ReadFile(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -131,7 +140,8 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   const std::string shot = (dir_ / "after.png").string();
   auto viewer = Start({"/usr/bin/env", "DISPLAY=" + xvfb.display(),
                        "LSAN_OPTIONS=suppressions=" + std::string(SP_SOURCE_DIR) + "/tests/viewer/lsan.supp",
-                       "LD_PRELOAD=" SP_KEEP_LOADED_LIB, bin + "/viewer/simpartner-viewer", "--params",
+                       "LD_PRELOAD=" SP_KEEP_LOADED_LIB, "ASAN_OPTIONS=" + AsanOptions(),
+                       bin + "/viewer/simpartner-viewer", "--params",
                        "/dev/null", "--lcm-url", url_, "--width", "640", "--height", "360",
                        "--screenshot", shot, "--after", "12"},
                       "viewer.log");

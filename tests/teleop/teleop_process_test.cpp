@@ -522,6 +522,14 @@ TEST_F(TeleopProcessTest, KeyboardWindowDrivesWithRealKeyPresses) {
   viewer::XvfbServer xvfb(1280, 720, (dir_ / "xvfb.log").string());
   teleop_ = std::make_unique<ChildProcess>(
       std::vector<std::string>{"/usr/bin/env", "DISPLAY=" + xvfb.display(),
+                               // Under ASan: X and D-Bus keep allocations for the
+                               // life of the process, as for the viewer (see
+                               // tests/viewer/lsan.supp, keep_libraries_loaded.c).
+                               "LSAN_OPTIONS=suppressions=" + std::string(SP_SOURCE_DIR) +
+                                   "/tests/viewer/lsan.supp",
+                               "LD_PRELOAD=" SP_KEEP_LOADED_LIB,
+                               "ASAN_OPTIONS=" + std::string(std::getenv("ASAN_OPTIONS") ? std::getenv("ASAN_OPTIONS") : "") +
+                                   ":verify_asan_link_order=0",
                                kBinary + "/teleop/simpartner-teleop", "--keyboard", "--lcm-url",
                                url},
       (dir_ / "teleop.log").string());
