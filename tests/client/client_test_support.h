@@ -5,8 +5,10 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -20,6 +22,18 @@ namespace simpartner::client::testing {
 inline std::string UniqueUrl(int offset) {
   const int port = 20000 + (static_cast<int>(::getpid()) * 13 + offset * 101) % 20000;
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
+}
+
+// The number printed right after `label` in `text` (GCC 12 warns falsely
+// inside <regex> under the sanitizers, so no std::regex here).
+inline std::optional<double> NumberAfter(const std::string& text, const std::string& label) {
+  const size_t at = text.find(label);
+  if (at == std::string::npos) return std::nullopt;
+  const char* start = text.c_str() + at + label.size();
+  char* end = nullptr;
+  const double value = std::strtod(start, &end);
+  if (end == start) return std::nullopt;
+  return value;
 }
 
 inline std::string ReadFile(const std::string& path) {

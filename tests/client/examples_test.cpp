@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <optional>
 
 #include "client_test_support.h"
@@ -12,18 +11,7 @@
 namespace simpartner::client {
 namespace {
 
-// The number printed right after `label` in `text` (GCC 12 warns falsely
-// inside <regex> under the sanitizers, so no std::regex here).
-std::optional<double> NumberAfter(const std::string& text, const std::string& label) {
-  const size_t at = text.find(label);
-  if (at == std::string::npos) return std::nullopt;
-  const char* start = text.c_str() + at + label.size();
-  char* end = nullptr;
-  const double value = std::strtod(start, &end);
-  if (end == start) return std::nullopt;
-  return value;
-}
-
+using testing::NumberAfter;
 using testing::ReadFile;
 using testing::SimProcess;
 using testing::TestDir;
