@@ -1,38 +1,15 @@
 // Plots of what a person would look at (trajectories, errors over time,
-// forces), kept as data until the report draws them with gnuplot.
+// forces), kept as data until the report draws them with gnuplot. The
+// drawing is common/ (simpartner-query plot draws with it too).
 #pragma once
 
-#include <string>
-#include <vector>
+#include "simpartner/plot.h"
 
 namespace simpartner::validate {
 
-struct Series {
-  std::string title;
-  std::vector<double> x, y;
-  // gnuplot style: "lines", "points", "linespoints", "boxes", "dashed"
-  // (a dashed line, for analytic curves and targets).
-  std::string style = "lines";
-};
-
-struct Plot {
-  std::string file;            // PNG name inside the report directory, e.g. "free_fall.png"
-  std::string title;
-  std::string xlabel, ylabel;
-  std::vector<Series> series;
-  bool equal_axes = false;     // same scale on x and y (trajectories)
-  bool log_y = false;
-  std::vector<std::string> xtics;  // labels for a bar chart (x = 0, 1, ...)
-  bool y_from_zero = false;    // bars: the y axis starts at 0
-};
-
-// Keeps at most max_points evenly spaced points of a series (always the
-// first and the last) so that plot data stays small.
-Series Thin(Series series, size_t max_points = 2000);
-
-// Draws the plot into directory/plot.file with gnuplot (pngcairo, 900 x 540).
-// Throws simpartner::Error naming the plot and gnuplot's output when
-// gnuplot is missing or fails.
-void DrawPlot(const Plot& plot, const std::string& directory);
+using simpartner::DrawPlot;
+using simpartner::Plot;
+using simpartner::Series;
+using simpartner::Thin;
 
 }  // namespace simpartner::validate

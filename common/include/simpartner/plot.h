@@ -1,0 +1,51 @@
+// Plots drawn with gnuplot, for the validation report and simpartner-query
+// plot: series kept as data until drawn into a PNG (pngcairo) or, for a
+// person at a display, into a window.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace simpartner {
+
+struct Series {
+  std::string title;
+  std::vector<double> x, y;
+  // gnuplot style: "lines", "points", "linespoints", "boxes", "dashed"
+  // (a dashed line, for analytic curves and targets).
+  std::string style = "lines";
+};
+
+struct Plot {
+  std::string file;            // PNG name inside the report directory, e.g. "free_fall.png"
+  std::string title;
+  std::string xlabel, ylabel;
+  std::vector<Series> series;
+  bool equal_axes = false;     // same scale on x and y (trajectories)
+  bool log_y = false;
+  std::vector<std::string> xtics;  // labels for a bar chart (x = 0, 1, ...)
+  bool y_from_zero = false;    // bars: the y axis starts at 0
+};
+
+// Keeps at most max_points evenly spaced points of a series (always the
+// first and the last) so that plot data stays small.
+Series Thin(Series series, size_t max_points = 2000);
+
+// Draws the plot into directory/plot.file with gnuplot (pngcairo, 900 x 540).
+// Throws simpartner::Error naming the plot and gnuplot's output when
+// gnuplot is missing or fails.
+void DrawPlot(const Plot& plot, const std::string& directory);
+
+// The same into the PNG file `png_path` (any directory, any name).
+void DrawPlotPng(const Plot& plot, const std::string& png_path);
+
+// The window terminals this gnuplot has, best first (qt, wxt, x11; none
+// with Debian's gnuplot-nox).
+std::vector<std::string> GnuplotWindowTerminals();
+
+// Draws the plot in a window and returns when the person closes it. Throws
+// Error when this gnuplot has no window terminal (gnuplot-nox), naming the
+// packages that have one.
+void ShowPlotWindow(const Plot& plot);
+
+}  // namespace simpartner
