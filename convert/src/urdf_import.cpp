@@ -392,13 +392,23 @@ std::string Importer::Write(const std::string& robot_name) const {
   return out.str();
 }
 
-// The name in square brackets of an urdfdom message ("Joint [j1] is
-// missing ..."), or "".
-std::string BracketedName(const std::string& message) {
-  const size_t open = message.find('[');
-  const size_t close = message.find(']', open == std::string::npos ? 0 : open);
-  if (open == std::string::npos || close == std::string::npos) return "";
-  return message.substr(open + 1, close - open - 1);
+// The line of the element an urdfdom message names: its names come in
+// square brackets ("child link [b] of joint [j] not found"); a joint
+// named is the more precise place, then a link.
+int LineOfMessage(const std::string& message, const UrdfLines& lines) {
+  int link_line = 0;
+  for (size_t open = message.find('['); open != std::string::npos;
+       open = message.find('[', open + 1)) {
+    const size_t close = message.find(']', open);
+    if (close == std::string::npos) break;
+    const std::string name = message.substr(open + 1, close - open - 1);
+    const bool says_joint = open >= 6 && (message.compare(open - 6, 5, "joint") == 0 ||
+                                          message.compare(open - 6, 5, "Joint") == 0);
+    if (lines.joints.count(name) != 0 && (says_joint || lines.links.count(name) == 0))
+      return lines.joints.at(name);
+    if (link_line == 0 && lines.links.count(name) != 0) link_line = lines.links.at(name);
+  }
+  return link_line != 0 ? link_line : lines.robot;
 }
 
 }  // namespace
@@ -433,15 +443,7 @@ UrdfImportResult ImportUrdf(const std::string& urdf_text, const std::string& fil
     // urdfdom's last message is the general one ("Model Parsing the xml
     // failed"); the first names the element.
     const std::string& message = log.messages.front();
-    const std::string name = BracketedName(message);
-    int line = lines.robot;
-    if (lines.joints.count(name) != 0 && message.find("oint") != std::string::npos)
-      line = lines.joints.at(name);
-    else if (lines.links.count(name) != 0)
-      line = lines.links.at(name);
-    else if (lines.joints.count(name) != 0)
-      line = lines.joints.at(name);
-    diagnostics.Add(file_name, line, "", message);
+    diagnostics.Add(file_name, LineOfMessage(message, lines), "", message);
     throw ConvertError(diagnostics);
   }
 

@@ -3,6 +3,7 @@
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "simpartner/convert/urdf_import.h"
@@ -23,6 +24,26 @@ bool Named(const xmlNode* node, const char* name) {
          xmlStrcmp(node->name, reinterpret_cast<const xmlChar*>(name)) == 0;
 }
 
+// The first error libxml2 raises: what follows it is about a document it
+// has already misread (an unclosed tag shows up at the end of the file).
+struct FirstError {
+  int line = 0;
+  std::string message;
+};
+
+void KeepFirstError(void* data, xmlErrorPtr error) {
+  auto* context = static_cast<xmlParserCtxt*>(data);
+  auto* first = static_cast<FirstError*>(context->_private);
+  if (first == nullptr || error == nullptr || error->level == XML_ERR_WARNING) return;
+  if (!first->message.empty()) return;
+  first->line = error->line;
+  first->message = error->message != nullptr ? error->message : "not well-formed XML";
+  while (!first->message.empty() &&
+         (first->message.back() == '\n' || first->message.back() == ' '))
+    first->message.pop_back();
+  std::replace(first->message.begin(), first->message.end(), '\n', ' ');
+}
+
 }  // namespace
 
 UrdfLines ReadXmlLines(const std::string& text, const std::string& file_name) {
@@ -34,22 +55,21 @@ UrdfLines ReadXmlLines(const std::string& text, const std::string& file_name) {
     throw ConvertError(diagnostics);
   }
   // No network, no external entities, and libxml2 prints nothing: the
-  // error comes back in the context.
+  // first error comes back through the context's own handler (libxml2
+  // passes the context as the handler's data).
+  FirstError first;
+  context->_private = &first;
+  context->sax->serror = &KeepFirstError;
   const int flags = XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING;
   std::unique_ptr<xmlDoc, decltype(&xmlFreeDoc)> doc(
       xmlCtxtReadMemory(context.get(), text.data(), static_cast<int>(text.size()),
                         file_name.c_str(), nullptr, flags),
       &xmlFreeDoc);
   if (!doc) {
-    const xmlError* error = xmlCtxtGetLastError(context.get());
     DiagnosticList diagnostics;
-    std::string message = error != nullptr && error->message != nullptr
-                              ? error->message
-                              : "not well-formed XML";
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
-      message.pop_back();
-    diagnostics.Add(file_name, error != nullptr ? error->line : 0, "",
-                    "not well-formed XML: " + message);
+    diagnostics.Add(file_name, first.line, "",
+                    "not well-formed XML: " +
+                        (first.message.empty() ? std::string("cannot parse") : first.message));
     throw ConvertError(diagnostics);
   }
   UrdfLines lines;
