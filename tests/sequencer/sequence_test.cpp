@@ -293,6 +293,7 @@ TEST(SequenceShipped, EveryFileChecksAgainstItsWorld) {
   const std::map<std::string, std::string> worlds = {
       {"gen1_circle_equal_speeds.xml", "gen1_flat.xml"},
       {"gen1_circle_differential.xml", "gen1_flat.xml"},
+      {"gen1_circle_matched.xml", "gen1_flat.xml"},
       {"gen1_light_skid.xml", "slippery_ground.xml"},
       {"gen2_scanner_sweep.xml", "scanner_wall.xml"},
       {"gen3_pole_task.xml", "pole_task.xml"},

@@ -15,10 +15,6 @@ std::string Num(double v) { return FormatNumber(v); }
 
 constexpr double kWheelRadius = 0.235;  // SPEC 7
 constexpr double kAxleDistance = 0.6;   // SPEC 7: a, Turner joint to each axle
-constexpr double kWheelTorque = 1000.0; // [N m] the SPEC's default force per axis
-// Turner angle controller: stiff enough to hold the steering angle against
-// the wheels' slip forces (error < 1e-4 rad at 1000 N m).
-constexpr double kTurnerP = 100.0, kTurnerI = 100.0, kTurnerD = 0.0;
 
 struct CircleRunResult {
   CircleFit front, rear;            // axle midpoints over the measured part
@@ -31,13 +27,11 @@ struct CircleRunResult {
   double WorstDeviation() const { return std::max(front.worst_deviation, rear.worst_deviation); }
 };
 
-// gen1 on flat ground: steer to alpha with TurnerMotor while standing, then
-// drive the left (inner) wheels at v_left and the right ones at v_right
-// [m/s], and fit circles to the axle midpoints once the turn is steady.
-// sequence: the shipped file with these commands (sequences/), or "" for a
-// setting no file has.
-CircleRunResult RunCircle(const Context& context, double mu, double alpha, double v_left,
-                          double v_right, double settle, double duration,
+// gen1 on flat ground, playing a shipped sequence (sequences/): steer to
+// alpha with TurnerMotor while standing, then drive the left (inner) wheels
+// at v_left and the right ones at v_right [m/s] from t = 2 s; the circles
+// are fitted to the axle midpoints once the turn is steady.
+CircleRunResult RunCircle(const Context& context, double mu, double settle, double duration,
                           const std::string& sequence) {
   Parameters params = context.params;
   params.contactMu = mu;  // gen1_flat.xml's ground takes its friction from contactMu
@@ -45,16 +39,7 @@ CircleRunResult RunCircle(const Context& context, double mu, double alpha, doubl
   const int wheel[4] = {run.Body("Wheel1"), run.Body("Wheel2"), run.Body("Wheel3"),
                         run.Body("Wheel4")};
   constexpr double kSteerTime = 2.0;
-  if (!sequence.empty()) {
-    run.PlaySequence(sequence);
-  } else {
-    run.Angle(0.0, "TurnerMotor", alpha, 1000.0, kTurnerP, kTurnerI, kTurnerD);
-    // Wheels 2 and 3 are on the left (inner for a left turn).
-    run.Velocity(kSteerTime, "Axle1Motor", v_right / kWheelRadius, kWheelTorque);
-    run.Velocity(kSteerTime, "Axle2Motor", v_left / kWheelRadius, kWheelTorque);
-    run.Velocity(kSteerTime, "Axle3Motor", v_left / kWheelRadius, kWheelTorque);
-    run.Velocity(kSteerTime, "Axle4Motor", v_right / kWheelRadius, kWheelTorque);
-  }
+  run.PlaySequence(sequence);
   CircleRunResult out;
   for (const sim::FlatBody& b : run.sim().flat().bodies) out.mass += b.source->mass;
   std::vector<Eigen::Vector2d> front, rear;
@@ -138,7 +123,7 @@ ExperimentResult CircleEqualSpeeds(const Context& context) {
   errors.ylabel = "rear axle midpoint: distance to centre - r [mm]";
   std::string figures;
   for (const double mu : {0.5, 1.0}) {
-    const CircleRunResult run = RunCircle(context, mu, kAlpha, kSpeed, kSpeed, settle, duration,
+    const CircleRunResult run = RunCircle(context, mu, settle, duration,
                                           "gen1_circle_equal_speeds.xml");
     result.sim_seconds += run.sim_seconds;
     result.checks.push_back(Relative("radius, mu " + Num(mu) + " (axle midpoints)", run.Radius(),
@@ -188,9 +173,10 @@ ExperimentResult CircleDifferentialSpeeds(const Context& context) {
   const double settle = context.quick ? 3.0 : 8.0, duration = context.quick ? 8.0 : 38.0;
   // Outer wheels at the speed that matches the steering: (r + t) / (r - t).
   const double matched = (kinematic + 0.3) / (kinematic - 0.3);
-  const CircleRunResult run = RunCircle(context, 1.0, kAlpha, 1.00, 1.10, settle, duration,
+  const CircleRunResult run = RunCircle(context, 1.0, settle, duration,
                                             "gen1_circle_differential.xml");
-  const CircleRunResult exact = RunCircle(context, 1.0, kAlpha, 1.00, matched, settle, duration, "");
+  const CircleRunResult exact = RunCircle(context, 1.0, settle, duration,
+                                          "gen1_circle_matched.xml");
   result.sim_seconds = run.sim_seconds + exact.sim_seconds;
   result.checks.push_back(Relative("radius, 1.00 / 1.10 m/s (axle midpoints)", run.Radius(),
                                    kinematic, 0.0025, "m"));
@@ -246,46 +232,17 @@ ExperimentResult CircleDifferentialSpeeds(const Context& context) {
 // ---------------------------------------------------------------- gaits
 namespace {
 
-//
-// gen1 legs (models/README.md): hip 0.48 m above the axle, thigh and calf
-// 0.3 m, knees bent towards the Turner joint. A foot (axle) placed dx ahead
-// of its hip at the standing height gives the hip and knee angles below;
-// both are zero in the standing pose.
-struct LegAngles {
-  double hip = 0.0, knee = 0.0;
+// A statically stable gait of the 18 kg gen1, played from its shipped
+// sequence (sequences/make_sequences.py writes the leg targets, computed
+// from the legs' geometry, at 50 Hz, and holds the standing feet's wheels
+// at each phase change). The sequence starts the first cycle at t = 1 s.
+struct GaitSequence {
+  std::string file;
+  int cycles = 0;
+  double cycle_time = 0.0;  // [s]
 };
 
-LegAngles FootAt(bool front, double dx) {
-  constexpr double kLink = 0.3, kHeight = 0.48;
-  const double d = std::hypot(dx, kHeight);
-  const double beta = std::acos(d / (2.0 * kLink));   // link to hip-foot line
-  const double gamma = std::atan2(-kHeight, dx);      // hip-foot direction
-  // Front knees point back (-x), rear knees forward (+x).
-  const double thigh = front ? gamma - beta : gamma + beta;
-  const double calf = front ? gamma + beta : gamma - beta;
-  const double thigh0 = std::atan2(-0.24, front ? -0.18 : 0.18);
-  const double calf0 = std::atan2(-0.24, front ? 0.18 : -0.18);
-  LegAngles a;
-  a.hip = thigh - thigh0;
-  a.knee = (calf - calf0) - (thigh - thigh0);
-  return a;
-}
-
-// Smooth 0 -> 1 over a phase (zero velocity at both ends).
-double Ease(double u) { return 0.5 - 0.5 * std::cos(M_PI * std::clamp(u, 0.0, 1.0)); }
-
-// A statically stable gait on the 18 kg gen1: in each phase some feet move
-// by `stride` relative to the hips with their wheels turning at the
-// matching ground speed (driven by the wheel motor: "moved along the ground
-// by its wheel motor and its leg", after the real robot's rolking), while
-// the others stand with their wheels held. Leg angle targets are sent every
-// step as a sequencer would stream them.
-struct GaitPhase {
-  double duration;
-  double foot_from[4], foot_to[4];  // dx of each foot (wheels 1..4) relative to its hip
-  bool rolling[4];                  // wheel turns with its foot; else held
-  bool body_moves;                  // feet fixed on the ground, the body advances
-};
+constexpr double kGaitStart = 1.0;  // [s] the first cycle's start in the files
 
 struct GaitRun {
   Series x;
@@ -293,79 +250,30 @@ struct GaitRun {
   double sim_seconds = 0.0;
 };
 
-GaitRun RunGait(const Context& context, const std::vector<GaitPhase>& cycle, int cycles) {
+GaitRun RunGait(const Context& context, const GaitSequence& gait) {
   SimRun run(context, "slippery_ground.xml");
   const int chassis = run.Body("RearChassis");
-  constexpr double kLegP = 100.0;
-  double cycle_time = 0.0;
-  for (const GaitPhase& p : cycle) cycle_time += p.duration;
-  // Which phase, and how far into it, at sim time t.
-  auto phase_at = [&](double t, double* u) -> const GaitPhase& {
-    double in_cycle = std::fmod(std::max(0.0, t - 1.0), cycle_time);
-    for (const GaitPhase& p : cycle) {
-      if (in_cycle < p.duration) {
-        *u = in_cycle / p.duration;
-        return p;
-      }
-      in_cycle -= p.duration;
-    }
-    *u = 1.0;
-    return cycle.back();
-  };
-  auto foot = [&](double t, int leg) {
-    if (t < 1.0) return cycle.front().foot_from[leg];
-    double u = 0.0;
-    const GaitPhase& p = phase_at(t, &u);
-    return p.foot_from[leg] + (p.foot_to[leg] - p.foot_from[leg]) * Ease(u);
-  };
-  const GaitPhase* last_phase = nullptr;
-  auto command = [&](double t) {
-    // Leg targets one P time constant ahead: the joints follow without lag.
-    const double ahead = t + 1.0 / kLegP;
-    for (int leg = 0; leg < 4; ++leg) {
-      const bool front = leg < 2;
-      const LegAngles a = FootAt(front, foot(ahead, leg));
-      const std::string n = std::to_string(leg + 1);
-      run.Angle(t, "Hip" + n + "Motor", a.hip, 1000.0, kLegP, 0.0, 0.0);
-      run.Angle(t, "Knee" + n + "Motor", a.knee, 1000.0, kLegP, 0.0, 0.0);
-    }
-    if (t < 1.0) return;
-    double u = 0.0;
-    const GaitPhase& p = phase_at(t, &u);
-    // Feet velocities relative to the hips; held feet stand on the ground,
-    // so the body moves at minus theirs.
-    const double dt = 1e-3;
-    double relative[4], body = 0.0;
-    for (int leg = 0; leg < 4; ++leg) {
-      relative[leg] = (foot(t + dt, leg) - foot(t - dt, leg)) / (2 * dt);
-      if (!p.rolling[leg] && p.body_moves) body = -relative[leg];
-    }
-    for (int leg = 0; leg < 4; ++leg) {
-      const std::string motor = "Axle" + std::to_string(leg + 1) + "Motor";
-      if (!p.rolling[leg]) {
-        if (last_phase != &p) run.Hold(t, motor, kWheelTorque);
-        continue;
-      }
-      run.Velocity(t, motor, (body + relative[leg]) / kWheelRadius, kWheelTorque);
-    }
-    last_phase = &p;
-  };
-  command(0.0);
+  const double end = kGaitStart + gait.cycles * gait.cycle_time;
+  const SimRun::SequenceTimes times = run.PlaySequence(gait.file);
+  // The speed is measured over whole cycles: a file that does not last
+  // them would measure something else.
+  if (std::abs(times.end - end) > 0.5 * run.dt())
+    throw Error(gait.file + " lasts " + Num(times.end) + " s, not the " + Num(end) + " s of " +
+                std::to_string(gait.cycles) + " cycles of " + Num(gait.cycle_time) + " s");
   GaitRun out;
   out.x.title = "rear chassis x";
   double x_after_first = 0.0;
-  const double end = 1.0 + cycles * cycle_time;
   run.RunUntil(end, [&] {
     const double t = run.time();
-    command(t);
-    if (std::abs(t - (1.0 + cycle_time)) < 0.5 * run.dt()) x_after_first = run.Position(chassis).x();
+    if (std::abs(t - (kGaitStart + gait.cycle_time)) < 0.5 * run.dt())
+      x_after_first = run.Position(chassis).x();
     if (run.sim().step() % 10 == 0) {
       out.x.x.push_back(t);
       out.x.y.push_back(run.Position(chassis).x());
     }
   });
   out.sim_seconds = run.time();
-  out.speed = (run.Position(chassis).x() - x_after_first) / ((cycles - 1) * cycle_time);
+  out.speed = (run.Position(chassis).x() - x_after_first) / ((gait.cycles - 1) * gait.cycle_time);
   return out;
 }
 
@@ -451,11 +359,11 @@ ExperimentResult SkiddingWheels(const Context& context) {
 
 namespace {
 
-ExperimentResult GaitExperiment(const Context& context, const std::vector<GaitPhase>& cycle,
-                                int cycles, const std::string& file, const std::string& name,
+ExperimentResult GaitExperiment(const Context& context, const GaitSequence& sequence,
+                                const std::string& file, const std::string& name,
                                 double original, const std::string& description) {
   ExperimentResult result;
-  const GaitRun gait = RunGait(context, cycle, cycles);
+  const GaitRun gait = RunGait(context, sequence);
   const SkidRun skid = RunSkid(context, 10.0);
   result.sim_seconds = gait.sim_seconds + skid.sim_seconds;
   result.checks.push_back(AtLeast(name + " speed / skidding wheels' speed", gait.speed / skid.speed,
@@ -467,15 +375,14 @@ ExperimentResult GaitExperiment(const Context& context, const std::vector<GaitPh
   plot.ylabel = "x of the rear chassis [m]";
   plot.series = {gait.x};
   result.plots.push_back(plot);
-  double cycle_time = 0.0;
-  for (const GaitPhase& p : cycle) cycle_time += p.duration;
   result.notes =
       "The light gen1 on ice (`slippery_ground.xml`). " + description +
       " A moving foot's wheel rolls with it, driven at the matching ground speed; a standing "
       "foot's wheel is held. Hip and knee targets follow from the "
-      "legs' geometry (0.3 m links, hips 0.48 m above the axles) and are sent every step "
-      "(P 100, target one time constant ahead). Cycle " + Num(cycle_time) + " s; " +
-      std::to_string(cycles) + " cycles, the speed measured over all but the first: " +
+      "legs' geometry (0.3 m links, hips 0.48 m above the axles) and are sent at 50 Hz "
+      "(P 100, target one time constant ahead) by the shipped sequence `sequences/" +
+      sequence.file + "`. Cycle " + Num(sequence.cycle_time) + " s; " +
+      std::to_string(sequence.cycles) + " cycles, the speed measured over all but the first: " +
       Num(gait.speed) + " m/s (the original: " + Num(original) + " m/s). Skidding wheels at "
       "1 rad/s on the same ice: " + Num(skid.speed) + " m/s (the original: 0.0038 m/s).\n\n"
       "**Why the ordering check fails.** The gaits are statically stable: in every phase the "
@@ -494,14 +401,9 @@ ExperimentResult GaitExperiment(const Context& context, const std::vector<GaitPh
 }  // namespace
 
 ExperimentResult CaterpillarGait(const Context& context) {
-  constexpr double s = 0.25;
-  const std::vector<GaitPhase> cycle = {
-      // front feet reach forward, rolling; the rear wheels hold the body
-      {1.5, {0, 0, 0, 0}, {s, s, 0, 0}, {true, true, false, false}, false},
-      // front wheels hold; the body and the rolling rear wheels advance
-      {3.5, {s, s, 0, 0}, {0, 0, 0, 0}, {false, false, true, true}, true},
-  };
-  return GaitExperiment(context, cycle, 6, "caterpillar.png", "caterpillar", 0.057,
+  // Two phases: 1.5 s + 3.5 s (sequences/make_sequences.py, caterpillar()).
+  return GaitExperiment(context, {"gen1_light_caterpillar.xml", 6, 5.0}, "caterpillar.png",
+                        "caterpillar", 0.057,
                         "Caterpillar: the front feet reach 0.25 m forward (1.5 s) while the "
                         "rear wheels hold the body; then the front wheels hold while the legs "
                         "pull the body, and with it the rolling rear wheels, 0.25 m forward "
@@ -509,17 +411,9 @@ ExperimentResult CaterpillarGait(const Context& context) {
 }
 
 ExperimentResult RollingWalking(const Context& context) {
-  constexpr double s = 0.25;
-  const std::vector<GaitPhase> cycle = {
-      // one leg at a time reaches forward rolling, the other three hold
-      {1.0, {0, 0, 0, 0}, {s, 0, 0, 0}, {true, false, false, false}, false},
-      {1.0, {s, 0, 0, 0}, {s, 0, s, 0}, {false, false, true, false}, false},
-      {1.0, {s, 0, s, 0}, {s, s, s, 0}, {false, true, false, false}, false},
-      {1.0, {s, s, s, 0}, {s, s, s, s}, {false, false, false, true}, false},
-      // all four hold; the legs push the body forward over the feet
-      {3.0, {s, s, s, s}, {0, 0, 0, 0}, {false, false, false, false}, true},
-  };
-  return GaitExperiment(context, cycle, 5, "rolking.png", "rolking", 0.048,
+  // Four 1 s steps and a 3 s push (sequences/make_sequences.py, rolking()).
+  return GaitExperiment(context, {"gen1_light_rolking.xml", 5, 7.0}, "rolking.png", "rolking",
+                        0.048,
                         "Rolling walking, after the real robot's: one leg at a time (1, 3, 2, "
                         "4; 1 s each) reaches 0.25 m forward, its wheel rolling, while the "
                         "other three stand; then all four stand and the legs push the body "

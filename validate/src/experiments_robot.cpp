@@ -139,12 +139,11 @@ ExperimentResult Scanner(const Context& context) {
   const int turn = run.Joint("TorsoTurn");
   const model::Sensor& source = *run.sim().flat().sensors[static_cast<size_t>(scanner)].source;
   const int rays = source.rays;
-  // The torso follows theta = omega t: a new angle target every step (the
+  // The torso follows theta = omega t: sequences/gen2_scanner_sweep.xml
+  // ramps the angle target omega (t + 1/P) step by step (the
   // AngleController's P term with the target one time constant ahead, so
   // the joint turns at omega without lag).
-  constexpr double kP = 100.0;
-  auto target = [&](double t) { return kOmega * (t + 1.0 / kP); };
-  run.Angle(0.0, "TorsoTurnMotor", target(0.0), 1000.0, kP, 0.0, 0.0);
+  run.PlaySequence("gen2_scanner_sweep.xml");
   double worst = 0.0, worst_middle = 0.0, worst_angle = 0.0;
   Series middle{"middle ray, simulated", {}, {}, "lines"};
   Series middle_exact{"L / cos(omega t)", {}, {}, "dashed"};
@@ -154,7 +153,6 @@ ExperimentResult Scanner(const Context& context) {
   const int every = static_cast<int>(std::lround(kPeriod / run.dt()));
   run.RunUntil(duration, [&] {
     const double t = run.time();
-    run.Angle(t, "TorsoTurnMotor", target(t), 1000.0, kP, 0.0, 0.0);
     if (run.sim().step() % every != 0) return;
     const sensor_reading_t reading = run.sim().ReadSensor(scanner);
     const double theta = kOmega * t;

@@ -1,11 +1,13 @@
 #include "simpartner/validate/sim_run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include "simpartner/model/loader.h"
+#include "simpartner/sequencer/check.h"
 #include "simpartner/sequencer/sequence.h"
 
 namespace simpartner::validate {
@@ -31,49 +33,6 @@ SimRun::SimRun(const Context& context, const std::string& world, Parameters para
 
 int64_t SimRun::StepAt(double t) const { return std::llround(t / dt()); }
 
-void SimRun::Command(double t, const std::string& target, int8_t action,
-                     std::vector<double> values) {
-  command_t c{};
-  c.request_id = ++request_id_;
-  c.sender = "simpartner-validate";
-  c.target = target;
-  c.action = action;
-  c.apply_at_step = StepAt(t);
-  c.values = std::move(values);
-  c.num_values = static_cast<int32_t>(c.values.size());
-  if (const auto reply = sim_->Submit(c))
-    throw Error(world_name_ + ": command to '" + target + "' at t = " + FormatNumber(t) +
-                " s rejected: " + reply->reason);
-}
-
-void SimRun::CommandText(double t, const std::string& target, int8_t action,
-                         const std::string& text) {
-  command_t c{};
-  c.request_id = ++request_id_;
-  c.sender = "simpartner-validate";
-  c.target = target;
-  c.action = action;
-  c.apply_at_step = StepAt(t);
-  c.text = text;
-  c.num_values = 0;
-  if (const auto reply = sim_->Submit(c))
-    throw Error(world_name_ + ": command '" + text + "' to '" + target + "' at t = " +
-                FormatNumber(t) + " s rejected: " + reply->reason);
-}
-
-void SimRun::Velocity(double t, const std::string& actuator, double velocity, double max_force) {
-  Command(t, actuator, command_t::ACTION_SET, {max_force, velocity});
-}
-
-void SimRun::Angle(double t, const std::string& actuator, double angle, double max_force,
-                   double p, double i, double d) {
-  Command(t, actuator, command_t::ACTION_SET, {max_force, angle, p, i, d});
-}
-
-void SimRun::Hold(double t, const std::string& actuator, double max_force) {
-  Command(t, actuator, command_t::ACTION_HOLD, {max_force});
-}
-
 double SimRun::SequenceTimes::PhaseStart(const std::string& comment) const {
   for (const auto& [text, start] : phases)
     if (text == comment) return start;
@@ -84,16 +43,29 @@ SimRun::SequenceTimes SimRun::PlaySequence(const std::string& file) {
   const std::string path = (fs::path(context_.models_dir).parent_path() / "sequences" / file).string();
   const sequencer::SequenceParseResult parsed = sequencer::LoadSequenceFile(path);
   if (!parsed.sequence) throw Error(parsed.diagnostics.Format());
-  if (parsed.sequence->segments.size() != 1)
+  const sequencer::Sequence& sequence = *parsed.sequence;
+  if (sequence.segments.size() != 1)
     throw Error(path + ": waits on conditions cannot be replayed in a timed run");
-  const sequencer::Segment& segment = parsed.sequence->segments.front();
+  // The same check and the same command building as simpartner-sequencer's.
+  sequencer::Plan plan;
+  const DiagnosticList problems =
+      sequencer::CheckSequence(sequence, sequencer::ModelFromWorld(sim_->world()), &plan);
+  if (!problems.empty()) throw Error(problems.Format());
+  const sequencer::Segment& segment = sequence.segments.front();
   SequenceTimes times;
   times.end = segment.end;
-  for (const sequencer::Command& c : segment.commands) {
-    if (c.target.empty() || c.action == sequencer::kOriginal)
-      throw Error(path + ":" + std::to_string(c.line) + ": only named version-2 commands here");
-    CommandText(c.time, c.target, c.action, c.text);
+  for (const sequencer::PlannedCommand& planned : plan.segments.front().commands) {
+    TimedCommand timed;
+    timed.step = StepAt(planned.source->time);
+    timed.message = planned.message;
+    timed.message.request_id = ++request_id_;
+    timed.message.sender = "simpartner-validate";
+    timed.message.apply_at_step = timed.step;
+    timed.origin = path + ":" + std::to_string(planned.source->line);
+    queued_.push_back(std::move(timed));
   }
+  std::stable_sort(queued_.begin(), queued_.end(),
+                   [](const TimedCommand& a, const TimedCommand& b) { return a.step < b.step; });
   for (const sequencer::Note& note : segment.notes) {
     double start = times.end;
     for (const sequencer::Command& c : segment.commands)
@@ -103,10 +75,25 @@ SimRun::SequenceTimes SimRun::PlaySequence(const std::string& file) {
   return times;
 }
 
+void SimRun::HandOverDue() {
+  // A second of steps ahead: far below the sim's pending-command bound for
+  // any file (at most one command per actuator and step), and early enough
+  // that every command is queued before its step.
+  constexpr int64_t kAheadSteps = 1000;
+  while (!queued_.empty() && queued_.front().step <= sim_->step() + kAheadSteps) {
+    const TimedCommand& next = queued_.front();
+    if (const auto reply = sim_->Submit(next.message))
+      throw Error(next.origin + ": " + next.message.target + " at step " +
+                  std::to_string(next.step) + " refused by the sim: " + reply->reason);
+    queued_.pop_front();
+  }
+}
+
 void SimRun::RunUntil(double t, const std::function<void()>& each_step) {
   const int64_t last = StepAt(t);
   auto last_report = Clock::now();
   while (sim_->step() < last) {
+    HandOverDue();
     if (!sim_->Step()) {
       std::string reasons;
       for (const warning_t& w : sim_->TakeWarnings())

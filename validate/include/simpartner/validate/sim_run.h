@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -27,20 +28,17 @@ class SimRun {
   double dt() const { return sim_->params().stepsize; }
   int64_t StepAt(double t) const;
 
-  // Queues an actuator command for sim time t (seconds); throws
-  // simpartner::Error with the sim's reason when it is rejected.
-  void Command(double t, const std::string& target, int8_t action, std::vector<double> values);
-  // The original's text form, e.g. "1000,1000,100,0,0,0.2".
-  void CommandText(double t, const std::string& target, int8_t action, const std::string& text);
-  void Velocity(double t, const std::string& actuator, double velocity, double max_force);
-  void Angle(double t, const std::string& actuator, double angle, double max_force, double p,
-             double i, double d);
-  void Hold(double t, const std::string& actuator, double max_force);
-  // Queues every command of a shipped sequence (sequences/<file>, next to
-  // models_dir) at its time, as simpartner-sequencer --from-zero sends it.
-  // The file must be timed only (no waits). Returns the sequence's end [s]
-  // and, per <comment>, the time of the first command after it (so that an
-  // experiment can find a phase of the sequence by its comment).
+  // Plays a shipped sequence (sequences/<file>, next to models_dir) as
+  // simpartner-sequencer --from-zero sends it: the file is checked against
+  // the world's model and its commands are built by the client library
+  // (sequencer::CheckSequence), each applied at the step of its time. They
+  // are handed to the sim a little ahead of their step while RunUntil runs,
+  // as the sequencer streams them, so a file of any length stays within
+  // the sim's pending-command bound. The file must be timed only (no
+  // waits). Returns the sequence's end [s] and, per <comment>, the time of
+  // the first command after it (so that an experiment can find a phase of
+  // the sequence by its comment). Throws simpartner::Error with
+  // file:line when the file does not fit the world or the sim refuses.
   struct SequenceTimes {
     double end = 0.0;
     std::vector<std::pair<std::string, double>> phases;  // comment text, start [s]
@@ -77,6 +75,14 @@ class SimRun {
   std::vector<Eigen::Vector3d> com_offsets_;  // body frame
   double progress_mark_ = 0.0;
   int64_t request_id_ = 0;
+  // Commands of the played sequences not yet handed to the sim, in step order.
+  struct TimedCommand {
+    int64_t step = 0;
+    command_t message;
+    std::string origin;  // "file:line" for messages
+  };
+  std::deque<TimedCommand> queued_;
+  void HandOverDue();
 };
 
 }  // namespace simpartner::validate
