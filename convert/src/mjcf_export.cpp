@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "number_text.h"
+#include "xml_text.h"
 #include "simpartner/convert/urdf_import.h"
 #include "simpartner/sim/flat_model.h"
 #include "simpartner/sim/ode_world.h"
@@ -27,20 +27,6 @@ std::string Quat(const Eigen::Matrix3d& rotation) {
   auto clean = [](double x) { return std::abs(x) < 1e-15 ? 0.0 : x; };
   return NumberText(clean(q.w())) + " " + NumberText(clean(q.x())) + " " +
          NumberText(clean(q.y())) + " " + NumberText(clean(q.z()));
-}
-
-std::string Escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 // "--" may not appear inside an XML comment.
@@ -218,11 +204,11 @@ void Writer::WriteBody(int body, const std::string& indent, std::ostringstream& 
   const model::Body& source = *flat.source;
   const Eigen::Isometry3d pose = ZUpPose(body);
   const Eigen::Isometry3d relative = node.parent < 0 ? pose : ZUpPose(node.parent).inverse() * pose;
-  out << indent << "<body name=\"" << Escape(BodyName(body)) << "\" pos=\""
+  out << indent << "<body name=\"" << EscapeXml(BodyName(body)) << "\" pos=\""
       << Vec(relative.translation()) << "\" quat=\"" << Quat(relative.linear()) << "\">\n";
   const std::string inner = indent + "  ";
   if (node.free) {
-    out << inner << "<freejoint name=\"" << Escape(BodyName(body)) << "_free\"/>\n";
+    out << inner << "<freejoint name=\"" << EscapeXml(BodyName(body)) << "_free\"/>\n";
     // qvel of a free joint: linear velocity in the world, angular in the
     // body frame.
     const Eigen::Vector3d v = c_ * flat.linear_velocity;
@@ -253,7 +239,7 @@ void Writer::WriteBody(int body, const std::string& indent, std::ostringstream& 
         angle_joints_.count(node.joint) != 0
             ? " damping=\"" + NumberText(gains_.position_damping) + "\""
             : "";
-    const std::string name = Escape(JointName(node.joint));
+    const std::string name = EscapeXml(JointName(node.joint));
     // Joint velocities start at zero (the keyframe lists every dof).
     const int dofs[] = {0, 1, 1, 3, 2, 2};  // JointKind order
     qvel_.insert(qvel_.end(), static_cast<size_t>(dofs[static_cast<int>(spec.kind)]), 0.0);
@@ -287,7 +273,7 @@ void Writer::WriteBody(int body, const std::string& indent, std::ostringstream& 
       << NumberText(i(1, 2)) << "\"/>\n";
   const std::string geom = GeomAttributes(source.geometry, MaterialOf(body));
   if (!geom.empty())
-    out << inner << "<geom name=\"" << Escape(BodyName(body)) << "\" " << geom << "/>\n";
+    out << inner << "<geom name=\"" << EscapeXml(BodyName(body)) << "\" " << geom << "/>\n";
   for (int child : node.children) WriteBody(child, inner, out);
   out << indent << "</body>\n";
 }
@@ -333,7 +319,7 @@ MjcfExport Writer::Run() {
       const std::string geom =
           GeomAttributes(flat_.bodies[b].source->geometry, MaterialOf(static_cast<int>(b)));
       if (!geom.empty())
-        body << "    <geom name=\"" << Escape(names_[b]) << "\" pos=\"" << Vec(pose.translation())
+        body << "    <geom name=\"" << EscapeXml(names_[b]) << "\" pos=\"" << Vec(pose.translation())
              << "\" quat=\"" << Quat(pose.linear()) << "\" " << geom << "/>\n";
     } else if (tree_[b].parent < 0) {
       WriteBody(static_cast<int>(b), "    ", body);
@@ -351,12 +337,12 @@ MjcfExport Writer::Run() {
     for (int axis = 0; axis < joint.num_axes; ++axis) {
       const std::string suffix = axis == 0 ? "" : "_axis2";
       if (a.source->kind == model::ActuatorKind::kAngle)
-        actuators << "    <position name=\"" << Escape(a.name + suffix) << "\" joint=\""
-                  << Escape(joint_name + suffix) << "\" kp=\"" << NumberText(gains_.position_kp)
+        actuators << "    <position name=\"" << EscapeXml(a.name + suffix) << "\" joint=\""
+                  << EscapeXml(joint_name + suffix) << "\" kp=\"" << NumberText(gains_.position_kp)
                   << "\"" << force << "/>\n";
       else
-        actuators << "    <velocity name=\"" << Escape(a.name + suffix) << "\" joint=\""
-                  << Escape(joint_name + suffix) << "\" kv=\"" << NumberText(gains_.velocity_kv)
+        actuators << "    <velocity name=\"" << EscapeXml(a.name + suffix) << "\" joint=\""
+                  << EscapeXml(joint_name + suffix) << "\" kv=\"" << NumberText(gains_.velocity_kv)
                   << "\"" << force << "/>\n";
     }
     if (joint.num_axes == 0)
@@ -401,7 +387,7 @@ MjcfExport Writer::Run() {
   for (const std::string& line : not_carried_) out << "       - " << CommentSafe(line) << "\n";
   out << "-->\n";
   const std::string model_name = world_.name.empty() ? "simpartner" : world_.name;
-  out << "<mujoco model=\"" << Escape(model_name) << "\">\n"
+  out << "<mujoco model=\"" << EscapeXml(model_name) << "\">\n"
       << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
       << "  <option timestep=\"" << NumberText(params_.stepsize) << "\" gravity=\""
       << Vec(c_ * world_.gravity) << "\"/>\n"

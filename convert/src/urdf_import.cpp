@@ -13,7 +13,7 @@
 #include <set>
 #include <sstream>
 
-#include "number_text.h"
+#include "xml_text.h"
 #include "simpartner/model/loader.h"
 #include "xml_lines.h"
 
@@ -63,20 +63,6 @@ bool IsXmlId(const std::string& name) {
   return std::all_of(name.begin(), name.end(), [&](char c) {
     return letter(c) || (c >= '0' && c <= '9') || c == '-' || c == '.';
   });
-}
-
-std::string EscapeXml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 struct BodyOut {
