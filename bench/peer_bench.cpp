@@ -11,15 +11,19 @@
 //   mujoco acc   the same with settings at least as accurate as ours:
 //                implicit integrator, elliptic cone, Newton to 1e-10,
 //                noslip iterations (no creep of soft friction)
-// Per setting: microseconds per step (whole run), the ratio to ours, the
+// --only bare runs our bare stepping alone (for a profiler).
+// Per setting: microseconds per step (whole run; this thread's CPU time,
+// and wall time), the CPU time's ratio to ours, the
 // summed vertical wheel contact force over the robot's weight (mean of the
 // last standing second), the horizontal drift of the front chassis from 1 s
 // (settled) to the end of standing, and the driving speed (from 1 s after
 // the wheels start).
-//   bench/peer_bench [--stand S] [--drive S] [--only ours|mujoco] [--lcm-url URL]
+//   bench/peer_bench [--stand S] [--drive S] [--only ours|bare|mujoco] [--lcm-url URL]
 #include <lcm/lcm-cpp.hpp>
 #include <mujoco/mujoco.h>
 #include <unistd.h>
+
+#include <time.h>
 
 #include <chrono>
 #include <cmath>
@@ -50,8 +54,18 @@ const char* const kTrackedBody = "FrontChassis";
 // position servos sag by their load / kp); the drift counts from then.
 constexpr double kSettle = 1.0;  // [s]
 
+// CPU time of this thread: on a machine shared with builds, wall time
+// per step depends on who else wants the cores; the CPU time a step costs
+// barely does.
+double ThreadCpuMicros() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) * 1e6 + static_cast<double>(now.tv_nsec) * 1e-3;
+}
+
 struct Figures {
-  double micros_per_step = 0;
+  double micros_per_step = 0;         // thread CPU time
+  double wall_micros_per_step = 0;
   double wheel_load_over_weight = 0;  // summed vertical wheel force / m g
   double drift_mm = 0;                // horizontal, over the standing phase
   double speed = 0;                   // [m/s] while driving (after 1 s)
@@ -98,6 +112,7 @@ Figures RunOurs(const model::World& world, const Run& run, lcm::LCM* bus) {
   const int measure_from = run.stand_steps - static_cast<int>(std::lround(1.0 / run.dt));
   const int speed_from = run.stand_steps + static_cast<int>(std::lround(1.0 / run.dt));
   Clock::duration busy{};
+  double cpu = 0;
   for (int n = 0; n < run.stand_steps + run.drive_steps; ++n) {
     if (n == settled) start = sim.ode().ReadBody(tracked).position;
     if (n == run.stand_steps) {
@@ -107,12 +122,14 @@ Figures RunOurs(const model::World& world, const Run& run, lcm::LCM* bus) {
     }
     if (n == speed_from) drive_from = sim.ode().ReadBody(tracked).position;
     const auto begin = Clock::now();
+    const double cpu_begin = ThreadCpuMicros();
     if (node) {
       node->HandleIncoming(Clock::duration::zero());
       node->StepAndPublish();
     } else if (!sim.Step()) {
       figures.failed = true;
     }
+    cpu += ThreadCpuMicros() - cpu_begin;
     busy += Clock::now() - begin;
     if (sim.faulted()) {
       figures.failed = true;
@@ -125,8 +142,9 @@ Figures RunOurs(const model::World& world, const Run& run, lcm::LCM* bus) {
       ++load_samples;
     }
   }
-  figures.micros_per_step = std::chrono::duration<double, std::micro>(busy).count() /
-                            (run.stand_steps + run.drive_steps);
+  figures.wall_micros_per_step = std::chrono::duration<double, std::micro>(busy).count() /
+                                 (run.stand_steps + run.drive_steps);
+  figures.micros_per_step = cpu / (run.stand_steps + run.drive_steps);
   figures.wheel_load_over_weight = load_sum / std::max(load_samples, 1) / weight;
   const Eigen::Vector3d driven = sim.ode().ReadBody(tracked).position - drive_from;
   const double drive_time = (run.stand_steps + run.drive_steps - speed_from) * run.dt;
@@ -194,6 +212,7 @@ Figures RunMujoco(const model::World& world, const Run& run, bool accurate) {
   double load_sum = 0;
   int load_samples = 0;
   Clock::duration busy{};
+  double cpu = 0;
   for (int n = 0; n < run.stand_steps + run.drive_steps; ++n) {
     if (n == settled) start = horizontal(tracked);
     if (n == run.stand_steps) {
@@ -202,7 +221,9 @@ Figures RunMujoco(const model::World& world, const Run& run, bool accurate) {
     }
     if (n == speed_from) drive_from = horizontal(tracked);
     const auto begin = Clock::now();
+    const double cpu_begin = ThreadCpuMicros();
     mj_step(m.get(), d.get());
+    cpu += ThreadCpuMicros() - cpu_begin;
     busy += Clock::now() - begin;
     if (n >= measure_from && n < run.stand_steps) {
       // Vertical force of every wheel contact (the contact frame's rows
@@ -231,8 +252,9 @@ Figures RunMujoco(const model::World& world, const Run& run, bool accurate) {
     }
     if (figures.failed) break;
   }
-  figures.micros_per_step = std::chrono::duration<double, std::micro>(busy).count() /
-                            (run.stand_steps + run.drive_steps);
+  figures.wall_micros_per_step = std::chrono::duration<double, std::micro>(busy).count() /
+                                 (run.stand_steps + run.drive_steps);
+  figures.micros_per_step = cpu / (run.stand_steps + run.drive_steps);
   figures.wheel_load_over_weight = load_sum / std::max(load_samples, 1) / weight;
   const double drive_time = (run.stand_steps + run.drive_steps - speed_from) * run.dt;
   figures.speed = drive_time > 0 ? (horizontal(tracked) - drive_from).norm() / drive_time : 0;
@@ -240,9 +262,10 @@ Figures RunMujoco(const model::World& world, const Run& run, bool accurate) {
 }
 
 void Print(const std::string& world, const char* setting, const Figures& f, double ours_us) {
-  std::printf("%-18s %-11s %9.1f %8.2f %11.4f %10.2f %9.4f%s\n", world.c_str(), setting,
-              f.micros_per_step, f.micros_per_step / ours_us, f.wheel_load_over_weight, f.drift_mm,
-              f.speed, f.failed ? "  FAILED (non-finite or faulted)" : "");
+  std::printf("%-21s %-11s %9.1f %9.1f %8.3f %10.4f %9.2f %9.4f%s\n", world.c_str(), setting,
+              f.micros_per_step, f.wall_micros_per_step, f.micros_per_step / ours_us,
+              f.wheel_load_over_weight, f.drift_mm, f.speed,
+              f.failed ? "  FAILED (non-finite or faulted)" : "");
   std::fflush(stdout);
 }
 
@@ -258,7 +281,8 @@ int main(int argc, char** argv) {
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--lcm-url" && i + 1 < argc) url = argv[++i];
     else if (a == "--help") {
-      std::cout << "usage: peer_bench [--stand SECONDS] [--drive SECONDS] [--only ours|mujoco]\n"
+      std::cout << "usage: peer_bench [--stand SECONDS] [--drive SECONDS]\n"
+                   "                  [--only ours|bare|mujoco]\n"
                    "                  [--lcm-url URL]\n"
                    "WorkPartner gen3 and gen4 on flat ground, 1 ms steps: stand still (default\n"
                    "20 s), then drive straight with the wheels at 1.5 rad/s (default 5 s), in our\n"
@@ -272,8 +296,8 @@ int main(int argc, char** argv) {
     }
   }
   if (!(stand >= 2.0) || !(drive >= 0.0) ||
-      (!only.empty() && only != "ours" && only != "mujoco")) {
-    std::cerr << "peer_bench: --stand needs >= 2 s, --drive >= 0, --only ours or mujoco\n";
+      (!only.empty() && only != "ours" && only != "bare" && only != "mujoco")) {
+    std::cerr << "peer_bench: --stand needs >= 2 s, --drive >= 0, --only ours, bare or mujoco\n";
     return 2;
   }
   const Run run{static_cast<int>(std::lround(stand / 0.001)),
@@ -283,8 +307,8 @@ int main(int argc, char** argv) {
     std::cerr << "peer_bench: cannot open LCM at " << url << "\n";
     return 1;
   }
-  std::printf("%-18s %-11s %9s %8s %11s %10s %9s\n", "world", "setting", "us/step", "/ours",
-              "wheels/mg", "drift mm", "speed m/s");
+  std::printf("%-21s %-11s %9s %9s %8s %10s %9s %9s\n", "world", "setting", "cpu us", "wall us",
+              "cpu/ours", "wheels/mg", "drift mm", "speed m/s");
   for (const char* file : {"flat_ground.xml", "gen4_flat.xml"}) {
     const std::string path = std::string(SP_SOURCE_DIR) + "/models/worlds/" + file;
     model::WorldLoadResult loaded = model::LoadWorldFile(path);
@@ -299,9 +323,9 @@ int main(int argc, char** argv) {
       const Figures ours = RunOurs(*loaded.world, run, nullptr);
       ours_us = ours.micros_per_step;
       Print(name, "ours", ours, ours_us);
-      Print(name, "ours+pub", RunOurs(*loaded.world, run, &bus), ours_us);
+      if (only != "bare") Print(name, "ours+pub", RunOurs(*loaded.world, run, &bus), ours_us);
     }
-    if (only != "ours") {
+    if (only.empty() || only == "mujoco") {
       Print(name, "mujoco", RunMujoco(*loaded.world, run, false), ours_us);
       Print(name, "mujoco acc", RunMujoco(*loaded.world, run, true), ours_us);
     }
