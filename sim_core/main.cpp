@@ -9,6 +9,7 @@
 #include "simpartner/model/loader.h"
 #include "simpartner/parameters.h"
 #include "simpartner/sim/check.h"
+#include "simpartner/sim/peer_watch.h"
 #include "simpartner/sim/sim_node.h"
 
 int main(int argc, char** argv) {
@@ -40,6 +41,15 @@ int main(int argc, char** argv) {
     if (!bus.good()) {
       std::cerr << "simpartner-sim: cannot open LCM at '" << params.lcmUrl << "'\n";
       return 1;
+    }
+    // Before anything is published: a second sim on a bus would apply every
+    // command meant for the first.
+    if (!command_line.Has("allow-other-sims")) {
+      if (const auto other = sim::ProbeForOtherSimulation(&bus, std::chrono::milliseconds(300))) {
+        std::cerr << "simpartner-sim: " << sim::DescribeOtherSimulation(*other, params.lcmUrl)
+                  << " (or start anyway with --allow-other-sims); nothing started\n";
+        return 3;
+      }
     }
     sim::Simulation simulation(std::move(world), params, sim::NowMicros());
     sim::SimNode node(&simulation, &bus, stop_fd);

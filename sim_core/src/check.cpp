@@ -7,6 +7,9 @@ const std::vector<FlagSpec>& SimFlags() {
       {"check", false,
        "load and validate the parameters, the world and its robots, print a "
        "summary and exit (0 = all good)"},
+      {"allow-other-sims", false,
+       "start even when another simulation is heard on the bus (by default the sim "
+       "asks for SIM_MODEL first and refuses to start if another sim answers)"},
   };
   return kFlags;
 }

@@ -75,7 +75,8 @@ void ReportMessageSizes(const Simulation& sim, std::ostream& out) {
 }
 
 SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd)
-    : sim_(sim), lcm_(lcm), stop_fd_(stop_fd), host_(HostName()) {
+    : sim_(sim), lcm_(lcm), stop_fd_(stop_fd), host_(HostName()), peers_(lcm) {
+  peers_.AddOwnId(sim->simulation_id());
   paused_ = sim->params().startPaused;
   speed_ = sim->params().speed;
   lcm_->subscribe(channels::kCommand, &SimNode::OnCommand, this)->setQueueCapacity(1000);
@@ -187,6 +188,7 @@ void SimNode::OnControl(const lcm::ReceiveBuffer* buffer, const std::string& cha
       break;
     case control_t::ACTION_RESET:
       sim_->Reset(NowMicros());
+      peers_.AddOwnId(sim_->simulation_id());
       steps_to_run_ = 0;
       schedule_anchored_ = false;
       model_requested_ = true;
@@ -225,6 +227,11 @@ void SimNode::OnModelRequest(const lcm::ReceiveBuffer* buffer, const std::string
   model_request_t request;
   if (!DecodeInput(buffer, channel, &request)) return;
   model_requested_ = true;
+}
+
+void SimNode::ReportOtherSimulations() {
+  for (const OtherSimulation& other : peers_.TakeNew())
+    Warn(warning_t::SEVERITY_ERROR, "bus", DescribeOtherSimulation(other, sim_->params().lcmUrl));
 }
 
 void SimNode::HandleIncoming(Clock::duration timeout) {
@@ -413,6 +420,7 @@ int SimNode::Run() {
     } else {
       HandleIncoming(std::chrono::milliseconds(10));
     }
+    ReportOtherSimulations();
     if (quit_) break;
     const bool still_stepping = !sim_->faulted() && (!paused_ || steps_to_run_ > 0);
     if (still_stepping) {

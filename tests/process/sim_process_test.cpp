@@ -197,9 +197,11 @@ TEST_F(SimProcessTest, StalledSimSaysItFellBehindAndKeepsEveryStep) {
   };
   ASSERT_TRUE(bus.Until(find_warning, 5.0)) << LogText();
   EXPECT_NE(behind->message.find("behind real time"), std::string::npos) << behind->message;
-  // "fell N ms behind": at least the 400 ms it was stopped, less one step.
+  // "fell N ms behind": the 400 ms it was stopped, less the step it may
+  // have been waiting for and the lag of delivering SIGSTOP on a loaded
+  // machine (398.7 ms seen once on 2 busy cores), so at least 395.
   const double behind_ms = std::stod(behind->message.substr(5));
-  EXPECT_GE(behind_ms, 399.0) << behind->message;
+  EXPECT_GE(behind_ms, 395.0) << behind->message;
   const int64_t resumed_at = bus.last_step;
   ASSERT_TRUE(bus.Until([&] { return bus.last_step > resumed_at + 200; }, 5.0));
   // Every step from the first one received to the last is there once.
@@ -441,6 +443,102 @@ TEST_F(SimProcessTest, BadParametersStopBeforeAnything) {
   EXPECT_EQ(missing.Wait(std::chrono::seconds(5)), 2);
   EXPECT_NE(LogText().find("/nonexistent.xml: cannot read world file"), std::string::npos)
       << LogText();
+}
+
+std::string ReadText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Two systems side by side on one host: a bus each (another port) and
+// neither hears the other.
+TEST_F(SimProcessTest, TwoSimsOnTwoPortsDoNotSeeEachOther) {
+  const std::string url_a = UniqueUrl(20), url_b = UniqueUrl(21);
+  ASSERT_NE(url_a, url_b);
+  SimProcess a(Args(url_a, {"--duration=3"}), (dir_ / "a.log").string());
+  SimProcess b(Args(url_b, {"--duration=3"}), (dir_ / "b.log").string());
+  Listener bus_a(url_a);
+  ASSERT_TRUE(bus_a.Until([&] { return bus_a.last_step > 500; }, 10.0)) << ReadText(dir_ / "a.log");
+  EXPECT_EQ(a.Wait(std::chrono::seconds(10)), 0) << ReadText(dir_ / "a.log");
+  EXPECT_EQ(b.Wait(std::chrono::seconds(10)), 0) << ReadText(dir_ / "b.log");
+  for (const char* log : {"a.log", "b.log"})
+    EXPECT_EQ(ReadText(dir_ / log).find("another simulation"), std::string::npos)
+        << log << ":\n" << ReadText(dir_ / log);
+}
+
+// A second sim on a bus that has one refuses to start, naming the first,
+// and the first goes on undisturbed.
+TEST_F(SimProcessTest, SecondSimOnOneBusRefusesToStart) {
+  const std::string url = UniqueUrl(22);
+  SimProcess first(Args(url, {"--duration=20"}), (dir_ / "first.log").string());
+  Listener bus(url);
+  ASSERT_TRUE(bus.Until([&] { return !bus.models.empty() && bus.last_step > 100; }, 10.0))
+      << ReadText(dir_ / "first.log");
+  const int64_t first_id = bus.models.front().simulation_id;
+  SimProcess second(Args(url, {}), (dir_ / "second.log").string());
+  EXPECT_EQ(second.Wait(std::chrono::seconds(10)), 3) << ReadText(dir_ / "second.log");
+  const std::string said = ReadText(dir_ / "second.log");
+  EXPECT_NE(said.find("another simulation (id " + std::to_string(first_id) + ")"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find("nothing started"), std::string::npos) << said;
+  // Only ever one simulation on the bus, still stepping.
+  const int64_t before = bus.last_step;
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > before + 200; }, 5.0));
+  for (const model_t& m : bus.models) EXPECT_EQ(m.simulation_id, first_id);
+  EXPECT_EQ(bus.last_state_simulation, first_id);
+  EXPECT_EQ(ReadText(dir_ / "first.log").find("another simulation"), std::string::npos)
+      << ReadText(dir_ / "first.log");
+  Control(bus.lcm(), control_t::ACTION_QUIT);
+  EXPECT_EQ(first.Wait(std::chrono::seconds(5)), 0);
+}
+
+// Started anyway (--allow-other-sims), each sim says at once, on stderr
+// and in SIM_STATUS, that the other is there.
+TEST_F(SimProcessTest, SimsSharingABusSayItAtOnce) {
+  const std::string url = UniqueUrl(23);
+  SimProcess first(Args(url, {"--duration=20"}), (dir_ / "first.log").string());
+  Listener bus(url);
+  ASSERT_TRUE(bus.Until([&] { return !bus.models.empty(); }, 10.0)) << ReadText(dir_ / "first.log");
+  const int64_t first_id = bus.models.front().simulation_id;
+  SimProcess second(Args(url, {"--duration=20", "--allow-other-sims"}),
+                    (dir_ / "second.log").string());
+  int64_t second_id = 0;
+  ASSERT_TRUE(bus.Until(
+      [&] {
+        for (const model_t& m : bus.models)
+          if (m.simulation_id != first_id) second_id = m.simulation_id;
+        return second_id != 0;
+      },
+      10.0))
+      << ReadText(dir_ / "second.log");
+  const auto first_start = Clock::now();
+  auto first_says = [&](int64_t about) {
+    for (const status_t& s : bus.statuses) {
+      if (s.simulation_id != first_id) continue;
+      for (const warning_t& w : s.warnings)
+        if (w.source == "bus" && w.severity == warning_t::SEVERITY_ERROR &&
+            w.message.find("another simulation (id " + std::to_string(about) + ")") !=
+                std::string::npos)
+          return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(bus.Until([&] { return first_says(second_id); }, 3.0))
+      << ReadText(dir_ / "first.log");
+  // "At once": within the status period (1 s) of the second sim's first message.
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - first_start).count(), 1.5);
+  EXPECT_NE(ReadText(dir_ / "first.log").find("another simulation (id " + std::to_string(second_id)),
+            std::string::npos)
+      << ReadText(dir_ / "first.log");
+  EXPECT_NE(ReadText(dir_ / "second.log").find("another simulation (id " + std::to_string(first_id)),
+            std::string::npos)
+      << ReadText(dir_ / "second.log");
+  Control(bus.lcm(), control_t::ACTION_QUIT);  // both hear it
+  EXPECT_EQ(first.Wait(std::chrono::seconds(5)), 0);
+  EXPECT_EQ(second.Wait(std::chrono::seconds(5)), 0);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "simpartner/bus_decode.h"
+#include "simpartner/sim/peer_watch.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/status_t.hpp"
 
@@ -70,6 +71,8 @@ class SimNode {
   void ReportInputDeferrals();
   void PublishPending();
   void CollectWarnings();
+  // Another simulation heard on the bus: said at once, as an error.
+  void ReportOtherSimulations();
   // Reports on stderr and in the next SIM_STATUS.
   void Warn(int8_t severity, const std::string& source, const std::string& message);
 
@@ -77,6 +80,7 @@ class SimNode {
   lcm::LCM* lcm_;
   int stop_fd_;
   std::string host_;
+  PeerWatch peers_;
   bool quit_ = false;
   bool paused_ = false;
   bool model_requested_ = false;

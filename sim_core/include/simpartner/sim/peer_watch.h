@@ -1,0 +1,69 @@
+// Noticing another simulation on the bus. Two sims on one bus (the same
+// multicast address and port) both apply every command, and a viewer or
+// logger sees two models in turn; nothing else on the bus would say so.
+// Every SIM_STATE, SIM_STATUS and SIM_MODEL carries its simulation id, so a
+// sim that hears one it did not publish knows at once.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace simpartner::sim {
+
+// The simulation id of a SIM_STATE, SIM_STATUS or SIM_MODEL datagram read
+// without decoding it (so the sim's own 1 kHz state costs it nothing): all
+// three begin with utime and simulation_id, so the id is the big-endian
+// int64 after the 8-byte fingerprint and utime. nullopt for another
+// channel, a datagram too short, or a fingerprint not of the channel's type.
+std::optional<int64_t> PeekSimulationId(const std::string& channel, const void* data,
+                                        size_t size);
+
+struct OtherSimulation {
+  int64_t simulation_id = 0;
+  std::string channel;  // where it was first heard
+};
+
+class PeerWatch {
+ public:
+  // Subscribes to SIM_STATE, SIM_STATUS and SIM_MODEL on `lcm` (which must
+  // outlive this) until destroyed.
+  explicit PeerWatch(lcm::LCM* lcm);
+  ~PeerWatch();
+  PeerWatch(const PeerWatch&) = delete;
+  PeerWatch& operator=(const PeerWatch&) = delete;
+
+  // Ids this process published under (each start and reset has one): its
+  // own messages come back over loopback and are not another simulation.
+  void AddOwnId(int64_t simulation_id);
+  // Simulations heard since the last call, each id once in the watch's life.
+  std::vector<OtherSimulation> TakeNew();
+
+ private:
+  void OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+
+  lcm::LCM* lcm_;
+  std::vector<lcm::Subscription*> subscriptions_;
+  std::set<int64_t> own_ids_;
+  std::set<int64_t> heard_ids_;
+  std::vector<OtherSimulation> new_;
+};
+
+// Before a sim starts: asks for SIM_MODEL and listens for `wait`. A sim on
+// the bus answers a model request at its next input check (well under a
+// millisecond at real time); a sim that never answers is caught later by
+// the running sim's PeerWatch when it publishes.
+std::optional<OtherSimulation> ProbeForOtherSimulation(lcm::LCM* lcm,
+                                                       std::chrono::milliseconds wait);
+
+// What a user reads when another simulation is heard: the id, the channel,
+// what goes wrong, and the way out.
+std::string DescribeOtherSimulation(const OtherSimulation& other, const std::string& url);
+
+}  // namespace simpartner::sim
