@@ -1,0 +1,375 @@
+// simpartner-query's plots, exports (time range, every Nth step,
+// velocities, unwrapped angles) and deletes, on a private MariaDB holding
+// simulations logged by the real writer from the real sim library.
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "logger_test_support.h"
+#include "simpartner/child_process.h"
+#include "simpartner/logger/query.h"
+#include "simpartner/logger/writer.h"
+
+namespace simpartner::logger {
+namespace {
+
+using testing::SimRun;
+
+constexpr double kSpinRate = 5.0;  // rad/s, the wheel "Spin" turns at
+
+// The arm world with its wheel (in the air, 1 kg) spun at kSpinRate by a
+// velocity controller with 1000 N m: at speed from the first step.
+SimRun SpinRun(int steps, int64_t simulation_id) {
+  auto sim = sim::testing::MakeArmSim();
+  sim->Reset(simulation_id);
+  EXPECT_FALSE(sim->Submit(sim::testing::Command("Spin", command_t::ACTION_SET, {1000, kSpinRate})));
+  return testing::MakeRun(sim.get(), steps);
+}
+
+// The shipped free-fall world: a particle dropped from rest, no ground.
+SimRun FreeFallRun(int steps, int64_t simulation_id) {
+  model::WorldLoadResult loaded =
+      model::LoadWorldFile(std::string(SP_SOURCE_DIR) + "/models/worlds/free_fall.xml");
+  EXPECT_TRUE(loaded.world) << loaded.diagnostics.Format();
+  sim::Simulation sim(*loaded.world, Parameters(), simulation_id);
+  return testing::MakeRun(&sim, steps);
+}
+
+// CSV text -> rows of fields (lines starting with '#' and the header apart).
+struct Csv {
+  std::vector<std::string> comments;
+  std::string header;
+  std::vector<std::vector<std::string>> rows;
+  double Number(size_t row, size_t column) const { return std::stod(rows.at(row).at(column)); }
+};
+Csv ParseCsv(const std::string& text) {
+  Csv csv;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("#", 0) == 0) csv.comments.push_back(line);
+    else if (csv.header.empty()) csv.header = line;
+    else {
+      std::vector<std::string> fields;
+      std::istringstream l(line);
+      std::string f;
+      while (std::getline(l, f, ',')) fields.push_back(f);
+      csv.rows.push_back(fields);
+    }
+  }
+  return csv;
+}
+
+class QueryToolTest : public testing::ServerTest {
+ protected:
+  // Logs the run through the logger's writer; `ended`: and closes it as
+  // the sim stopping does.
+  void Log(const SimRun& run, bool ended = true) {
+    WriterOptions options;
+    options.lcm_url = "udpm://test";
+    options.scratch_dir = dir_.string();
+    DbWriter writer(server_->LoggerTarget("simpartner"), options, [](const std::string&) {});
+    std::vector<Record> records = {run.ModelRecord()};
+    for (Record& r : run.StateRecords(1, static_cast<int64_t>(run.states.size())))
+      records.push_back(std::move(r));
+    if (ended)
+      records.push_back(MakeEndedRecord(run.model.simulation_id, 2,
+                                        EndedPayload{static_cast<int64_t>(run.states.size()),
+                                                     EndKind::kStopped, ""}));
+    writer.Write(records);
+  }
+  std::unique_ptr<DbConnection> Reader() {
+    DbTarget target = server_->LoggerTarget("simpartner");
+    target.option_file = server_->reader_options();
+    std::unique_ptr<DbConnection> db = DbConnection::Open(target, false);
+    db->UseDatabase(false);
+    return db;
+  }
+  Csv Export(const ExportRequest& request) {
+    std::ostringstream out;
+    ExportCsv(Reader().get(), request, out);
+    return ParseCsv(out.str());
+  }
+  // Runs the installed-layout program with the reader's (or another) option file.
+  int RunQuery(std::vector<std::string> args, std::string* output) {
+    const std::string log = (dir_ / "query.log").string();
+    args.insert(args.begin(), std::string(SP_BINARY_DIR) + "/logger/simpartner-query");
+    ChildProcess query(args, log);
+    const int status = query.Wait(std::chrono::seconds(120)).value_or(-1);
+    std::ifstream in(log);
+    std::ostringstream text;
+    text << in.rdbuf();
+    *output = text.str();
+    return status;
+  }
+};
+
+// ODE's hinge angle wraps at +-pi; unwrapped, a wheel turned at a constant
+// rate from the first step has angle = rate * t (2.4 turns in 3 s).
+TEST_F(QueryToolTest, UnwrappedWheelAngleIsRateTimesTime) {
+  Log(SpinRun(3000, 11));
+  ExportRequest request;
+  request.kind = ExportKind::kJoints;
+  request.name = "Axle";
+  request.unwrap = true;
+  const Csv csv = Export(request);
+  ASSERT_EQ(csv.rows.size(), 3000u);
+  ASSERT_EQ(csv.comments.size(), 1u);
+  EXPECT_NE(csv.comments[0].find("unwrapped"), std::string::npos);
+  for (size_t i = 0; i < csv.rows.size(); i += 97) {
+    const double t = csv.Number(i, 0);
+    EXPECT_NEAR(std::fabs(csv.Number(i, 6)), kSpinRate * t, 0.02) << "t = " << t;
+  }
+  EXPECT_NEAR(std::fabs(csv.Number(2999, 6)), kSpinRate * 3.0, 0.02);
+  // The default stays as it was: no comment, angles as logged.
+  request.unwrap = false;
+  const Csv raw = Export(request);
+  EXPECT_TRUE(raw.comments.empty());
+  EXPECT_EQ(raw.header, "time_s,step,joint,anchor_x_m,anchor_y_m,anchor_z_m,angle,angle2,angle3,rate,"
+                        "rate2,rate3,F1x_N,F1y_N,F1z_N,T1x_Nm,T1y_Nm,T1z_Nm");
+  ASSERT_EQ(raw.rows.size(), 3000u);
+}
+
+TEST_F(QueryToolTest, TimeRangeAndEveryNthStep) {
+  Log(SpinRun(3000, 12));
+  ExportRequest request;
+  request.kind = ExportKind::kJoints;
+  request.name = "Axle";
+  request.from = 1.0;
+  request.to = 2.0;
+  request.every = 10;
+  request.unwrap = true;
+  const Csv csv = Export(request);
+  // Steps 1000..2000 (t = step x 1 ms) are in the range: 1001, every 10th
+  // from the first: 101.
+  ASSERT_EQ(csv.rows.size(), 101u);
+  EXPECT_EQ(csv.rows.front()[1], "1000");
+  EXPECT_EQ(csv.rows.back()[1], "2000");
+  for (size_t i = 1; i < csv.rows.size(); ++i)
+    EXPECT_EQ(std::stoll(csv.rows[i][1]) - std::stoll(csv.rows[i - 1][1]), 10);
+  // Unwrapped from the start, not from --from: still rate * t.
+  EXPECT_NEAR(std::fabs(csv.Number(0, 6)), kSpinRate * 1.0, 0.02);
+  EXPECT_NEAR(std::fabs(csv.Number(100, 6)), kSpinRate * 2.0, 0.02);
+  // All bodies: three per kept step.
+  ExportRequest poses;
+  poses.from = 0.5;
+  poses.to = 0.6;
+  poses.every = 50;
+  EXPECT_EQ(Export(poses).rows.size(), 3u * 3u);  // steps 500, 550, 600
+}
+
+// Free fall from rest: vy = -g t (the logger stores no velocities; they
+// come from central differences of the logged heights).
+TEST_F(QueryToolTest, VelocitiesOfAFreeFallAreMinusGTimesT) {
+  Log(FreeFallRun(1000, 13));
+  ExportRequest request;
+  request.velocities = true;
+  request.name = "TestParticle";
+  const Csv csv = Export(request);
+  ASSERT_EQ(csv.rows.size(), 1000u);
+  ASSERT_EQ(csv.comments.size(), 1u);
+  EXPECT_NE(csv.comments[0].find("central differences"), std::string::npos);
+  EXPECT_NE(csv.header.find("vx_m_s,vy_m_s,vz_m_s"), std::string::npos) << csv.header;
+  for (size_t i = 0; i < csv.rows.size(); i += 111) {
+    const double t = csv.Number(i, 0);
+    EXPECT_NEAR(csv.Number(i, 11), -9.81 * t, 0.02) << "t = " << t;
+    EXPECT_NEAR(csv.Number(i, 10), 0.0, 1e-9);
+  }
+  // A range reads the steps around it: the first row's difference is central too.
+  request.from = 0.5;
+  request.to = 0.5;
+  const Csv one = Export(request);
+  ASSERT_EQ(one.rows.size(), 1u);
+  EXPECT_NEAR(one.Number(0, 11), -9.81 * 0.5, 0.006);
+  request.kind = ExportKind::kForces;
+  EXPECT_THROW(Export(request), Error);
+}
+
+bool IsPng(const std::filesystem::path& path, uintmax_t* size) {
+  std::ifstream in(path, std::ios::binary);
+  char signature[8] = {};
+  in.read(signature, 8);
+  *size = std::filesystem::exists(path) ? std::filesystem::file_size(path) : 0;
+  return in && std::string(signature, 8) == "\x89PNG\r\n\x1a\n";
+}
+
+TEST_F(QueryToolTest, PlotsArePngsOfWhatTheySay) {
+  Log(SpinRun(2000, 14));
+  auto db = Reader();
+  // SP_PLOT_DIR keeps the PNGs for a look.
+  const char* keep = std::getenv("SP_PLOT_DIR");
+  const std::filesystem::path out = keep != nullptr ? std::filesystem::path(keep) : dir_;
+  std::filesystem::create_directories(out);
+  struct Case {
+    PlotKind kind;
+    std::string name, file;
+    size_t series;
+  };
+  for (const Case& c : {Case{PlotKind::kAngle, "Axle", "angle.png", 1},
+                        Case{PlotKind::kRate, "Axle", "rate.png", 1},
+                        Case{PlotKind::kForce, "Shoulder", "force.png", 4},
+                        Case{PlotKind::kPosition, "Arm", "position.png", 3},
+                        Case{PlotKind::kVelocity, "Wheel", "velocity.png", 4},
+                        Case{PlotKind::kWheelForces, "", "wheels.png", 1},
+                        Case{PlotKind::kTrack, "", "track.png", 1}}) {
+    PlotRequest request;
+    request.kind = c.kind;
+    request.name = c.name;
+    const Plot plot = MakePlot(db.get(), request);
+    EXPECT_EQ(plot.series.size(), c.series) << c.file;
+    for (const Series& s : plot.series) EXPECT_EQ(s.x.size(), 2000u) << c.file << " " << s.title;
+    DrawPlotPng(plot, (out / c.file).string());
+    uintmax_t size = 0;
+    EXPECT_TRUE(IsPng(out / c.file, &size)) << c.file;
+    EXPECT_GT(size, 10000u) << c.file;
+  }
+  // The angle plot is continuous: its last point is rate * 2 s.
+  PlotRequest angle;
+  angle.kind = PlotKind::kAngle;
+  angle.name = "Axle";
+  const Plot plot = MakePlot(db.get(), angle);
+  EXPECT_NEAR(std::fabs(plot.series[0].y.back()), kSpinRate * 2.0, 0.02);
+  // The wheel-forces plot found the body named Wheel; the track is the robot's first body.
+  EXPECT_EQ(MakePlot(db.get(), PlotRequest{PlotKind::kWheelForces, "last", ""}).series[0].title, "Wheel");
+  EXPECT_NE(MakePlot(db.get(), PlotRequest{PlotKind::kTrack, "last", ""}).title.find("track of Base"),
+            std::string::npos);
+}
+
+TEST_F(QueryToolTest, UnknownNamesAndSimulationsAreNamed) {
+  Log(SpinRun(20, 15));
+  auto db = Reader();
+  auto message = [&](PlotRequest request) {
+    try {
+      MakePlot(db.get(), request);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(PlotRequest{PlotKind::kAngle, "last", "Axel"}),
+            "simulation 1 has no joint named 'Axel' (did you mean 'Axle'?)");
+  EXPECT_EQ(message(PlotRequest{PlotKind::kPosition, "last", "arm"}),
+            "simulation 1 has no body named 'arm' (did you mean 'Arm'?)");
+  EXPECT_EQ(message(PlotRequest{PlotKind::kPosition, "99", "Arm"}),
+            "no simulation 99 in database 'simpartner' (simpartner-query list shows them)");
+  EXPECT_EQ(message(PlotRequest{PlotKind::kPosition, "running", "Arm"}),
+            "no simulation is running (every simulation in database 'simpartner' has ended; "
+            "'last' is the newest)");
+  EXPECT_EQ(message(PlotRequest{PlotKind::kAngle, "last", ""}),
+            "plot needs --joint NAME (simpartner-query names SIM lists them)");
+  EXPECT_THROW(ParsePlotKind("angel"), Error);
+  try {
+    ParsePlotKind("angel");
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'angle'"), std::string::npos) << e.what();
+  }
+}
+
+// A new simulation on the same host closes the one before (the logger's
+// rule); an open one beside a newer closed one is from another host.
+SimRun OnOtherHost(SimRun run) {
+  run.model.host = "otherhost";
+  return run;
+}
+
+TEST_F(QueryToolTest, RunningIsTheNewestOpenSimulation) {
+  Log(OnOtherHost(SpinRun(20, 16)), false);
+  Log(SpinRun(30, 17), true);
+  ExportRequest request;
+  request.simulation = "running";
+  request.name = "Arm";
+  EXPECT_EQ(Export(request).rows.size(), 20u);
+  request.simulation = "last";
+  EXPECT_EQ(Export(request).rows.size(), 30u);
+}
+
+TEST_F(QueryToolTest, DeleteRemovesOnlyThatSimulationAndNeedsAnAdministrator) {
+  Log(SpinRun(40, 21));
+  Log(SpinRun(50, 22));
+  Log(SpinRun(60, 23));
+  auto rows_of = [&](int sim) {
+    return QueryInt("SELECT COUNT(*) FROM SimulationRow r JOIN Pose p USING (simulationRowID) "
+                    "WHERE r.simulationID = " + std::to_string(sim)) +
+           QueryInt("SELECT COUNT(*) FROM SimulationRow r JOIN JointPose p USING (simulationRowID) "
+                    "WHERE r.simulationID = " + std::to_string(sim)) +
+           QueryInt("SELECT COUNT(*) FROM Body WHERE simulationID = " + std::to_string(sim)) +
+           QueryInt("SELECT COUNT(*) FROM Robot WHERE simulationID = " + std::to_string(sim));
+  };
+  const int64_t before1 = rows_of(1), before3 = rows_of(3);
+  // The arm world: 3 bodies and 2 joints a step, one robot.
+  EXPECT_EQ(rows_of(2), 50 * 5 + 3 + 1);
+  // The reader has no DELETE: refused, nothing deleted.
+  try {
+    DeleteSimulation(Reader().get(), "2", false);
+    ADD_FAILURE() << "the reader deleted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("deleting needs an administrator"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Nothing was deleted"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(rows_of(2), 50 * 5 + 3 + 1);
+  // The logger's own user neither.
+  {
+    std::unique_ptr<DbConnection> logger_db = DbConnection::Open(server_->LoggerTarget("simpartner"), false);
+    logger_db->UseDatabase(false);
+    EXPECT_THROW(DeleteSimulation(logger_db.get(), "2", false), Error);
+  }
+  const DeleteSummary done = DeleteSimulation(Admin().get(), "2", false);
+  EXPECT_EQ(done.simulations, std::vector<uint32_t>{2});
+  EXPECT_EQ(done.steps, 50u);
+  EXPECT_EQ(rows_of(2), 0);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation WHERE simulationID = 2"), 0);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM `Joint` WHERE simulationID = 2"), 0);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM RobotComponent c LEFT JOIN Robot r USING (robotID) "
+                     "WHERE r.robotID IS NULL"), 0);
+  EXPECT_EQ(rows_of(1), before1);
+  EXPECT_EQ(rows_of(3), before3);
+  EXPECT_THROW(DeleteSimulation(Admin().get(), "2", false), Error);  // no simulation 2
+}
+
+TEST_F(QueryToolTest, PruneKeepsTheNewestAndOpenOnes) {
+  Log(OnOtherHost(SpinRun(10, 31)), false);  // open: kept whatever its age
+  Log(SpinRun(10, 32));
+  Log(SpinRun(10, 33));
+  Log(SpinRun(10, 34));
+  const DeleteSummary done = PruneSimulations(Admin().get(), 2);
+  // The newest two (4, 3) stay, and 1 (still open); 2 goes.
+  EXPECT_EQ(done.simulations, std::vector<uint32_t>{2});
+  EXPECT_EQ(QueryRows(Admin().get(), "SELECT simulationID FROM Simulation ORDER BY simulationID"),
+            (std::vector<std::string>{"1", "3", "4"}));
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow"), 30);
+  EXPECT_EQ(PruneSimulations(Admin().get(), 1).simulations, std::vector<uint32_t>{3});
+  EXPECT_THROW(DeleteSimulation(Admin().get(), "1", false), Error);  // open
+  EXPECT_EQ(DeleteSimulation(Admin().get(), "1", true).steps, 10u);
+}
+
+// The program: a PNG from the command line, errors on standard error.
+TEST_F(QueryToolTest, ProgramPlotsAndRefuses) {
+  Log(SpinRun(500, 41));
+  const std::string png = (dir_ / "wheel.png").string();
+  std::string output;
+  EXPECT_EQ(RunQuery({"plot", "angle", "last", "--joint", "Axle", "-o", png, "--db-options",
+                      server_->reader_options()},
+                     &output),
+            0)
+      << output;
+  uintmax_t size = 0;
+  EXPECT_TRUE(IsPng(png, &size)) << output;
+  EXPECT_GT(size, 10000u);
+  EXPECT_EQ(RunQuery({"plot", "angle", "last", "--joint", "Axel", "-o", png, "--db-options",
+                      server_->reader_options()},
+                     &output),
+            1);
+  EXPECT_NE(output.find("did you mean 'Axle'"), std::string::npos) << output;
+  EXPECT_EQ(RunQuery({"joints", "last", "--joint", "Axle", "--every", "0", "--db-options",
+                      server_->reader_options()},
+                     &output),
+            1);
+  EXPECT_NE(output.find("--every 0: must be 1 or more"), std::string::npos) << output;
+  EXPECT_EQ(RunQuery({"delete", "1", "--db-options", server_->reader_options()}, &output), 1);
+  EXPECT_NE(output.find("deleting needs an administrator"), std::string::npos) << output;
+  EXPECT_EQ(RunQuery({"delete", "1", "--db-options", server_->admin_options()}, &output), 0) << output;
+  EXPECT_NE(output.find("deleted 1 simulation(s) (1) with 500 logged steps"), std::string::npos) << output;
+}
+
+}  // namespace
+}  // namespace simpartner::logger
