@@ -310,26 +310,73 @@ std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node) {
   m.where = reader.Where(node);
   const std::string what = "material '" + m.name + "'";
   bool ok = true;
+  auto optional_number = [&](const char* field) -> std::optional<double> {
+    const xmlNode* child = Reader::Child(node, field);
+    if (child == nullptr) return std::nullopt;
+    const auto value = reader.Number(child, what + " " + field);
+    if (!value) ok = false;
+    return value;
+  };
   m.mu = reader.NumberOr(node, "mu", m.mu, what, &ok);
+  m.mu2 = optional_number("mu2");
+  if (const xmlNode* d = Reader::Child(node, "frictionDirection")) {
+    const std::string text = Reader::Text(d);
+    if (text == ToString(FrictionDirection::kSlip)) {
+      m.friction_direction = FrictionDirection::kSlip;
+    } else if (text == ToString(FrictionDirection::kRolling)) {
+      m.friction_direction = FrictionDirection::kRolling;
+    } else {
+      reader.Error(d, what + ": frictionDirection '" + text + "' is not one of slip, rolling");
+      ok = false;
+    }
+  }
   m.bounce = reader.NumberOr(node, "bounce", m.bounce, what, &ok);
   m.bounce_velocity = reader.NumberOr(node, "bounceVelocity", m.bounce_velocity, what, &ok);
   m.soft_erp = reader.NumberOr(node, "softERP", m.soft_erp, what, &ok);
   m.soft_cfm = reader.NumberOr(node, "softCFM", m.soft_cfm, what, &ok);
+  m.stiffness = optional_number("stiffness");
+  m.damping = optional_number("damping");
   m.rolling_friction = reader.NumberOr(node, "rollingFriction", m.rolling_friction, what, &ok);
+  auto at = [&](const char* field) {
+    return Reader::Child(node, field) ? Reader::Child(node, field) : node;
+  };
   auto range = [&](double value, double lo, double hi, const char* field) {
     if (value < lo || value > hi) {
-      reader.Error(Reader::Child(node, field) ? Reader::Child(node, field) : node,
-                   what + ": " + field + " " + FormatNumber(value) + " is out of range [" +
-                       FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
+      reader.Error(at(field), what + ": " + field + " " + FormatNumber(value) +
+                                  " is out of range [" + FormatNumber(lo) + ", " +
+                                  FormatNumber(hi) + "]");
       ok = false;
     }
   };
   range(m.mu, 0.0, 1e6, "mu");
+  if (m.mu2) range(*m.mu2, 0.0, 1e6, "mu2");
   range(m.bounce, 0.0, 1.0, "bounce");
   range(m.bounce_velocity, 0.0, 1e6, "bounceVelocity");
   range(m.soft_erp, 0.0, 1.0, "softERP");
   range(m.soft_cfm, 0.0, 1.0, "softCFM");
   range(m.rolling_friction, 0.0, 1.0, "rollingFriction");
+  // A zero stiffness would make ERP 0: nothing holds the bodies apart.
+  if (m.stiffness && (*m.stiffness <= 0.0 || *m.stiffness > limits::kMaxContactStiffness)) {
+    reader.Error(at("stiffness"), what + ": stiffness " + FormatNumber(*m.stiffness) +
+                                      " N/m is out of range (0, " +
+                                      FormatNumber(limits::kMaxContactStiffness) + "]");
+    ok = false;
+  }
+  if (m.damping) range(*m.damping, 0.0, limits::kMaxContactDamping, "damping");
+  // One softness, given one way: per step or physical.
+  const bool per_step = Reader::Child(node, "softERP") || Reader::Child(node, "softCFM");
+  const bool physical = m.stiffness || m.damping;
+  if (per_step && physical) {
+    reader.Error(at(m.stiffness ? "stiffness" : "damping"),
+                 what + ": stiffness/damping and softERP/softCFM both give the contact's "
+                        "softness; give one of the two");
+    ok = false;
+  } else if (m.stiffness.has_value() != m.damping.has_value()) {
+    reader.Error(at(m.stiffness ? "stiffness" : "damping"),
+                 what + ": " + (m.stiffness ? "stiffness without damping" : "damping without stiffness") +
+                     "; give both (damping 0 for an undamped contact)");
+    ok = false;
+  }
   if (!ok) return std::nullopt;
   return m;
 }
@@ -936,6 +983,23 @@ void CheckMaterialNames(Reader& reader, const std::vector<Body>& bodies, const c
   }
 }
 
+// A body whose material sets friction along its rolling direction needs an
+// axis it rolls about (SpinAxis in model.h says where it comes from).
+void CheckRollingBodies(Reader& reader, const std::vector<Body>& bodies,
+                        const std::vector<Joint>& joints, const char* element,
+                        const std::function<const Material*(const std::string&)>& material_of) {
+  for (const Body& b : bodies) {
+    const Material* m = b.material.empty() ? nullptr : material_of(b.material);
+    if (m == nullptr || m->friction_direction != FrictionDirection::kRolling) continue;
+    std::string why;
+    if (!SpinAxis(b, joints, &why))
+      reader.ErrorAt(b.where, element,
+                     std::string(element) + " '" + b.name + "': material '" + m->name + "' (" +
+                         m->where.file + ":" + std::to_string(m->where.line) +
+                         ") has frictionDirection rolling, but the body has no spin axis: " + why);
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -1068,6 +1132,13 @@ RobotLoadResult ParseRobot(const std::string& xml, const std::string& file_name)
   for (const xmlNode* n : Reader::Children(root, "actuator"))
     if (auto a = ReadActuator(reader, n, robot, declared)) robot.actuators.push_back(*a);
   CheckConnected(reader, root);
+  // Bodies of the robot's own materials; a world's material of the same
+  // name is checked by the world.
+  CheckRollingBodies(reader, robot.bodies, robot.joints, "body", [&](const std::string& name) {
+    for (const Material& m : robot.materials)
+      if (m.name == name) return &m;
+    return static_cast<const Material*>(nullptr);
+  });
   if (result.diagnostics.empty()) CheckMassRatios(reader, robot.bodies, robot.joints, true);
   std::map<int, std::string> ports;
   CheckUniquePorts(reader, robot, &ports, nullptr, "");
@@ -1322,6 +1393,16 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
   CheckMaterialNames(reader, world.objects, "object", material_exists, "the world");
   for (const RobotInstance& r : world.robots)
     CheckMaterialNames(reader, r.robot.bodies, "body", material_exists, "the world or the robot");
+  auto world_material = [&](const std::string& name) { return world.FindMaterial(name); };
+  CheckRollingBodies(reader, world.objects, world.joints, "object", world_material);
+  for (const RobotInstance& r : world.robots) {
+    CheckRollingBodies(reader, r.robot.bodies, r.robot.joints, "body",
+                       [&](const std::string& name) {
+                         // The robot's own materials were checked with it.
+                         return declared_materials.count(name) > 0 ? world.FindMaterial(name)
+                                                                   : nullptr;
+                       });
+  }
   if (!world.plane_material.empty() && !material_exists(world.plane_material))
     reader.Error(Reader::Child(root, "surface"),
                  "surface material '" + world.plane_material + "' is not defined");

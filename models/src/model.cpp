@@ -58,6 +58,46 @@ const char* ToString(CollisionSpaceKind kind) {
   return "?";
 }
 
+const char* ToString(FrictionDirection direction) {
+  switch (direction) {
+    case FrictionDirection::kSlip: return "slip";
+    case FrictionDirection::kRolling: return "rolling";
+  }
+  return "?";
+}
+
+std::optional<Eigen::Vector3d> SpinAxis(const Body& body, const std::vector<Joint>& joints,
+                                        std::string* why) {
+  // A hinge turns the body about its axis whatever its shape, so it wins
+  // over the geometry; the axis is fixed in the body frame.
+  std::vector<const Joint*> hinges;
+  std::vector<Eigen::Vector3d> axes;
+  for (const Joint& j : joints) {
+    if (j.kind == JointKind::kHinge && (j.body1 == body.name || j.body2 == body.name)) {
+      hinges.push_back(&j);
+      axes.push_back(j.axis[0]);
+    } else if (j.kind == JointKind::kHinge2 && j.body2 == body.name) {
+      hinges.push_back(&j);
+      axes.push_back(j.axis[1]);
+    }
+  }
+  if (hinges.size() == 1) return (body.pose.linear().transpose() * axes[0]).normalized();
+  if (body.geometry.kind == GeometryKind::kCylinder || body.geometry.kind == GeometryKind::kCapsule)
+    return Eigen::Vector3d::UnitZ();
+  if (why != nullptr) {
+    if (hinges.empty()) {
+      *why = "no Hinge joins it and it is a " + std::string(ToString(body.geometry.kind)) +
+             ", not a Cylinder or Capsule";
+    } else {
+      std::string names;
+      for (const Joint* j : hinges) names += (names.empty() ? "" : ", ") + j->name;
+      *why = std::to_string(hinges.size()) + " hinges join it (" + names + ") and it is a " +
+             ToString(body.geometry.kind) + ", not a Cylinder or Capsule";
+    }
+  }
+  return std::nullopt;
+}
+
 int AxisCount(JointKind kind) {
   switch (kind) {
     case JointKind::kFixed: return 0;

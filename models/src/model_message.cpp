@@ -68,6 +68,24 @@ joint_t JointMessage(const Joint& j, int16_t robot, const Eigen::Isometry3d& pla
 
 }  // namespace
 
+material_t MaterialMessage(const Material& material) {
+  material_t out{};
+  out.name = material.name;
+  out.mu = material.mu;
+  out.mu2 = material.Mu2();
+  out.friction_direction = material.friction_direction == FrictionDirection::kRolling
+                               ? material_t::FRICTION_ROLLING
+                               : material_t::FRICTION_SLIP;
+  out.bounce = material.bounce;
+  out.bounce_velocity = material.bounce_velocity;
+  out.soft_erp = material.soft_erp;
+  out.soft_cfm = material.soft_cfm;
+  out.stiffness = material.stiffness.value_or(0.0);
+  out.damping = material.damping.value_or(0.0);
+  out.rolling_friction = material.rolling_friction;
+  return out;
+}
+
 model_t ModelMessageFromWorld(const World& world) {
   model_t m{};
   m.world_file = world.file;
@@ -79,6 +97,8 @@ model_t ModelMessageFromWorld(const World& world) {
     m.up[k] = up[k];
     m.gravity[k] = world.gravity[k];
   }
+  for (const Material& material : world.materials) m.materials.push_back(MaterialMessage(material));
+  m.num_materials = static_cast<int16_t>(m.materials.size());
   const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
   for (const Body& b : world.objects)
     m.bodies.push_back(BodyMessage(b, -1, identity, static_cast<int32_t>(m.bodies.size())));

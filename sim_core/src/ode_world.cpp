@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "simpartner/check.h"
 #include "simpartner/model/model.h"
@@ -18,6 +19,9 @@ constexpr size_t kFeedbackChunk = 1024;
 // [m/s] below this a contact counts as sticking and keeps ODE's friction
 // directions (the direction of a smaller slip is noise).
 constexpr double kSlipDirectionSpeed = 1e-4;
+// |normal x spin axis| below this (a wheel within 0.6 degrees of lying
+// flat) leaves a "rolling" contact without a rolling direction.
+constexpr double kMinRollingSine = 0.01;
 
 // ODE's messages (dMessage: "LCP internal error", ODE goes on) go into the
 // sink of the OdeWorld stepping on this thread (set only during Step), and
@@ -163,7 +167,22 @@ void OdeWorld::Build() {
   contact_buffer_.resize(static_cast<size_t>(params.maxContacts));
 
   auto add_geom_info = [this](dGeomID geom, int body, int owner, const std::string& material) {
-    geom_info_.push_back(GeomInfo{body, owner, Surface(material)});
+    GeomInfo info{body, owner, Surface(material), Eigen::Vector3d::Zero()};
+    if (info.surface.friction_direction == model::FrictionDirection::kRolling) {
+      // The geom frame is the body frame (geoms are only offset, never
+      // turned), where the spin axis is fixed.
+      SP_CHECK_MSG(owner >= 0, "a rolling material on a surface without a body");
+      const FlatBody& flat = model_.bodies[static_cast<size_t>(owner)];
+      const std::vector<model::Joint>& joints =
+          flat.robot < 0 ? model_.world->joints
+                         : model_.world->robots[static_cast<size_t>(flat.robot)].robot.joints;
+      const std::optional<Eigen::Vector3d> axis = model::SpinAxis(*flat.source, joints);
+      SP_CHECK_MSG(axis.has_value(), "body '" + BodyName(static_cast<size_t>(owner)) +
+                                         "' with a rolling material has no spin axis; the "
+                                         "loader should have refused it");
+      info.spin_axis = *axis;
+    }
+    geom_info_.push_back(info);
     dGeomSetData(geom, reinterpret_cast<void*>(static_cast<uintptr_t>(geom_info_.size())));
   };
 
@@ -346,6 +365,7 @@ SurfaceProperties ResolveSurface(const model::Material* material, const Paramete
   SurfaceProperties s;
   if (material == nullptr) {
     s.mu = params.contactMu;
+    s.mu2 = params.contactMu;
     s.bounce = params.contactBounce;
     s.bounce_velocity = params.contactBounceVelocity;
     s.soft_erp = params.contactSoftERP;
@@ -353,11 +373,25 @@ SurfaceProperties ResolveSurface(const model::Material* material, const Paramete
     s.rolling_friction = params.rollingFriction;
   } else {
     s.mu = material->mu;
+    s.mu2 = material->Mu2();
+    s.friction_direction = material->friction_direction;
     s.bounce = material->bounce;
     s.bounce_velocity = material->bounce_velocity;
-    s.soft_erp = material->soft_erp;
-    s.soft_cfm = material->soft_cfm;
     s.rolling_friction = material->rolling_friction;
+    if (material->HasStiffness()) {
+      // ODE's contact is an implicit spring-damper: these give stiffness k
+      // and damping c whatever the step h.
+      const double h = params.stepsize;
+      const double k = *material->stiffness;
+      const double c = material->damping.value_or(0.0);
+      s.stiffness = k;
+      s.damping = c;
+      s.soft_erp = h * k / (h * k + c);
+      s.soft_cfm = 1.0 / (h * k + c);
+    } else {
+      s.soft_erp = material->soft_erp;
+      s.soft_cfm = material->soft_cfm;
+    }
   }
   return s;
 }
@@ -365,11 +399,28 @@ SurfaceProperties ResolveSurface(const model::Material* material, const Paramete
 SurfaceProperties CombineSurfaces(const SurfaceProperties& a, const SurfaceProperties& b) {
   SurfaceProperties s;
   s.mu = std::min(a.mu, b.mu);
+  s.mu2 = std::min(a.mu2, b.mu2);
+  const bool a_rolls = a.friction_direction == model::FrictionDirection::kRolling;
+  const bool b_rolls = b.friction_direction == model::FrictionDirection::kRolling;
+  // Two wheels touching have no common rolling direction.
+  s.friction_direction =
+      a_rolls != b_rolls ? model::FrictionDirection::kRolling : model::FrictionDirection::kSlip;
   s.rolling_friction = std::min(a.rolling_friction, b.rolling_friction);
   s.bounce = std::max(a.bounce, b.bounce);
   s.bounce_velocity = std::max(a.bounce_velocity, b.bounce_velocity);
-  s.soft_erp = std::min(a.soft_erp, b.soft_erp);
-  s.soft_cfm = std::max(a.soft_cfm, b.soft_cfm);
+  if (!a.HasStiffness() && !b.HasStiffness()) {
+    s.soft_erp = std::min(a.soft_erp, b.soft_erp);
+    s.soft_cfm = std::max(a.soft_cfm, b.soft_cfm);
+  } else {
+    // The softer decides whole, so that a physical tyre on a per-step
+    // ground keeps its own k and c: k = ERP / (h CFM), compared at the same
+    // h without dividing (a CFM may be 0).
+    const SurfaceProperties& softer = a.soft_erp * b.soft_cfm <= b.soft_erp * a.soft_cfm ? a : b;
+    s.soft_erp = softer.soft_erp;
+    s.soft_cfm = softer.soft_cfm;
+    s.stiffness = softer.stiffness;
+    s.damping = softer.damping;
+  }
   return s;
 }
 
@@ -412,7 +463,10 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
   surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
   surface.mu = combined.mu;
   surface.soft_erp = combined.soft_erp;
-  surface.soft_cfm = combined.soft_cfm;
+  // A physical stiffness and damping are those of the whole contact: its n
+  // points share them (k/n, c/n each), which keeps ERP and multiplies CFM
+  // by n. Per-step softness stays per point, as it always was.
+  surface.soft_cfm = combined.HasStiffness() ? combined.soft_cfm * n : combined.soft_cfm;
   if (combined.bounce > 0.0) {
     surface.mode |= dContactBounce;
     surface.bounce = combined.bounce;
@@ -425,30 +479,32 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
     surface.rho2 = rolling;
     surface.rhoN = 0.0;
   }
+  const bool anisotropic = combined.mu2 != combined.mu;
   for (int i = 0; i < n; ++i) {
     dContact& contact = contact_buffer_[static_cast<size_t>(i)];
     contact.surface = surface;
-    // ODE's friction pyramid bounds each of two tangent directions by mu N
-    // separately. Left to ODE, the directions come from the normal alone
-    // (world x and z on a y-up plane), so friction depended on the heading:
-    // a cube sliding at 45 degrees braked at sqrt(2) mu g and a driving
-    // robot's slip forces changed four times a turn. Aligning the first
-    // direction with the sliding velocity makes sliding friction mu N
-    // against the slip whatever the heading.
-    const dContactGeom& g = contact.geom;
-    dVector3 v1 = {0, 0, 0, 0}, v2 = {0, 0, 0, 0};
-    dBodyGetPointVel(b1, g.pos[0], g.pos[1], g.pos[2], v1);
-    if (b2 != nullptr) dBodyGetPointVel(b2, g.pos[0], g.pos[1], g.pos[2], v2);
-    const Eigen::Vector3d normal = FromOde(g.normal);
-    Eigen::Vector3d slip = FromOde(v1) - FromOde(v2);
-    slip -= slip.dot(normal) * normal;
-    if (slip.norm() > kSlipDirectionSpeed) {
-      slip.normalize();
+    // ODE's friction pyramid bounds each of two tangent directions
+    // separately, mu N along fdir1 and mu2 N along fdir2 = normal x fdir1.
+    // Left to ODE, the directions come from the normal alone (world x and
+    // z on a y-up plane), so friction depended on the heading: a cube
+    // sliding at 45 degrees braked at sqrt(2) mu g. With the first
+    // direction along the slip (or the rolling direction), sliding
+    // friction is mu N against the slip whatever the heading, and mu2 is
+    // what holds the slip from turning.
+    Eigen::Vector3d direction;
+    if (FrictionDirection1(combined, o1, g1, o2, g2, contact.geom, &direction)) {
       contact.surface.mode |= dContactFDir1;
-      contact.fdir1[0] = slip.x();
-      contact.fdir1[1] = slip.y();
-      contact.fdir1[2] = slip.z();
+      contact.fdir1[0] = direction.x();
+      contact.fdir1[1] = direction.y();
+      contact.fdir1[2] = direction.z();
+      if (anisotropic) {
+        contact.surface.mode |= dContactMu2;
+        contact.surface.mu2 = combined.mu2;
+      }
     }
+    // Sticking without a direction: which way it will slide is not known,
+    // so mu holds in every direction (the force that starts a slide is the
+    // mu N that then brakes it).
     const dJointID joint = dJointCreateContact(world_, contacts_, &contact);
     dJointAttach(joint, b1, b2);
     dJointFeedback* feedback = NextFeedback();
@@ -456,6 +512,39 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
     contact_records_.push_back(ContactRecord{g1.body, g2.body, feedback});
   }
   contact_count_ += n;
+}
+
+bool OdeWorld::FrictionDirection1(const SurfaceProperties& combined, dGeomID o1,
+                                  const GeomInfo& g1, dGeomID o2, const GeomInfo& g2,
+                                  const dContactGeom& contact, Eigen::Vector3d* direction) const {
+  const Eigen::Vector3d normal = FromOde(contact.normal);
+  if (combined.friction_direction == model::FrictionDirection::kRolling) {
+    // Perpendicular to the normal and to the wheel's spin axis.
+    const bool first_rolls = g1.surface.friction_direction == model::FrictionDirection::kRolling;
+    const dGeomID wheel = first_rolls ? o1 : o2;
+    const Eigen::Vector3d& axis_in_geom = first_rolls ? g1.spin_axis : g2.spin_axis;
+    const dReal* r = dGeomGetRotation(wheel);
+    Eigen::Vector3d axis;
+    for (int row = 0; row < 3; ++row)
+      axis[row] = r[row * 4] * axis_in_geom.x() + r[row * 4 + 1] * axis_in_geom.y() +
+                  r[row * 4 + 2] * axis_in_geom.z();
+    const Eigen::Vector3d rolling = normal.cross(axis);
+    if (rolling.norm() > kMinRollingSine) {
+      *direction = rolling.normalized();
+      return true;
+    }
+    // A wheel lying flat rolls nowhere: as "slip".
+  }
+  const dBodyID b1 = dGeomGetBody(o1);
+  const dBodyID b2 = dGeomGetBody(o2);
+  dVector3 v1 = {0, 0, 0, 0}, v2 = {0, 0, 0, 0};
+  if (b1 != nullptr) dBodyGetPointVel(b1, contact.pos[0], contact.pos[1], contact.pos[2], v1);
+  if (b2 != nullptr) dBodyGetPointVel(b2, contact.pos[0], contact.pos[1], contact.pos[2], v2);
+  Eigen::Vector3d slip = FromOde(v1) - FromOde(v2);
+  slip -= slip.dot(normal) * normal;
+  if (slip.norm() <= kSlipDirectionSpeed) return false;
+  *direction = slip.normalized();
+  return true;
 }
 
 void OdeWorld::Step() {

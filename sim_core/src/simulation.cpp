@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "simpartner/check.h"
+#include "simpartner/model/model_message.h"
 #include "simpartner/sensor_t.hpp"
 
 namespace simpartner::sim {
@@ -78,18 +79,6 @@ int8_t ToLcm(model::ActuatorKind kind) {
     case model::ActuatorKind::kLinearMotor: return actuator_t::KIND_LINEAR_MOTOR;
   }
   return actuator_t::KIND_JOINT_VELOCITY;
-}
-
-material_t ToLcm(const model::Material& m) {
-  material_t out{};
-  out.name = m.name;
-  out.mu = m.mu;
-  out.bounce = m.bounce;
-  out.bounce_velocity = m.bounce_velocity;
-  out.soft_erp = m.soft_erp;
-  out.soft_cfm = m.soft_cfm;
-  out.rolling_friction = m.rolling_friction;
-  return out;
 }
 
 constexpr size_t kMaxWarnings = 64;
@@ -571,7 +560,7 @@ void Simulation::FillModel(model_t* m) const {
     out.samples.assign(h.samples.begin(), h.samples.end());
     out.num_samples = static_cast<int32_t>(out.samples.size());
   }
-  for (const model::Material& mat : world_.materials) m->materials.push_back(ToLcm(mat));
+  for (const model::Material& mat : world_.materials) m->materials.push_back(model::MaterialMessage(mat));
   m->num_materials = static_cast<int16_t>(m->materials.size());
   for (const model::RobotInstance& r : world_.robots) {
     robot_t robot{};

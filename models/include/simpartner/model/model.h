@@ -37,15 +37,34 @@ struct Geometry {
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
 };
 
+// Which way a contact's first friction direction (the one mu applies
+// along) points; mu2 applies perpendicular to it (docs/contacts.md).
+enum class FrictionDirection {
+  kSlip,     // along the sliding velocity (the thesis's "tangential")
+  kRolling,  // along the rolling direction of the body's spin axis (wheels)
+};
+const char* ToString(FrictionDirection direction);  // "slip", "rolling"
+
 struct Material {
   std::string name;
-  double mu = 1.0;                 // Coulomb friction
+  double mu = 1.0;                 // Coulomb friction along the first direction
+  std::optional<double> mu2;       // across it; absent = isotropic (mu)
+  FrictionDirection friction_direction = FrictionDirection::kSlip;
   double bounce = 0.0;             // restitution 0..1
   double bounce_velocity = 0.1;    // [m/s]
+  // Softness per step (ODE's own numbers: the same values are another
+  // stiffness at another step size) ...
   double soft_erp = 0.2;
   double soft_cfm = 1e-5;
+  // ... or physical, turned into ERP/CFM for the step size in use. Both set
+  // or neither; the loader refuses them beside softERP/softCFM.
+  std::optional<double> stiffness; // [N/m] of the whole contact of two geoms
+  std::optional<double> damping;   // [N s/m] of the whole contact
   double rolling_friction = 0.0;   // [m]
   SourceLocation where;
+
+  double Mu2() const { return mu2.value_or(mu); }
+  bool HasStiffness() const { return stiffness.has_value(); }
 };
 
 struct Body {
@@ -100,6 +119,15 @@ struct Actuator {
   int port = 0;
   SourceLocation where;
 };
+
+// The axis a body spins about as a wheel, in its body frame (unit), for a
+// "rolling" material: the axis of the one Hinge that joins the body (or the
+// axle, axis2, of a Hinge2 whose body2 it is); else the axis of its
+// Cylinder or Capsule (body z); else none, and *why (when given) says why.
+// joints are those of the body's scope (its robot, or the world's objects),
+// whose axes are in the same frame as body.pose.
+std::optional<Eigen::Vector3d> SpinAxis(const Body& body, const std::vector<Joint>& joints,
+                                        std::string* why = nullptr);
 
 // A robot as its file describes it, in the robot frame.
 struct Robot {
@@ -181,6 +209,8 @@ inline constexpr double kMaxMoment = 1e14;          // [kg m^2]
 inline constexpr double kMaxInertiaRatio = 1e6;     // largest / smallest principal moment
 inline constexpr double kMaxJointMassRatio = 1e4;   // heavier / lighter body of a joint
 inline constexpr double kMaxRobotMassRatio = 1e6;   // heaviest / lightest moving body of a robot
+inline constexpr double kMaxContactStiffness = 1e12; // [N/m] material stiffness (above 0)
+inline constexpr double kMaxContactDamping = 1e9;    // [N s/m] material damping
 }  // namespace limits
 
 // Inertia tensor of a uniform solid of the geometry's shape about its centre.

@@ -1,9 +1,9 @@
 // A world as the sim announces it on SIM_MODEL, built without a sim: names,
 // kinds, legacy ports, initial poses, joint anchors and axes, sensors and
-// actuators with their axis slots. For checking files offline against a
-// world (simpartner-sequencer --check, simpartner-teleop --check), where
-// the same catalogue of targets is needed as from the bus. What only a
-// built world knows (materials, inertia, a run's simulation id,
+// actuators with their axis slots, materials. For checking files offline
+// against a world (simpartner-sequencer --check, simpartner-teleop
+// --check), where the same catalogue of targets is needed as from the bus.
+// What only a built world knows (inertia, a run's simulation id,
 // parameters) is left empty.
 #pragma once
 
@@ -11,6 +11,10 @@
 #include "simpartner/model_t.hpp"
 
 namespace simpartner::model {
+
+// A material as SIM_MODEL carries it: mu2 = mu when isotropic, stiffness
+// and damping 0 when the softness is given per step.
+material_t MaterialMessage(const Material& material);
 
 // World objects and joints first, then each robot's bodies, joints,
 // actuators and sensors in file order, as the sim numbers them.

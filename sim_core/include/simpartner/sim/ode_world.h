@@ -71,16 +71,31 @@ struct JointReadout {
 
 // Contact properties of one geom, resolved from its material name.
 struct SurfaceProperties {
-  double mu = 1.0, bounce = 0.0, bounce_velocity = 0.1;
-  double soft_erp = 0.2, soft_cfm = 1e-5, rolling_friction = 0.0;
+  double mu = 1.0;                 // along the first friction direction
+  double mu2 = 1.0;                // across it (= mu when isotropic)
+  model::FrictionDirection friction_direction = model::FrictionDirection::kSlip;
+  double bounce = 0.0, bounce_velocity = 0.1;
+  // ERP and CFM of the whole contact for the step size in use; for a
+  // material with stiffness, computed from stiffness and damping.
+  double soft_erp = 0.2, soft_cfm = 1e-5;
+  // [N/m], [N s/m] of the whole contact; 0 when the softness is per step.
+  double stiffness = 0.0, damping = 0.0;
+  double rolling_friction = 0.0;
+
+  bool HasStiffness() const { return stiffness > 0.0; }
 };
 
-// A material's contact properties; a geom without one (nullptr) takes the
-// contact defaults of the parameters.
+// A material's contact properties for params.stepsize; a geom without one
+// (nullptr) takes the contact defaults of the parameters. With stiffness k
+// and damping c: ERP = h k / (h k + c), CFM = 1 / (h k + c) (ODE's manual,
+// "Soft constraint and constraint force mixing").
 SurfaceProperties ResolveSurface(const model::Material* material, const Parameters& params);
-// The contact between two surfaces, as the sim makes it: friction and
-// rolling resistance the smaller, bounce the larger, softness the softer
-// (smaller ERP, larger CFM) of the two.
+// The contact between two surfaces, as the sim makes it (docs/contacts.md):
+// mu, mu2 and rolling resistance each the smaller, bounce the larger;
+// softness: between two per-step materials the smaller ERP and the larger
+// CFM, otherwise all of the softer material's (smaller ERP / CFM, i.e.
+// smaller stiffness at this step size); the first friction direction
+// "rolling" when exactly one side has it, else "slip".
 SurfaceProperties CombineSurfaces(const SurfaceProperties& a, const SurfaceProperties& b);
 
 class OdeWorld {
@@ -177,7 +192,15 @@ class OdeWorld {
     int body;                        // flat body index, -1 = plane/heightfield/static
     int owner_body;                  // flat body index even for static objects
     SurfaceProperties surface;
+    // Unit axis in the geom frame a "rolling" material's body spins about
+    // (model::SpinAxis); zero otherwise.
+    Eigen::Vector3d spin_axis = Eigen::Vector3d::Zero();
   };
+  // First friction direction of one contact point (unit), or false when
+  // ODE's own directions are to be used (a sticking "slip" contact).
+  bool FrictionDirection1(const SurfaceProperties& combined, dGeomID o1, const GeomInfo& g1,
+                          dGeomID o2, const GeomInfo& g2, const dContactGeom& contact,
+                          Eigen::Vector3d* direction) const;
   std::vector<GeomInfo> geom_info_;  // dGeomGetData = index + 1
   std::vector<dContact> contact_buffer_;
   // Contact feedback storage in fixed chunks so addresses stay valid while
