@@ -6,6 +6,8 @@
 //                health check)
 //   ours+pub     sim::SimNode: Step, SIM_STATE every step on LCM (udpm,
 //                ttl 0) and the incoming side polled, as the process runs
+//   ours QS20    bare, with ODE's iterative QuickStep (20 iterations)
+//                instead of dWorldStep: what our own faster stepper gives
 //   mujoco       the exported MJCF (simpartner-convert) through MuJoCo's C
 //                API with its defaults (Euler, pyramidal cone, Newton)
 //   mujoco acc   the same with settings at least as accurate as ours:
@@ -93,9 +95,14 @@ void CommandWheels(sim::Simulation* sim, double speed) {
   }
 }
 
-Figures RunOurs(const model::World& world, const Run& run, lcm::LCM* bus) {
+Figures RunOurs(const model::World& world, const Run& run, lcm::LCM* bus,
+                int quick_iterations = 0) {
   Parameters params;
   params.stepsize = run.dt;
+  if (quick_iterations > 0) {
+    params.stepper = "quick";
+    params.quickStepIterations = quick_iterations;
+  }
   sim::Simulation sim(world, params, 1);
   std::unique_ptr<sim::SimNode> node;
   if (bus != nullptr) node = std::make_unique<sim::SimNode>(&sim, bus);
@@ -323,7 +330,10 @@ int main(int argc, char** argv) {
       const Figures ours = RunOurs(*loaded.world, run, nullptr);
       ours_us = ours.micros_per_step;
       Print(name, "ours", ours, ours_us);
-      if (only != "bare") Print(name, "ours+pub", RunOurs(*loaded.world, run, &bus), ours_us);
+      if (only != "bare") {
+        Print(name, "ours+pub", RunOurs(*loaded.world, run, &bus), ours_us);
+        Print(name, "ours QS20", RunOurs(*loaded.world, run, nullptr, 20), ours_us);
+      }
     }
     if (only.empty() || only == "mujoco") {
       Print(name, "mujoco", RunMujoco(*loaded.world, run, false), ours_us);
