@@ -16,8 +16,8 @@ uint64_t BigEndian64(const uint8_t* bytes) {
   return value;
 }
 
-// Our own messages are read back at the rate they are sent; a few queued
-// are enough, since only a new id matters.
+// Our own messages are read back at the rate they are sent (about one a
+// second); a few queued are enough, since only a new id matters.
 constexpr int kQueuedMessages = 8;
 
 }  // namespace
@@ -37,7 +37,11 @@ std::optional<int64_t> PeekSimulationId(const std::string& channel, const void* 
 }
 
 PeerWatch::PeerWatch(lcm::LCM* lcm) : lcm_(lcm) {
-  for (const char* channel : {channels::kState, channels::kStatus, channels::kModel}) {
+  // Not SIM_STATE: reading back its own 1 kHz state would wake the sim's
+  // input wait every step (measured: ~190 steps a second then overran the
+  // input budget). Every sim publishes SIM_STATUS at least once a second
+  // and SIM_MODEL at start and on request, which is soon enough.
+  for (const char* channel : {channels::kStatus, channels::kModel}) {
     lcm::Subscription* s = lcm_->subscribe(channel, &PeerWatch::OnMessage, this);
     s->setQueueCapacity(kQueuedMessages);
     subscriptions_.push_back(s);

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
 #include <iostream>
 
@@ -148,7 +150,7 @@ void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& cha
     }
     if (refusal_replies_in_window_ < kRefusalRepliesPerSecond) {
       ++refusal_replies_in_window_;
-      lcm_->publish(channels::kCommandReply, &*rejection);
+      Publish(channels::kCommandReply, *rejection);
     } else {
       ++refusal_replies_withheld_;
     }
@@ -229,6 +231,37 @@ void SimNode::OnModelRequest(const lcm::ReceiveBuffer* buffer, const std::string
   model_requested_ = true;
 }
 
+template <class T>
+void SimNode::Publish(const char* channel, const T& message) {
+  if (lcm_->publish(channel, &message) == 0) {
+    if (failed_sends_in_outage_ > 0) {
+      Warn(warning_t::SEVERITY_INFO, "bus",
+           "sending works again; " + std::to_string(failed_sends_in_outage_) +
+               " messages could not be sent before (the first on " + first_failed_channel_ +
+               ": " + first_send_error_ + ")");
+      failed_sends_in_outage_ = 0;
+    }
+    return;
+  }
+  // A link down (a cable, a veth set down, no route) makes every send fail:
+  // said on the first failure and then once a second, with the count, so
+  // that the stepping goes on at its rate and the log says what was lost.
+  const std::string cause = std::strerror(errno);
+  ++failed_sends_;
+  if (failed_sends_in_outage_++ == 0) {
+    first_failed_channel_ = channel;
+    first_send_error_ = cause;
+  }
+  const auto now = Clock::now();
+  if (failed_sends_in_outage_ == 1 || now - last_send_failure_report_ >= std::chrono::seconds(1)) {
+    last_send_failure_report_ = now;
+    Warn(warning_t::SEVERITY_ERROR, "bus",
+         std::string(channel) + ": send failed: " + cause + " (" +
+             std::to_string(failed_sends_in_outage_) + " failed since the last that went out, " +
+             std::to_string(failed_sends_) + " in all)");
+  }
+}
+
 void SimNode::ReportOtherSimulations() {
   for (const OtherSimulation& other : peers_.TakeNew())
     Warn(warning_t::SEVERITY_ERROR, "bus", DescribeOtherSimulation(other, sim_->params().lcmUrl));
@@ -300,10 +333,10 @@ void SimNode::CollectWarnings() {
 void SimNode::PublishPending() {
   for (const command_reply_t& reply : sim_->TakeReplies()) {
     ++commands_accepted_;
-    lcm_->publish(channels::kCommandReply, &reply);
+    Publish(channels::kCommandReply, reply);
   }
   for (const sensor_reading_t& reading : sim_->TakeSensorReadings())
-    lcm_->publish(channels::kSensor, &reading);
+    Publish(channels::kSensor, reading);
   CollectWarnings();
 }
 
@@ -316,7 +349,7 @@ void SimNode::StepAndPublish() {
     if (sim_->step() % sim_->params().stateEvery == 0) {
       state_t state;
       sim_->FillState(&state);
-      lcm_->publish(channels::kState, &state);
+      Publish(channels::kState, state);
     }
   } else {
     paused_ = true;
@@ -330,7 +363,7 @@ void SimNode::PublishModel() {
   model_t model;
   sim_->FillModel(&model);
   model.host = host_;
-  lcm_->publish(channels::kModel, &model);
+  Publish(channels::kModel, model);
 }
 
 void SimNode::PublishStatus() {
@@ -366,7 +399,7 @@ void SimNode::PublishStatus() {
   status.bad_messages = bad_messages_;
   status.warnings.assign(recent_warnings_.begin(), recent_warnings_.end());
   status.num_warnings = static_cast<int16_t>(status.warnings.size());
-  lcm_->publish(channels::kStatus, &status);
+  Publish(channels::kStatus, status);
   status_changed_ = false;
 }
 

@@ -1,8 +1,9 @@
 // Noticing another simulation on the bus. Two sims on one bus (the same
 // multicast address and port) both apply every command, and a viewer or
 // logger sees two models in turn; nothing else on the bus would say so.
-// Every SIM_STATE, SIM_STATUS and SIM_MODEL carries its simulation id, so a
-// sim that hears one it did not publish knows at once.
+// Every SIM_STATUS (at least once a second) and SIM_MODEL (at start and on
+// request) carries its simulation id, so a sim that hears one it did not
+// publish knows within a second of the other's start.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -18,7 +19,7 @@
 namespace simpartner::sim {
 
 // The simulation id of a SIM_STATE, SIM_STATUS or SIM_MODEL datagram read
-// without decoding it (so the sim's own 1 kHz state costs it nothing): all
+// without decoding it (no allocation, whatever the datagram holds): all
 // three begin with utime and simulation_id, so the id is the big-endian
 // int64 after the 8-byte fingerprint and utime. nullopt for another
 // channel, a datagram too short, or a fingerprint not of the channel's type.
@@ -32,7 +33,7 @@ struct OtherSimulation {
 
 class PeerWatch {
  public:
-  // Subscribes to SIM_STATE, SIM_STATUS and SIM_MODEL on `lcm` (which must
+  // Subscribes to SIM_STATUS and SIM_MODEL on `lcm` (which must
   // outlive this) until destroyed.
   explicit PeerWatch(lcm::LCM* lcm);
   ~PeerWatch();

@@ -73,6 +73,11 @@ class SimNode {
   void CollectWarnings();
   // Another simulation heard on the bus: said at once, as an error.
   void ReportOtherSimulations();
+  // lcm publish with its result checked: a failed send is reported
+  // (channel and cause) on stderr and in SIM_STATUS, and so is the first
+  // send that works again.
+  template <class T>
+  void Publish(const char* channel, const T& message);
   // Reports on stderr and in the next SIM_STATUS.
   void Warn(int8_t severity, const std::string& source, const std::string& message);
 
@@ -92,6 +97,10 @@ class SimNode {
   int64_t bad_messages_ = 0;
   BadMessageCounter bad_message_counter_;
   int64_t input_deferrals_ = 0;
+  int64_t failed_sends_ = 0;
+  int64_t failed_sends_in_outage_ = 0;  // since the last send that went out
+  std::string first_failed_channel_, first_send_error_;
+  Clock::time_point last_send_failure_report_{};
   int64_t reported_deferrals_ = 0;
   Clock::time_point refusal_window_start_{};
   int refusal_replies_in_window_ = 0;
