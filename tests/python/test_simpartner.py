@@ -1,0 +1,195 @@
+"""The simpartner Python module against a real simpartner-sim on the bus
+(udpm, ttl=0, a port of its own) and a real private MariaDB written by a real
+simpartner-logger. Run by ctest with PYTHONPATH at the build's module."""
+import math
+import os
+import shutil
+import subprocess
+import tempfile
+import time
+import unittest
+
+import numpy as np
+
+import simpartner
+
+BINARY_DIR = os.environ["SP_BINARY_DIR"]
+SOURCE_DIR = os.environ["SP_SOURCE_DIR"]
+
+
+def unique_url(offset):
+    port = 20000 + (os.getpid() * 17 + offset * 131) % 20000
+    return "udpm://239.255.76.67:%d?ttl=0" % port
+
+
+def child_env():
+    # The ASan runtime is preloaded for python3 only (a sanitized tree);
+    # mariadbd must not get it.
+    env = dict(os.environ)
+    env.pop("LD_PRELOAD", None)
+    return env
+
+
+def start_sim(url, log, extra=()):
+    return subprocess.Popen(
+        [BINARY_DIR + "/sim_core/simpartner-sim", "--params", "/dev/null",
+         "--environment=" + SOURCE_DIR + "/models/worlds/flat_ground.xml",
+         "--lcm-url", url] + list(extra),
+        stdout=log, stderr=subprocess.STDOUT, env=child_env())
+
+
+def stop(process):
+    if process.poll() is None:
+        process.terminate()
+        try:
+            process.wait(20)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+
+
+class BusTest(unittest.TestCase):
+    """Connect, model, state, commands and run control on a running gen3."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.mkdtemp(prefix="sp_py_")
+        cls.url = unique_url(1)
+        cls.log = open(os.path.join(cls.dir, "sim.log"), "w")
+        cls.sim_process = start_sim(cls.url, cls.log)
+        cls.sim = simpartner.Sim(cls.url, timeout=30.0)
+
+    @classmethod
+    def tearDownClass(cls):
+        del cls.sim
+        stop(cls.sim_process)
+        cls.log.close()
+        shutil.rmtree(cls.dir, ignore_errors=True)
+
+    def test_no_sim_is_a_typed_error(self):
+        with self.assertRaises(simpartner.NoSim) as caught:
+            simpartner.Sim(unique_url(2), timeout=0.5)
+        self.assertIsInstance(caught.exception, simpartner.ClientError)
+        self.assertIn(unique_url(2).split("?")[0], str(caught.exception))
+
+    def test_model_names_and_kinds(self):
+        model = self.sim.model()
+        self.assertEqual(model["world"], "FlatGround")
+        self.assertIn("Wheel1", model["bodies"])
+        self.assertIn("Axle1", model["joints"])
+        kinds = {t["name"]: t["kind"] for t in model["targets"]}
+        self.assertEqual(kinds["Axle1Motor"], "actuator")
+        self.assertAlmostEqual(model["step_size"], 0.001)
+
+    def test_state_arrays_have_the_model_shape(self):
+        state = self.sim.wait_until(0.1, timeout=30)
+        model = self.sim.model()
+        self.assertEqual(state["position"].shape, (len(model["bodies"]), 3))
+        self.assertEqual(state["orientation"].shape, (len(model["bodies"]), 4))
+        self.assertEqual(state["joint_angle"].shape, (len(model["joints"]), 3))
+        # Unit quaternions; the robot stands above the ground (y up).
+        self.assertTrue(np.allclose(np.linalg.norm(state["orientation"], axis=1), 1.0, atol=1e-6))
+        wheel = model["bodies"].index("Wheel1")
+        self.assertGreater(state["position"][wheel, 1], 0.0)
+
+    def test_wheel_turns_at_the_rate_it_is_given(self):
+        model = self.sim.model()
+        axle = model["joints"].index("Axle1")
+        self.sim.set_velocity("Axle1Motor", [2.0])
+        start = self.sim.state()["time"]
+        state = self.sim.wait_until(start + 1.0, timeout=30)
+        self.assertAlmostEqual(abs(state["joint_rate"][axle, 0]), 2.0, delta=0.05)
+        self.sim.set_velocity("Axle1Motor", [0.0])
+
+    def test_errors_are_typed(self):
+        with self.assertRaises(simpartner.UnknownTarget) as caught:
+            self.sim.set_velocity("Axle1Motr", [1.0])
+        self.assertIn("Axle1Motor", str(caught.exception))
+        with self.assertRaises(simpartner.BadValues):
+            self.sim.set_velocity("Axle1Motor", [float("nan")])
+        with self.assertRaises(simpartner.Timeout):
+            self.sim.wait_until(1e9, timeout=0.3)
+
+    def test_pause_step_resume(self):
+        self.sim.pause()
+        time.sleep(0.5)
+        before = self.sim.state()["step"]
+        time.sleep(0.5)
+        self.assertEqual(self.sim.state()["step"], before)
+        self.sim.step(20)
+        deadline = time.time() + 10
+        while self.sim.state()["step"] < before + 20 and time.time() < deadline:
+            time.sleep(0.05)
+        self.assertEqual(self.sim.state()["step"], before + 20)
+        self.sim.resume()
+        self.sim.wait_until(self.sim.state()["time"] + 0.2, timeout=30)
+
+    def test_hold_and_reset(self):
+        self.assertGreaterEqual(self.sim.hold("Hip1Motor"), 0)
+        old = self.sim.model()["simulation_id"]
+        self.sim.reset(timeout=30)
+        self.assertNotEqual(self.sim.model()["simulation_id"], old)
+
+
+class DatabaseTest(unittest.TestCase):
+    """read_logged: a run logged by a real simpartner-logger into a private server."""
+
+    def test_read_a_logged_run(self):
+        work = tempfile.mkdtemp(prefix="sp_pydb_")
+        server = os.path.join(work, "db")
+        script = SOURCE_DIR + "/scripts/mariadb"
+        subprocess.run([script, "start", "--datadir", server], check=True, env=child_env(),
+                       stdout=subprocess.DEVNULL)
+        url = unique_url(3)
+        logger_log = open(os.path.join(work, "logger.log"), "w")
+        sim_log = open(os.path.join(work, "sim.log"), "w")
+        logger = sim_process = None
+        try:
+            logger = subprocess.Popen(
+                [BINARY_DIR + "/logger/simpartner-logger", "--params", "/dev/null",
+                 "--lcm-url", url, "--db-options", server + "/logger.cnf",
+                 "--spool", os.path.join(work, "spool")],
+                stdout=logger_log, stderr=subprocess.STDOUT, env=child_env())
+            deadline = time.time() + 30
+            while ": logging udpm://" not in open(logger_log.name).read():
+                self.assertLess(time.time(), deadline, open(logger_log.name).read())
+                time.sleep(0.1)
+            sim_process = start_sim(url, sim_log, ["--duration=2"])
+            drive = simpartner.Sim(url, timeout=30)
+            drive.set_velocity("Axle1Motor", [3.0])
+            self.assertEqual(sim_process.wait(60), 0)
+            del drive
+            logger.terminate()
+            self.assertEqual(logger.wait(120), 0, open(logger_log.name).read())
+            run = simpartner.read_logged("last", db_options=server + "/reader.cnf")
+            steps = len(run["time"])
+            self.assertGreater(steps, 100)
+            self.assertTrue(np.all(np.diff(run["time"]) > 0))
+            self.assertEqual(run["bodies"]["Wheel1"].shape, (steps, 7))
+            self.assertEqual(run["joints"]["Axle1"].shape, (steps, 15))
+            # The continuous angle is the integral of the logged rate.
+            columns = run["joint_columns"]
+            angle = run["joints"]["Axle1"][:, columns.index("angle")]
+            rate = run["joints"]["Axle1"][:, columns.index("rate")]
+            integral = np.concatenate([[0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(run["time"]))])
+            self.assertLess(np.max(np.abs((angle - angle[0]) - integral)), 0.05)
+            self.assertGreater(abs(angle[-1] - angle[0]), 2.0)
+            with_v = simpartner.read_logged(str(run["simulation"]), db_options=server + "/reader.cnf",
+                                            velocities=True)
+            self.assertEqual(with_v["bodies"]["Wheel1"].shape, (steps, 10))
+            with self.assertRaises(simpartner.DatabaseError) as caught:
+                simpartner.read_logged("99", db_options=server + "/reader.cnf")
+            self.assertIn("no simulation 99", str(caught.exception))
+        finally:
+            for p in (sim_process, logger):
+                if p is not None:
+                    stop(p)
+            logger_log.close()
+            sim_log.close()
+            subprocess.run([script, "stop", "--datadir", server], env=child_env(),
+                           stdout=subprocess.DEVNULL)
+            shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    unittest.main()
