@@ -131,6 +131,36 @@ class BusTest(unittest.TestCase):
         self.assertNotEqual(self.sim.model()["simulation_id"], old)
 
 
+class ExampleTest(unittest.TestCase):
+    """examples/drive_and_plot.py drives a real sim and writes its plot (Agg)."""
+
+    def test_drive_and_plot(self):
+        work = tempfile.mkdtemp(prefix="sp_pyex_")
+        url = unique_url(4)
+        log = open(os.path.join(work, "sim.log"), "w")
+        sim_process = start_sim(url, log)
+        try:
+            env = dict(os.environ)  # the module's environment (and ASan preload)
+            env.pop("DISPLAY", None)
+            out = os.path.join(work, "run.png")
+            done = subprocess.run(
+                ["python3" if not os.path.exists("/usr/bin/python3") else "/usr/bin/python3",
+                 SOURCE_DIR + "/examples/drive_and_plot.py", "--url", url, "--seconds", "3",
+                 "--out", out],
+                env=env, capture_output=True, text=True, timeout=240)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            self.assertIn("plot in " + out, done.stdout)
+            with open(out, "rb") as png:
+                self.assertEqual(png.read(8), b"\x89PNG\r\n\x1a\n")
+            self.assertGreater(os.path.getsize(out), 20000)
+            if os.environ.get("SP_PLOT_DIR"):
+                shutil.copy(out, os.environ["SP_PLOT_DIR"])
+        finally:
+            stop(sim_process)
+            log.close()
+            shutil.rmtree(work, ignore_errors=True)
+
+
 class DatabaseTest(unittest.TestCase):
     """read_logged: a run logged by a real simpartner-logger into a private server."""
 
