@@ -162,7 +162,9 @@ std::string Writer::ContactAttributes(const model::Material* material) {
   const int priority = priority_of_mu_.at(surface.mu);
   const bool rolling = surface.rolling_friction > 0;
   // Contact softness: ODE corrects the fraction ERP of the penetration per
-  // step, i.e. a time constant h / ERP (MuJoCo wants at least 2 h); its CFM
+  // step, i.e. a time constant h / ERP (MuJoCo wants at least 2 h); a
+  // material's physical stiffness k and damping c arrive here as the ERP
+  // and CFM they give at this step (h / ERP = h + c / k); its CFM
   // makes the constraint give way like MuJoCo's impedance d = A / (A + R)
   // with R = CFM / h, taken at a 1 kg reference effective mass (A = 1).
   const double h = params_.stepsize;
@@ -303,6 +305,17 @@ MjcfExport Writer::Run() {
     if (s.bounce > 0)
       not_carried_.push_back("material '" + m.name + "': bounce " + NumberText(s.bounce) +
                              " (MuJoCo has no restitution coefficient; contacts are inelastic)");
+    // A geom in MuJoCo 2.2 has one sliding friction, and the collision
+    // code picks a contact's tangent directions.
+    if (s.mu2 != s.mu)
+      not_carried_.push_back("material '" + m.name + "': mu2 " + NumberText(s.mu2) +
+                             " across the first friction direction (MuJoCo 2.2 has one sliding "
+                             "friction per geom and no way to orient it; mu " +
+                             NumberText(s.mu) + " is used both ways)");
+    if (s.friction_direction == model::FrictionDirection::kRolling)
+      not_carried_.push_back("material '" + m.name +
+                             "': frictionDirection rolling (MuJoCo orients contact friction "
+                             "itself)");
   };
   for (const model::Material& m : world_.materials) note_material(m);
   for (const model::RobotInstance& r : world_.robots)
@@ -361,9 +374,6 @@ MjcfExport Writer::Run() {
       "the step method (ODE dWorldStep/QuickStep, ERP " + NumberText(params_.globalERP) +
       ", CFM " + NumberText(params_.globalCFM) +
       " on joints): MuJoCo's joints are exact in joint coordinates");
-  not_carried_.push_back(
-      "friction direction and second friction coefficient (mu2), material stiffness and "
-      "damping: not in our model when this converter was written");
 
   std::ostringstream out;
   out << "<!-- MJCF for MuJoCo 2.2, converted by simpartner-convert from " << CommentSafe(world_.file)

@@ -155,6 +155,38 @@ TEST(MjcfExport, SlidingCubeStopsAtTheSameDistance) {
   EXPECT_NEAR(ours, theirs, expected * 0.02);
 }
 
+// What MuJoCo cannot take is named in the header: an anisotropic
+// friction (mu2) and a bounce; the lower friction wins a contact in both.
+TEST(MjcfExport, HeaderListsWhatDidNotCarryOver) {
+  const std::string xml =
+      "<world name='Materials'>\n"
+      "  <surface material='ice'><a>0</a><b>1</b><c>0</c><d>0</d></surface>\n"
+      "  <material name='ice'><mu>0.05</mu></material>\n"
+      "  <material name='tread'><mu>0.8</mu><mu2>0.3</mu2><bounce>0.5</bounce></material>\n"
+      "  <object type='Box' name='Block' material='tread'><mass>1</mass>\n"
+      "    <size><x>0.2</x><y>0.2</y><z>0.2</z></size>\n"
+      "    <transformation><T00>1</T00><T01>0</T01><T02>0</T02><T03>0</T03>\n"
+      "      <T10>0</T10><T11>1</T11><T12>0</T12><T13>0.1</T13>\n"
+      "      <T20>0</T20><T21>0</T21><T22>1</T22><T23>0</T23></transformation>\n"
+      "  </object>\n"
+      "</world>\n";
+  model::WorldLoadResult loaded = model::ParseWorld(xml, "materials.xml");
+  ASSERT_TRUE(loaded.world) << loaded.diagnostics.Format();
+  const MjcfExport exported = ExportMjcf(*loaded.world, Parameters{});
+  const std::string header = exported.xml.substr(0, exported.xml.find("-->"));
+  EXPECT_NE(header.find("material 'tread': mu2 0.3"), std::string::npos) << header;
+  EXPECT_NE(header.find("material 'tread': bounce 0.5"), std::string::npos) << header;
+  MjModelPtr m = LoadInMujoco(exported.xml);
+  ASSERT_TRUE(m);
+  const int ground = mj_name2id(m.get(), mjOBJ_GEOM, "ground");
+  const int block = mj_name2id(m.get(), mjOBJ_GEOM, "Block");
+  ASSERT_GE(ground, 0);
+  ASSERT_GE(block, 0);
+  // Ours takes the smaller mu of a pair; MuJoCo the higher priority's.
+  EXPECT_DOUBLE_EQ(m->geom_friction[3 * ground], 0.05);
+  EXPECT_GT(m->geom_priority[ground], m->geom_priority[block]);
+}
+
 // A robot file on its own exports too: the robot, no ground.
 TEST(MjcfExport, RobotFileAloneExports) {
   model::RobotLoadResult robot =
