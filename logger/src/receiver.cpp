@@ -1,6 +1,7 @@
 #include "simpartner/logger/receiver.h"
 
 #include <cmath>
+#include <utility>
 
 #include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
@@ -132,6 +133,22 @@ std::string CheckModel(const model_t& m) {
     if (!(p = CheckName(r.model, f + ".model", kNameBytes)).empty()) return p;
     if (!(p = CheckName(r.file, f + ".file", kPathBytes)).empty()) return p;
     if (!std::isfinite(r.total_mass)) return f + ".total_mass = " + Num(r.total_mass);
+  }
+  for (size_t i = 0; i < m.materials.size(); ++i) {
+    const material_t& mat = m.materials[i];
+    const std::string f = "materials[" + std::to_string(i) + "]";
+    if (!(p = CheckName(mat.name, f + ".name", kNameBytes)).empty()) return p;
+    for (const auto& [value, field] :
+         {std::pair<double, const char*>{mat.mu, ".mu"}, {mat.mu2, ".mu2"},
+          {mat.bounce, ".bounce"}, {mat.bounce_velocity, ".bounce_velocity"},
+          {mat.soft_erp, ".soft_erp"}, {mat.soft_cfm, ".soft_cfm"},
+          {mat.stiffness, ".stiffness"}, {mat.damping, ".damping"},
+          {mat.rolling_friction, ".rolling_friction"}})
+      if (!std::isfinite(value)) return f + field + " = " + Num(value);
+    if (mat.friction_direction != material_t::FRICTION_SLIP &&
+        mat.friction_direction != material_t::FRICTION_ROLLING)
+      return f + ".friction_direction = " + std::to_string(mat.friction_direction) +
+             " (FRICTION_SLIP or FRICTION_ROLLING)";
   }
   for (size_t i = 0; i < m.bodies.size(); ++i) {
     const body_t& b = m.bodies[i];

@@ -250,6 +250,34 @@ std::vector<Migration> BuildMigrations() {
                       " DEFAULT 'never received (lost on the bus, or sent while no logger ran)'"
                       " COMMENT 'never received, or received but refused (the spool disk full)'"),
       }});
+  m.push_back(Migration{
+      4,
+      "Material: each simulation's contact materials (mu and mu2, friction direction, "
+      "softness per step or stiffness and damping); Body.materialID",
+      {
+          std::string("CREATE TABLE IF NOT EXISTS Material ("
+                      " materialID INT UNSIGNED NOT NULL AUTO_INCREMENT,"
+                      " simulationID INT UNSIGNED NOT NULL,"
+                      " busIndex SMALLINT NOT NULL COMMENT 'index in model_t.materials',"
+                      " name VARCHAR(255) NOT NULL,"
+                      " mu DOUBLE NOT NULL COMMENT 'Coulomb friction along the first friction direction',"
+                      " mu2 DOUBLE NOT NULL COMMENT 'across the first direction; equal to mu when isotropic',"
+                      " frictionDirection VARCHAR(16) NOT NULL COMMENT 'SLIP (the sliding velocity) or ROLLING (the wheel rolling direction)',"
+                      " bounce DOUBLE NOT NULL COMMENT 'restitution 0..1',"
+                      " bounceVelocity DOUBLE NOT NULL COMMENT '[m/s] least impact speed that bounces',"
+                      " softERP DOUBLE NULL COMMENT 'per step; NULL when stiffness is given',"
+                      " softCFM DOUBLE NULL COMMENT 'per step; NULL when stiffness is given',"
+                      " stiffness DOUBLE NULL COMMENT '[N/m] of the whole contact; NULL = softness per step',"
+                      " damping DOUBLE NULL COMMENT '[N s/m] of the whole contact; NULL = softness per step',"
+                      " rollingFriction DOUBLE NOT NULL COMMENT '[m] rolling resistance length',"
+                      " PRIMARY KEY (materialID),"
+                      " UNIQUE KEY bus (simulationID, busIndex),"
+                      " KEY name (simulationID, name)"
+                      ")") + kTableOptions,
+          std::string("ALTER TABLE Body ADD COLUMN IF NOT EXISTS materialID INT UNSIGNED NULL"
+                      " COMMENT 'the Material row of Body.material; NULL = the default material'"
+                      " AFTER material"),
+      }});
   return m;
 }
 

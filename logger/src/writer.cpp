@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <set>
 #include <unordered_map>
@@ -534,10 +535,44 @@ void DbWriter::WriteModel(const Record& record, WriteResult* result) {
     }
     info.robot_ids = LoadIds("Robot", "robotID", info.id, model.robots.size());
 
+    if (!model.materials.empty()) {
+      RowSink materials(db_.get(), InsertMethod::kMultiRowInsert, "", "Material",
+                        "simulationID,busIndex,name,mu,mu2,frictionDirection,bounce,"
+                        "bounceVelocity,softERP,softCFM,stiffness,damping,rollingFriction");
+      constexpr double kNull = std::numeric_limits<double>::quiet_NaN();
+      for (size_t i = 0; i < model.materials.size(); ++i) {
+        const material_t& m = model.materials[i];
+        const bool physical = m.stiffness > 0.0;
+        materials.BeginRow();
+        materials.Int(info.id);
+        materials.Int(static_cast<int64_t>(i));
+        materials.Text(m.name);
+        materials.Double(m.mu);
+        materials.Double(m.mu2);
+        materials.Text(m.friction_direction == material_t::FRICTION_ROLLING ? "ROLLING" : "SLIP");
+        materials.Double(m.bounce);
+        materials.Double(m.bounce_velocity);
+        materials.Double(physical ? kNull : m.soft_erp);
+        materials.Double(physical ? kNull : m.soft_cfm);
+        materials.Double(physical ? m.stiffness : kNull);
+        materials.Double(physical ? m.damping : kNull);
+        materials.Double(m.rolling_friction);
+        materials.EndRow();
+      }
+      materials.Finish();
+    }
+    const std::vector<int64_t> material_ids =
+        LoadIds("Material", "materialID", info.id, model.materials.size());
+    auto material_index = [&model](const std::string& name) -> int64_t {
+      for (size_t i = 0; i < model.materials.size(); ++i)
+        if (model.materials[i].name == name) return static_cast<int64_t>(i);
+      return -1;  // "" (the default material): NULL
+    };
+
     if (!model.bodies.empty()) {
       RowSink bodies(db_.get(), InsertMethod::kMultiRowInsert, "", "Body",
                      "simulationID,robotID,busIndex,name,type,dimX,dimY,dimZ,mass,comX,comY,comZ,"
-                     "Ixx,Iyy,Izz,Ixy,Ixz,Iyz,material,isStatic");
+                     "Ixx,Iyy,Izz,Ixy,Ixz,Iyz,material,materialID,isStatic");
       for (size_t i = 0; i < model.bodies.size(); ++i) {
         const body_t& b = model.bodies[i];
         bodies.BeginRow();
@@ -551,6 +586,7 @@ void DbWriter::WriteModel(const Record& record, WriteResult* result) {
         for (double c : b.com) bodies.Double(c);
         for (double in : b.inertia) bodies.Double(in);
         bodies.Text(b.material);
+        bodies.Id(material_ids, material_index(b.material));
         bodies.Int(b.is_static ? 1 : 0);
         bodies.EndRow();
       }

@@ -77,7 +77,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   EXPECT_EQ(MigrateSchema(db.get(), nullptr), LatestSchemaVersion());  // nothing left to do
   for (const char* table : {"Simulation", "Robot", "RobotComponent", "Body", "Joint", "Sensor",
                             "Actuator", "SimulationRow", "Pose", "JointPose", "ForceAndTorque",
-                            "LogGap", "SensorReading", "Command", "CommandReply"}) {
+                            "LogGap", "SensorReading", "Command", "CommandReply", "Material"}) {
     EXPECT_EQ(QueryInt(std::string("SELECT COUNT(*) FROM information_schema.TABLES WHERE "
                                    "TABLE_SCHEMA = 'simpartner_a' AND TABLE_NAME = '") + table + "'",
                        "simpartner_a"),
@@ -94,17 +94,25 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   std::vector<std::string> notices;
   auto b = DbConnection::Open(server_->LoggerTarget("simpartner_b"), false);
   EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 1);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 3);
-  ASSERT_EQ(notices.size(), 2u);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 4);
+  ASSERT_EQ(notices.size(), 3u);
   EXPECT_NE(notices[0].find("applied schema migration 2"), std::string::npos);
   EXPECT_NE(notices[1].find("applied schema migration 3 (LogGap.reason"), std::string::npos);
+  EXPECT_NE(notices[2].find("applied schema migration 4 (Material"), std::string::npos);
+  // Bodies logged before migration 4 keep their material name; their
+  // Material row is unknown.
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = "
+                     "'simpartner_b' AND TABLE_NAME = 'Body' AND COLUMN_NAME = 'materialID' AND "
+                     "IS_NULLABLE = 'YES'",
+                     "simpartner_b"),
+            1);
   // The old gap got the reason old gaps had: never received.
   EXPECT_EQ(QueryRows(old.get(), "SELECT firstStep, missing, reason FROM LogGap"),
             (std::vector<std::string>{"11\t4\tnever received (lost on the bus, or sent while no logger ran)"}));
-  // A migration cut short after adding the column runs again harmlessly.
-  old->Execute("DELETE FROM SchemaVersion WHERE version = 3", "");
+  // Migrations cut short after adding their columns run again harmlessly.
+  old->Execute("DELETE FROM SchemaVersion WHERE version >= 3", "");
   EXPECT_EQ(MigrateSchema(b.get(), nullptr), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 3);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 4);
 
   // A database from a newer logger is left alone.
   old->Execute("INSERT INTO SchemaVersion VALUES (99, 'from the future', NOW())", "");
@@ -113,7 +121,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
     FAIL() << "a newer schema was accepted";
   } catch (const DbError& e) {
     EXPECT_NE(std::string(e.what()).find("database 'simpartner_b' has schema version 99, newer than "
-                                         "this program's 3"),
+                                         "this program's 4"),
               std::string::npos) << e.what();
   }
 }
@@ -195,6 +203,44 @@ TEST_F(DbTest, RowsHoldTheStateInSiUnitsAndAxisAngle) {
             (std::vector<std::string>{"BODY\tArm", "BODY\tBase", "BODY\tWheel", "JOINT\tAxle",
                                       "JOINT\tShoulder", "SENSOR\tArmPosition", "SENSOR\tEcho",
                                       "SENSOR\tShoulderLoad", "ACTUATOR\tArmMotor", "ACTUATOR\tSpin"}));
+}
+
+// A world with a rolling tyre of physical softness and an isotropic ice of
+// per-step softness: the Material rows say what the files say, and each
+// body points at its material's row.
+TEST_F(DbTest, MaterialsAreStoredWithTheirBodies) {
+  const std::string world =
+      "<world name=\"Materials\"><surface material=\"ice\"><a>0</a><b>1</b><c>0</c><d>0</d>"
+      "</surface>"
+      "<material name=\"tyre\"><mu>0.8</mu><mu2>0.4</mu2>"
+      "<frictionDirection>rolling</frictionDirection><bounce>0.1</bounce>"
+      "<stiffness>200000</stiffness><damping>7000</damping>"
+      "<rollingFriction>0.002</rollingFriction></material>"
+      "<material name=\"ice\"><mu>0.025</mu><softERP>0.3</softERP><softCFM>0.0002</softCFM>"
+      "</material>"
+      "<object type=\"Cylinder\" name=\"Wheel\" material=\"tyre\"><mass>5</mass>"
+      "<radius>0.3</radius><length>0.2</length>" + sim::testing::Transform(0, 0.3, 0) +
+      "</object>"
+      "<object type=\"Box\" name=\"Crate\"><mass>1</mass>" +
+      sim::testing::Vec("size", 0.5, 0.5, 0.5) + sim::testing::Transform(2, 0.25, 0) +
+      "</object></world>";
+  auto sim = sim::testing::MakeSim(world);
+  sim->Reset(77);
+  const SimRun run = testing::MakeRun(sim.get(), 3);
+  auto writer = Writer();
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(1, 3)) records.push_back(std::move(r));
+  writer->Write(records);
+  auto db = Admin();
+  EXPECT_EQ(QueryRows(db.get(), "SELECT name, mu, mu2, frictionDirection, bounce, bounceVelocity, "
+                                "softERP, softCFM, stiffness, damping, rollingFriction FROM Material "
+                                "ORDER BY name"),
+            (std::vector<std::string>{
+                "ice\t0.025\t0.025\tSLIP\t0\t0.1\t0.3\t0.0002\tNULL\tNULL\t0",
+                "tyre\t0.8\t0.4\tROLLING\t0.1\t0.1\tNULL\tNULL\t200000\t7000\t0.002"}));
+  EXPECT_EQ(QueryRows(db.get(), "SELECT b.name, b.material, m.name FROM Body b LEFT JOIN Material m "
+                                "USING (materialID) ORDER BY b.name"),
+            (std::vector<std::string>{"Crate\t\tNULL", "Wheel\ttyre\ttyre"}));
 }
 
 TEST_F(DbTest, GapsAreRecordedAlsoAcrossARestart) {
