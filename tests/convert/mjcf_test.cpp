@@ -6,6 +6,7 @@
 #include <mujoco/mujoco.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -132,7 +133,14 @@ TEST(MjcfExport, SlidingCubeStopsAtTheSameDistance) {
   sim::Simulation sim(world, Parameters{}, 1);
   const int cube = sim.flat().FindBody("", "Cube");
   const double our_start = sim.ode().ReadBody(cube).position.x();
-  for (int n = 0; n < steps; ++n) ASSERT_TRUE(sim.Step());
+  double our_highest = 0;
+  for (int n = 0; n < steps; ++n) {
+    ASSERT_TRUE(sim.Step());
+    our_highest = std::max(our_highest, sim.ode().ReadBody(cube).position.y());
+  }
+  // Ours slides flat on the floor (centre 0.5 m up). MuJoCo's hops at these
+  // contact settings (docs/convert.md), so only its distance is compared.
+  EXPECT_LT(our_highest, 0.5 + 1e-3);
   const double ours = sim.ode().ReadBody(cube).position.x() - our_start;
   EXPECT_NEAR(sim.ode().ReadBody(cube).linear_velocity.norm(), 0.0, 1e-3);
 
