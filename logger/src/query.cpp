@@ -172,6 +172,11 @@ void AppendVelocity(const ExportStep& before, const ExportStep& after, ExportRow
                               : std::numeric_limits<double>::quiet_NaN());
 }
 
+// Wheel1, wheel_left ...: what wheel-forces draws by default.
+bool IsWheelName(const std::string& name) {
+  return name.size() >= 5 && EditDistance(name.substr(0, 5), "wheel") == 0;
+}
+
 }  // namespace
 
 std::vector<std::string> ExportColumns(const ExportRequest& request) {
@@ -465,7 +470,11 @@ Plot MakePlot(DbConnection* db, const PlotRequest& request) {
     plot.series[it->second].y.push_back(y);
   };
   const double g = std::sqrt(gravity[0] * gravity[0] + gravity[1] * gravity[1] + gravity[2] * gravity[2]);
-  bool any_wheel = false;
+  if (request.kind == PlotKind::kWheelForces && request.name.empty()) {
+    const std::vector<std::string> bodies = NamesOf(db, simulation, false);
+    if (std::none_of(bodies.begin(), bodies.end(), IsWheelName))
+      throw Error(where + " has no body named Wheel*; name one with --body");
+  }
   ReadExport(db, e, [&](const ExportStep& step) {
     for (const ExportRow& row : step.rows) {
       const std::vector<double>& v = row.values;
@@ -494,11 +503,7 @@ Plot MakePlot(DbConnection* db, const PlotRequest& request) {
           add("|F1|", step.time, std::sqrt(v[9] * v[9] + v[10] * v[10] + v[11] * v[11]));
           break;
         case PlotKind::kWheelForces: {
-          std::string lower = row.name;
-          std::transform(lower.begin(), lower.end(), lower.begin(),
-                         [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-          if (request.name.empty() && lower.rfind("wheel", 0) != 0) break;
-          any_wheel = true;
+          if (request.name.empty() && !IsWheelName(row.name)) break;
           // The load: the contact force against gravity (|F| without gravity).
           const double up = g > 0 ? -(v[0] * gravity[0] + v[1] * gravity[1] + v[2] * gravity[2]) / g
                                   : std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -533,18 +538,6 @@ Plot MakePlot(DbConnection* db, const PlotRequest& request) {
       plot.ylabel = "force [N]";
       break;
     case PlotKind::kWheelForces:
-      if (!any_wheel && plot.series.empty() && request.name.empty()) {
-        const std::vector<std::string> bodies = NamesOf(db, simulation, false);
-        bool has_wheel = false;
-        for (const std::string& b : bodies) {
-          std::string lower = b;
-          std::transform(lower.begin(), lower.end(), lower.begin(),
-                         [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-          has_wheel = has_wheel || lower.rfind("wheel", 0) == 0;
-        }
-        if (!has_wheel)
-          throw Error(where + " has no body named Wheel*; name one with --body");
-      }
       plot.title = where + ": wheel contact forces against gravity" +
                    (request.name.empty() ? "" : " (" + request.name + ")");
       plot.ylabel = g > 0 ? "contact force along up [N]" : "|contact force| [N]";

@@ -183,6 +183,13 @@ TEST_F(QueryToolTest, VelocitiesOfAFreeFallAreMinusGTimesT) {
   EXPECT_NEAR(one.Number(0, 11), -9.81 * 0.5, 0.006);
   request.kind = ExportKind::kForces;
   EXPECT_THROW(Export(request), Error);
+  try {
+    MakePlot(Reader().get(), PlotRequest{PlotKind::kWheelForces, "last", ""});
+    ADD_FAILURE() << "a world without wheels plotted wheel forces";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "simulation 1 (FreeFall) has no body named Wheel*; name one with --body");
+  }
 }
 
 bool IsPng(const std::filesystem::path& path, uintmax_t* size) {
