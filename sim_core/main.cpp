@@ -57,7 +57,10 @@ int main(int argc, char** argv) {
               << params.stepper << " stepper, speed " << params.speed << ") on "
               << params.lcmUrl << std::endl;
     sim::ReportMessageSizes(simulation, std::cout);
+    // Progress lines only for a person watching; a log gets the summary.
+    if (::isatty(STDOUT_FILENO)) node.SetProgressOutput(&std::cout);
     const int status = node.Run();
+    std::cout << node.Summary() << std::endl;
     signalfd_siginfo received{};
     if (::read(stop_fd, &received, sizeof received) == static_cast<ssize_t>(sizeof received))
       std::cout << "simpartner-sim: stopped by " << (received.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM")

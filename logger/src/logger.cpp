@@ -273,6 +273,7 @@ int Logger::Run(int stop_fd) {
   writer_ = std::thread([this] { WriterLoop(); });
   receiver_->RequestModel();
   auto next_status = Clock::now() + Seconds(options_.status_period);
+  std::string last_status_line;
   while (true) {
     pollfd fds[2] = {{lcm_->getFileno(), POLLIN, 0}, {stop_fd, POLLIN, 0}};
     const int ready = ::poll(fds, 2, 100);
@@ -281,7 +282,13 @@ int Logger::Run(int stop_fd) {
     receiver_->Tick();
     CheckStall();
     if (Clock::now() >= next_status) {
-      reporter_->Say(StatusLine());
+      // Only when something changed: an idle logger does not repeat itself
+      // every period.
+      std::string line = StatusLine();
+      if (line != last_status_line) {
+        reporter_->Say(line);
+        last_status_line = std::move(line);
+      }
       next_status = Clock::now() + Seconds(options_.status_period);
     }
   }

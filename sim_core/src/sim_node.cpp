@@ -94,6 +94,7 @@ void SimNode::Warn(int8_t severity, const std::string& source, const std::string
   w.source = source;
   w.message = message;
   std::cerr << "simpartner-sim: step " << w.step << ": " << source << ": " << message << "\n";
+  ++warnings_total_;
   recent_warnings_.push_back(std::move(w));
   if (recent_warnings_.size() > kRecentWarnings) recent_warnings_.pop_front();
   status_changed_ = true;
@@ -324,7 +325,8 @@ void SimNode::CollectWarnings() {
   for (warning_t& w : sim_->TakeWarnings()) {
     std::cerr << "simpartner-sim: step " << w.step << ": " << w.source << ": " << w.message
               << "\n";
-    recent_warnings_.push_back(std::move(w));
+    ++warnings_total_;
+  recent_warnings_.push_back(std::move(w));
     if (recent_warnings_.size() > kRecentWarnings) recent_warnings_.pop_front();
     status_changed_ = true;
   }
@@ -343,8 +345,11 @@ void SimNode::PublishPending() {
 void SimNode::StepAndPublish() {
   const auto start = Clock::now();
   const bool ok = sim_->Step();
-  compute_time_ += Clock::now() - start;
+  const Clock::duration spent = Clock::now() - start;
+  compute_time_ += spent;
+  total_compute_time_ += spent;
   ++compute_steps_;
+  ++steps_taken_;
   if (ok) {
     if (sim_->step() % sim_->params().stateEvery == 0) {
       state_t state;
@@ -401,6 +406,38 @@ void SimNode::PublishStatus() {
   status.num_warnings = static_cast<int16_t>(status.warnings.size());
   Publish(channels::kStatus, status);
   status_changed_ = false;
+  if (progress_ != nullptr && now - last_progress_ >= kProgressEvery) {
+    last_progress_ = now;
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "simpartner-sim: sim time %.3f s (step %lld), real-time factor %.3f, %s", sim_->time(),
+                  static_cast<long long>(sim_->step()), real_time_factor_,
+                  quit_ ? "stopping" : sim_->faulted() ? "FAULTED (paused)" : paused_ ? "paused" : "running");
+    *progress_ << line;
+    if (commands_rejected_ > 0 || bad_messages_ > 0)
+      *progress_ << ", " << commands_rejected_ << " commands refused, " << bad_messages_
+                 << " bad messages";
+    *progress_ << std::endl;
+  }
+}
+
+std::string SimNode::Summary() const {
+  const double wall = std::chrono::duration<double>(Clock::now() - run_start_).count();
+  const double sim_seconds = static_cast<double>(steps_taken_) * sim_->params().stepsize;
+  const double step_us = steps_taken_ > 0 ? std::chrono::duration<double, std::micro>(
+                                                total_compute_time_).count() / steps_taken_
+                                          : 0.0;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "simpartner-sim: ended at step %lld (sim time %.3f s); %lld steps in %.1f s of "
+                "wall time (%.3f x real time overall), %.1f us of computing per step; commands "
+                "%lld accepted, %lld refused; %lld bad messages; %lld warnings",
+                static_cast<long long>(sim_->step()), sim_->time(),
+                static_cast<long long>(steps_taken_), wall, wall > 0 ? sim_seconds / wall : 0.0,
+                step_us, static_cast<long long>(commands_accepted_),
+                static_cast<long long>(commands_rejected_), static_cast<long long>(bad_messages_),
+                static_cast<long long>(warnings_total_));
+  return text;
 }
 
 int SimNode::Run() {
@@ -414,6 +451,7 @@ int SimNode::Run() {
       std::chrono::duration<double>(params.statusPeriod));
   auto next_model = Clock::now();
   auto next_status = Clock::now();
+  run_start_ = last_progress_ = Clock::now();
   PublishModel();
 
   while (!quit_) {

@@ -577,5 +577,21 @@ TEST_F(LoggerProcessTest, AKilledSimsSimulationIsClosed) {
   EXPECT_NE(ReadFile(list_log).find("the sim went silent"), std::string::npos) << ReadFile(list_log);
 }
 
+// An idle logger says its status once, not once a period: a line is
+// printed only when something in it changed.
+TEST_F(LoggerProcessTest, IdleLoggerDoesNotRepeatItsStatus) {
+  ChildProcess& logger = StartLogger();  // --status-period 1
+  ASSERT_TRUE(WaitForReady(0)) << ReadFile(LoggerLog(0));
+  std::this_thread::sleep_for(std::chrono::milliseconds(4500));  // four periods and more
+  EXPECT_EQ(StopLogger(logger), 0);
+  std::istringstream log(ReadFile(LoggerLog(0)));
+  int status_lines = 0;
+  for (std::string line; std::getline(log, line);)
+    if (line.find(": no SIM_MODEL seen yet; written 0 steps") != std::string::npos &&
+        line.find("stopped: ") == std::string::npos)
+      ++status_lines;
+  EXPECT_EQ(status_lines, 1) << ReadFile(LoggerLog(0));
+}
+
 }  // namespace
 }  // namespace simpartner::logger

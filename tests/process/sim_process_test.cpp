@@ -543,5 +543,30 @@ TEST_F(SimProcessTest, SimsSharingABusSayItAtOnce) {
   EXPECT_EQ(second.Wait(std::chrono::seconds(5)), 0);
 }
 
+// A run says how it went when it ends, and a person watching it on a
+// terminal sees a progress line every few seconds (script(1) gives the
+// sim a terminal here); a log gets no progress lines.
+TEST_F(SimProcessTest, ProgressOnATerminalAndASummaryAtTheEnd) {
+  const std::string url = UniqueUrl(34);
+  SimProcess logged(Args(url, {"--duration=1"}), Log());
+  ASSERT_EQ(logged.Wait(std::chrono::seconds(15)), 0) << LogText();
+  EXPECT_NE(LogText().find("ended at step 1000 (sim time 1.000 s); 1000 steps in "),
+            std::string::npos)
+      << LogText();
+  EXPECT_EQ(LogText().find("real-time factor"), std::string::npos) << LogText();
+
+  std::string command = std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim";
+  for (const std::string& arg : Args(url, {"--duration=6.5"})) command += " '" + arg + "'";
+  const std::filesystem::path typescript = dir_ / "terminal.log";
+  ChildProcess on_terminal({"/usr/bin/script", "-qec", command, typescript.string()},
+                           (dir_ / "script.log").string());
+  ASSERT_EQ(on_terminal.Wait(std::chrono::seconds(30)), 0) << ReadText(typescript);
+  const std::string seen = ReadText(typescript);
+  // Once after 5 s of wall time, naming the sim time, the factor and the state.
+  EXPECT_NE(seen.find("real-time factor"), std::string::npos) << seen;
+  EXPECT_NE(seen.find(", running"), std::string::npos) << seen;
+  EXPECT_NE(seen.find("ended at step 6500 (sim time 6.500 s)"), std::string::npos) << seen;
+}
+
 }  // namespace
 }  // namespace simpartner

@@ -49,6 +49,15 @@ class SimNode {
   static constexpr double kMinSpeed = 1e-3;
   static constexpr double kMaxSpeed = 1000.0;
 
+  // A line every kProgressEvery of wall time while running (sim time,
+  // real-time factor, state) to `out`, e.g. std::cout when it is a
+  // terminal; nullptr (the default) prints nothing.
+  void SetProgressOutput(std::ostream* out) { progress_ = out; }
+  static constexpr std::chrono::seconds kProgressEvery{5};
+  // One line on how the run went, for its end: steps, sim and wall time,
+  // overall real-time factor, step cost, commands, bad messages, warnings.
+  std::string Summary() const;
+
   bool quit_requested() const { return quit_; }
   bool paused() const { return paused_; }
   double speed() const { return speed_; }
@@ -97,6 +106,12 @@ class SimNode {
   int64_t bad_messages_ = 0;
   BadMessageCounter bad_message_counter_;
   int64_t input_deferrals_ = 0;
+  std::ostream* progress_ = nullptr;
+  Clock::time_point last_progress_{};
+  Clock::time_point run_start_{};
+  Clock::duration total_compute_time_{};
+  int64_t steps_taken_ = 0;        // over the whole run, resets included
+  int64_t warnings_total_ = 0;
   int64_t failed_sends_ = 0;
   int64_t failed_sends_in_outage_ = 0;  // since the last send that went out
   std::string first_failed_channel_, first_send_error_;
