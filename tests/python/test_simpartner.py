@@ -23,11 +23,17 @@ def unique_url(offset):
 
 
 def child_env():
-    # The ASan runtime is preloaded for python3 only (a sanitized tree);
-    # mariadbd must not get it.
+    # The ASan runtime is preloaded for python3 only (a sanitized tree):
+    # mariadbd must not get it, and the sanitized programs link their own.
     env = dict(os.environ)
     env.pop("LD_PRELOAD", None)
+    env.pop("ASAN_OPTIONS", None)
     return env
+
+
+def read(path):
+    with open(path) as f:
+        return f.read()
 
 
 def start_sim(url, log, extra=()):
@@ -181,8 +187,8 @@ class DatabaseTest(unittest.TestCase):
                  "--spool", os.path.join(work, "spool")],
                 stdout=logger_log, stderr=subprocess.STDOUT, env=child_env())
             deadline = time.time() + 30
-            while ": logging udpm://" not in open(logger_log.name).read():
-                self.assertLess(time.time(), deadline, open(logger_log.name).read())
+            while ": logging udpm://" not in read(logger_log.name):
+                self.assertLess(time.time(), deadline, read(logger_log.name))
                 time.sleep(0.1)
             sim_process = start_sim(url, sim_log, ["--duration=2"])
             drive = simpartner.Sim(url, timeout=30)
@@ -190,7 +196,7 @@ class DatabaseTest(unittest.TestCase):
             self.assertEqual(sim_process.wait(60), 0)
             del drive
             logger.terminate()
-            self.assertEqual(logger.wait(120), 0, open(logger_log.name).read())
+            self.assertEqual(logger.wait(120), 0, read(logger_log.name))
             run = simpartner.read_logged("last", db_options=server + "/reader.cnf")
             steps = len(run["time"])
             self.assertGreater(steps, 100)
