@@ -167,21 +167,27 @@ void OdeWorld::Build() {
   contact_buffer_.resize(static_cast<size_t>(params.maxContacts));
 
   auto add_geom_info = [this](dGeomID geom, int body, int owner, const std::string& material) {
-    GeomInfo info{body, owner, Surface(material), Eigen::Vector3d::Zero()};
-    if (info.surface.friction_direction == model::FrictionDirection::kRolling) {
+    GeomInfo info{body, owner, Surface(material), Eigen::Vector3d::Zero(), false};
+    if (owner >= 0) {
       // The geom frame is the body frame (geoms are only offset, never
       // turned), where the spin axis is fixed.
-      SP_CHECK_MSG(owner >= 0, "a rolling material on a surface without a body");
       const FlatBody& flat = model_.bodies[static_cast<size_t>(owner)];
       const std::vector<model::Joint>& joints =
           flat.robot < 0 ? model_.world->joints
                          : model_.world->robots[static_cast<size_t>(flat.robot)].robot.joints;
-      const std::optional<Eigen::Vector3d> axis = model::SpinAxis(*flat.source, joints);
-      SP_CHECK_MSG(axis.has_value(), "body '" + BodyName(static_cast<size_t>(owner)) +
-                                         "' with a rolling material has no spin axis; the "
-                                         "loader should have refused it");
-      info.spin_axis = *axis;
+      if (const std::optional<Eigen::Vector3d> axis = model::SpinAxis(*flat.source, joints)) {
+        info.spin_axis = *axis;
+        info.has_spin_axis = true;
+      }
     }
+    // A body's own "rolling" material needs its own axis (the loader refuses
+    // one without); the ground's means "along the rolling direction of
+    // whatever wheel touches it".
+    SP_CHECK_MSG(owner < 0 || info.has_spin_axis ||
+                     info.surface.friction_direction != model::FrictionDirection::kRolling,
+                 "body '" + BodyName(static_cast<size_t>(owner)) +
+                     "' with a rolling material has no spin axis; the loader should have "
+                     "refused it");
     geom_info_.push_back(info);
     dGeomSetData(geom, reinterpret_cast<void*>(static_cast<uintptr_t>(geom_info_.size())));
   };
@@ -400,11 +406,13 @@ SurfaceProperties CombineSurfaces(const SurfaceProperties& a, const SurfacePrope
   SurfaceProperties s;
   s.mu = std::min(a.mu, b.mu);
   s.mu2 = std::min(a.mu2, b.mu2);
+  // Either side may ask for the rolling direction: a tyre's material, or a
+  // ground's for every wheel on it. Which wheel's axis gives it is decided
+  // per contact (FrictionDirection1): the one geom of the pair that spins.
   const bool a_rolls = a.friction_direction == model::FrictionDirection::kRolling;
   const bool b_rolls = b.friction_direction == model::FrictionDirection::kRolling;
-  // Two wheels touching have no common rolling direction.
   s.friction_direction =
-      a_rolls != b_rolls ? model::FrictionDirection::kRolling : model::FrictionDirection::kSlip;
+      a_rolls || b_rolls ? model::FrictionDirection::kRolling : model::FrictionDirection::kSlip;
   s.rolling_friction = std::min(a.rolling_friction, b.rolling_friction);
   s.bounce = std::max(a.bounce, b.bounce);
   s.bounce_velocity = std::max(a.bounce_velocity, b.bounce_velocity);
@@ -519,10 +527,14 @@ bool OdeWorld::FrictionDirection1(const SurfaceProperties& combined, dGeomID o1,
                                   const dContactGeom& contact, Eigen::Vector3d* direction) const {
   const Eigen::Vector3d normal = FromOde(contact.normal);
   if (combined.friction_direction == model::FrictionDirection::kRolling) {
-    // Perpendicular to the normal and to the wheel's spin axis.
-    const bool first_rolls = g1.surface.friction_direction == model::FrictionDirection::kRolling;
-    const dGeomID wheel = first_rolls ? o1 : o2;
-    const Eigen::Vector3d& axis_in_geom = first_rolls ? g1.spin_axis : g2.spin_axis;
+    // Perpendicular to the normal and to the wheel's spin axis. The wheel
+    // is the one geom of the two with a spin axis; two wheels touching (or
+    // two bodies that do not spin) have no common rolling direction, and
+    // slide as "slip".
+    if (g1.has_spin_axis == g2.has_spin_axis) return SlipDirection(o1, o2, contact, direction);
+    const bool first_is_wheel = g1.has_spin_axis;
+    const dGeomID wheel = first_is_wheel ? o1 : o2;
+    const Eigen::Vector3d& axis_in_geom = first_is_wheel ? g1.spin_axis : g2.spin_axis;
     const dReal* r = dGeomGetRotation(wheel);
     Eigen::Vector3d axis;
     for (int row = 0; row < 3; ++row)
@@ -535,6 +547,12 @@ bool OdeWorld::FrictionDirection1(const SurfaceProperties& combined, dGeomID o1,
     }
     // A wheel lying flat rolls nowhere: as "slip".
   }
+  return SlipDirection(o1, o2, contact, direction);
+}
+
+bool OdeWorld::SlipDirection(dGeomID o1, dGeomID o2, const dContactGeom& contact,
+                             Eigen::Vector3d* direction) const {
+  const Eigen::Vector3d normal = FromOde(contact.normal);
   const dBodyID b1 = dGeomGetBody(o1);
   const dBodyID b2 = dGeomGetBody(o2);
   dVector3 v1 = {0, 0, 0, 0}, v2 = {0, 0, 0, 0};

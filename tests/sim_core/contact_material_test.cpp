@@ -239,6 +239,67 @@ TEST(ContactMaterial, RollingTyreDrivesWithMuNAndHoldsSidewaysWithMu2N) {
   }
 }
 
+// The ground may ask for the rolling direction of every wheel on it (a
+// plane has no axis of its own): a 10 kg wheel hung from a carrier that a
+// vertical slider holds, spun far faster than it can roll (it cannot move),
+// on ground of mu 0.3 along the rolling direction and 0.9 across it, is
+// braked by mu N along x (its rolling direction, the hinge being along z)
+// and by nothing across it, with the axle along z and turned along x.
+// (Here the tread also slides along its rolling direction, so "slip" would
+// brake the same way: what tells the two apart is a vehicle whose wheels
+// slide sideways, the validation's circles, tests/validate.) Before, a
+// rolling ground stopped the sim at its construction.
+TEST(ContactMaterial, GroundAsksForTheRollingDirectionOfTheWheelOnIt) {
+  constexpr double kN = 10 * kG, kMu = 0.3;
+  for (const bool axle_along_z : {true, false}) {
+    SCOPED_TRACE(axle_along_z ? "axle along z" : "axle along x");
+    const std::string axis = axle_along_z ? Vec("axis1", 0, 0, 1) : Vec("axis1", 1, 0, 0);
+    // A cylinder's own axis is its z: for an axle along x it is turned 90
+    // degrees about y (body z to world x), standing on its tread either way.
+    const std::string placement =
+        axle_along_z ? Transform(0, 0.3, 0)
+                     : "<transformation><T00>0</T00><T01>0</T01><T02>1</T02><T03>0</T03>"
+                       "<T10>0</T10><T11>1</T11><T12>0</T12><T13>0.3</T13>"
+                       "<T20>-1</T20><T21>0</T21><T22>0</T22><T23>0</T23></transformation>";
+    const std::string world =
+        "<world name=\"Ground\"><surface material=\"ground\"><a>0</a><b>1</b><c>0</c><d>0</d>"
+        "</surface>"
+        "<material name=\"ground\"><mu>0.3</mu><mu2>0.9</mu2>"
+        "<frictionDirection>rolling</frictionDirection></material>"
+        "<object type=\"Box\" name=\"Carrier\"><mass>5</mass>" +
+        Vec("size", 0.2, 0.2, 0.2) + Transform(0, 0.6, 0) +
+        "</object>"
+        "<object type=\"Cylinder\" name=\"Wheel\"><mass>5</mass>"
+        "<radius>0.3</radius><length>0.2</length>" +
+        placement +
+        "</object>"
+        "<joint type=\"Slider\" name=\"Hanger\"><body1>Carrier</body1><body2>world</body2>" +
+        Vec("axis1", 0, 1, 0) +
+        "</joint>"
+        "<joint type=\"Hinge\" name=\"Axle\"><body1>Carrier</body1><body2>Wheel</body2>" +
+        Vec("anchor", 0, 0.3, 0) + axis + "</joint></world>";
+    auto sim = MakeSim(world);
+    const int wheel = sim->flat().FindBody("", "Wheel");
+    const int axle = sim->flat().FindJoint("", "Axle");
+    ASSERT_GE(wheel, 0);
+    ASSERT_GE(axle, 0);
+    sim->ode().SetMotor(axle, 0, 30.0, 1e4);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    int counted = 0;
+    for (int n = 0; n < 200; ++n) {
+      ASSERT_TRUE(sim->Step());
+      if (n < 20) continue;  // settling onto the ground
+      mean += sim->ode().ReadBody(wheel).contact_force;
+      ++counted;
+    }
+    mean /= counted;
+    const double along = axle_along_z ? mean.x() : mean.z();
+    const double across = axle_along_z ? mean.z() : mean.x();
+    EXPECT_NEAR(std::abs(along), kMu * kN, 0.01 * kMu * kN) << mean.transpose();
+    EXPECT_NEAR(across, 0.0, 0.01 * kMu * kN) << mean.transpose();
+  }
+}
+
 // ------------------------------------------------------------ stiffness
 
 // A box of mass m, side s, of material `stiff` released on a plane of the

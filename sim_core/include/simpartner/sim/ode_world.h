@@ -192,15 +192,21 @@ class OdeWorld {
     int body;                        // flat body index, -1 = plane/heightfield/static
     int owner_body;                  // flat body index even for static objects
     SurfaceProperties surface;
-    // Unit axis in the geom frame a "rolling" material's body spins about
-    // (model::SpinAxis); zero otherwise.
+    // Unit axis in the geom frame the body spins about (model::SpinAxis:
+    // its one hinge, or a cylinder's axis) when it has one; a "rolling"
+    // pair takes its rolling direction from the geom of the two that has.
     Eigen::Vector3d spin_axis = Eigen::Vector3d::Zero();
+    bool has_spin_axis = false;
   };
   // First friction direction of one contact point (unit), or false when
   // ODE's own directions are to be used (a sticking "slip" contact).
   bool FrictionDirection1(const SurfaceProperties& combined, dGeomID o1, const GeomInfo& g1,
                           dGeomID o2, const GeomInfo& g2, const dContactGeom& contact,
                           Eigen::Vector3d* direction) const;
+  // Along the sliding velocity of o1 against o2 at the contact; false when
+  // it slides slower than kSlipDirectionSpeed (sticking).
+  bool SlipDirection(dGeomID o1, dGeomID o2, const dContactGeom& contact,
+                     Eigen::Vector3d* direction) const;
   std::vector<GeomInfo> geom_info_;  // dGeomGetData = index + 1
   std::vector<dContact> contact_buffer_;
   // Contact feedback storage in fixed chunks so addresses stay valid while
