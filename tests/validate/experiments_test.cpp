@@ -9,6 +9,8 @@
 // physics does predict runs instead.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -29,12 +31,18 @@ Context Quick() {
   return context;
 }
 
+// Each experiment runs once per test program: several tests read one run
+// (the circles take minutes under the sanitizers), and a run is
+// deterministic, so a second would give the same numbers.
 ExperimentResult RunNamed(const char* name) {
+  static std::map<std::string, ExperimentResult> runs;
+  if (const auto it = runs.find(name); it != runs.end()) return it->second;
   const Experiment* experiment = FindExperiment(name);
   EXPECT_NE(experiment, nullptr) << name;
   if (experiment == nullptr) return ExperimentResult{};
   ExperimentResult result = RunExperiment(*experiment, Quick());
   EXPECT_EQ(result.error, "") << name;
+  runs.emplace(name, result);
   return result;
 }
 
@@ -72,41 +80,60 @@ TEST(Validation, TwoSpheresBounceSymmetrically) {
   EXPECT_NEAR(r.Measured("relative speed after the bounce"), 2.0, 0.02);
 }
 
-// SPEC 8: r = a cot(alpha/2) = 4.01 m, the team's tolerance 10 %.
-TEST(Validation, DISABLED_CircleEqualSpeedsWithinTenPercentOfTheKinematicRadius) {
+// The circles as the thesis ran them: 0.5 along each wheel's rolling
+// direction, 1.0 across it. A rigid articulated vehicle whose wheels keep
+// their paths turns where its steering points: the axle centres on
+// a cot(alpha/2), the mean of the four wheels on a cot(alpha/2) cos(alpha/2)
+// (a = 0.6 m, SPEC 7).
+double AxleCentres(double alpha) { return 0.6 / std::tan(alpha / 2.0); }
+
+TEST(Validation, CircleEqualSpeedsWithTheThesisFrictionFollowsTheSteering) {
   const ExperimentResult r = RunNamed("circle_equal");
-  EXPECT_NEAR(r.Measured("radius, mu 0.5"), 4.008, 0.401);
-  EXPECT_NEAR(r.Measured("radius, mu 1"), 4.008, 0.401);
+  const double alpha = 0.2972;
+  EXPECT_NEAR(r.Measured("radius at the axle centres, thesis friction"), AxleCentres(alpha),
+              0.005 * AxleCentres(alpha));
+  EXPECT_NEAR(r.Measured("radius of the mean of the four wheels, thesis friction"),
+              AxleCentres(alpha) * std::cos(alpha / 2.0),
+              0.005 * AxleCentres(alpha) * std::cos(alpha / 2.0));
 }
 
-// With equal wheel speeds every wheel slips; an ideal rigid vehicle with
-// Coulomb friction turns at 4.91 m for either mu (analysis_test), and the
-// friction pyramid's extra sideways grip brings it a little closer to the
-// steering's 4.01 m. Between the two, and the same for both mu.
-TEST(Validation, CircleEqualSpeedsSlipsBetweenSteeringAndCoulombRadius) {
+// Isotropic friction along the slip: with equal wheel speeds every wheel
+// slides, and the vehicle turns outside the steering's circle (an ideal
+// point-wheel Coulomb vehicle: 4.6 to 4.9 m with the run's loads), the
+// same for both mu.
+TEST(Validation, CircleEqualSpeedsIsotropicSlidesOutsideTheSteeringsCircle) {
   const ExperimentResult r = RunNamed("circle_equal");
-  const double r05 = r.Measured("radius, mu 0.5"), r1 = r.Measured("radius, mu 1");
+  const double r05 = r.Measured("radius, isotropic mu 0.5"), r1 = r.Measured("radius, isotropic mu 1");
   for (const double radius : {r05, r1}) {
-    EXPECT_GT(radius, 4.008 * 1.10);
-    EXPECT_LT(radius, 4.914);
+    EXPECT_GT(radius, AxleCentres(0.2972) * 1.10);
+    EXPECT_LT(radius, 4.93);
   }
   EXPECT_NEAR(r05 / r1, 1.0, 0.01);
 }
 
-// SPEC 8: 5.98 m within 0.25 % for 1.00 / 1.10 m/s.
-TEST(Validation, DISABLED_CircleDifferentialSpeedsWithinAQuarterPercent) {
+// SPEC 8: 5.98 m within 0.25 % for 1.00 / 1.10 m/s, with the thesis's friction.
+TEST(Validation, CircleDifferentialSpeedsWithTheThesisFrictionWithinAQuarterPercent) {
   const ExperimentResult r = RunNamed("circle_differential");
-  EXPECT_NEAR(r.Measured("radius, 1.00 / 1.10 m/s"), 5.98, 0.0025 * 5.98);
+  const double alpha = 0.2;
+  EXPECT_NEAR(r.Measured("radius at the axle centres, thesis friction"), AxleCentres(alpha),
+              0.0025 * AxleCentres(alpha));
+  EXPECT_NEAR(r.Measured("radius of the mean of the four wheels, thesis friction"),
+              AxleCentres(alpha) * std::cos(alpha / 2.0),
+              0.0025 * AxleCentres(alpha) * std::cos(alpha / 2.0));
+  EXPECT_LE(r.Measured("worst deviation from the fitted circle, thesis friction"), 0.001);
 }
 
-TEST(Validation, CircleDifferentialSpeedsIsCircularAndMatchedSpeedsGiveTheKinematicRadius) {
+TEST(Validation, CircleDifferentialSpeedsIsotropicAndMatchedSpeeds) {
   const ExperimentResult r = RunNamed("circle_differential");
-  EXPECT_LE(r.Measured("worst deviation from the fitted circle, 1.00 / 1.10"), 0.001);
-  // 1.10 asks for 6.3 m, the steering for 5.98 m; Coulomb slip: 6.039 m.
-  EXPECT_GT(r.Measured("radius, 1.00 / 1.10 m/s"), 5.98);
-  EXPECT_LT(r.Measured("radius, 1.00 / 1.10 m/s"), 6.039 * 1.002);
+  // 1.10 asks for 6.3 m, the steering for 5.98 m; the wheels slide a little
+  // and the radius falls between, near the Coulomb steady state (6.03 m
+  // with the run's loads; the report's check holds it to 0.3 %).
+  const double isotropic = r.Measured("radius, isotropic mu 1, vs the steady state");
+  EXPECT_GT(isotropic, AxleCentres(0.2));
+  EXPECT_LT(isotropic, 6.05);
   // Outer wheels at (5.98 + 0.3) / (5.98 - 0.3) = 1.1056 m/s: no slip needed.
-  EXPECT_NEAR(r.Measured("radius, 1.00 / 1.10563 m/s (matched)"), 5.98, 0.0025 * 5.98);
+  EXPECT_NEAR(r.Measured("radius, 1.00 / 1.10563 m/s (matched)"), AxleCentres(0.2),
+              0.0025 * AxleCentres(0.2));
   EXPECT_LE(r.Measured("worst deviation from the fitted circle, matched"), 0.001);
 }
 

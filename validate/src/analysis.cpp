@@ -97,13 +97,19 @@ double SkidSteerRadius(const SkidSteerVehicle& v) {
   const Eigen::Vector2d front_heading(std::cos(v.alpha), std::sin(v.alpha));
   const Eigen::Vector2d rear_heading(1.0, 0.0);
   std::vector<Wheel> wheels;
+  const bool per_wheel = v.wheel_loads[0] > 0 && v.wheel_loads[1] > 0 && v.wheel_loads[2] > 0 &&
+                         v.wheel_loads[3] > 0;
+  int index = 0;
   for (const auto& [heading, sign, load] :
        {std::make_tuple(front_heading, 1.0, v.front_load),
         std::make_tuple(rear_heading, -1.0, v.rear_load)}) {
     const Eigen::Vector2d mid = sign * v.axle * heading;
     const Eigen::Vector2d left(-heading.y(), heading.x());
-    wheels.push_back({mid + v.half_track * left, heading, v.v_left, load});
-    wheels.push_back({mid - v.half_track * left, heading, v.v_right, load});
+    const double left_load = per_wheel ? v.wheel_loads[index] : load;
+    const double right_load = per_wheel ? v.wheel_loads[index + 1] : load;
+    wheels.push_back({mid + v.half_track * left, heading, v.v_left, left_load});
+    wheels.push_back({mid - v.half_track * left, heading, v.v_right, right_load});
+    index += 2;
   }
   // Residual of the balance; eps smooths |slip| near zero for Newton.
   auto residual = [&](const Eigen::Vector3d& x, double eps) {

@@ -16,11 +16,29 @@ std::string Num(double v) { return FormatNumber(v); }
 constexpr double kWheelRadius = 0.235;  // SPEC 7
 constexpr double kAxleDistance = 0.6;   // SPEC 7: a, Turner joint to each axle
 
+// The two friction settings of the circle runs: the thesis's own (ground
+// material 0.5 along the slip, 1.0 across it: gen1_flat_thesis.xml) and
+// isotropic Coulomb friction mu (gen1_flat.xml, whose ground takes
+// contactMu).
+struct CircleFriction {
+  std::string world;
+  double mu = 1.0;  // contactMu; the thesis world's ground has its own material
+  std::string Describe() const;
+};
+const CircleFriction kThesisFriction{"gen1_flat_thesis.xml", 1.0};
+CircleFriction Isotropic(double mu) { return {"gen1_flat.xml", mu}; }
+std::string CircleFriction::Describe() const {
+  return world == kThesisFriction.world ? "0.5 along the slip, 1.0 across (the thesis)"
+                                        : "isotropic mu " + FormatNumber(mu);
+}
+
 struct CircleRunResult {
   CircleFit front, rear;            // axle midpoints over the measured part
+  CircleFit legs;                   // the mean of the four wheel centres (the thesis's point)
   Series front_path, rear_path;     // x, z over the whole run
   Series radius_error;              // rear axle: distance to the fitted centre - r, vs t
   double front_load = 0.0, rear_load = 0.0;  // mean vertical load per wheel [N]
+  double wheel_load[4] = {0, 0, 0, 0};       // Wheel1..4 (front right, front left, rear left, rear right)
   double mass = 0.0;
   double sim_seconds = 0.0;
   double Radius() const { return (front.radius + rear.radius) / 2.0; }
@@ -31,18 +49,18 @@ struct CircleRunResult {
 // alpha with TurnerMotor while standing, then drive the left (inner) wheels
 // at v_left and the right ones at v_right [m/s] from t = 2 s; the circles
 // are fitted to the axle midpoints once the turn is steady.
-CircleRunResult RunCircle(const Context& context, double mu, double settle, double duration,
-                          const std::string& sequence) {
+CircleRunResult RunCircle(const Context& context, const CircleFriction& friction, double settle,
+                          double duration, const std::string& sequence) {
   Parameters params = context.params;
-  params.contactMu = mu;  // gen1_flat.xml's ground takes its friction from contactMu
-  SimRun run(context, "gen1_flat.xml", params);
+  params.contactMu = friction.mu;
+  SimRun run(context, friction.world, params);
   const int wheel[4] = {run.Body("Wheel1"), run.Body("Wheel2"), run.Body("Wheel3"),
                         run.Body("Wheel4")};
   constexpr double kSteerTime = 2.0;
   run.PlaySequence(sequence);
   CircleRunResult out;
   for (const sim::FlatBody& b : run.sim().flat().bodies) out.mass += b.source->mass;
-  std::vector<Eigen::Vector2d> front, rear;
+  std::vector<Eigen::Vector2d> front, rear, legs;
   std::vector<double> times;
   double front_load = 0.0, rear_load = 0.0;
   const int every = std::max<int>(1, static_cast<int>(std::lround(0.01 / run.dt())));
@@ -58,15 +76,19 @@ CircleRunResult RunCircle(const Context& context, double mu, double settle, doub
     if (t < kSteerTime + settle) return;
     front.emplace_back(f.x(), f.z());
     rear.emplace_back(r.x(), r.z());
+    legs.emplace_back((f.x() + r.x()) / 2.0, (f.z() + r.z()) / 2.0);
     times.push_back(t);
+    for (int k = 0; k < 4; ++k) out.wheel_load[k] += run.VerticalContactForce(wheel[k]);
     front_load += (run.VerticalContactForce(wheel[0]) + run.VerticalContactForce(wheel[1])) / 2.0;
     rear_load += (run.VerticalContactForce(wheel[2]) + run.VerticalContactForce(wheel[3])) / 2.0;
   });
   out.sim_seconds = run.time();
   out.front = FitCircle(front);
   out.rear = FitCircle(rear);
+  out.legs = FitCircle(legs);
   out.front_load = front_load / std::max<size_t>(1, times.size());
   out.rear_load = rear_load / std::max<size_t>(1, times.size());
+  for (double& load : out.wheel_load) load /= static_cast<double>(std::max<size_t>(1, times.size()));
   out.radius_error.title = "rear axle: distance to the fitted centre - r";
   for (size_t i = 0; i < rear.size(); ++i) {
     out.radius_error.x.push_back(times[i]);
@@ -98,8 +120,55 @@ double CoulombRadius(const CircleRunResult& run, double mu, double alpha, double
   v.mu = mu;
   v.front_load = run.front_load;
   v.rear_load = run.rear_load;
+  // Each wheel's own load: the turn moves load to the outer (right) wheels.
+  const double loads[4] = {run.wheel_load[1], run.wheel_load[0], run.wheel_load[2],
+                           run.wheel_load[3]};
+  std::copy(loads, loads + 4, v.wheel_loads);
   return SkidSteerRadius(v);
 }
+
+// Tolerances of the thesis-friction circles. Equal speeds: 0.5 %, far
+// inside the thesis's own 8.5 % at the point it measured. 1.00 / 1.10 m/s:
+// the SPEC's 0.25 %; the thesis came within 0.03 % of its point, which
+// our contacts do not reach (0.11 %: see the notes).
+constexpr double kCircleEqualTolerance = 0.005;
+constexpr double kCircleDifferentialTolerance = 0.0025;
+// Isotropic runs against the point-wheel Coulomb steady state: equal speeds
+// make every wheel slide, and that model's answer moves by 7 % between
+// per-axle and per-wheel loads (4.93 and 4.58 m), so 4 %; at 1.00 / 1.10
+// m/s the wheels barely slide and the issue's 0.3 % holds.
+constexpr double kIsotropicEqualTolerance = 0.04;
+constexpr double kIsotropicDifferentialTolerance = 0.003;
+
+// What the thesis's circles measure, for a rigid articulated vehicle whose
+// wheels roll without slipping: the axle centres ride a cot(alpha/2) about
+// the turn's centre, and the mean of the four wheel centres (the thesis
+// averaged the legs' positions), which lies on the chord between them,
+// rides a cot(alpha/2) cos(alpha/2).
+double AxleCentreRadius(double alpha) { return kAxleDistance / std::tan(alpha / 2.0); }
+double LegAverageRadius(double alpha) { return AxleCentreRadius(alpha) * std::cos(alpha / 2.0); }
+
+void AddPaths(const CircleRunResult& run, const std::string& label, Plot* paths, Plot* errors) {
+  Series front = run.front_path, rear = run.rear_path;
+  front.title = "front axle, " + label;
+  rear.title = "rear axle, " + label;
+  paths->series.push_back(front);
+  paths->series.push_back(rear);
+  Series error = run.radius_error;
+  error.title = label;
+  errors->series.push_back(error);
+}
+
+std::string CircleRow(const std::string& friction, const std::string& speeds,
+                      const CircleRunResult& run, const std::string& reference) {
+  return "| " + friction + " | " + speeds + " | " + Num(run.front.radius) + " | " +
+         Num(run.rear.radius) + " | " + Num(run.legs.radius) + " | " +
+         Num(run.WorstDeviation() * 1000.0) + " | " + reference + " |\n";
+}
+
+const char* kCircleTableHead =
+    "| friction | wheel speeds | front axle centre r [m] | rear axle centre r [m] | mean of the "
+    "four wheels r [m] | worst deviation [mm] | reference |\n|---|---|---|---|---|---|---|\n";
 
 }  // namespace
 
@@ -107,12 +176,12 @@ ExperimentResult CircleEqualSpeeds(const Context& context) {
   ExperimentResult result;
   constexpr double kAlpha = 0.2972;
   constexpr double kSpeed = 1.0;  // [m/s] every wheel
-  const double kinematic = kAxleDistance / std::tan(kAlpha / 2.0);
+  const double axle = AxleCentreRadius(kAlpha), legs = LegAverageRadius(kAlpha);
   // One lap (26 s at ~4.7 m and 1 m/s) after the turn has settled.
   const double settle = context.quick ? 3.0 : 8.0, duration = context.quick ? 8.0 : 30.0;
   Plot paths;
   paths.file = "circle_equal.png";
-  paths.title = "gen1, alpha 0.2972 rad, equal wheel speeds: axle-midpoint paths";
+  paths.title = "gen1, alpha 0.2972 rad, equal wheel speeds: axle-centre paths";
   paths.xlabel = "x [m]";
   paths.ylabel = "z [m]";
   paths.equal_axes = true;
@@ -120,112 +189,155 @@ ExperimentResult CircleEqualSpeeds(const Context& context) {
   errors.file = "circle_equal_error.png";
   errors.title = "gen1, alpha 0.2972 rad, equal speeds: distance from the fitted circle";
   errors.xlabel = "t [s]";
-  errors.ylabel = "rear axle midpoint: distance to centre - r [mm]";
-  std::string figures;
+  errors.ylabel = "rear axle centre: distance to centre - r [mm]";
+  std::string rows;
+
+  // Validation: the thesis's experiment as it ran.
+  const CircleRunResult thesis =
+      RunCircle(context, kThesisFriction, settle, duration, "gen1_circle_equal_speeds.xml");
+  result.sim_seconds += thesis.sim_seconds;
+  result.checks.push_back(Relative("radius at the axle centres, thesis friction", thesis.Radius(),
+                                   axle, kCircleEqualTolerance, "m"));
+  result.checks.push_back(Relative("radius of the mean of the four wheels, thesis friction",
+                                   thesis.legs.radius, legs, kCircleEqualTolerance, "m"));
+  rows += CircleRow(kThesisFriction.Describe(), "1 / 1 m/s", thesis,
+                    "a cot(alpha/2) = " + Num(axle) + ", x cos(alpha/2) = " + Num(legs));
+  AddPaths(thesis, "thesis friction", &paths, &errors);
+
+  // A second check: isotropic friction against the steady state of the
+  // same vehicle solved apart from the sim.
   for (const double mu : {0.5, 1.0}) {
-    const CircleRunResult run = RunCircle(context, mu, settle, duration,
-                                          "gen1_circle_equal_speeds.xml");
+    const CircleRunResult run =
+        RunCircle(context, Isotropic(mu), settle, duration, "gen1_circle_equal_speeds.xml");
     result.sim_seconds += run.sim_seconds;
-    result.checks.push_back(Relative("radius, mu " + Num(mu) + " (axle midpoints)", run.Radius(),
-                                     kinematic, 0.10, "m"));
     const double coulomb = CoulombRadius(run, mu, kAlpha, kSpeed, kSpeed);
-    figures += "| " + Num(mu) + " | " + Num(run.front.radius) + " | " + Num(run.rear.radius) +
-               " | " + Num(run.WorstDeviation() * 1000.0) + " | " + Num(coulomb) + " |\n";
-    Series front = run.front_path, rear = run.rear_path;
-    front.title = "front axle, mu " + Num(mu);
-    rear.title = "rear axle, mu " + Num(mu);
-    paths.series.push_back(front);
-    paths.series.push_back(rear);
-    Series error = run.radius_error;
-    error.title = "mu " + Num(mu);
-    errors.series.push_back(error);
-    if (mu == 1.0)
-      paths.series.push_back(CirclePoints(run.rear.centre, kinematic,
-                                          "r = a cot(alpha/2) = " + Num(kinematic) + " m"));
+    result.checks.push_back(Relative("radius, isotropic mu " + Num(mu) +
+                                         ", vs the steady state of the same vehicle",
+                                     run.Radius(), coulomb, kIsotropicEqualTolerance, "m"));
+    rows += CircleRow(Isotropic(mu).Describe(), "1 / 1 m/s", run,
+                      "steady state, isotropic Coulomb: " + Num(coulomb));
+    AddPaths(run, "isotropic mu " + Num(mu), &paths, &errors);
   }
+  paths.series.push_back(CirclePoints(thesis.rear.centre, axle,
+                                      "r = a cot(alpha/2) = " + Num(axle) + " m"));
   result.plots = {paths, errors};
   result.notes =
-      "gen1 on flat ground (`gen1_flat.xml`, ground friction from `contactMu`): `TurnerMotor` "
-      "steers to alpha = 0.2972 rad (P 100, I 100), then at t = 2 s all four wheels turn at "
-      "1 m/s / 0.235 m (1000 N m motors). Circles are fitted (least squares) to the paths of "
-      "both axle midpoints over " + Num(duration) + " s after " + Num(settle) +
-      " s of settling; r is the mean of the two.\n\n"
-      "| mu | front axle r [m] | rear axle r [m] | worst deviation [mm] | ideal slipping vehicle "
-      "[m] |\n|---|---|---|---|---|\n" + figures +
-      "\n**Why the target is physically wrong.** r = a cot(alpha/2) = " + Num(kinematic) +
-      " m is the radius of a vehicle whose wheels roll without slipping. On that circle the "
-      "outer wheels travel (r + 0.3) / (r - 0.3) = 1.16 times as far as the inner ones, so with "
-      "equal wheel speeds every wheel must slip, and the radius is set by the balance of the "
-      "friction forces, not by the steering geometry. The last column solves that balance for "
-      "an ideal rigid vehicle with the run's wheel loads, point wheels and isotropic Coulomb "
-      "friction (`SkidSteerRadius` in validate_lib): about 4.9 m, 22 % above the kinematic "
-      "radius, independent of mu. Ours lies between (ODE's friction pyramid holds a little "
-      "more sideways than a Coulomb cone, and each cylinder wheel touches at two points); the "
-      "original's 4.30 m is not a physical answer either. No tolerance around 4.01 m is "
-      "right for this run; the check keeps the team's 10 % and fails.";
+      "gen1 on flat ground plays `sequences/gen1_circle_equal_speeds.xml`: `TurnerMotor` steers "
+      "to alpha = 0.2972 rad (P 100, I 100), then at t = 2 s all four wheels turn at 1 m/s / "
+      "0.235 m (1000 N m motors). Circles are fitted (least squares) over " + Num(duration) +
+      " s after " + Num(settle) + " s of settling to three points: each axle's centre (the "
+      "midpoint of its two wheels) and the mean of the four wheel centres.\n\n" +
+      kCircleTableHead + rows +
+      "\n**Which point each number is.** Rolling without slip, the axle centres ride "
+      "a cot(alpha/2) = " + Num(axle) + " m about the turn's centre; the mean of the four "
+      "wheels, on the chord between the axle centres, rides a cot(alpha/2) cos(alpha/2) = " +
+      Num(legs) + " m. The thesis averaged the legs' positions, so its 4.30 m belongs to the "
+      "second point (8.5 % off it); the target 4.01 m is the first.\n\n"
+      "**The thesis's friction.** It ran these circles with \"0.5 and 1.0 for tangential and "
+      "normal friction\". Read in the wheel's frame, as vehicle simulators do: 0.5 along each "
+      "wheel's rolling direction (tangential to the tyre) and 1.0 across it (normal to the "
+      "wheel's plane); `gen1_flat_thesis.xml`'s ground asks for the rolling direction of "
+      "every wheel on it (docs/contacts.md). The outer wheels then slip along their rolling "
+      "direction while the grip across holds each wheel on its path, and the vehicle turns "
+      "where its steering points: " + Num(thesis.Radius()) + " m at the axle centres (" +
+      FormatFixed((thesis.Radius() / axle - 1.0) * 100.0, 2) + " % from a cot(alpha/2)), " +
+      Num(thesis.legs.radius) + " m for the mean of the wheels (" +
+      FormatFixed((thesis.legs.radius / legs - 1.0) * 100.0, 2) + " %). Read instead with the "
+      "first direction along each contact's sliding velocity (the sim's default, "
+      "`frictionDirection` slip), the same coefficients give 4.719 m, the isotropic mu 0.5 "
+      "result to the last digit (measured 2026-11-23 with that world's ground set to slip): in "
+      "a steady turn the force across a contact's slip stays below 0.5 of its load, so mu2 "
+      "never binds. Only the wheel-frame "
+      "reading gives the thesis's circles.\n\n"
+      "**Isotropic friction** (the same 0.5 or 1.0 both ways, along the slip) is a second "
+      "check, not the thesis's experiment: the last column solves the steady state of an "
+      "ideal rigid vehicle with point wheels, isotropic Coulomb friction and each wheel's "
+      "load as measured in the run (the turn moves load to the outer wheels), independently "
+      "of the sim (`SkidSteerRadius` in validate_lib). That model ignores each cylinder's "
+      "two contact points and puts the mass at the steering joint; with the per-axle mean "
+      "loads it gives 4.93 m, so its answer is uncertain by several percent, and the check's "
+      "tolerance is 4 %.";
   return result;
 }
 
 ExperimentResult CircleDifferentialSpeeds(const Context& context) {
   ExperimentResult result;
   constexpr double kAlpha = 0.2;
-  const double kinematic = kAxleDistance / std::tan(kAlpha / 2.0);
+  const double axle = AxleCentreRadius(kAlpha), legs = LegAverageRadius(kAlpha);
   const double settle = context.quick ? 3.0 : 8.0, duration = context.quick ? 8.0 : 38.0;
   // Outer wheels at the speed that matches the steering: (r + t) / (r - t).
-  const double matched = (kinematic + 0.3) / (kinematic - 0.3);
-  const CircleRunResult run = RunCircle(context, 1.0, settle, duration,
-                                            "gen1_circle_differential.xml");
-  const CircleRunResult exact = RunCircle(context, 1.0, settle, duration,
-                                          "gen1_circle_matched.xml");
-  result.sim_seconds = run.sim_seconds + exact.sim_seconds;
-  result.checks.push_back(Relative("radius, 1.00 / 1.10 m/s (axle midpoints)", run.Radius(),
-                                   kinematic, 0.0025, "m"));
-  result.checks.push_back(Absolute("worst deviation from the fitted circle, 1.00 / 1.10 m/s",
-                                   run.WorstDeviation(), 0.0, 0.001, "m"));
-  result.checks.push_back(Relative("radius, 1.00 / " + Num(matched) + " m/s (matched)",
-                                   exact.Radius(), kinematic, 0.0025, "m"));
+  const double matched = (axle + 0.3) / (axle - 0.3);
+  std::string rows;
+
+  const CircleRunResult thesis =
+      RunCircle(context, kThesisFriction, settle, duration, "gen1_circle_differential.xml");
+  const CircleRunResult isotropic =
+      RunCircle(context, Isotropic(1.0), settle, duration, "gen1_circle_differential.xml");
+  const CircleRunResult exact =
+      RunCircle(context, Isotropic(1.0), settle, duration, "gen1_circle_matched.xml");
+  result.sim_seconds = thesis.sim_seconds + isotropic.sim_seconds + exact.sim_seconds;
+  result.checks.push_back(Relative("radius at the axle centres, thesis friction", thesis.Radius(),
+                                   axle, kCircleDifferentialTolerance, "m"));
+  result.checks.push_back(Relative("radius of the mean of the four wheels, thesis friction",
+                                   thesis.legs.radius, legs, kCircleDifferentialTolerance, "m"));
+  result.checks.push_back(Absolute("worst deviation from the fitted circle, thesis friction",
+                                   thesis.WorstDeviation(), 0.0, 0.001, "m"));
+  const double coulomb = CoulombRadius(isotropic, 1.0, kAlpha, 1.00, 1.10);
+  result.checks.push_back(Relative("radius, isotropic mu 1, vs the steady state of the same vehicle",
+                                   isotropic.Radius(), coulomb, kIsotropicDifferentialTolerance, "m"));
+  result.checks.push_back(Relative("radius, 1.00 / " + Num(matched) + " m/s (matched), isotropic mu 1",
+                                   exact.Radius(), axle, 0.0025, "m"));
   result.checks.push_back(Absolute("worst deviation from the fitted circle, matched speeds",
                                    exact.WorstDeviation(), 0.0, 0.001, "m"));
-  const double coulomb = CoulombRadius(run, 1.0, kAlpha, 1.00, 1.10);
+  rows += CircleRow(kThesisFriction.Describe(), "1.00 / 1.10 m/s", thesis,
+                    "a cot(alpha/2) = " + Num(axle) + ", x cos(alpha/2) = " + Num(legs));
+  rows += CircleRow(Isotropic(1.0).Describe(), "1.00 / 1.10 m/s", isotropic,
+                    "steady state, isotropic Coulomb: " + Num(coulomb));
+  rows += CircleRow(Isotropic(1.0).Describe(), "1.00 / " + Num(matched) + " m/s", exact,
+                    "no slip needed: a cot(alpha/2) = " + Num(axle));
   Plot paths;
   paths.file = "circle_differential.png";
-  paths.title = "gen1, alpha 0.2 rad, inner 1.00 / outer 1.10 m/s: axle-midpoint paths";
+  paths.title = "gen1, alpha 0.2 rad, inner 1.00 / outer 1.10 m/s, thesis friction: axle-centre paths";
   paths.xlabel = "x [m]";
   paths.ylabel = "z [m]";
   paths.equal_axes = true;
-  Series front = run.front_path, rear = run.rear_path;
+  Series front = thesis.front_path, rear = thesis.rear_path;
   front.title = "front axle";
   rear.title = "rear axle";
   paths.series = {front, rear,
-                  CirclePoints(run.rear.centre, run.rear.radius, "fitted, r = " + Num(run.Radius()) + " m"),
-                  CirclePoints(run.rear.centre, kinematic, "r = a cot(alpha/2) = " + Num(kinematic) + " m")};
+                  CirclePoints(thesis.rear.centre, thesis.rear.radius,
+                               "fitted, r = " + Num(thesis.Radius()) + " m"),
+                  CirclePoints(thesis.rear.centre, axle, "r = a cot(alpha/2) = " + Num(axle) + " m")};
   Plot errors;
   errors.file = "circle_differential_error.png";
-  errors.title = "gen1, alpha 0.2 rad: distance of the rear axle midpoint from the fitted circle";
+  errors.title = "gen1, alpha 0.2 rad: distance of the rear axle centre from the fitted circle";
   errors.xlabel = "t [s]";
   errors.ylabel = "distance to centre - r [mm]";
-  Series e1 = run.radius_error, e2 = exact.radius_error;
-  e1.title = "1.00 / 1.10 m/s";
-  e2.title = "1.00 / " + Num(matched) + " m/s (matched)";
-  errors.series = {e1, e2};
+  Series e0 = thesis.radius_error, e1 = isotropic.radius_error, e2 = exact.radius_error;
+  e0.title = "1.00 / 1.10 m/s, thesis friction";
+  e1.title = "1.00 / 1.10 m/s, isotropic mu 1";
+  e2.title = "1.00 / " + Num(matched) + " m/s (matched), isotropic mu 1";
+  errors.series = {e0, e1, e2};
   result.plots = {paths, errors};
   result.notes =
       "As the circle above, steering alpha = 0.2 rad, the inner (left) wheels at 1.00 m/s and "
-      "the outer at 1.10 m/s; circles fitted over " + Num(duration) + " s (about one lap) after " +
-      Num(settle) + " s of settling. r = " + Num(run.Radius()) + " m (front axle " +
-      Num(run.front.radius) + ", rear " + Num(run.rear.radius) + "), " +
-      FormatFixed((run.Radius() / kinematic - 1.0) * 100.0, 2) + " % above a cot(alpha/2) = " +
-      Num(kinematic) + " m; circular within " + Num(run.WorstDeviation() * 1000.0) + " mm.\n\n"
-      "**Why the 0.25 % target is physically wrong for 1.00 / 1.10 m/s.** Rolling without slip "
-      "on the steering's circle needs the outer wheels at (r + 0.3) / (r - 0.3) = " +
-      Num(matched) + " times the inner ones' speed; 1.10 asks for a circle of 6.3 m. The "
-      "wheels must slip, and the radius falls between the two, where the friction forces "
-      "balance: an ideal rigid vehicle with isotropic Coulomb friction and the run's wheel "
-      "loads turns at " + Num(coulomb) + " m (+" +
-      FormatFixed((coulomb / kinematic - 1.0) * 100.0, 2) + " %). Our " + Num(run.Radius()) + " m is as close to that as the friction model allows. "
-      "The same run with the outer wheels at the matched " + Num(matched) +
-      " m/s is the experiment the formula describes: it gives " + Num(exact.Radius()) +
-      " m, circular within " + Num(exact.WorstDeviation() * 1000.0) + " mm.";
+      "the outer at 1.10 m/s (`sequences/gen1_circle_differential.xml`); circles fitted over " +
+      Num(duration) + " s (about one lap) after " + Num(settle) + " s of settling.\n\n" +
+      kCircleTableHead + rows +
+      "\n**Which point each number is.** The target 5.98 m is a cot(alpha/2) = " + Num(axle) +
+      " m, the axle centres' radius; the thesis's 5.9516 m was the mean of the legs, whose "
+      "rolling radius is a cot(alpha/2) cos(alpha/2) = " + Num(legs) + " m, so it came within " +
+      FormatFixed(std::abs(5.9516 / legs - 1.0) * 100.0, 2) + " % of the point it measured.\n\n"
+      "Rolling without slip on the steering's circle needs the outer wheels at (r + 0.3) / "
+      "(r - 0.3) = " + Num(matched) + " times the inner ones' speed; at 1.10 the outer wheels "
+      "slip a little along their rolling direction and the grip across holds the path. With "
+      "the thesis's friction (wheel frame, as above) the axle centres ride " +
+      Num(thesis.Radius()) + " m, " + FormatFixed((thesis.Radius() / axle - 1.0) * 100.0, 2) +
+      " % outside a cot(alpha/2): what is left is the contacts' own give across the slip (a "
+      "soft constraint, ERP/CFM), which lets the wheels creep outwards. The run with the "
+      "matched speed (`gen1_circle_matched.xml`) needs no slip and is the formula's own case. "
+      "The isotropic run is checked against the steady state of the same vehicle solved "
+      "apart from the sim (`SkidSteerRadius`, each wheel's measured load).";
   return result;
 }
 

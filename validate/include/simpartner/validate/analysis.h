@@ -40,6 +40,9 @@ struct SkidSteerVehicle {
   double mass = 136.0;          // [kg]
   double mu = 1.0;
   double front_load = 1.0, rear_load = 1.0;  // [N] per wheel
+  // [N] front left, front right, rear left, rear right; when set (all > 0)
+  // they replace front_load and rear_load (a turn moves load outwards).
+  double wheel_loads[4] = {0.0, 0.0, 0.0, 0.0};
 };
 double SkidSteerRadius(const SkidSteerVehicle& vehicle);
 
