@@ -2,6 +2,8 @@
 // compared with.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "simpartner/validate/analysis.h"
@@ -84,6 +86,24 @@ TEST(ValidateSkidSteerRadius, SlippingWheelsTurnWiderThanTheSteering) {
   v.alpha = 0.2;
   v.v_right = 1.1;
   EXPECT_NEAR(SkidSteerRadius(v), 6.0389, 1e-3);
+}
+
+// Per-wheel loads: the same loads given per wheel give the per-axle answer
+// (front left, front right, rear left, rear right), and moving load to the
+// outer (right) wheels of a left turn, whose slip pushes outwards, turns
+// the vehicle tighter: the inner wheels' inward slip then weighs more.
+TEST(ValidateSkidSteerRadius, PerWheelLoadsReplaceThePerAxleOnes) {
+  SkidSteerVehicle v;
+  v.front_load = 316.0;
+  v.rear_load = 351.0;
+  v.alpha = 0.2972;
+  const double per_axle = SkidSteerRadius(v);
+  const double same[4] = {316.0, 316.0, 351.0, 351.0};
+  std::copy(same, same + 4, v.wheel_loads);
+  EXPECT_NEAR(SkidSteerRadius(v), per_axle, 1e-9);
+  const double shifted[4] = {266.0, 366.0, 301.0, 401.0};  // 50 N outwards on each axle
+  std::copy(shifted, shifted + 4, v.wheel_loads);
+  EXPECT_LT(SkidSteerRadius(v), per_axle);
 }
 
 }  // namespace
