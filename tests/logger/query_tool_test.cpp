@@ -362,6 +362,19 @@ TEST_F(QueryToolTest, ProgramPlotsAndRefuses) {
   uintmax_t size = 0;
   EXPECT_TRUE(IsPng(png, &size)) << output;
   EXPECT_GT(size, 10000u);
+  EXPECT_EQ(RunQuery({"names", "last", "--db-options", server_->reader_options()}, &output), 0)
+      << output;
+  EXPECT_NE(output.find("joints: Shoulder (HINGE) Axle (HINGE)"), std::string::npos) << output;
+  EXPECT_NE(output.find(" Wheel ("), std::string::npos) << output;
+  // No -o and a display: a window, which gnuplot-nox cannot draw (and no X
+  // server answers here): an error naming gnuplot, not a hang.
+  ::setenv("DISPLAY", ":97", 1);
+  EXPECT_EQ(RunQuery({"plot", "rate", "last", "--joint", "Axle", "--db-options",
+                      server_->reader_options()},
+                     &output),
+            1);
+  ::unsetenv("DISPLAY");
+  EXPECT_NE(output.find("gnuplot"), std::string::npos) << output;
   EXPECT_EQ(RunQuery({"plot", "angle", "last", "--joint", "Axel", "-o", png, "--db-options",
                       server_->reader_options()},
                      &output),
