@@ -63,8 +63,10 @@ the bus.
 )";
 }
 
-int RunSequencer(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+int RunSequencer(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+                 int stop_fd) {
   PlayOptions options;
+  options.stop_fd = stop_fd;
   std::string file, check_file, environment;
   auto usage_error = [&](const std::string& message) {
     err << "simpartner-sequencer: " << message << " (see --help)\n";

@@ -1,5 +1,7 @@
 #include "simpartner/sequencer/player.h"
 
+#include <poll.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -160,6 +162,8 @@ class Player {
       bool waiting = false;
       int64_t wait_from = 0, last_read = -1000000;
       while (true) {
+        if (StopRequested())
+          return Stop{CurrentLine(segment, next), "interrupted (SIGINT or SIGTERM)"};
         if (std::optional<client::SimRestarted> restart = client_->PendingRestart())
           return Stop{CurrentLine(segment, next), std::string("the sim restarted under the sequence: ") + restart->what()};
         if (client_->SecondsSinceHeard() > options_.silence_timeout)
@@ -328,6 +332,12 @@ class Player {
       }
     }
     return std::nullopt;
+  }
+
+  bool StopRequested() const {
+    if (options_.stop_fd < 0) return false;
+    pollfd fd{options_.stop_fd, POLLIN, 0};
+    return ::poll(&fd, 1, 0) > 0 && (fd.revents & POLLIN) != 0;
   }
 
   static int CurrentLine(const PlannedSegment& segment, size_t next) {

@@ -272,6 +272,37 @@ TEST_F(SequencerProcessTest, KilledSimStopsTheSequenceWithinTwoSecondsOfSilence)
   EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
 }
 
+// SIGTERM or SIGINT (a supervisor, Ctrl-C) stops the sequence as a
+// refusal does: the line it was at, the wheels to zero, exit 1. Before, the
+// sequencer died at once and left the robot driving.
+TEST_F(SequencerProcessTest, SigtermAndSigintStopTheSequenceAndTheWheels) {
+  for (const int signal : {SIGTERM, SIGINT}) {
+    SCOPED_TRACE(signal == SIGTERM ? "SIGTERM" : "SIGINT");
+    const std::string url = UniqueUrl(signal == SIGTERM ? 13 : 14);
+    Listener bus(url, false);
+    auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");
+    const std::string file = Write("long.xml", R"(<sequence version="2">
+  <set target="Axle1Motor">1000,1</set>
+  <pause seconds="30"/>
+  <set target="Axle1Motor">1000,0</set>
+</sequence>
+)");
+    auto sequencer = StartSequencer(url, file, {});
+    ASSERT_TRUE(LogHas("line 2: set Axle1Motor", 10)) << Log();
+    sequencer->Signal(signal);
+    const std::optional<int> status = sequencer->Wait(std::chrono::seconds(5));
+    ASSERT_EQ(status, std::optional<int>(1)) << Log();
+    const std::string log = Log();
+    EXPECT_NE(log.find(file + ":4: stopped: interrupted (SIGINT or SIGTERM)"), std::string::npos)
+        << log;
+    EXPECT_NE(log.find("sent zero velocity to 4 wheel motor(s)"), std::string::npos) << log;
+    bus.Drain(0.3);
+    EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
+    sim->Signal(SIGTERM);
+    sim->Wait(std::chrono::seconds(5));
+  }
+}
+
 TEST_F(SequencerProcessTest, RestartedSimStopsTheSequence) {
   const std::string url = UniqueUrl(5);
   Listener bus(url, false);

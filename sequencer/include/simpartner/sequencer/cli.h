@@ -8,8 +8,9 @@
 namespace simpartner::sequencer {
 
 // Runs the program with `args` (without the program name); returns the
-// exit status (ExitCode).
-int RunSequencer(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+// exit status (ExitCode). stop_fd: see PlayOptions::stop_fd.
+int RunSequencer(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+                 int stop_fd = -1);
 
 // The usage text of --help.
 std::string Usage();

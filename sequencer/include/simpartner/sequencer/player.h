@@ -36,6 +36,9 @@ struct PlayOptions {
   double silence_timeout = 2.0;        // [s] wall without SIM_STATE or SIM_STATUS
   double window = 1.0;                 // [s] sim time: how far ahead commands are sent
   bool quiet = false;                  // no progress lines
+  // Readable when the user asks to stop (main's signalfd of SIGINT and
+  // SIGTERM): the sequence stops as on a refusal, wheels to zero. -1: none.
+  int stop_fd = -1;
 };
 
 // Plays `sequence`; progress goes to `out`, problems to `err`.
