@@ -11,6 +11,7 @@
 #include "simpartner/sim/check.h"
 #include "simpartner/sim/peer_watch.h"
 #include "simpartner/sim/sim_node.h"
+#include "simpartner/stop_signals.h"
 
 int main(int argc, char** argv) {
   using namespace simpartner;
@@ -29,12 +30,7 @@ int main(int argc, char** argv) {
     // SIGINT/SIGTERM end the run like SIM_CONTROL quit (a last SIM_STATUS
     // says RUN_STOPPED, so a logger closes the simulation): they arrive as a
     // readable fd that the loop watches beside the bus.
-    sigset_t stop_signals;
-    sigemptyset(&stop_signals);
-    sigaddset(&stop_signals, SIGINT);
-    sigaddset(&stop_signals, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
-    const int stop_fd = signalfd(-1, &stop_signals, SFD_CLOEXEC | SFD_NONBLOCK);
+    const int stop_fd = BlockStopSignalsIntoFd();
     if (stop_fd < 0) throw std::runtime_error("cannot create a signalfd for SIGINT/SIGTERM");
 
     lcm::LCM bus(params.lcmUrl);

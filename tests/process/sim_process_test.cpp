@@ -25,6 +25,7 @@
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "../sim_core/test_worlds.h"
+#include "../support/text_file.h"
 
 namespace simpartner {
 namespace {
@@ -445,12 +446,7 @@ TEST_F(SimProcessTest, BadParametersStopBeforeAnything) {
       << LogText();
 }
 
-std::string ReadText(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::ReadText;
 
 // Two systems side by side on one host: a bus each (another port) and
 // neither hears the other.

@@ -29,6 +29,7 @@
 #include "simpartner/child_process.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/viewer/xvfb.h"
+#include "../support/text_file.h"
 
 namespace simpartner {
 namespace {
@@ -39,12 +40,7 @@ using Clock = std::chrono::steady_clock;
 const std::string kSource = SP_SOURCE_DIR;
 const std::string kBinary = SP_BINARY_DIR;
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::ReadText;
 
 int Count(const std::string& text, const std::string& what) {
   int n = 0;

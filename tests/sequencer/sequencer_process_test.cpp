@@ -27,6 +27,7 @@
 #include "simpartner/sequencer/sequence.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/state_t.hpp"
+#include "../support/text_file.h"
 
 namespace simpartner {
 namespace {
@@ -42,12 +43,7 @@ std::string UniqueUrl(int offset) {
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=8388608";
 }
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::ReadText;
 
 // What the test sees on the bus: states (bytes without utime and
 // simulation id, for comparing runs), the model, and the commands sent.
@@ -155,6 +151,26 @@ std::set<std::string> StoppedWheels(const std::vector<command_t>& commands) {
 const std::set<std::string> kGen1Wheels = {"Axle1Motor", "Axle2Motor", "Axle3Motor",
                                            "Axle4Motor"};
 
+// Wheel 1 at 1 rad/s for 30 s, then stopped: a sequence still playing, at
+// its line 4, when something happens to it.
+const char* kLongDrive = R"(<sequence version="2">
+  <set target="Axle1Motor">1000,1</set>
+  <pause seconds="30"/>
+  <set target="Axle1Motor">1000,0</set>
+</sequence>
+)";
+
+// The sequencer said it stopped at `file`'s line 4 for `reason` and sent
+// every wheel motor zero velocity (seen on the bus).
+void ExpectStoppedAtLineFourWithTheWheelsStopped(Listener& bus, const std::string& log,
+                                                 const std::string& file,
+                                                 const std::string& reason) {
+  EXPECT_NE(log.find(file + ":4: stopped: " + reason), std::string::npos) << log;
+  EXPECT_NE(log.find("sent zero velocity to 4 wheel motor(s)"), std::string::npos) << log;
+  bus.Drain(0.3);
+  EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
+}
+
 // The original's format, unchanged: ports of workpartner_gen1.xml, pauses
 // on port 0.
 const char* kVersionOneDrive = R"(<?xml version="1.0"?>
@@ -247,12 +263,7 @@ TEST_F(SequencerProcessTest, KilledSimStopsTheSequenceWithinTwoSecondsOfSilence)
   const std::string url = UniqueUrl(4);
   Listener bus(url, false);
   auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");
-  const std::string file = Write("long.xml", R"(<sequence version="2">
-  <set target="Axle1Motor">1000,1</set>
-  <pause seconds="30"/>
-  <set target="Axle1Motor">1000,0</set>
-</sequence>
-)");
+  const std::string file = Write("long.xml", kLongDrive);
   auto sequencer = StartSequencer(url, file, {});
   ASSERT_TRUE(LogHas("line 2: set Axle1Motor", 10)) << Log();
   sim->Signal(SIGKILL);
@@ -262,14 +273,8 @@ TEST_F(SequencerProcessTest, KilledSimStopsTheSequenceWithinTwoSecondsOfSilence)
   ASSERT_EQ(status, std::optional<int>(1)) << Log();
   EXPECT_GE(took, 1.9);
   EXPECT_LT(took, 4.0);
-  const std::string log = Log();
-  EXPECT_NE(log.find(file + ":4: stopped: the sim went silent: nothing on SIM_STATE or "
-                            "SIM_STATUS for 2.0 s"),
-            std::string::npos)
-      << log;
-  EXPECT_NE(log.find("sent zero velocity to 4 wheel motor(s)"), std::string::npos) << log;
-  bus.Drain(0.3);
-  EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
+  ExpectStoppedAtLineFourWithTheWheelsStopped(
+      bus, Log(), file, "the sim went silent: nothing on SIM_STATE or SIM_STATUS for 2.0 s");
 }
 
 // SIGTERM or SIGINT (a supervisor, Ctrl-C) stops the sequence as a
@@ -281,23 +286,14 @@ TEST_F(SequencerProcessTest, SigtermAndSigintStopTheSequenceAndTheWheels) {
     const std::string url = UniqueUrl(signal == SIGTERM ? 13 : 14);
     Listener bus(url, false);
     auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");
-    const std::string file = Write("long.xml", R"(<sequence version="2">
-  <set target="Axle1Motor">1000,1</set>
-  <pause seconds="30"/>
-  <set target="Axle1Motor">1000,0</set>
-</sequence>
-)");
+    const std::string file = Write("long.xml", kLongDrive);
     auto sequencer = StartSequencer(url, file, {});
     ASSERT_TRUE(LogHas("line 2: set Axle1Motor", 10)) << Log();
     sequencer->Signal(signal);
     const std::optional<int> status = sequencer->Wait(std::chrono::seconds(5));
     ASSERT_EQ(status, std::optional<int>(1)) << Log();
-    const std::string log = Log();
-    EXPECT_NE(log.find(file + ":4: stopped: interrupted (SIGINT or SIGTERM)"), std::string::npos)
-        << log;
-    EXPECT_NE(log.find("sent zero velocity to 4 wheel motor(s)"), std::string::npos) << log;
-    bus.Drain(0.3);
-    EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
+    ExpectStoppedAtLineFourWithTheWheelsStopped(bus, Log(), file,
+                                                "interrupted (SIGINT or SIGTERM)");
     sim->Signal(SIGTERM);
     sim->Wait(std::chrono::seconds(5));
   }
@@ -307,12 +303,7 @@ TEST_F(SequencerProcessTest, RestartedSimStopsTheSequence) {
   const std::string url = UniqueUrl(5);
   Listener bus(url, false);
   auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");
-  const std::string file = Write("long.xml", R"(<sequence version="2">
-  <set target="Axle1Motor">1000,1</set>
-  <pause seconds="30"/>
-  <set target="Axle1Motor">1000,0</set>
-</sequence>
-)");
+  const std::string file = Write("long.xml", kLongDrive);
   auto sequencer = StartSequencer(url, file, {});
   ASSERT_TRUE(LogHas("line 2: set Axle1Motor", 10)) << Log();
   sim->Signal(SIGKILL);
@@ -321,12 +312,8 @@ TEST_F(SequencerProcessTest, RestartedSimStopsTheSequence) {
   ASSERT_TRUE(bus.Until([&] { return sequencer->Wait(std::chrono::milliseconds(0)).has_value(); }, 15))
       << Log();
   EXPECT_EQ(sequencer->Wait(std::chrono::seconds(0)), std::optional<int>(1));
-  const std::string log = Log();
-  EXPECT_NE(log.find(file + ":4: stopped: the sim restarted under the sequence"), std::string::npos)
-      << log;
-  EXPECT_NE(log.find("sent zero velocity to 4 wheel motor(s)"), std::string::npos) << log;
-  bus.Drain(0.3);
-  EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
+  ExpectStoppedAtLineFourWithTheWheelsStopped(bus, Log(), file,
+                                              "the sim restarted under the sequence");
 }
 
 TEST_F(SequencerProcessTest, WrongFileAgainstTheBusModelSendsNothing) {

@@ -29,6 +29,7 @@
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/viewer/xvfb.h"
+#include "../support/text_file.h"
 
 namespace simpartner {
 namespace {
@@ -44,12 +45,7 @@ std::string UniqueUrl(int offset) {
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=8388608";
 }
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::ReadText;
 
 void Control(const std::string& url, int8_t action) {
   lcm::LCM lcm(url);
