@@ -401,13 +401,22 @@ MjcfExport Writer::Run() {
       << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
       << "  <option timestep=\"" << NumberText(params_.stepsize) << "\" gravity=\""
       << Vec(c_ * world_.gravity) << "\"/>\n"
-      << "  <worldbody>\n";
+      // Looks only, for MuJoCo's own viewer (mujoco-simulate): without a
+      // light and a ground texture the robot shows as dark shapes on black.
+      << "  <visual><headlight ambient=\"0.4 0.4 0.4\" diffuse=\"0.6 0.6 0.6\"/></visual>\n"
+      << "  <asset><texture name=\"grid\" type=\"2d\" builtin=\"checker\" width=\"512\" "
+         "height=\"512\" rgb1=\"0.2 0.3 0.4\" rgb2=\"0.3 0.4 0.5\"/>"
+         "<material name=\"grid\" texture=\"grid\" texrepeat=\"1 1\" texuniform=\"true\"/>"
+         "</asset>\n"
+      << "  <worldbody>\n"
+      << "    <light name=\"sun\" directional=\"true\" pos=\"0 0 10\" dir=\"0 0 -1\"/>\n";
   if (world_.has_plane) {
     const Eigen::Vector3d normal = c_ * world_.plane.head<3>().normalized();
     const Eigen::Vector3d at = normal * world_.plane[3];
     const model::Material* material = world_.FindMaterial(world_.plane_material);
     out << "    <geom name=\"ground\" type=\"plane\" pos=\"" << Vec(at) << "\" zaxis=\""
-        << Vec(normal) << "\" size=\"0 0 1\"" << ContactAttributes(material) << "/>\n";
+        << Vec(normal) << "\" size=\"0 0 1\" material=\"grid\"" << ContactAttributes(material)
+        << "/>\n";
   }
   out << body.str() << "  </worldbody>\n";
   if (!actuators.str().empty()) out << "  <actuator>\n" << actuators.str() << "  </actuator>\n";
