@@ -347,10 +347,23 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
             1);
 
   // SIGTERM to the launcher: every process it started ends, the server too.
+  // First every process the launcher announced last must be running: the
+  // sequencer stops by design when the sim restarts under it (exit 1: a
+  // sequence is not carried over to a new simulation) and the launcher
+  // starts it again after its back-off.
+  const char* const kProcesses[] = {"sequencer", "teleop", "sim", "viewer", "logger"};
+  ASSERT_TRUE(bus.Until(
+      [&] {
+        const std::string log = RunLog();
+        for (const char* name : kProcesses)
+          if (!Exists(AnnouncedPid(log, name))) return false;
+        return true;
+      },
+      20))
+      << RunLog();
   const std::string run_log = RunLog();
   std::vector<std::pair<std::string, pid_t>> children;
-  for (const char* name : {"sequencer", "teleop", "sim", "viewer", "logger"})
-    children.emplace_back(name, AnnouncedPid(run_log, name));
+  for (const char* name : kProcesses) children.emplace_back(name, AnnouncedPid(run_log, name));
   const std::string server_line = "): running (pid ";  // scripts/mariadb (DIR): running (pid N
   const size_t server_at = run_log.find(server_line);
   ASSERT_NE(server_at, std::string::npos) << run_log;
