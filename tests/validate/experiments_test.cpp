@@ -4,9 +4,7 @@
 // from SPEC 8 and from physics, never taken from validate_lib.
 //
 // Where a SPEC 8 target is physically wrong (docs/validation explains
-// why), the team's check is kept as a DISABLED_ test so that it is listed
-// and can be run (--gtest_also_run_disabled_tests), and a test of what
-// physics does predict runs instead.
+// why), the test asserts what physics does predict.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -87,14 +85,16 @@ TEST(Validation, TwoSpheresBounceSymmetrically) {
 // (a = 0.6 m, SPEC 7).
 double AxleCentres(double alpha) { return 0.6 / std::tan(alpha / 2.0); }
 
+// Both points of a thesis-friction circle within `tolerance` (relative).
+void ExpectTheSteeringsCircle(const ExperimentResult& r, double alpha, double tolerance) {
+  const double axle = AxleCentres(alpha), legs = axle * std::cos(alpha / 2.0);
+  EXPECT_NEAR(r.Measured("radius at the axle centres, thesis friction"), axle, tolerance * axle);
+  EXPECT_NEAR(r.Measured("radius of the mean of the four wheels, thesis friction"), legs,
+              tolerance * legs);
+}
+
 TEST(Validation, CircleEqualSpeedsWithTheThesisFrictionFollowsTheSteering) {
-  const ExperimentResult r = RunNamed("circle_equal");
-  const double alpha = 0.2972;
-  EXPECT_NEAR(r.Measured("radius at the axle centres, thesis friction"), AxleCentres(alpha),
-              0.005 * AxleCentres(alpha));
-  EXPECT_NEAR(r.Measured("radius of the mean of the four wheels, thesis friction"),
-              AxleCentres(alpha) * std::cos(alpha / 2.0),
-              0.005 * AxleCentres(alpha) * std::cos(alpha / 2.0));
+  ExpectTheSteeringsCircle(RunNamed("circle_equal"), 0.2972, 0.005);
 }
 
 // Isotropic friction along the slip: with equal wheel speeds every wheel
@@ -114,12 +114,7 @@ TEST(Validation, CircleEqualSpeedsIsotropicSlidesOutsideTheSteeringsCircle) {
 // SPEC 8: 5.98 m within 0.25 % for 1.00 / 1.10 m/s, with the thesis's friction.
 TEST(Validation, CircleDifferentialSpeedsWithTheThesisFrictionWithinAQuarterPercent) {
   const ExperimentResult r = RunNamed("circle_differential");
-  const double alpha = 0.2;
-  EXPECT_NEAR(r.Measured("radius at the axle centres, thesis friction"), AxleCentres(alpha),
-              0.0025 * AxleCentres(alpha));
-  EXPECT_NEAR(r.Measured("radius of the mean of the four wheels, thesis friction"),
-              AxleCentres(alpha) * std::cos(alpha / 2.0),
-              0.0025 * AxleCentres(alpha) * std::cos(alpha / 2.0));
+  ExpectTheSteeringsCircle(r, 0.2, 0.0025);
   EXPECT_LE(r.Measured("worst deviation from the fitted circle, thesis friction"), 0.001);
 }
 
