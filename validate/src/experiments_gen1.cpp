@@ -37,8 +37,8 @@ struct CircleRunResult {
   CircleFit legs;                   // the mean of the four wheel centres (the thesis's point)
   Series front_path, rear_path;     // x, z over the whole run
   Series radius_error;              // rear axle: distance to the fitted centre - r, vs t
-  double front_load = 0.0, rear_load = 0.0;  // mean vertical load per wheel [N]
-  double wheel_load[4] = {0, 0, 0, 0};       // Wheel1..4 (front right, front left, rear left, rear right)
+  // Mean vertical load [N] of Wheel1..4 (front right, front left, rear left, rear right).
+  double wheel_load[4] = {0, 0, 0, 0};
   double mass = 0.0;
   double sim_seconds = 0.0;
   double Radius() const { return (front.radius + rear.radius) / 2.0; }
@@ -62,7 +62,6 @@ CircleRunResult RunCircle(const Context& context, const CircleFriction& friction
   for (const sim::FlatBody& b : run.sim().flat().bodies) out.mass += b.source->mass;
   std::vector<Eigen::Vector2d> front, rear, legs;
   std::vector<double> times;
-  double front_load = 0.0, rear_load = 0.0;
   const int every = std::max<int>(1, static_cast<int>(std::lround(0.01 / run.dt())));
   run.RunUntil(kSteerTime + settle + duration, [&] {
     if (run.sim().step() % every != 0) return;
@@ -79,15 +78,11 @@ CircleRunResult RunCircle(const Context& context, const CircleFriction& friction
     legs.emplace_back((f.x() + r.x()) / 2.0, (f.z() + r.z()) / 2.0);
     times.push_back(t);
     for (int k = 0; k < 4; ++k) out.wheel_load[k] += run.VerticalContactForce(wheel[k]);
-    front_load += (run.VerticalContactForce(wheel[0]) + run.VerticalContactForce(wheel[1])) / 2.0;
-    rear_load += (run.VerticalContactForce(wheel[2]) + run.VerticalContactForce(wheel[3])) / 2.0;
   });
   out.sim_seconds = run.time();
   out.front = FitCircle(front);
   out.rear = FitCircle(rear);
   out.legs = FitCircle(legs);
-  out.front_load = front_load / std::max<size_t>(1, times.size());
-  out.rear_load = rear_load / std::max<size_t>(1, times.size());
   for (double& load : out.wheel_load) load /= static_cast<double>(std::max<size_t>(1, times.size()));
   out.radius_error.title = "rear axle: distance to the fitted centre - r";
   for (size_t i = 0; i < rear.size(); ++i) {
@@ -118,8 +113,8 @@ double CoulombRadius(const CircleRunResult& run, double mu, double alpha, double
   v.half_track = 0.3;
   v.mass = run.mass;
   v.mu = mu;
-  v.front_load = run.front_load;
-  v.rear_load = run.rear_load;
+  v.front_load = (run.wheel_load[0] + run.wheel_load[1]) / 2.0;
+  v.rear_load = (run.wheel_load[2] + run.wheel_load[3]) / 2.0;
   // Each wheel's own load: the turn moves load to the outer (right) wheels.
   const double loads[4] = {run.wheel_load[1], run.wheel_load[0], run.wheel_load[2],
                            run.wheel_load[3]};
