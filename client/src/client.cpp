@@ -272,6 +272,8 @@ int64_t Client::Send(command_t command) {
     std::lock_guard<std::mutex> lock(mutex_);
     ThrowIfRestarted();
     command.request_id = next_request_id_++;
+    command.simulation_id =
+        options_.any_simulation || !catalog_ ? 0 : catalog_->simulation_id();
   }
   command.utime = WallMicros();
   command.sender = sender_;
@@ -331,6 +333,7 @@ void Client::SendControl(int action, int64_t steps, double speed) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     control.request_id = next_request_id_++;
+    control.simulation_id = options_.any_simulation ? 0 : latest_simulation_id_;
   }
   control.sender = sender_;
   control.action = static_cast<int8_t>(action);

@@ -161,6 +161,15 @@ void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& cha
 void SimNode::OnControl(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   control_t control;
   if (!DecodeInput(buffer, channel, &control)) return;
+  // A quit or reset meant for another system on the same bus is refused
+  // like any bad message: counted, printed only now and then.
+  if (control.simulation_id != 0 && control.simulation_id != sim_->simulation_id()) {
+    ReportBadMessage(channel, "action " + std::to_string(control.action) + " from '" +
+                                  control.sender + "' is for simulation_id " +
+                                  std::to_string(control.simulation_id) + "; this is " +
+                                  std::to_string(sim_->simulation_id()));
+    return;
+  }
   status_changed_ = true;
   // A control that changes the schedule ends the wait for the next step at
   // once (at a slow speed that wait can be long). One that changes nothing

@@ -152,6 +152,12 @@ command_reply_t Simulation::Reply(const command_t& command, bool accepted,
 
 std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
   auto reject = [&](const std::string& reason) { return Reply(command, false, reason); };
+  // Two systems on one bus must not steer each other: a command names the
+  // simulation it was built for (0 = whichever sim hears it).
+  if (command.simulation_id != 0 && command.simulation_id != simulation_id_)
+    return reject("simulation_id = " + std::to_string(command.simulation_id) +
+                  ": the command is meant for another simulation (this one is " +
+                  std::to_string(simulation_id_) + ")");
   if (command.num_values < 0 || static_cast<size_t>(command.num_values) != command.values.size())
     return reject("num_values = " + std::to_string(command.num_values) + " does not match " +
                   std::to_string(command.values.size()) + " values");

@@ -15,6 +15,7 @@
 #include "client_test_support.h"
 #include "simpartner/channels.h"
 #include "simpartner/client/client.h"
+#include "simpartner/control_t.hpp"
 
 namespace simpartner::client {
 namespace {
@@ -302,6 +303,91 @@ TEST_F(ClientProcessTest, HostileInputIsCountedAndIgnored) {
   EXPECT_EQ(s.bodies.size(), bodies);
   EXPECT_EQ(s.simulation_id, catalog->simulation_id());
   EXPECT_FALSE(client.LatestReading("Scanner").has_value());  // the forged one was not kept
+}
+
+// Commands carry the learned model's simulation id (0 with
+// any_simulation); the sim refuses one for another simulation and ignores
+// a quit for another simulation.
+TEST_F(ClientProcessTest, CommandsCarryTheSimulationIdAndTheSimChecksIt) {
+  const std::string url = UniqueUrl(8);
+  SimProcess sim("gen1_flat.xml", url, Log("sim.log"));
+  Client client(Options(url));
+  const int64_t id = client.catalog()->simulation_id();
+  ASSERT_NE(id, 0);
+  ClientOptions any = Options(url, "client_test_any");
+  any.any_simulation = true;
+  Client any_client(any);
+
+  struct Seen {
+    std::vector<command_t> commands;
+    std::vector<control_t> controls;
+    void OnCommand(const lcm::ReceiveBuffer*, const std::string&, const command_t* c) {
+      commands.push_back(*c);
+    }
+    void OnControl(const lcm::ReceiveBuffer*, const std::string&, const control_t* c) {
+      controls.push_back(*c);
+    }
+  } seen;
+  lcm::LCM listener(url);
+  ASSERT_TRUE(listener.good());
+  listener.subscribe(channels::kCommand, &Seen::OnCommand, &seen);
+  listener.subscribe(channels::kControl, &Seen::OnControl, &seen);
+  auto pump = [&](size_t commands, size_t controls) {
+    const auto deadline = Clock::now() + std::chrono::seconds(5);
+    while ((seen.commands.size() < commands || seen.controls.size() < controls) &&
+           Clock::now() < deadline)
+      listener.handleTimeout(50);
+  };
+
+  EXPECT_TRUE(client.Command(SetVelocity(client.Find("Axle1Motor"), {1.0})).accepted);
+  EXPECT_TRUE(any_client.Command(SetVelocity(any_client.Find("Axle1Motor"), {0.5})).accepted);
+  client.Resume();  // the sim runs already: this changes nothing
+  pump(2, 1);
+  ASSERT_EQ(seen.commands.size(), 2u);
+  EXPECT_EQ(seen.commands[0].simulation_id, id);
+  EXPECT_EQ(seen.commands[1].simulation_id, 0);
+  ASSERT_EQ(seen.controls.size(), 1u);
+  EXPECT_EQ(seen.controls[0].simulation_id, id);
+
+  // Built by hand for another simulation: refused, and the reply names both.
+  command_t elsewhere = SetVelocity(client.Find("Axle1Motor"), {2.0});
+  elsewhere.simulation_id = id + 1;
+  elsewhere.request_id = 4242;
+  elsewhere.sender = "elsewhere@test:1";
+  elsewhere.num_values = static_cast<int32_t>(elsewhere.values.size());
+  std::optional<command_reply_t> refusal;
+  struct Replies {
+    std::optional<command_reply_t>* out;
+    void On(const lcm::ReceiveBuffer*, const std::string&, const command_reply_t* r) {
+      if (r->sender == "elsewhere@test:1") *out = *r;
+    }
+  } replies{&refusal};
+  listener.subscribe(channels::kCommandReply, &Replies::On, &replies);
+  listener.publish(channels::kCommand, &elsewhere);
+  const auto deadline = Clock::now() + std::chrono::seconds(5);
+  while (!refusal && Clock::now() < deadline) listener.handleTimeout(50);
+  ASSERT_TRUE(refusal.has_value());
+  EXPECT_FALSE(refusal->accepted);
+  EXPECT_EQ(refusal->request_id, 4242);
+  EXPECT_EQ(refusal->reason, "simulation_id = " + std::to_string(id + 1) +
+                                 ": the command is meant for another simulation (this one is " +
+                                 std::to_string(id) + ")");
+
+  // A quit for another simulation leaves this one running.
+  control_t quit{};
+  quit.sender = "elsewhere@test:1";
+  quit.simulation_id = id + 1;
+  quit.action = control_t::ACTION_QUIT;
+  listener.publish(channels::kControl, &quit);
+  const double t = client.LatestState()->sim_time;
+  client.WaitUntilSimTime(t + 0.5, 5.0);
+  EXPECT_TRUE(sim.child().running()) << sim.Log();
+  EXPECT_NE(sim.Log().find("is for simulation_id " + std::to_string(id + 1) + "; this is " +
+                           std::to_string(id)),
+            std::string::npos)
+      << sim.Log();
+  client.Quit();  // with its id: this one stops
+  EXPECT_EQ(sim.child().Wait(std::chrono::seconds(10)).value_or(-1), 0) << sim.Log();
 }
 
 }  // namespace

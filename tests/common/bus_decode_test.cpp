@@ -81,9 +81,9 @@ TEST(BusDecode, ReasonsNameTheFieldAndTheValue) {
     reason[m.name] = failure ? failure->reason : "";
   }
   EXPECT_EQ(reason["command_t sender length 0"],
-            "field 'sender' at byte 24: string length 0 (an LCM string holds at least its NUL)");
+            "field 'sender' at byte 32: string length 0 (an LCM string holds at least its NUL)");
   EXPECT_EQ(reason["command_t sender length -5"],
-            "field 'sender' at byte 24: string length -5 (an LCM string holds at least its NUL)");
+            "field 'sender' at byte 32: string length -5 (an LCM string holds at least its NUL)");
   EXPECT_NE(reason["command_t num_values -1"].find("field 'num_values'"), std::string::npos);
   EXPECT_NE(reason["command_t num_values -1"].find("count -1 is negative"), std::string::npos);
   EXPECT_NE(reason["command_t num_values 1e8"].find("100000000"), std::string::npos);
@@ -257,7 +257,7 @@ TEST(DecodeFromBus, DescribesTheChannelTypeSizeAndReason) {
       DecodeFromBus(killer.channel, killer.bytes.data(), killer.bytes.size(), &command, &counter, &print);
   ASSERT_TRUE(description.has_value());
   EXPECT_EQ(*description,
-            "SIM_COMMAND: 48 bytes refused as simpartner.command_t: field 'sender' at byte 24: "
+            "SIM_COMMAND: 48 bytes refused as simpartner.command_t: field 'sender' at byte 32: "
             "string length 0 (an LCM string holds at least its NUL)");
   EXPECT_TRUE(print);
   EXPECT_EQ(counter.count("SIM_COMMAND"), 1u);

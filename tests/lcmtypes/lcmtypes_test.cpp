@@ -131,9 +131,11 @@ TEST(LcmTypes, StateRoundTrips) {
   s.num_joints = 24;
   s.joints.resize(24);
   s.joints[3].position[0] = 0.2972;
+  s.joints[3].continuous_position[0] = 0.2972 + 6 * 3.14159265358979323846;  // three turns on
   const state_t decoded = RoundTrip(s);
   EXPECT_EQ(decoded.bodies.at(24).position[1], 24.235);
   EXPECT_EQ(decoded.joints.at(3).position[0], 0.2972);
+  EXPECT_EQ(decoded.joints.at(3).continuous_position[0], 0.2972 + 6 * 3.14159265358979323846);
 }
 
 TEST(LcmTypes, CommandAndReplyRoundTrip) {
@@ -146,7 +148,9 @@ TEST(LcmTypes, CommandAndReplyRoundTrip) {
   c.num_values = 6;
   c.values = {1000, 1000, 100, 0, 0, 0.2};
   c.text = "1000,1000,100,0,0,0.2";
+  c.simulation_id = 1700000000123456;
   EXPECT_EQ(RoundTrip(c).values.at(5), 0.2);
+  EXPECT_EQ(RoundTrip(c).simulation_id, 1700000000123456);
 
   command_reply_t r{};
   r.request_id = 7;
@@ -167,7 +171,9 @@ TEST(LcmTypes, SensorControlStatusRequestRoundTrip) {
   control_t c{};
   c.action = control_t::ACTION_STEP;
   c.steps = 10;
+  c.simulation_id = -3;
   EXPECT_EQ(RoundTrip(c).steps, 10);
+  EXPECT_EQ(RoundTrip(c).simulation_id, -3);
 
   status_t st{};
   st.run_state = status_t::RUN_FAULTED;

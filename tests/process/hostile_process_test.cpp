@@ -196,7 +196,7 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   EXPECT_TRUE(bus.replies.back().accepted) << bus.replies.back().reason;
   const std::string sim_log = ReadFile(dir_ / "sim.log");
   EXPECT_NE(sim_log.find("SIM_COMMAND: 48 bytes refused as simpartner.command_t: field 'sender' at "
-                         "byte 24: string length 0"),
+                         "byte 32: string length 0"),
             std::string::npos)
       << sim_log;
 

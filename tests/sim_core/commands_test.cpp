@@ -83,6 +83,10 @@ std::vector<BadCase> BadCommands() {
   command_t robot = Command("Spin", command_t::ACTION_SET, {1000, 1});
   robot.robot = "Nobody";
   add("unknown robot", robot, "robot 'Nobody' does not exist");
+  command_t elsewhere = Command("Spin", command_t::ACTION_SET, {1000, 1});
+  elsewhere.simulation_id = 2;  // MakeSim's simulation is 1
+  add("another simulation", elsewhere,
+      "simulation_id = 2: the command is meant for another simulation (this one is 1)");
   return cases;
 }
 
@@ -107,6 +111,35 @@ TEST(Commands, BadCommandsAreRefusedAndChangeNothing) {
   }
   EXPECT_TRUE(sim->TakeReplies().empty());
   EXPECT_EQ(PhysicsBytes(*sim), PhysicsBytes(*twin));
+}
+
+// A command for simulation 0 (any) or for this one (1) is applied; one for
+// another simulation (and for this one before its reset) is refused.
+TEST(Commands, TheSimulationIdIsZeroOrThisSimulations) {
+  auto sim = MakeArmSim();
+  for (const int64_t id : {int64_t{0}, int64_t{1}}) {
+    command_t c = Command("Spin", command_t::ACTION_SET, {1000, 0.5 + static_cast<double>(id)});
+    c.simulation_id = id;
+    c.request_id = 10 + id;
+    EXPECT_FALSE(sim->Submit(c).has_value()) << "simulation_id " << id;
+    ASSERT_TRUE(sim->Step());
+    const auto replies = sim->TakeReplies();
+    ASSERT_EQ(replies.size(), 1u) << "simulation_id " << id;
+    EXPECT_TRUE(replies[0].accepted) << replies[0].reason;
+    EXPECT_EQ(replies[0].request_id, 10 + id);
+    EXPECT_EQ(replies[0].simulation_id, 1);
+  }
+  sim->Reset(7);
+  command_t stale = Command("Spin", command_t::ACTION_SET, {1000, 1});
+  stale.simulation_id = 1;
+  const auto refusal = sim->Submit(stale);
+  ASSERT_TRUE(refusal.has_value());
+  EXPECT_FALSE(refusal->accepted);
+  EXPECT_EQ(refusal->simulation_id, 7);
+  EXPECT_EQ(refusal->reason,
+            "simulation_id = 1: the command is meant for another simulation (this one is 7)");
+  stale.simulation_id = 7;
+  EXPECT_FALSE(sim->Submit(stale).has_value());
 }
 
 // The same timed commands give the same trajectory, bit for bit.

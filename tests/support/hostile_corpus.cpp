@@ -52,7 +52,7 @@ std::vector<uint8_t> Encode(const T& msg) {
 // command_t up to (not including) num_values, with the given strings.
 RawMessage CommandHead() {
   RawMessage m(command_t::getHash());
-  m.I64(1).I64(77).Str("hostile@nowhere:1").Str("").Str("Turner").I32(0).I8(0).I64(-1);
+  m.I64(1).I64(77).I64(0).Str("hostile@nowhere:1").Str("").Str("Turner").I32(0).I8(0).I64(-1);
   return m;
 }
 
@@ -118,18 +118,18 @@ std::vector<HostileMessage> HostileCorpus(int64_t simulation_id) {
   // --- SIM_COMMAND: command_t
   {
     RawMessage m(command_t::getHash());
-    m.I64(1).I64(1).StrLength(0);  // the 48-byte killer of the issue
+    m.I64(1).I64(1).I64(0).StrLength(0);  // the 48-byte killer of the issue
     m.Zeros(48 - m.bytes().size());
     bad("command_t sender length 0", kCommand, m.bytes());
   }
   {
     RawMessage m(command_t::getHash());
-    m.I64(1).I64(1).StrLength(-5).Zeros(28);
+    m.I64(1).I64(1).I64(0).StrLength(-5).Zeros(28);
     bad("command_t sender length -5", kCommand, m.bytes());
   }
   {
     RawMessage m(command_t::getHash());
-    m.I64(1).I64(1).Str("x").Str("").StrLength(kHugeCount).Zeros(16);
+    m.I64(1).I64(1).I64(0).Str("x").Str("").StrLength(kHugeCount).Zeros(16);
     bad("command_t target length 2^31-1", kCommand, m.bytes());
   }
   bad("command_t num_values -1", kCommand, CommandHead().I32(-1).Str("").bytes());
@@ -171,12 +171,15 @@ std::vector<HostileMessage> HostileCorpus(int64_t simulation_id) {
     c.target = "Turner";
     c.apply_at_step = std::numeric_limits<int64_t>::max() / 2;
     nonsense("command_t apply_at_step 2^62", kCommand, Encode(c));
+    c.apply_at_step = -1;
+    c.simulation_id = simulation_id + 1;
+    nonsense("command_t for another simulation", kCommand, Encode(c));
   }
 
   // --- SIM_CONTROL: control_t
   {
     RawMessage m(control_t::getHash());
-    m.I64(1).I64(1).StrLength(0).I8(0).I64(0).F64(0);
+    m.I64(1).I64(1).I64(0).StrLength(0).I8(0).I64(0).F64(0);
     bad("control_t sender length 0", kControl, m.bytes());
   }
   bad("control_t of 3 bytes", kControl, {1, 2, 3});
@@ -195,6 +198,9 @@ std::vector<HostileMessage> HostileCorpus(int64_t simulation_id) {
     nonsense("control_t speed NaN", kControl, Encode(c));
     c.speed = 1e-300;
     nonsense("control_t speed 1e-300", kControl, Encode(c));
+    c.action = control_t::ACTION_QUIT;
+    c.simulation_id = simulation_id + 1;
+    nonsense("control_t quit for another simulation", kControl, Encode(c));
   }
 
   // --- SIM_MODEL_REQUEST: model_request_t

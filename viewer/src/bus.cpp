@@ -148,6 +148,9 @@ void ViewerBus::SendControl(int8_t action, int64_t steps, double speed) {
   control_t control{};
   control.utime = WallMicros();
   control.request_id = ++request_id_;
+  // The keys act on the simulation on screen, not on another one that
+  // might share the bus (0 = any, before a model is shown).
+  control.simulation_id = scene_->has_model() ? scene_->model().simulation_id : 0;
   control.sender = sender_;
   control.action = action;
   control.steps = steps;
@@ -163,6 +166,7 @@ void ViewerBus::RequestScans() {
     command_t command{};
     command.utime = WallMicros();
     command.request_id = ++request_id_;
+    command.simulation_id = m.simulation_id;
     command.sender = sender_;
     if (sensor.robot >= 0 && sensor.robot < m.num_robots)
       command.robot = m.robots[static_cast<size_t>(sensor.robot)].name;

@@ -75,6 +75,10 @@ struct ClientOptions {
   // false: do not wait for the model in the constructor (status, pause,
   // quit work without one); catalog() is empty until Relearn().
   bool learn_model = true;
+  // Commands and run control carry the id of the simulation they were
+  // built for, and a sim refuses one meant for another simulation (two
+  // systems on one bus). true: send 0, which any sim accepts.
+  bool any_simulation = false;
 };
 
 class Client {
@@ -96,7 +100,8 @@ class Client {
   // and SimRestarted while a restart is pending.
   Target Find(const std::string& name_or_port) const;
 
-  // Fire and forget: fills utime, request_id and sender, publishes, returns
+  // Fire and forget: fills utime, request_id, sender and simulation_id (the
+  // learned model's, or 0 with any_simulation), publishes, returns
   // the request id (its reply can be looked up with TakeReply). Throws
   // SimRestarted when the sim restarted since the model was learned.
   int64_t Send(command_t command);
@@ -114,7 +119,9 @@ class Client {
   // The reply to a sent request, if it has come (removed when taken).
   std::optional<command_reply_t> TakeReply(int64_t request_id);
 
-  // Run control (SIM_CONTROL), fire and forget.
+  // Run control (SIM_CONTROL), fire and forget. It carries the id of the
+  // newest SIM_MODEL heard (so it reaches a restarted sim before Relearn),
+  // or 0 before any model came or with any_simulation.
   void Pause();
   void Resume();
   void Step(int64_t steps);
