@@ -42,8 +42,8 @@ constexpr double kScannerRange = 10.0;
 constexpr double kGen4TyreStiffness = 2e5;    // [N/m] per wheel
 constexpr double kGen4TyreDamping = 7000.0;   // [N s/m] per wheel
 constexpr double kGen4LegOffset = 0.0005235;  // [m]
-// The run parameters the tyre softness is written for (parameters.txt) and
-// the hold of SPEC 4 (sim_core/controllers.h: velocity kHoldGain * error).
+// The run parameters the joints' softness is per step for (parameters.txt)
+// and the hold of SPEC 4 (sim_core/controllers.h: velocity kHoldGain * error).
 constexpr double kStep = 0.001;                       // [s] stepsize
 constexpr double kGlobalERP = 0.2, kGlobalCFM = 1e-5;  // joints
 constexpr double kDefaultSoftERP = 0.2;                // contactSoftERP: a ground without material
@@ -667,9 +667,9 @@ TEST(ShippedRobots, Gen4LegsTwoAndFourAreLongerAsAWhole) {
   }
 }
 
-// The tyre material: a contact point is an implicit spring-damper with
-// ERP = h k_p / (h k_p + c_p), CFM = 1 / (h k_p + c_p) (ODE's manual), so
-// k_p = ERP / (h CFM) and c_p = (1 - ERP) / CFM; two points per wheel.
+// The tyre material: a physical stiffness and damping of the whole contact
+// (the sim turns them into ERP/CFM for the step size), shared by a wheel's
+// two contact points.
 TEST(ShippedRobots, Gen4TyresHaveTheirStiffnessAndDamping) {
   const Robot& r = Shipped("gen4");
   const Material* tyre = nullptr;
@@ -680,19 +680,20 @@ TEST(ShippedRobots, Gen4TyresHaveTheirStiffnessAndDamping) {
       if (m.name == wheel->material) tyre = &m;
     ASSERT_NE(tyre, nullptr) << "Wheel" << n;
   }
-  // Softer than a ground without material, so the tyre decides the contact.
-  EXPECT_LT(tyre->soft_erp, kDefaultSoftERP);
-  EXPECT_GT(tyre->soft_cfm, kDefaultSoftCFM);
-  // The file rounds ERP and CFM to 6 significant digits.
-  const double k_point = tyre->soft_erp / (kStep * tyre->soft_cfm);
-  const double c_point = (1.0 - tyre->soft_erp) / tyre->soft_cfm;
-  EXPECT_NEAR(2.0 * k_point / kGen4TyreStiffness, 1.0, 1e-5);
-  EXPECT_NEAR(2.0 * c_point / kGen4TyreDamping, 1.0, 1e-5);
+  ASSERT_TRUE(tyre->HasStiffness());
+  ASSERT_TRUE(tyre->damping.has_value());
+  EXPECT_EQ(*tyre->stiffness, kGen4TyreStiffness);
+  EXPECT_EQ(*tyre->damping, kGen4TyreDamping);
+  // Softer than a ground without material at every step size up to 2 ms
+  // (ERP / (h CFM) = 1e7 N/m there), so the tyre decides the contact.
+  EXPECT_LT(*tyre->stiffness, kDefaultSoftERP / (0.002 * kDefaultSoftCFM));
   // ODE caps ERP * depth / h at contactMaxCorrectingVel; standing, that is
-  // F * CFM, so a point gives way above 0.2 / CFM. The heaviest static
-  // point load is under 400 N (a wheel's 775 N and its share of the roll
-  // moment); leave a factor of 1.5 for driving.
-  EXPECT_GT(kMaxCorrectingVel / tyre->soft_cfm, 1.5 * 400.0);
+  // F_p / (h k_p + c_p), so a point gives way above 0.2 (h k_p + c_p). The
+  // heaviest static point load is under 400 N (a wheel's 775 N and its
+  // share of the roll moment); leave a factor of 1.5 for driving, at the
+  // smallest step of the step-size test (0.5 ms).
+  const double k_point = *tyre->stiffness / 2.0, c_point = *tyre->damping / 2.0;
+  EXPECT_GT(kMaxCorrectingVel * (0.0005 * k_point + c_point), 1.5 * 400.0);
 }
 
 // gen4's loads on flat ground as a spring model of its supports (the
@@ -717,13 +718,10 @@ TEST(ShippedRobots, Gen4SupportsAndCentreOfMassGiveTheRealStaticLoads) {
   const Eigen::Vector3d com = CentreOfMass(r);
   const double weight = r.TotalMass() * 9.81;
   EXPECT_NEAR(weight, kW1 + kW2 + kW3 + kW4, 0.05);  // 275.15 kg is rounded to 10 g
-  double soft_erp = kDefaultSoftERP, soft_cfm = kDefaultSoftCFM;
-  for (const Material& m : r.materials) {
-    if (m.name != r.FindBody("Wheel1")->material) continue;
-    soft_erp = std::min(soft_erp, m.soft_erp);
-    soft_cfm = std::max(soft_cfm, m.soft_cfm);
-  }
-  const double k_point = soft_erp / (kStep * soft_cfm);
+  double k_point = 0.0;  // the tyre's stiffness per contact point, two per wheel
+  for (const Material& m : r.materials)
+    if (m.name == r.FindBody("Wheel1")->material && m.HasStiffness()) k_point = *m.stiffness / 2.0;
+  ASSERT_GT(k_point, 0.0);
   const double knee_lever = 0.18;  // knee to axle, along x (models/README.md)
   const double k_v = 1.0 / (1.0 / (2.0 * k_point) + 3.0 * kStep * kGlobalCFM / kGlobalERP +
                             knee_lever * knee_lever * kGlobalCFM / kHoldGain);

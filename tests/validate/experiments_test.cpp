@@ -13,7 +13,9 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "simpartner/diagnostic.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/parameters.h"
 #include "simpartner/sim/controllers.h"
@@ -150,28 +152,44 @@ TEST(Validation, PoleTaskSetsThePoleOnTheSecondPair) {
   EXPECT_LE(r.Measured("pole speed at the end"), 0.001);
 }
 
-// SPEC 8: the real robot's loads within 2 % on every wheel.
-TEST(Validation, Gen4StaticLoadsWithinTwoPercentOfTheRealRobot) {
+// gen4 is calibrated on the mean of the real robot's four runs (SPEC 8's
+// loads). The runs' cross weights (W2 + W4) - (W1 + W3) were 237, 219, 182
+// and 172 N (issue 13): the mean of four is known to s / 2 on the cross
+// weight and s / 8 on a wheel (a change D of the cross weight moves each
+// wheel by D / 4), s the runs' sample standard deviation (30.6 N). The
+// calibration must hold in the sim within that; SPEC 8 asks for 2 %.
+TEST(Validation, Gen4StaticLoadsKeepTheCalibrationWithinTheRunsSpread) {
   const ExperimentResult r = RunNamed("gen4_loads");
   const double real[4] = {579.15, 774.90, 669.12, 676.03};
+  const double runs[4] = {237.0, 219.0, 182.0, 172.0};
+  const double mean = (runs[0] + runs[1] + runs[2] + runs[3]) / 4.0;
+  double squares = 0.0;
+  for (const double c : runs) squares += (c - mean) * (c - mean);
+  const double s = std::sqrt(squares / 3.0);
+  EXPECT_NEAR(s, 30.6, 0.05);
+  double w[4];
   for (int k = 0; k < 4; ++k) {
     const std::string wheel = "Wheel" + std::to_string(k + 1);
-    EXPECT_NEAR(r.Measured(wheel + " load"), real[k], 0.02 * real[k]) << wheel;
+    w[k] = r.Measured(wheel + " load");
+    EXPECT_NEAR(w[k], real[k], s / 8.0) << wheel;
+    EXPECT_NEAR(w[k], real[k], 0.02 * real[k]) << wheel;
   }
+  EXPECT_NEAR((w[1] + w[3]) - (w[0] + w[2]), (real[1] + real[3]) - (real[0] + real[2]), s / 2.0);
+  EXPECT_NEAR(r.Measured("cross weight"), (w[1] + w[3]) - (w[0] + w[2]), 1e-9);
 }
 
-// What gen4's masses and supports must give on flat ground, from the robot
-// file and the default parameters (not from the SPEC's loads; the file's
-// comment derives its numbers from those, tests/models checks that):
+// What gen4's masses and supports must give on flat ground at step h, from
+// the robot file and the default parameters (not from the SPEC's loads; the
+// file's comment derives its numbers from those, tests/models checks that):
 //  - the total: the weight W = M g;
-//  - each wheel stands on its tyre, whose contact softness per contact
-//    point (the softer of the tyre's and the ground's: the smaller ERP, the
-//    larger CFM) is a spring k_p = ERP / (h CFM), two points per wheel at
-//    its faces (a cylinder on a plane touches along a line), in series with
-//    its leg: the position rows of the axle, knee and hip hinges (each
-//    globalERP / (h globalCFM)) and the knee's hold (torque kHoldGain /
-//    globalCFM per radian, at the knee's horizontal distance l from the
-//    axle): k_v = 1 / (1 / (2 k_p) + 3 h CFM_g / ERP_g + l^2 CFM_g / G);
+//  - each wheel stands on its tyre, a physical stiffness k of the whole
+//    contact (the same at any step), shared by two contact points at its
+//    faces (a cylinder on a plane touches along a line), k_p = k / 2, in
+//    series with its leg: the position rows of the axle, knee and hip
+//    hinges (each a spring of globalERP / (h globalCFM): per step) and the
+//    knee's hold (torque kHoldGain / globalCFM per radian, at the knee's
+//    horizontal distance l from the axle):
+//    k_v = 1 / (1 / k + 3 h CFM_g / ERP_g + l^2 CFM_g / G);
 //  - cross weight: legs 2 and 4 are delta longer (their wheels sit delta
 //    lower in the file); on flat ground the chassis settles halfway, so
 //    (W2 + W4) - (W1 + W3) = 2 k_v delta;
@@ -182,19 +200,16 @@ TEST(Validation, Gen4StaticLoadsWithinTwoPercentOfTheRealRobot) {
 //    wheel's width):
 //      front - rear = 4 k_v a W x / (4 k_v a^2 - W h_c),
 //      left - right = 4 k_v t W z_left / (4 k_v t^2 + 8 k_p w^2 - W h_c).
-// Tolerance 0.1 % of the weight (2.7 N) on each: the model leaves out the
-// legs' yielding sideways, the chassis' twist at the Turner hinge and the
-// contact points' shift as the wheels tilt, each well under 0.1 % of the
-// ~200 N differences by the same arithmetic (rows of 2e7 N m/rad against
-// moments of tens of N m); 2.7 N on a sum is 0.7 N on a wheel, 0.1 % of its
-// load, far inside the 2 % target.
-TEST(Validation, Gen4StaticLoadsFollowTheMassesAndTheSupports) {
+struct Gen4Sums {
+  double weight, front_minus_rear, left_minus_right, cross;
+};
+
+Gen4Sums PredictGen4Sums(double h) {
   const std::string file = std::string(SP_SOURCE_DIR) + "/models/robots/workpartner_gen4.xml";
   const model::RobotLoadResult loaded = model::LoadRobotFile(file);
-  ASSERT_TRUE(loaded.robot) << loaded.diagnostics.Format();
+  if (!loaded.robot) throw Error(loaded.diagnostics.Format());
   const model::Robot& robot = *loaded.robot;
   const Parameters params;  // the defaults, as the experiment runs
-  const double h = params.stepsize;
 
   Eigen::Vector3d com = Eigen::Vector3d::Zero();
   for (const model::Body& b : robot.bodies) com += b.mass * (b.pose * b.com);
@@ -204,46 +219,89 @@ TEST(Validation, Gen4StaticLoadsFollowTheMassesAndTheSupports) {
   const model::Body* wheel[4];
   for (int k = 0; k < 4; ++k) {
     wheel[k] = robot.FindBody("Wheel" + std::to_string(k + 1));
-    ASSERT_NE(wheel[k], nullptr);
+    if (wheel[k] == nullptr) throw Error("gen4 has no Wheel" + std::to_string(k + 1));
   }
-  // The tyre against gen4_flat.xml's ground, which has no material.
-  double erp = params.contactSoftERP, cfm = params.contactSoftCFM;
-  for (const model::Material& m : robot.materials) {
-    if (m.name != wheel[0]->material) continue;
-    erp = std::min(erp, m.soft_erp);
-    cfm = std::max(cfm, m.soft_cfm);
-  }
-  const double k_point = erp / (h * cfm);
+  // The tyre against gen4_flat.xml's ground, which has no material: the
+  // tyre's stiffness is far below the default contact's at these steps.
+  double k_wheel = 0.0;
+  for (const model::Material& m : robot.materials)
+    if (m.name == wheel[0]->material && m.HasStiffness()) k_wheel = *m.stiffness;
+  if (k_wheel <= 0.0) throw Error("gen4's tyre material has no stiffness");
+  const double k_point = k_wheel / 2.0;
   const double half_width = wheel[0]->geometry.size.y() / 2.0;  // cylinder length / 2
   const model::Joint* knee = robot.FindJoint("Knee1");
   const model::Joint* axle = robot.FindJoint("Axle1");
-  ASSERT_NE(knee, nullptr);
-  ASSERT_NE(axle, nullptr);
+  if (knee == nullptr || axle == nullptr) throw Error("gen4 has no Knee1 or Axle1");
   const double lever = std::abs(knee->anchor.x() - axle->anchor.x());
   const double leg_compliance = 3.0 * h * params.globalCFM / params.globalERP +
                                 lever * lever * params.globalCFM / sim::kHoldGain;
-  const double k_v = 1.0 / (1.0 / (2.0 * k_point) + leg_compliance);
+  const double k_v = 1.0 / (1.0 / k_wheel + leg_compliance);
   const double a = std::abs(wheel[0]->pose.translation().x());
   const double t = std::abs(wheel[0]->pose.translation().z());
   const double delta = (wheel[0]->pose.translation().y() + wheel[2]->pose.translation().y() -
                         wheel[1]->pose.translation().y() - wheel[3]->pose.translation().y()) /
                        2.0;
-  const double height = com.y() - weight / (4.0 * 2.0 * k_point);  // less the tyres' sag
-  const double front_minus_rear =
-      4.0 * k_v * a * weight * com.x() / (4.0 * k_v * a * a - weight * height);
-  const double left_minus_right =
+  const double height = com.y() - weight / (4.0 * k_wheel);  // less the tyres' sag
+  Gen4Sums sums;
+  sums.weight = weight;
+  sums.front_minus_rear = 4.0 * k_v * a * weight * com.x() / (4.0 * k_v * a * a - weight * height);
+  sums.left_minus_right =
       4.0 * k_v * t * weight * -com.z() /
       (4.0 * k_v * t * t + 8.0 * k_point * half_width * half_width - weight * height);
-  const double cross = 2.0 * k_v * delta;
+  sums.cross = 2.0 * k_v * delta;
+  return sums;
+}
 
-  const ExperimentResult r = RunNamed("gen4_loads");
+// Tolerance 0.1 % of the weight (2.7 N) on each sum: the model leaves out
+// the legs' yielding sideways, the chassis' twist at the Turner hinge and
+// the contact points' shift as the wheels tilt, each well under 0.1 % of
+// the ~200 N differences by the same arithmetic (rows of 2e7 N m/rad
+// against moments of tens of N m); 2.7 N on a sum is 0.7 N on a wheel.
+void ExpectGen4LoadsFollowTheSupports(const ExperimentResult& r, double h) {
+  const Gen4Sums predicted = PredictGen4Sums(h);
   double w[4];
   for (int k = 0; k < 4; ++k) w[k] = r.Measured("Wheel" + std::to_string(k + 1) + " load");
-  const double tolerance = 0.001 * weight;
-  EXPECT_NEAR(w[0] + w[1] + w[2] + w[3], weight, tolerance);
-  EXPECT_NEAR((w[0] + w[1]) - (w[2] + w[3]), front_minus_rear, tolerance);
-  EXPECT_NEAR((w[1] + w[2]) - (w[0] + w[3]), left_minus_right, tolerance);
-  EXPECT_NEAR((w[1] + w[3]) - (w[0] + w[2]), cross, tolerance);
+  const double tolerance = 0.001 * predicted.weight;
+  EXPECT_NEAR(w[0] + w[1] + w[2] + w[3], predicted.weight, tolerance) << "h " << h;
+  EXPECT_NEAR((w[0] + w[1]) - (w[2] + w[3]), predicted.front_minus_rear, tolerance) << "h " << h;
+  EXPECT_NEAR((w[1] + w[2]) - (w[0] + w[3]), predicted.left_minus_right, tolerance) << "h " << h;
+  EXPECT_NEAR((w[1] + w[3]) - (w[0] + w[2]), predicted.cross, tolerance) << "h " << h;
+}
+
+TEST(Validation, Gen4StaticLoadsFollowTheMassesAndTheSupports) {
+  ExpectGen4LoadsFollowTheSupports(RunNamed("gen4_loads"), Parameters().stepsize);
+}
+
+// The tyre is a physical spring-damper, so the loads do not depend on the
+// step size: within 0.5 % on every wheel between 0.5, 1 and 2 ms. What
+// does move, the legs' per-step joint rows (globalERP / globalCFM), the
+// spring model above predicts at each step: the cross weight 2 k_v delta
+// is 205.7, 202.7 and 196.9 N, a quarter of that on each wheel (0.4 %
+// between 0.5 and 2 ms on wheel 1). The tyre given per step instead (ERP
+// 1/36, CFM 1/3600, the same spring at 1 ms only) moved wheel 1 by 8.6 %.
+TEST(Validation, Gen4StaticLoadsAgreeAcrossStepSizes) {
+  const Experiment* experiment = FindExperiment("gen4_loads");
+  ASSERT_NE(experiment, nullptr);
+  double lowest[4], highest[4];
+  std::fill(std::begin(lowest), std::end(lowest), 1e9);
+  std::fill(std::begin(highest), std::end(highest), -1e9);
+  const double steps[] = {0.0005, 0.001, 0.002};
+  std::vector<ExperimentResult> runs;
+  for (const double h : steps) {
+    Context context = Quick();
+    context.params.stepsize = h;
+    runs.push_back(RunExperiment(*experiment, context));
+    ASSERT_EQ(runs.back().error, "") << "h " << h;
+    for (int k = 0; k < 4; ++k) {
+      const double load = runs.back().Measured("Wheel" + std::to_string(k + 1) + " load");
+      lowest[k] = std::min(lowest[k], load);
+      highest[k] = std::max(highest[k], load);
+    }
+  }
+  for (int k = 0; k < 4; ++k)
+    EXPECT_LE(highest[k] / lowest[k] - 1.0, 0.005) << "Wheel" << k + 1 << ": " << lowest[k]
+                                                   << " to " << highest[k] << " N";
+  for (size_t i = 0; i < runs.size(); ++i) ExpectGen4LoadsFollowTheSupports(runs[i], steps[i]);
 }
 
 TEST(Validation, RollingSphereComesToRest) {

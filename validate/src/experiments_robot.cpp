@@ -15,8 +15,13 @@ namespace {
 
 std::string Num(double v) { return FormatNumber(v); }
 
-// SPEC 8: the real robot's static wheel loads [N], wheels 1..4.
+// SPEC 8: the real robot's static wheel loads [N], wheels 1..4: the means
+// of its four test runs (SPEC 8's notes), which gen4 is calibrated on.
 constexpr double kRealWheelLoads[4] = {579.15, 774.90, 669.12, 676.03};
+// The cross weight (W2 + W4) - (W1 + W3) of each of the four runs [N]
+// (issue 13; SPEC 8 gives only the means): what varies between runs of
+// the same robot, held at slightly different leg lengths each time.
+constexpr double kRunCrossWeights[4] = {237.0, 219.0, 182.0, 172.0};
 
 }  // namespace
 
@@ -35,11 +40,29 @@ ExperimentResult Gen4StaticLoads(const Context& context) {
   });
   result.sim_seconds = run.time();
   double load[4];
-  for (int k = 0; k < 4; ++k) {
-    load[k] = sum[k] / samples;
-    result.checks.push_back(Relative("Wheel" + std::to_string(k + 1) + " load", load[k],
-                                     kRealWheelLoads[k], 0.02, "N"));
-  }
+  for (int k = 0; k < 4; ++k) load[k] = sum[k] / samples;
+  auto pair = [](const double* w, int a, int b) { return w[a] + w[b]; };
+  const double cross = pair(load, 1, 3) - pair(load, 0, 2);
+  const double real_cross = pair(kRealWheelLoads, 1, 3) - pair(kRealWheelLoads, 0, 2);
+
+  // Tolerance from the run-to-run spread. The runs differ in their cross
+  // weight (sample standard deviation s over 4 runs); a change of the cross
+  // weight by D moves each wheel by D / 4. The mean of 4 runs is known to
+  // s / sqrt(4): per wheel s / 8, on the cross weight s / 2.
+  const double run_mean = Mean({std::begin(kRunCrossWeights), std::end(kRunCrossWeights)});
+  double squares = 0.0;
+  for (double c : kRunCrossWeights) squares += (c - run_mean) * (c - run_mean);
+  const double run_sd = std::sqrt(squares / 3.0);
+  const double wheel_tolerance = run_sd / 8.0, cross_tolerance = run_sd / 2.0;
+  double widest = 0.0;  // the largest departure of one run from the runs' mean
+  for (double c : kRunCrossWeights) widest = std::max(widest, std::abs(c - run_mean));
+  for (int k = 0; k < 4; ++k)
+    result.checks.push_back(Absolute("Wheel" + std::to_string(k + 1) +
+                                         " load vs the 4 runs' mean (calibrated on it)",
+                                     load[k], kRealWheelLoads[k], wheel_tolerance, "N"));
+  result.checks.push_back(Absolute("cross weight (W2 + W4) - (W1 + W3) vs the 4 runs' mean",
+                                   cross, real_cross, cross_tolerance, "N"));
+
   Plot bars;
   bars.file = "gen4_loads.png";
   bars.title = "gen4 static wheel loads: simulated vs the real robot";
@@ -49,8 +72,11 @@ ExperimentResult Gen4StaticLoads(const Context& context) {
   bars.y_from_zero = true;
   // SPEC 8: what the original simulator got.
   constexpr double kOriginal[4] = {595.6, 785.1, 670.2, 702.7};
-  Series simulated{"simulated", {}, {}, "boxes"}, real{"real robot (SPEC 8)", {}, {}, "boxes"};
+  Series simulated{"simulated", {}, {}, "boxes"}, real{"real robot, mean of 4 runs", {}, {}, "boxes"};
   Series original{"original simulator", {}, {}, "boxes"};
+  // Each run's loads as far as the data tells them: the mean's loads with
+  // that run's cross weight (each wheel moved by a quarter of the change).
+  Series runs{"real robot, each run (its cross weight)", {}, {}, "points"};
   for (int k = 0; k < 4; ++k) {
     simulated.x.push_back(k - 0.26);
     simulated.y.push_back(load[k]);
@@ -58,30 +84,39 @@ ExperimentResult Gen4StaticLoads(const Context& context) {
     real.y.push_back(kRealWheelLoads[k]);
     original.x.push_back(k + 0.26);
     original.y.push_back(kOriginal[k]);
+    const double sign = (k == 1 || k == 3) ? 1.0 : -1.0;
+    for (double c : kRunCrossWeights) {
+      runs.x.push_back(k);
+      runs.y.push_back(kRealWheelLoads[k] + sign * (c - real_cross) / 4.0);
+    }
   }
-  bars.series = {simulated, real, original};
+  bars.series = {simulated, real, original, runs};
   const double total = load[0] + load[1] + load[2] + load[3];
   const double real_total = kRealWheelLoads[0] + kRealWheelLoads[1] + kRealWheelLoads[2] +
                             kRealWheelLoads[3];
-  auto pair = [](const double* w, int a, int b) { return w[a] + w[b]; };
-  const double real_cross = pair(kRealWheelLoads, 1, 3) - pair(kRealWheelLoads, 0, 2);
-  const double cross = pair(load, 1, 3) - pair(load, 0, 2);
   auto row = [&](const char* what, double simulated, double real) {
     return std::string("| ") + what + " | " + FormatFixed(simulated, 1) + " | " +
            FormatFixed(real, 1) + " | " + FormatFixed((simulated / real - 1.0) * 100.0, 2) +
            " |\n";
   };
+  std::string run_rows;
+  for (int i = 0; i < 4; ++i)
+    run_rows += "| run " + std::to_string(i + 1) + " | " + FormatFixed(kRunCrossWeights[i], 0) +
+                " | " + FormatFixed(cross - kRunCrossWeights[i], 1) + " | " +
+                FormatFixed((cross - kRunCrossWeights[i]) / run_sd, 2) + " |\n";
   // The supports as the model file sets them (workpartner_gen4.xml writes
-  // out the arithmetic): the contact of tyre against ground as the sim makes
-  // it, k_p = ERP / (h CFM) per contact point, two points per wheel on flat
-  // ground; and how much longer legs 2 and 4 are than legs 1 and 3 (their
-  // wheels sit lower).
+  // out the arithmetic): the tyre's stiffness of the whole contact, the one
+  // the sim turns into ERP/CFM for the step (ResolveSurface), and how much
+  // longer legs 2 and 4 are than legs 1 and 3 (their wheels sit lower).
   const model::Body& tyre_body = *run.sim().flat().bodies[static_cast<size_t>(wheel[0])].source;
   const model::World& world = run.sim().world();
   const sim::SurfaceProperties contact = sim::CombineSurfaces(
       sim::ResolveSurface(world.FindMaterial(tyre_body.material), run.sim().params()),
       sim::ResolveSurface(world.FindMaterial(world.plane_material), run.sim().params()));
-  const double tyre_k = 2.0 * contact.soft_erp / (run.dt() * contact.soft_cfm);  // per wheel [N/m]
+  if (!contact.HasStiffness())
+    throw Error("gen4_flat.xml: the tyre against the ground has no physical stiffness "
+                "(workpartner_gen4.xml's gen4Tyre should give <stiffness>)");
+  const double tyre_k = contact.stiffness;  // per wheel [N/m]
   double wheel_y[4];
   for (int k = 0; k < 4; ++k)
     wheel_y[k] = run.sim().flat().bodies[static_cast<size_t>(wheel[k])].pose.translation().y();
@@ -91,38 +126,70 @@ ExperimentResult Gen4StaticLoads(const Context& context) {
       tyre_only_cross > 0.0 ? FormatFixed((1.0 - cross / tyre_only_cross) * 100.0, 1) : "n/a";
   result.notes =
       "gen4 (`gen4_flat.xml`, 275.15 kg) stands on flat ground; the wheel loads are the "
-      "vertical contact forces on Wheel1..4 averaged over 0.5 s after 1.5 s of settling.\n\n"
-      "| sum [N] | simulated | real robot | difference [%] |\n|---|---|---|---|\n" +
+      "vertical contact forces on Wheel1..4 averaged over 0.5 s after 1.5 s of settling, at "
+      "step " + Num(run.dt()) + " s.\n\n"
+      "**Calibration, not validation.** The real robot's loads (SPEC 8) are the means of four "
+      "test runs; gen4 is calibrated on them: four model values were chosen so that its four "
+      "loads come out as these means, each from a cause the thesis names, and "
+      "`workpartner_gen4.xml` lists every one with its reason (total mass from the loads' sum; "
+      "the torso offset 5 cm to the left and the power pack in the rear half as the thesis "
+      "describes them; the ballast Weight's place for the remaining mass distribution; legs 2 "
+      "and 4 0.5235 mm longer for the cross weight). Agreement with the means is therefore by "
+      "construction; what this experiment checks is that the sim keeps the calibration (at "
+      "every step size: `tests/validate` runs it at 0.5, 1 and 2 ms and holds the loads within "
+      "0.5 %), within what the data can tell. The validation on data not used here is the "
+      "test track's wheel-force events (`test_track`).\n\n"
+      "| sum [N] | simulated | real robot (mean) | difference [%] |\n|---|---|---|---|\n" +
       row("all wheels", total, real_total) +
       row("front (1 + 2)", pair(load, 0, 1), pair(kRealWheelLoads, 0, 1)) +
       row("left (2 + 3)", pair(load, 1, 2), pair(kRealWheelLoads, 1, 2)) +
       row("diagonal 1 + 3", pair(load, 0, 2), pair(kRealWheelLoads, 0, 2)) +
       row("diagonal 2 + 4", pair(load, 1, 3), pair(kRealWheelLoads, 1, 3)) +
-      "\n**How the model makes these loads.** Four wheel loads have four degrees of freedom. "
+      "\n**Against each real run.** The runs differ in their cross weight "
+      "(W2 + W4) - (W1 + W3) (issue 13; SPEC 8 gives only the means). Simulated: " +
+      FormatFixed(cross, 1) + " N.\n\n"
+      "| run | cross weight [N] | simulated - run [N] | in run-to-run SDs |\n|---|---|---|---|\n" +
+      run_rows +
+      "\nRun-to-run: mean " + FormatFixed(run_mean, 1) + " N (the SPEC's means give " +
+      FormatFixed(real_cross, 1) + " N), sample standard deviation s = " + FormatFixed(run_sd, 1) +
+      " N, range " + FormatFixed(kRunCrossWeights[0] - kRunCrossWeights[3], 0) +
+      " N. The tolerances follow from it: the mean of four runs is known to s / 2 = " +
+      FormatFixed(cross_tolerance, 1) + " N on the cross weight, and since a change D of the "
+      "cross weight moves each wheel by D / 4, to s / 8 = " + FormatFixed(wheel_tolerance, 2) +
+      " N on a wheel. A single run's wheel loads differ from the mean by up to " +
+      FormatFixed(widest / 4.0, 1) + " N (the plot's points: the mean's loads with each run's "
+      "cross weight), 1.5 % of a wheel: agreement finer than that says nothing about the "
+      "model's physics.\n\n"
+      "**How the model makes these loads.** Four wheel loads have four degrees of freedom. "
       "The masses fix three of them: the total and, through the centre of mass, the "
-      "front/rear and left/right splits. The fourth, the cross weight (W2 + W4) - (W1 + W3) "
-      "(real robot " + FormatFixed(real_cross, 1) + " N, " +
-      FormatFixed(real_cross / real_total * 100.0, 1) + " % of its weight; simulated " +
-      FormatFixed(cross, 1) + " N), only the supports can make: a rigid chassis on four "
+      "front/rear and left/right splits. The fourth, the cross weight (real robot " +
+      FormatFixed(real_cross, 1) + " N, " + FormatFixed(real_cross / real_total * 100.0, 1) +
+      " % of its weight), only the supports can make: a rigid chassis on four "
       "equally stiff supports of equal length on flat ground has equal diagonals. gen4 "
-      "stands on compliant tyres, " + FormatNumber(tyre_k) + " N/m per wheel (the contact "
-      "softness of its tyre material, two contact points per wheel), and legs 2 and 4 are " +
+      "stands on compliant tyres, " + FormatNumber(tyre_k) + " N/m per wheel (the tyre "
+      "material's physical stiffness, shared by the two contact points of a wheel; the same "
+      "spring at any step size), and legs 2 and 4 are " +
       FormatFixed(leg_offset * 1000.0, 4) + " mm longer than legs 1 and 3, standing in for "
       "the real robot's actively held legs. On flat ground the chassis settles halfway, so "
       "wheels 2 and 4 each carry k delta / 2 more and wheels 1 and 3 as much less: a cross "
       "weight of 2 k delta, " + FormatFixed(tyre_only_cross, 1) + " N if the tyres "
-      "were the only compliance; the simulated cross weight is " + shortfall + " % less because ODE's joints in each leg yield a little in series with the tyre (the "
-      "model file's arithmetic: 3.2 %).\n\n"
+      "were the only compliance; the simulated cross weight is " + shortfall + " % less "
+      "because ODE's joints in each leg yield a little in series with the tyre (the model "
+      "file's arithmetic: 3.2 % at 1 ms). That joint compliance is still per step "
+      "(globalERP / globalCFM: each position row a spring of ERP / (h CFM), 4e7, 2e7, 1e7 N/m "
+      "at 0.5, 1, 2 ms), so the cross weight moves with the step: 2 k_v delta = 205.7, 202.7, "
+      "196.9 N, each wheel by a quarter of that (+0.8, 0, -1.4 N): the 0.4 % by which the "
+      "loads at 0.5 and 2 ms differ, which the step-size test predicts and allows.\n\n"
       "The left/right split is not the point-support value W z / t either: a cylinder wheel "
       "touches the ground along a line, so ODE makes two contact points 0.14 m apart per "
       "wheel and each wheel carries part of the roll moment itself, and the robot leans on "
       "its tyres, which moves its centre of mass over by its height times the roll angle. "
       "Together that makes left - right = 3.244 W z instead of W z / 0.3 = 3.333 W z, so the "
       "centre of mass sits 0.0216 m left of the middle instead of the point supports' "
-      "0.0210 m (the ballast Weight's z is solved for it). `workpartner_gen4.xml` writes out "
-      "the arithmetic; `tests/models` checks the file's numbers against the real loads and "
-      "`tests/validate` these simulated loads against the file's numbers. The original came "
-      "within 4 % (cross weight 222 N); how it got its cross weight the SPEC does not say.";
+      "0.0210 m (the ballast Weight's z is solved for it). `tests/models` checks the file's "
+      "numbers against the real loads and `tests/validate` these simulated loads against the "
+      "file's numbers. The original came within 4 % (cross weight 222 N); how it got its "
+      "cross weight the SPEC does not say.";
   result.plots.push_back(bars);
   return result;
 }
