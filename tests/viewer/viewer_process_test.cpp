@@ -560,5 +560,52 @@ TEST_F(ViewerProcessTest, KeysPauseStepResetAndResumeTheSim) {
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
 }
 
+// The stock LCM tools (issue 14): lcm-logger records 3 s of a real sim;
+// after the sim is gone, lcm-logplayer replays the recording into a fresh
+// viewer, which learns the model from it and draws the replayed states
+// where they say.
+TEST_F(ViewerProcessTest, LcmLogplayerReplayIsDrawnLikeTheLiveRun) {
+  const std::string url = UniqueUrl(7);
+  const std::string recording = (dir_ / "run.lcmlog").string();
+  int64_t recorded_id = 0;
+  {
+    auto recorder = std::make_unique<ChildProcess>(
+        std::vector<std::string>{"/usr/bin/lcm-logger", "--quiet", "--force", "--lcm-url=" + url,
+                                 recording},
+        (dir_ / "lcm-logger.log").string());
+    Listener live(url);
+    auto sim = StartSim("shapes.xml", url, "sim.log", {"--duration=3"});
+    ASSERT_TRUE(live.Until([&] { return live.has_model; }, 15)) << Read("sim.log");
+    recorded_id = live.model.simulation_id;
+    ASSERT_EQ(sim->Wait(std::chrono::seconds(30)).value_or(-1), 0) << Read("sim.log");
+    live.Pump(0.5);  // lcm-logger flushes every 100 ms
+    recorder->Signal(SIGINT);
+    ASSERT_EQ(recorder->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("lcm-logger.log");
+  }
+  ASSERT_GT(std::filesystem::file_size(recording), 100000u);
+
+  Listener bus(url);
+  const std::string shot = (dir_ / "replay.png").string();
+  auto viewer = StartViewer(url, "viewer.log", {"--hide", "hud,grid", "--screenshot", shot,
+                                                "--after", "2"});
+  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer:", 30, &bus)) << Read("viewer.log");
+  auto player = std::make_unique<ChildProcess>(
+      std::vector<std::string>{"/usr/bin/lcm-logplayer", "--lcm-url=" + url, recording},
+      (dir_ / "lcm-logplayer.log").string());
+  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << Read("viewer.log");
+  bus.Pump(0.3);
+  ASSERT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
+  ASSERT_EQ(player->Wait(std::chrono::seconds(30)).value_or(-1), 0) << Read("lcm-logplayer.log");
+  const std::string log = Read("viewer.log");
+  EXPECT_NE(log.find("model of simulation " + std::to_string(recorded_id) +
+                     ": world 'ViewerShapes', 4 bodies"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("4 bodies drawn"), std::string::npos) << log;
+  const int64_t step = ScreenshotStep("viewer.log");
+  ASSERT_GT(step, 0) << log;
+  ExpectBodiesWhereTheStateSays(ReadPng(shot), bus, step, {"Crate", "Drum", "Pill", "Bob"});
+}
+
 }  // namespace
 }  // namespace simpartner::viewer
