@@ -1,0 +1,231 @@
+// States lost and one-way latency of SIM_STATE-sized messages at 1 kHz,
+// host to host (two network namespaces joined by a bridge, LCM ttl=1,
+// tests/support/netns.h) and on one host (sender and receiver in the same
+// namespace). The receiver listens as simpartner-logger does:
+// recv_buf_size=4194304 and a 100000-message subscription queue. Sender and
+// receiver are threads of this process, so their utime stamps come from the
+// same clock and compare directly. Needs root (ip netns); every namespace
+// it makes is removed at the end. Prints figures; README, "Several machines".
+#include <lcm/lcm-cpp.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "../tests/support/netns.h"
+#include "simpartner/channels.h"
+#include "simpartner/edit_distance.h"
+#include "simpartner/model/loader.h"
+#include "simpartner/sim/simulation.h"
+#include "simpartner/state_t.hpp"
+
+namespace simpartner {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int64_t NowMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+struct Options {
+  double seconds = 60;
+  double rate = 1000;
+  int port = 7667;
+  std::string world = std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml";
+};
+
+struct Figures {
+  int64_t sent = 0;
+  int64_t failed_sends = 0;
+  int64_t received = 0;  // distinct steps
+  int64_t duplicates = 0;
+  double send_seconds = 0;
+  std::vector<int64_t> latencies_us;
+};
+
+// A real state of the world's robot after a few steps (gen3 by default):
+// the size and content the sim publishes on SIM_STATE.
+state_t RealState(const std::string& world_file) {
+  model::WorldLoadResult loaded = model::LoadWorldFile(world_file);
+  if (!loaded.world) {
+    std::fprintf(stderr, "multi_host_bench: %s\n", loaded.diagnostics.Format().c_str());
+    std::exit(1);
+  }
+  sim::Simulation sim(*loaded.world, Parameters(), 1);
+  for (int i = 0; i < 10; ++i) sim.Step();
+  state_t state;
+  sim.FillState(&state);
+  return state;
+}
+
+class Receiver {
+ public:
+  explicit Receiver(int64_t expected) : seen_(static_cast<size_t>(expected) + 1, false) {}
+  void OnState(const lcm::ReceiveBuffer* buffer, const std::string&) {
+    const int64_t now = NowMicros();
+    state_t s;
+    if (s.decode(buffer->data, 0, static_cast<int>(buffer->data_size)) < 0) return;
+    if (s.step < 1 || s.step >= static_cast<int64_t>(seen_.size())) return;
+    if (seen_[static_cast<size_t>(s.step)]) {
+      ++figures.duplicates;
+      return;
+    }
+    seen_[static_cast<size_t>(s.step)] = true;
+    ++figures.received;
+    figures.latencies_us.push_back(now - s.utime);
+  }
+  Figures figures;
+
+ private:
+  std::vector<bool> seen_;
+};
+
+Figures Measure(const testing::NamespaceLan& lan, const std::string& from, const std::string& to,
+                const state_t& model_state, const Options& options) {
+  const std::string url = "udpm://239.255.76.67:" + std::to_string(options.port) + "?ttl=1";
+  const int64_t count = static_cast<int64_t>(options.seconds * options.rate);
+  Receiver receiver(count);
+  std::atomic<bool> ready{false};
+  std::atomic<bool> done_sending{false};
+  std::thread listen([&] {
+    testing::ScopedNetns inside(lan.Namespace(to));
+    lcm::LCM lcm(url + "&recv_buf_size=4194304");
+    lcm.subscribe(channels::kState, &Receiver::OnState, &receiver)->setQueueCapacity(100000);
+    lcm.getFileno();  // the receiving socket is made now, inside `to`
+    ready = true;
+    while (!done_sending) lcm.handleTimeout(50);
+    // What is still in the socket's buffer and on the way.
+    const auto end = Clock::now() + std::chrono::milliseconds(500);
+    while (Clock::now() < end) lcm.handleTimeout(50);
+  });
+  while (!ready) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  Figures sent;
+  std::thread send([&] {
+    testing::ScopedNetns inside(lan.Namespace(from));
+    lcm::LCM lcm(url);
+    state_t state = model_state;
+    const auto period = std::chrono::duration<double>(1.0 / options.rate);
+    const auto start = Clock::now();
+    for (int64_t i = 1; i <= count; ++i) {
+      std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(period * (i - 1)));
+      state.step = i;
+      state.utime = NowMicros();
+      if (lcm.publish(channels::kState, &state) != 0) ++sent.failed_sends;
+      ++sent.sent;
+    }
+    sent.send_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  });
+  send.join();
+  done_sending = true;
+  listen.join();
+  Figures out = receiver.figures;
+  out.sent = sent.sent;
+  out.failed_sends = sent.failed_sends;
+  out.send_seconds = sent.send_seconds;
+  return out;
+}
+
+double Percentile(std::vector<int64_t> values, double p) {
+  if (values.empty()) return -1;
+  std::sort(values.begin(), values.end());
+  const size_t at = std::min(values.size() - 1, static_cast<size_t>(p * static_cast<double>(values.size())));
+  return static_cast<double>(values[at]);
+}
+
+void Print(const char* what, const Figures& f) {
+  const int64_t lost = f.sent - f.received;
+  std::printf(
+      "%-34s sent %lld in %.2f s (%.0f/s, %lld sends failed), received %lld, lost %lld (%.4f %%), "
+      "duplicates %lld; one-way latency p50 %.0f us, p99 %.0f us, max %.0f us\n",
+      what, static_cast<long long>(f.sent), f.send_seconds, static_cast<double>(f.sent) / f.send_seconds,
+      static_cast<long long>(f.failed_sends), static_cast<long long>(f.received),
+      static_cast<long long>(lost), 100.0 * static_cast<double>(lost) / static_cast<double>(std::max<int64_t>(1, f.sent)),
+      static_cast<long long>(f.duplicates), Percentile(f.latencies_us, 0.5), Percentile(f.latencies_us, 0.99),
+      Percentile(f.latencies_us, 1.0));
+  std::fflush(stdout);
+}
+
+const char* const kUsage =
+    "bench/multi_host_bench [--seconds S] [--rate HZ] [--port N] [--world WORLD.xml]\n"
+    "Publishes SIM_STATE messages of the world's robot (default gen3, models/worlds/flat_ground.xml)\n"
+    "at HZ (default 1000) for S seconds (default 60) from one network namespace to another over a\n"
+    "bridge (LCM udpm ttl=1, port N, default 7667, inside the namespaces only), then within one\n"
+    "namespace, and prints the states lost and the one-way latency p50/p99. The receiver uses\n"
+    "recv_buf_size=4194304 and a 100000-message queue, as simpartner-logger does. Needs root.\n";
+
+int Run(int argc, char** argv) {
+  Options options;
+  const std::vector<std::string> known = {"--seconds", "--rate", "--port", "--world", "--help"};
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "multi_host_bench: %s needs a value\n%s", a.c_str(), kUsage);
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    auto number = [&](const std::string& text) {
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !(v > 0)) {
+        std::fprintf(stderr, "multi_host_bench: %s: '%s' is not a positive number\n", a.c_str(), text.c_str());
+        std::exit(2);
+      }
+      return v;
+    };
+    if (a == "--help" || a == "-h") {
+      std::printf("%s", kUsage);
+      return 0;
+    } else if (a == "--seconds") {
+      options.seconds = number(value());
+    } else if (a == "--rate") {
+      options.rate = number(value());
+    } else if (a == "--port") {
+      options.port = static_cast<int>(number(value()));
+    } else if (a == "--world") {
+      options.world = value();
+    } else {
+      std::string hint;
+      size_t best = 4;  // at most 3 edits away
+      for (const std::string& k : known) {
+        const size_t d = EditDistance(a, k);
+        if (d < best) best = d, hint = k;
+      }
+      std::fprintf(stderr, "multi_host_bench: unknown option '%s'%s\n%s", a.c_str(),
+                   hint.empty() ? "" : (" (did you mean '" + hint + "'?)").c_str(), kUsage);
+      return 2;
+    }
+  }
+  const state_t state = RealState(options.world);
+  std::printf("multi_host_bench: SIM_STATE of %s: %d bytes (%d bodies, %d joints), %.0f Hz for %.0f s\n",
+              options.world.c_str(), state.getEncodedSize(), state.num_bodies, state.num_joints,
+              options.rate, options.seconds);
+  try {
+    testing::NamespaceLan lan("sp_mhb", {"a", "b"});
+    std::printf("namespaces %s (%s) and %s (%s), bridge in %s_sw\n", lan.Namespace("a").c_str(),
+                lan.Address("a").c_str(), lan.Namespace("b").c_str(), lan.Address("b").c_str(),
+                ("sp_mhb_" + std::to_string(::getpid())).c_str());
+    std::fflush(stdout);
+    Print("host to host (a -> b, bridge):", Measure(lan, "a", "b", state, options));
+    Print("one host (a -> a):", Measure(lan, "a", "a", state, options));
+  } catch (const testing::NetnsError& e) {
+    std::fprintf(stderr, "multi_host_bench: cannot build the namespaces (root needed): %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace simpartner
+
+int main(int argc, char** argv) { return simpartner::Run(argc, argv); }
