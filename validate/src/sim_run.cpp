@@ -24,10 +24,20 @@ SimRun::SimRun(const Context& context, const std::string& world)
     : SimRun(context, world, context.params) {}
 
 SimRun::SimRun(const Context& context, const std::string& world, Parameters params)
+    : SimRun(context, world, std::move(params), Eigen::Vector3d::Zero()) {}
+
+SimRun::SimRun(const Context& context, const std::string& world,
+               const Eigen::Vector3d& move_robots)
+    : SimRun(context, world, context.params, move_robots) {}
+
+SimRun::SimRun(const Context& context, const std::string& world, Parameters params,
+               const Eigen::Vector3d& move_robots)
     : context_(context), world_name_(world) {
   const std::string path = (fs::path(context.models_dir) / "worlds" / world).string();
   params.environment = path;
-  sim_ = std::make_unique<sim::Simulation>(model::LoadWorldOrThrow(path), std::move(params), 1);
+  model::World loaded = model::LoadWorldOrThrow(path);
+  for (model::RobotInstance& robot : loaded.robots) robot.placement.pretranslate(move_robots);
+  sim_ = std::make_unique<sim::Simulation>(std::move(loaded), std::move(params), 1);
   for (const sim::FlatBody& b : sim_->flat().bodies) com_offsets_.push_back(b.source->com);
 }
 

@@ -22,6 +22,9 @@ class SimRun {
   // world: file name under models_dir/worlds (e.g. "gen1_flat.xml").
   SimRun(const Context& context, const std::string& world, Parameters params);
   SimRun(const Context& context, const std::string& world);
+  // The same world with every robot moved by `move_robots` from where the
+  // file places it (a run that starts partway along a track).
+  SimRun(const Context& context, const std::string& world, const Eigen::Vector3d& move_robots);
 
   sim::Simulation& sim() { return *sim_; }
   double time() const { return sim_->time(); }
@@ -69,6 +72,8 @@ class SimRun {
   Eigen::Vector3d CentreOfMass(int robot) const;
 
  private:
+  SimRun(const Context& context, const std::string& world, Parameters params,
+         const Eigen::Vector3d& move_robots);
   const Context& context_;
   std::string world_name_;
   std::unique_ptr<sim::Simulation> sim_;
