@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 
+#include "simpartner/data_paths.h"
 #include "simpartner/edit_distance.h"
 
 namespace simpartner {
@@ -351,8 +352,17 @@ void ParseParametersText(const std::string& text, const std::string& file_name,
 Parameters LoadParameters(const CommandLine& command_line) {
   Parameters params;
   DiagnosticList diagnostics;
-  const std::string& file = command_line.params_file;
-  std::ifstream in(file, std::ios::binary);
+  std::string file = command_line.params_file;
+  if (!command_line.params_file_given) {
+    // The default file: ./parameters.txt, else the shipped one; none is fine.
+    try {
+      file = FindDataFile(kDefaultParametersFile, "parameters");
+    } catch (const DataFileNotFound&) {
+      file.clear();
+    }
+  }
+  std::ifstream in;
+  if (!file.empty()) in.open(file, std::ios::binary);
   if (in) {
     std::ostringstream text;
     text << in.rdbuf();
@@ -414,7 +424,8 @@ std::string FormatUsage(const std::string& program, const std::string& summary,
     else padded += "  ";
     out += padded + help + "\n";
   };
-  line("--params FILE", "parameters file (default ./parameters.txt if it exists)");
+  line("--params FILE", "parameters file (default: ./parameters.txt, else the shipped one, "
+                        "found like any data file; see SIMPARTNER_DATA in the README)");
   line("--lcm-url URL", std::string("LCM URL (default ") + kDefaultLcmUrl + ")");
   for (const FlagSpec& f : process_flags)
     line("--" + f.name + (f.takes_value ? " VALUE" : ""), f.help);

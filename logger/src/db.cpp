@@ -7,6 +7,7 @@
 #include <cppconn/statement.h>
 #include <sys/stat.h>
 
+#include "simpartner/data_paths.h"
 #include "simpartner/logger/sql_text.h"
 
 #include <cctype>
@@ -109,13 +110,19 @@ DbTarget ResolveDbTarget(const Parameters& params, const std::string& option_fil
                           "with [client] user= and password= (mode 0600)");
       throw ConfigError(diagnostics);
     }
-    target.option_file = default_option_file;
-    struct stat st {};
-    if (::stat(target.option_file.c_str(), &st) != 0) {
-      diagnostics.Add(target.option_file, 0, "dbserver",
+    // Relative to the working directory, else (a build's programs) to the
+    // source tree where scripts/run keeps state/: found as data, so a
+    // program run from elsewhere says where it looked.
+    try {
+      target.option_file = FindDataFile(default_option_file, "MariaDB option");
+    } catch (const DataFileNotFound& e) {
+      diagnostics.Add(default_option_file, 0, "dbserver",
                       "dbserver is empty, so the private server's option file is used, but it "
-                      "does not exist: start the server with scripts/mariadb start, or set "
-                      "dbserver and --db-options");
+                      "is in none of these places:\n" +
+                          FormatCandidates(e.tried()) +
+                          "start the server with scripts/mariadb start (scripts/run starts it in "
+                          "the repository's state/), run from the directory holding its state/, "
+                          "or set dbserver and --db-options");
       throw ConfigError(diagnostics);
     }
   }

@@ -22,6 +22,7 @@
 #include <set>
 #include <sstream>
 
+#include "simpartner/data_paths.h"
 #include "dtd_texts.h"  // generated: kWorldDtdText, kRobotDtdText
 
 namespace simpartner::model {
@@ -1176,6 +1177,12 @@ void CheckPlacement(Reader& reader, const xmlNode* robot_node, const RobotInstan
   }
 }
 
+// Whether loading failed only because the file could not be opened.
+bool CannotOpen(const DiagnosticList& diagnostics) {
+  return diagnostics.size() == 1 && diagnostics.items()[0].line == 0 &&
+         diagnostics.items()[0].message.rfind("cannot read robot file", 0) == 0;
+}
+
 }  // namespace
 
 WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
@@ -1365,10 +1372,33 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
         instance.placement = *placement;
     }
     RobotLoadResult loaded = LoadRobotFile(instance.resolved_file, read);
+    // A world copied away from models/worlds still finds the shipped
+    // robots: a relative robot path's file name is tried in each data
+    // root's models/robots/ too.
+    std::vector<std::string> also_tried;
+    if (!loaded.robot && path.is_relative() && CannotOpen(loaded.diagnostics)) {
+      for (const DataRoot& root : DataRoots()) {
+        const std::string candidate =
+            (std::filesystem::path(root.directory) / "models/robots" / path.filename())
+                .lexically_normal()
+                .string();
+        if (candidate == instance.resolved_file) continue;
+        RobotLoadResult other = LoadRobotFile(candidate, read);
+        if (!CannotOpen(other.diagnostics)) {
+          instance.resolved_file = candidate;
+          loaded = std::move(other);
+          break;
+        }
+        also_tried.push_back(candidate + " (" + root.source + ")");
+      }
+    }
     if (!loaded.robot) {
+      std::string tried;
+      for (const std::string& t : also_tried) tried += (tried.empty() ? "" : ", ") + t;
+      if (!tried.empty()) tried = "; also looked for it at " + tried;
       reader.Error(n, "robot '" + instance.name + "': cannot load '" + instance.file + "' (" +
                           std::to_string(loaded.diagnostics.size()) + " problem" +
-                          (loaded.diagnostics.size() == 1 ? "" : "s") + ")");
+                          (loaded.diagnostics.size() == 1 ? "" : "s") + ")" + tried);
       result.diagnostics.Append(loaded.diagnostics);
       continue;
     }
@@ -1422,14 +1452,22 @@ WorldLoadResult LoadWorldFile(const std::string& path, const FileReader& read) {
   return ParseWorld(xml, path, read);
 }
 
+std::string FindWorldFile(const std::string& name) {
+  return FindDataFile(name, "world", {"models/worlds"});
+}
+
+std::string FindRobotFile(const std::string& name) {
+  return FindDataFile(name, "robot", {"models/robots"});
+}
+
 World LoadWorldOrThrow(const std::string& path) {
-  WorldLoadResult result = LoadWorldFile(path);
+  WorldLoadResult result = LoadWorldFile(FindWorldFile(path));
   if (!result.world) throw ModelError(result.diagnostics);
   return std::move(*result.world);
 }
 
 Robot LoadRobotOrThrow(const std::string& path) {
-  RobotLoadResult result = LoadRobotFile(path);
+  RobotLoadResult result = LoadRobotFile(FindRobotFile(path));
   if (!result.robot) throw ModelError(result.diagnostics);
   return std::move(*result.robot);
 }

@@ -5,6 +5,7 @@
 #include <ostream>
 #include <string>
 
+#include "simpartner/data_paths.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/sequencer/check.h"
 #include "simpartner/sequencer/player.h"
@@ -37,6 +38,9 @@ Times follow the sim's clock (SIM_STATE), never the wall clock; every
 command carries the step it applies in, so a timed sequence gives the same
 run at any speed. Before anything is sent the file is validated against its
 DTD (version 1 or 2, built in) and against the model the sim announces.
+A FILE or WORLD that is not found as given is looked for among the shipped
+sequences/ and models/worlds/ ($SIMPARTNER_DATA, the source tree of a build,
+the install's share/simpartner), e.g. simpartner-sequencer gen3_pole_task.xml.
 
 Options:
   --lcm-url URL           the bus (default udpm://239.255.76.67:7667?ttl=0)
@@ -134,8 +138,21 @@ int RunSequencer(const std::vector<std::string>& args, std::ostream& out, std::o
       return usage_error("one sequence file at a time ('" + file + "' and '" + arg + "')");
     }
   }
+  // Sequence and world names are found like every data file (data_paths.h):
+  // as given, else among the shipped sequences/ and models/worlds/.
+  auto find = [&](std::string* name, bool world) {
+    try {
+      *name = world ? model::FindWorldFile(*name) : FindDataFile(*name, "sequence", {"sequences"});
+      return true;
+    } catch (const DataFileNotFound& e) {
+      err << e.diagnostics().Format() << "\n";
+      return false;
+    }
+  };
   if (!check_file.empty()) {
     if (!file.empty()) return usage_error("give the file to --check only");
+    if (!find(&check_file, false) || (!environment.empty() && !find(&environment, true)))
+      return kInvalid;
     const SequenceParseResult parsed = LoadSequenceFile(check_file);
     PrintNotes(parsed, err);
     if (!parsed.sequence) {
@@ -166,6 +183,10 @@ int RunSequencer(const std::vector<std::string>& args, std::ostream& out, std::o
   }
   if (!environment.empty()) return usage_error("--environment goes with --check");
   if (file.empty()) return usage_error("no sequence file given");
+  if (!find(&file, false)) {
+    err << file << ": not played; nothing was sent\n";
+    return kInvalid;
+  }
   const SequenceParseResult parsed = LoadSequenceFile(file);
   PrintNotes(parsed, err);
   if (!parsed.sequence) {

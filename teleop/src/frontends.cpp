@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "simpartner/client/errors.h"
+#include "simpartner/data_paths.h"
 #include "simpartner/teleop/session.h"
 
 namespace simpartner::teleop {
@@ -194,17 +195,14 @@ bool VirtualPad::Apply(const std::string& line) {
 
 namespace {
 
-// Installed: <prefix>/share/simpartner/teleop/mappings beside <prefix>/bin;
-// in the build tree: the sources' teleop/mappings.
+// The shipped mappings: found like every data file (data_paths.h); a name
+// that is nowhere still goes into --help, and --check reports it missing.
 std::string DefaultMappingDir() {
-  std::error_code error;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (!error) {
-    const std::filesystem::path installed =
-        exe.parent_path().parent_path() / "share/simpartner/teleop/mappings";
-    if (std::filesystem::is_directory(installed, error)) return installed.string();
+  try {
+    return FindDataDirectory("teleop/mappings", "mapping directory");
+  } catch (const DataFileNotFound&) {
+    return "teleop/mappings";
   }
-  return SP_TELEOP_MAPPING_DIR;
 }
 
 std::string Usage() {

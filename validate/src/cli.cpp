@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "simpartner/data_paths.h"
 #include "simpartner/validate/experiment.h"
 #include "simpartner/validate/report.h"
 
@@ -32,7 +33,9 @@ const std::vector<FlagSpec>& ValidateFlags() {
       {"fast", false, "skip the slow experiments (long gaits, test track)"},
       {"list", false, "list the experiments and exit"},
       {"report", true, "write DIR/README.md with a plot per experiment (gnuplot)"},
-      {"models", true, "directory holding worlds/ and robots/ (default: the source tree's)"},
+      {"models", true,
+       "directory holding worlds/ and robots/ (default: the shipped models/, found like "
+       "every data file: ./, $SIMPARTNER_DATA, the source tree of a build, the install)"},
   };
   return kFlags;
 }
@@ -70,7 +73,20 @@ int RunValidate(int argc, const char* const* argv, std::ostream& out, std::ostre
       out << e.name << (e.slow ? " (slow)" : "") << ": " << e.title << "\n";
     return 0;
   }
-  context.models_dir = command_line.Value("models", SP_MODELS_DIR);
+  if (command_line.Has("models")) {
+    context.models_dir = command_line.Value("models", "");
+  } else {
+    try {
+      // models/worlds, not models: a build tree has a models/ of its own.
+      context.models_dir =
+          std::filesystem::path(FindDataDirectory("models/worlds", "worlds directory"))
+              .parent_path()
+              .string();
+    } catch (const DataFileNotFound& e) {
+      err << e.diagnostics().Format() << "\n";
+      return 2;
+    }
+  }
   if (!std::filesystem::is_directory(std::filesystem::path(context.models_dir) / "worlds")) {
     err << "simpartner-validate: --models " << context.models_dir
         << ": no worlds/ directory there\n";

@@ -79,8 +79,9 @@ struct Parameters {
 
     v.Section("World");
     v.Path("environment", environment,
-           "world XML file (relative paths are relative to the file that "
-           "sets them)");
+           "world XML file (in a parameters file: relative to that file; on "
+           "the command line: as given, else looked up as data: $SIMPARTNER_DATA, "
+           "the shipped models/worlds)");
 
     v.Section("Stepping (ODE)");
     v.Double("stepsize", stepsize, 1e-5, 0.1,

@@ -56,13 +56,21 @@ RobotLoadResult LoadRobotFile(const std::string& path,
                               const FileReader& reader = ReadFileFromDisk);
 
 // Parses world XML text; robot files are resolved relative to file_name's
-// directory and read through reader.
+// directory, then under the data roots (data_paths.h), and read through
+// reader.
 WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
                            const FileReader& reader = ReadFileFromDisk);
 WorldLoadResult LoadWorldFile(const std::string& path,
                               const FileReader& reader = ReadFileFromDisk);
 
-// Throwing forms for programs: ModelError lists every diagnostic.
+// The file a program opens for a world or robot name: as given, else under
+// the data roots (data_paths.h), also as models/worlds/NAME or
+// models/robots/NAME. Throws DataFileNotFound listing every path tried.
+std::string FindWorldFile(const std::string& name);
+std::string FindRobotFile(const std::string& name);
+
+// Throwing forms for programs (path found as above): ModelError lists every
+// diagnostic; DataFileNotFound when there is no such file.
 World LoadWorldOrThrow(const std::string& path);
 Robot LoadRobotOrThrow(const std::string& path);
 
