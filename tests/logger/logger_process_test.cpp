@@ -605,6 +605,15 @@ TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
   ASSERT_EQ(recorder.Wait(std::chrono::seconds(10)).value_or(-1), 0)
       << ReadFile((dir_ / "lcm-logger.log").string());
   ExpectEveryStepOnce(1, 1, 6000, 3, 2);
+  // A short recording is lcm-logger's loss, not the replay's: say so.
+  int recorded_states = 0;
+  {
+    lcm::LogFile file(recording, "r");
+    ASSERT_TRUE(file.good()) << recording;
+    while (const lcm::LogEvent* event = file.readNextEvent())
+      recorded_states += event->channel == channels::kState;
+  }
+  ASSERT_EQ(recorded_states, 6000) << "lcm-logger itself lost states while recording";
 
   const std::string replay_db = "simpartner_replay";
   ChildProcess& replayed = StartLogger({"--dbname=" + replay_db});
