@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
     }
     const Parameters params = LoadParameters(command_line);
     if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
-    model::World world = model::LoadWorldOrThrow(params.environment);
+    model::World world = sim::LoadSimWorld(command_line, params);
     std::cout << model::DescribeWorld(world) << std::flush;
     if (command_line.Has("check")) return 0;
 

@@ -243,5 +243,27 @@ TEST(CheckProcess, DeviceOrFifoWorldIsRefusedAtOnce) {
   fs::remove_all(dir);
 }
 
+// --robot: the summary names the chosen robot in place of the world's; a
+// wrong name stops before anything with a did-you-mean.
+TEST(CheckProcess, RobotFlagPutsTheNamedRobotIntoTheWorld) {
+  std::vector<std::string> args = Check(kSource / "models/worlds/maze.xml");
+  args.insert(args.end(), {"--robot", "gen4", "--robot-pose", "1,0,2,90"});
+  const SimRun run = RunSim(args);
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(HasLine(run.out, "  robot 'WorkPartner' = WorkPartner gen4 (" +
+                                   (kSource / "models/robots/workpartner_gen4.xml").string() + ")"))
+      << run.out;
+  EXPECT_EQ(run.out.find("gen3"), std::string::npos) << run.out;
+
+  args = Check(kSource / "models/worlds/maze.xml");
+  args.insert(args.end(), {"--robot=gen4-light"});
+  const SimRun wrong = RunSim(args);
+  EXPECT_EQ(wrong.status, 2);
+  EXPECT_TRUE(HasLine(wrong.err, "command line: --robot: unknown robot 'gen4-light' (did you mean "
+                                 "'gen1-light'?); give one of gen1, gen1-light, gen2, gen3, gen4 "
+                                 "or a robot file"))
+      << wrong.err;
+}
+
 }  // namespace
 }  // namespace simpartner::model
