@@ -25,10 +25,10 @@ fail() {
   echo "--- sim output (tail):" >&2; tail -5 "$work/sim.log" >&2 || true
   exit 1
 }
-# Waits up to 20 s for a window named exactly $1; prints its id.
+# Waits up to ${2:-20} s for a window named exactly $1; prints its id.
 wait_window() {
   local id
-  for _ in $(seq 100); do
+  for _ in $(seq $(( ${2:-20} * 5 ))); do
     id=$(xdotool search --name "^$1\$" 2>/dev/null | head -1 || true)
     [[ -n $id ]] && { echo "$id"; return 0; }
     sleep 0.2
@@ -53,14 +53,25 @@ SP_LCM_JAR="$bin/lcmtypes/simpartner_lcmtypes.jar" "$src/scripts/lcm-spy" --lcm-
 spy_pid=$!
 
 spy=$(wait_window "LCM Spy") || fail "no 'LCM Spy' window"
-sleep 3  # SIM_MODEL, SIM_STATE and SIM_STATUS are listed, in that order
-# No window manager: every window is at 0,0. Row 2 (SIM_STATE) is at y 43.
-xdotool mousemove --window "$spy" 40 43 click --repeat 2 --delay 100 1
-view=$(wait_window "SIM_STATE") || fail "a double click on SIM_STATE opened no per-field view"
-sleep 1
-# The sparkline of bodies[0].position[0], right of its value.
-xdotool mousemove --window "$view" 600 189 click 1
-wait_window "position\\[0\\]" >/dev/null || fail "a click on position[0]'s sparkline opened no chart"
+# No window manager: every window is at 0,0. The rows are SIM_MODEL,
+# SIM_STATE, SIM_STATUS, once each has come; SIM_STATE's is at y 43. On a
+# loaded machine a row can come late, so a click that opened nothing is
+# tried again (4 times).
+view=
+for _ in 1 2 3 4; do
+  sleep 3
+  xdotool mousemove --window "$spy" 40 43 click --repeat 2 --delay 100 1
+  view=$(wait_window "SIM_STATE" 8) && break
+done
+[[ -n $view ]] || fail "a double click on SIM_STATE opened no per-field view"
+chart=
+for _ in 1 2 3 4; do
+  sleep 1
+  # The sparkline of bodies[0].position[0], right of its value.
+  xdotool mousemove --window "$view" 600 189 click 1
+  chart=$(wait_window "position\\[0\\]" 8) && break
+done
+[[ -n $chart ]] || fail "a click on position[0]'s sparkline opened no chart"
 sleep 2
 kill -0 "$spy_pid" 2>/dev/null || fail "lcm-spy exited"
 if grep -E "Exception|Error|NoClassDef" "$work/spy.log" >/dev/null; then
