@@ -31,6 +31,13 @@ for c in "${cases[@]}"; do
   [[ $status -eq 2 ]] || fail "$script $wrong exited $status (want 2): $out"
   [[ $out == *"did you mean '$suggestion'?"* ]] || fail "$script $wrong: no did-you-mean '$suggestion': $out"
 done
+# scripts/run's help needs no build (it used to build first, which takes
+# many minutes on a fresh clone): its own options, and a note where the
+# sim's are when there is no build.
+out=$(timeout 20 "$source_dir/scripts/run" --help --bin /nonexistent 2>&1); status=$?
+[[ $status -eq 0 && $out == *"The main job, supervised"* && $out == *"build first"* ]] ||
+  fail "run --help without a build: $status $out"
+
 # Far from anything: no guess, the list of what it takes.
 out=$("$source_dir/scripts/fuzz" --zzz 2>&1); status=$?
 [[ $status -eq 2 && $out == *"it takes: --seconds --help"* ]] || fail "fuzz --zzz: $status $out"
