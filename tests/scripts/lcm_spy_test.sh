@@ -52,7 +52,7 @@ SP_LCM_JAR="$bin/lcmtypes/simpartner_lcmtypes.jar" "$src/scripts/lcm-spy" --lcm-
   >"$work/spy.log" 2>&1 &
 spy_pid=$!
 
-spy=$(wait_window "LCM Spy") || fail "no 'LCM Spy' window"
+spy=$(wait_window "LCM Spy" 60) || fail "no 'LCM Spy' window within 60 s"
 # No window manager: every window is at 0,0. The rows are SIM_MODEL,
 # SIM_STATE, SIM_STATUS, once each has come; SIM_STATE's is at y 43. On a
 # loaded machine a row can come late, so a click that opened nothing is
