@@ -3,6 +3,7 @@
 // the administrator) delete simulations.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -39,6 +40,9 @@ const char* kSummary =
     "                        wheel-forces, track (x-z from above; --body, default the chassis)\n"
     "  delete SIM            remove one simulation (administrator; not while open without --force)\n"
     "  prune --keep N        remove all but the newest N simulations (administrator)\n"
+    "  storage               size of the per-step tables: rows, bytes, on disk (administrator)\n"
+    "  compress on|off       InnoDB page compression of the per-step tables; rebuilds them\n"
+    "                        (administrator; same columns, so every query runs unchanged)\n"
     "SIM is a simulationID from 'list', 'last' (the newest) or 'running' (the newest still open).";
 
 double NumberFlag(const simpartner::CommandLine& command_line, const std::string& flag,
@@ -103,17 +107,19 @@ int main(int argc, char** argv) {
     const Parameters params = LoadParameters(command_line);
     if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
     const std::string& command = command_line.positional[0];
-    const std::vector<std::string> commands = {"list",  "names",  "poses", "forces",
-                                               "joints", "plot", "delete", "prune"};
+    const std::vector<std::string> commands = {"list",  "names",  "poses",  "forces",  "joints",
+                                               "plot",  "delete", "prune",  "storage", "compress"};
     if (std::find(commands.begin(), commands.end(), command) == commands.end()) {
       std::cerr << "simpartner-query: unknown command '" << command
-                << "' (list, names, poses, forces, joints, plot, delete, prune)\n";
+                << "' (list, names, poses, forces, joints, plot, delete, prune, storage, compress)\n";
       return 2;
     }
-    const size_t wanted = command == "list" || command == "prune" ? 1 : command == "plot" ? 3 : 2;
+    const size_t wanted =
+        command == "list" || command == "prune" || command == "storage" ? 1 : command == "plot" ? 3 : 2;
     if (command_line.positional.size() != wanted) {
       std::cerr << "simpartner-query: " << command
                 << (command == "plot"   ? " needs WHAT and SIM (e.g. plot angle last --joint Axle1)"
+                    : command == "compress" ? " needs on or off"
                     : wanted == 1        ? " takes no SIM"
                                          : " needs one SIM (a simulationID, 'last' or 'running')")
                 << "\n";
@@ -123,7 +129,13 @@ int main(int argc, char** argv) {
       std::cerr << "simpartner-query: prune needs --keep N\n";
       return 2;
     }
-    const bool admin = command == "delete" || command == "prune";
+    if (command == "compress" && command_line.positional[1] != "on" &&
+        command_line.positional[1] != "off") {
+      std::cerr << "simpartner-query: compress '" << command_line.positional[1] << "': on or off\n";
+      return 2;
+    }
+    const bool admin =
+        command == "delete" || command == "prune" || command == "storage" || command == "compress";
     std::vector<std::string> warnings;
     const logger::DbTarget target = logger::ResolveDbTarget(
         params, command_line.Value("db-options", ""),
@@ -137,6 +149,22 @@ int main(int argc, char** argv) {
     }
     if (command == "names") {
       PrintNames(db.get(), command_line.positional[1]);
+      return 0;
+    }
+    if (command == "compress") {
+      logger::SetPageCompression(db.get(), command_line.positional[1] == "on");
+      std::cout << "page compression " << command_line.positional[1] << " for";
+      for (const std::string& t : logger::PerStepTables()) std::cout << " " << t;
+      std::cout << "\n";
+      return 0;
+    }
+    if (command == "storage") {
+      std::printf("%-16s %12s %14s %14s  %s\n", "table", "rows", "bytes", "on disk", "compressed");
+      for (const logger::TableStorage& t : logger::ReadTableStorage(db.get()))
+        std::printf("%-16s %12llu %14llu %14llu  %s\n", t.table.c_str(),
+                    static_cast<unsigned long long>(t.rows),
+                    static_cast<unsigned long long>(t.logical_bytes),
+                    static_cast<unsigned long long>(t.disk_bytes), t.compressed ? "yes" : "no");
       return 0;
     }
     if (admin) {

@@ -52,8 +52,10 @@ py::dict StateDict(const simpartner::state_t& s) {
     }
     for (py::ssize_t k = 0; k < 4; ++k) q(r, k) = b.orientation[k];
   }
-  auto angle = Matrix(nj, 3), rate = Matrix(nj, 3), force1 = Matrix(nj, 3);
+  auto angle = Matrix(nj, 3), continuous = Matrix(nj, 3), rate = Matrix(nj, 3),
+       force1 = Matrix(nj, 3);
   auto a = angle.mutable_unchecked<2>();
+  auto c = continuous.mutable_unchecked<2>();
   auto rt = rate.mutable_unchecked<2>();
   auto f1 = force1.mutable_unchecked<2>();
   for (size_t i = 0; i < nj; ++i) {
@@ -61,6 +63,7 @@ py::dict StateDict(const simpartner::state_t& s) {
     const auto r = static_cast<py::ssize_t>(i);
     for (py::ssize_t k = 0; k < 3; ++k) {
       a(r, k) = j.position[k];
+      c(r, k) = j.continuous_position[k];
       rt(r, k) = j.rate[k];
       f1(r, k) = j.force1[k];
     }
@@ -75,6 +78,7 @@ py::dict StateDict(const simpartner::state_t& s) {
   d["angular_velocity"] = angular;
   d["contact_force"] = contact;
   d["joint_angle"] = angle;
+  d["joint_continuous_angle"] = continuous;
   d["joint_rate"] = rate;
   d["joint_force1"] = force1;
   return d;

@@ -233,10 +233,25 @@ uint32_t ReadExport(DbConnection* db, const ExportRequest& request,
       db->Rethrow("read the joint types");
     }
   }
-  // Unwrapping needs every angle from the start; velocities one step more.
+  // Joints logged with the sim's continuous angle (schema 5 on, a sim that
+  // publishes it): --unwrap takes it as stored, which is right however far
+  // an axis turned between logged steps and needs no steps before --from.
+  bool stored_continuous = false;
+  if (request.unwrap) {
+    stored_continuous =
+        db->QueryInt("SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = "
+                     "DATABASE() AND LOWER(TABLE_NAME) = 'jointpose' AND COLUMN_NAME = "
+                     "'continuousAngle'",
+                     "look for JointPose.continuousAngle", 0) > 0 &&
+        db->QueryInt("SELECT p.continuousAngle IS NOT NULL FROM SimulationRow r JOIN JointPose p "
+                     "ON p.simulationRowID = r.simulationRowID WHERE r.simulationID = " + sim +
+                     " ORDER BY r.step LIMIT 1",
+                     "SELECT continuousAngle FROM JointPose", 0) == 1;
+  }
+  // Unwrapping here needs every angle from the start; velocities one step more.
   std::string range;
   const double margin = request.velocities ? 1.5 * logged_dt : 0;
-  if (std::isfinite(request.from) && !request.unwrap)
+  if (std::isfinite(request.from) && (!request.unwrap || stored_continuous))
     range += " AND r.simulationTime >= " + Number(request.from - margin);
   if (std::isfinite(request.to)) range += " AND r.simulationTime <= " + Number(request.to + margin);
   const std::string name_filter =
@@ -257,15 +272,20 @@ uint32_t ReadExport(DbConnection* db, const ExportRequest& request,
       break;
     case ExportKind::kJoints:
       sql = "SELECT r.simulationTime, r.step, j.name, p.anchorx, p.anchory, p.anchorz, p.angle, "
-            "p.angle2, p.angle3, p.rate, p.rate2, p.rate3, p.F_x, p.F_y, p.F_z, p.T_x, p.T_y, p.T_z "
+            "p.angle2, p.angle3, p.rate, p.rate2, p.rate3, p.F_x, p.F_y, p.F_z, p.T_x, p.T_y, p.T_z" +
+            std::string(stored_continuous
+                            ? ", p.continuousAngle, p.continuousAngle2, p.continuousAngle3 "
+                            : " ") +
             "FROM SimulationRow r JOIN JointPose p ON p.simulationRowID = r.simulationRowID "
             "JOIN `Joint` j ON j.jointID = p.jointID WHERE r.simulationID = " + sim + range + name_filter +
             " ORDER BY r.step, j.busIndex";
       break;
   }
+  constexpr size_t kJointNumbers = 15;
   const size_t numbers = request.kind == ExportKind::kPoses    ? 7
                          : request.kind == ExportKind::kForces ? 6
-                                                               : 15;
+                         : stored_continuous                   ? kJointNumbers + 3
+                                                               : kJointNumbers;
 
   int64_t in_range = 0;  // steps of the range seen, for --every
   auto emit = [&](const ExportStep& step) {
@@ -278,6 +298,15 @@ uint32_t ReadExport(DbConnection* db, const ExportRequest& request,
   auto take = [&](ExportStep step) {
     if (request.unwrap) {
       for (ExportRow& row : step.rows) {
+        if (row.values.size() > kJointNumbers) {
+          // The stored continuous angle (NaN where a row has none).
+          const bool stored = !std::isnan(row.values[kJointNumbers]);
+          if (stored)
+            std::copy(row.values.begin() + kJointNumbers, row.values.begin() + kJointNumbers + 3,
+                      row.values.begin() + kJointAngleColumn);
+          row.values.resize(kJointNumbers);
+          if (stored) continue;
+        }
         const int axes = rotational_axes[row.name];
         UnwrapState& u = unwrap[row.name];
         for (int k = 0; k < axes; ++k) {
@@ -324,8 +353,11 @@ uint32_t ReadExport(DbConnection* db, const ExportRequest& request,
       ExportRow row;
       row.name = rows->getString(3);
       row.values.reserve(numbers + 3);
-      for (size_t k = 0; k < numbers; ++k)
-        row.values.push_back(static_cast<double>(rows->getDouble(static_cast<uint32_t>(4 + k))));
+      for (size_t k = 0; k < numbers; ++k) {
+        const auto column = static_cast<uint32_t>(4 + k);
+        row.values.push_back(rows->isNull(column) ? std::numeric_limits<double>::quiet_NaN()
+                                                  : static_cast<double>(rows->getDouble(column)));
+      }
       current.rows.push_back(std::move(row));
     }
   } catch (const sql::SQLException&) {
@@ -360,8 +392,9 @@ uint64_t ExportCsv(DbConnection* db, const ExportRequest& request, std::ostream&
       out << "# vx_m_s, vy_m_s, vz_m_s: central differences of the logged x, y, z (the logger "
              "stores no body velocities); one-sided at the first and last logged step\n";
     if (request.unwrap)
-      out << "# angle, angle2, angle3 of rotational axes unwrapped: continuous from the first "
-             "logged step (no jump at +-pi)\n";
+      out << "# angle, angle2, angle3 of rotational axes unwrapped: continuous, no jump at +-pi "
+             "(as the sim counted them every step; from the first logged step for simulations "
+             "logged before it did)\n";
     out << header << "\n";
     header_written = true;
   };
@@ -639,6 +672,53 @@ DeleteSummary PruneSimulations(DbConnection* db, int64_t keep) {
   }
   std::sort(doomed.begin(), doomed.end());
   return DeleteIds(db, doomed);
+}
+
+const std::vector<std::string>& PerStepTables() {
+  static const std::vector<std::string> tables = {"SimulationRow", "Pose", "ForceAndTorque",
+                                                  "JointPose"};
+  return tables;
+}
+
+std::vector<TableStorage> ReadTableStorage(DbConnection* db) {
+  std::string list;
+  for (const std::string& t : PerStepTables()) list += (list.empty() ? "" : ", ") + t;
+  // FOR EXPORT writes the tables' dirty pages, so the files hold what they will.
+  db->Execute("FLUSH TABLES " + list + " FOR EXPORT", "FLUSH TABLES FOR EXPORT");
+  db->Execute("UNLOCK TABLES", "UNLOCK TABLES");
+  std::vector<TableStorage> out;
+  for (const std::string& t : PerStepTables()) {
+    db->Query("ANALYZE TABLE " + t, "ANALYZE TABLE " + t);
+    std::unique_ptr<sql::ResultSet> r = db->Query(
+        "SELECT t.TABLE_ROWS, t.DATA_LENGTH + t.INDEX_LENGTH, s.ALLOCATED_SIZE, "
+        "LOWER(t.CREATE_OPTIONS) FROM information_schema.TABLES t "
+        "LEFT JOIN information_schema.INNODB_SYS_TABLESPACES s "
+        "ON s.NAME = CONCAT(t.TABLE_SCHEMA, '/', t.TABLE_NAME) "
+        "WHERE t.TABLE_SCHEMA = DATABASE() AND LOWER(t.TABLE_NAME) = LOWER(" + Quoted(t) + ")",
+        "the size of " + t);
+    try {
+      if (!r->next()) throw Error("database has no table " + t + " (has the logger run on it?)");
+      TableStorage ts;
+      ts.table = t;
+      ts.rows = r->getUInt64(1);
+      ts.logical_bytes = r->getUInt64(2);
+      ts.disk_bytes = r->isNull(3) ? 0 : r->getUInt64(3);
+      const std::string options = r->getString(4);
+      ts.compressed = options.find("page_compressed`=1") != std::string::npos ||
+                      options.find("page_compressed`='on'") != std::string::npos;
+      out.push_back(ts);
+    } catch (const sql::SQLException&) {
+      db->Rethrow("read the size of " + t);
+    }
+  }
+  return out;
+}
+
+void SetPageCompression(DbConnection* db, bool on) {
+  for (const std::string& t : PerStepTables())
+    db->Execute("ALTER TABLE " + t + " PAGE_COMPRESSED=" + (on ? "1" : "0"),
+                "ALTER TABLE " + t + " PAGE_COMPRESSED (needs the administrator: --db-options "
+                "state/mariadb/admin.cnf)");
 }
 
 }  // namespace simpartner::logger

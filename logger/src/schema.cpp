@@ -278,6 +278,19 @@ std::vector<Migration> BuildMigrations() {
                       " COMMENT 'the Material row of Body.material; NULL = the default material'"
                       " AFTER material"),
       }});
+  m.push_back(Migration{
+      5,
+      "JointPose.continuousAngle, continuousAngle2, continuousAngle3: the joint angle without "
+      "the wrap at +-pi, as the sim tracks it every step (NULL in rows logged before)",
+      {
+          // New columns at the end, NULL for old rows: MariaDB adds them
+          // without rebuilding a large JointPose, and angle keeps its meaning.
+          std::string("ALTER TABLE JointPose"
+                      " ADD COLUMN IF NOT EXISTS continuousAngle DOUBLE NULL"
+                      " COMMENT '[rad] or [m], axis 1: angle with rotations unwrapped (no jump at +-pi); NULL = logged before the sim published it',"
+                      " ADD COLUMN IF NOT EXISTS continuousAngle2 DOUBLE NULL COMMENT 'axis 2 (0 if none)',"
+                      " ADD COLUMN IF NOT EXISTS continuousAngle3 DOUBLE NULL COMMENT 'axis 3 (0 if none)'"),
+      }});
   return m;
 }
 

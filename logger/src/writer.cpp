@@ -896,7 +896,8 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
                      "simulationRowID,bodyID,F_x,F_y,F_z,T_x,T_y,T_z", forces_dup);
       RowSink joint_rows(db_.get(), method, options_.scratch_dir, "JointPose",
                          "simulationRowID,jointID,anchorx,anchory,anchorz,angle,angle2,angle3,rate,"
-                         "rate2,rate3,F_x,F_y,F_z,T_x,T_y,T_z",
+                         "rate2,rate3,F_x,F_y,F_z,T_x,T_y,T_z,continuousAngle,continuousAngle2,"
+                         "continuousAngle3",
                          joints_dup);
       for (const state_t* s : states) {
         const int64_t row = row_ids.at(s->step);
@@ -927,6 +928,7 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
           for (double r : joint.rate) joint_rows.Double(r);
           for (double f : joint.force1) joint_rows.Double(f);
           for (double t : joint.torque1) joint_rows.Double(t);
+          for (double p : joint.continuous_position) joint_rows.Double(p);
           joint_rows.EndRow();
         }
         published.push_back(s->utime);

@@ -107,6 +107,7 @@ OdeWorld::OdeWorld(const FlatModel& model, const Parameters& params)
     // warnings of the first step instead of going to stderr.
     const MessageSinkScope sink(&messages_);
     Build();
+    TrackContinuousAngles(true);
   } catch (const OdeError& e) {
     // No destructor runs for a constructor that throws: the ODE objects
     // made so far are abandoned, as for a world that dies stepping.
@@ -610,6 +611,31 @@ void OdeWorld::Step() {
     }
   }
   dJointGroupEmpty(contacts_);
+  TrackContinuousAngles(false);
+}
+
+void OdeWorld::TrackContinuousAngles(bool first) {
+  constexpr double kPi = 3.14159265358979323846;
+  for (size_t j = 0; j < joints_.size(); ++j) {
+    Joint& joint = *joints_[j];
+    const int axes = model_.joints[j].num_axes;
+    const bool rotational = joint.kind == model::JointKind::kHinge ||
+                            joint.kind == model::JointKind::kUniversal ||
+                            joint.kind == model::JointKind::kHinge2;
+    for (int a = 0; a < axes && a < 3; ++a) {
+      const double now = JointPosition(static_cast<int>(j), a);
+      if (first || !rotational) {
+        joint.continuous[a] = now;
+      } else {
+        // ODE's angle is in [-pi, pi]: the change is the shortest way round.
+        double change = now - joint.wrapped[a];
+        if (change > kPi) change -= 2 * kPi;
+        else if (change < -kPi) change += 2 * kPi;
+        joint.continuous[a] += change;
+      }
+      joint.wrapped[a] = now;
+    }
+  }
 }
 
 BodyReadout OdeWorld::ReadBody(int index) const {
@@ -667,6 +693,7 @@ JointReadout OdeWorld::ReadJoint(int index) const {
   JointReadout out;
   for (int a = 0; a < axes; ++a) {
     out.position[a] = JointPosition(index, a);
+    out.continuous_position[a] = joint.continuous[a];
     out.rate[a] = JointRate(index, a);
   }
   dVector3 anchor = {0, 0, 0, 0};

@@ -526,6 +526,7 @@ void Simulation::FillState(state_t* s) const {
     joint_state_t& out = s->joints[j];
     for (int a = 0; a < 3; ++a) {
       out.position[a] = r.position[a];
+      out.continuous_position[a] = r.continuous_position[a];
       out.rate[a] = r.rate[a];
     }
     Copy3(r.anchor, out.anchor);

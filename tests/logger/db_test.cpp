@@ -94,11 +94,18 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   std::vector<std::string> notices;
   auto b = DbConnection::Open(server_->LoggerTarget("simpartner_b"), false);
   EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 1);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 4);
-  ASSERT_EQ(notices.size(), 3u);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 5);
+  ASSERT_EQ(notices.size(), 4u);
   EXPECT_NE(notices[0].find("applied schema migration 2"), std::string::npos);
   EXPECT_NE(notices[1].find("applied schema migration 3 (LogGap.reason"), std::string::npos);
   EXPECT_NE(notices[2].find("applied schema migration 4 (Material"), std::string::npos);
+  EXPECT_NE(notices[3].find("applied schema migration 5 (JointPose.continuousAngle"), std::string::npos);
+  // Joint rows logged before migration 5 have no continuous angle: NULL.
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = "
+                     "'simpartner_b' AND TABLE_NAME = 'JointPose' AND COLUMN_NAME LIKE "
+                     "'continuousAngle%' AND IS_NULLABLE = 'YES'",
+                     "simpartner_b"),
+            3);
   // Bodies logged before migration 4 keep their material name; their
   // Material row is unknown.
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = "
@@ -112,7 +119,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   // Migrations cut short after adding their columns run again harmlessly.
   old->Execute("DELETE FROM SchemaVersion WHERE version >= 3", "");
   EXPECT_EQ(MigrateSchema(b.get(), nullptr), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 4);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 5);
 
   // A database from a newer logger is left alone.
   old->Execute("INSERT INTO SchemaVersion VALUES (99, 'from the future', NOW())", "");
@@ -121,7 +128,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
     FAIL() << "a newer schema was accepted";
   } catch (const DbError& e) {
     EXPECT_NE(std::string(e.what()).find("database 'simpartner_b' has schema version 99, newer than "
-                                         "this program's 4"),
+                                         "this program's 5"),
               std::string::npos) << e.what();
   }
 }

@@ -105,6 +105,11 @@ class BusTest(unittest.TestCase):
         start = self.sim.state()["time"]
         state = self.sim.wait_until(start + 1.0, timeout=30)
         self.assertAlmostEqual(abs(state["joint_rate"][axle, 0]), 2.0, delta=0.05)
+        # At speed, 2 s more turn it 4 rad, past the +-pi where joint_angle wraps.
+        later = self.sim.wait_until(state["time"] + 2.0, timeout=30)
+        turned = later["joint_continuous_angle"][axle, 0] - state["joint_continuous_angle"][axle, 0]
+        self.assertAlmostEqual(abs(turned), 2.0 * (later["time"] - state["time"]), delta=0.15)
+        self.assertLessEqual(abs(later["joint_angle"][axle, 0]), math.pi)
         self.sim.set_velocity("Axle1Motor", [0.0])
 
     def test_errors_are_typed(self):

@@ -63,6 +63,8 @@ struct BodyReadout {
 
 struct JointReadout {
   double position[3] = {0, 0, 0};
+  // position with rotational axes unwrapped: no jump at +-pi.
+  double continuous_position[3] = {0, 0, 0};
   double rate[3] = {0, 0, 0};
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
   Eigen::Vector3d force1 = Eigen::Vector3d::Zero(), torque1 = Eigen::Vector3d::Zero();
@@ -150,6 +152,10 @@ class OdeWorld {
     dJointID joint = nullptr;
     dJointFeedback feedback{};
     model::JointKind kind = model::JointKind::kFixed;
+    // ODE's angle at the last step and the continuous angle made of the
+    // changes added up since construction, per axis.
+    double wrapped[3] = {0, 0, 0};
+    double continuous[3] = {0, 0, 0};
   };
   struct ContactRecord {
     int body1, body2;                // flat body indices, -1 = world
@@ -157,6 +163,10 @@ class OdeWorld {
   };
 
   void Build();
+  // Adds each rotational axis's change since the last call to its
+  // continuous angle. Called after every step, so a wheel may turn up to
+  // half a turn per step before a change is mistaken for its opposite.
+  void TrackContinuousAngles(bool first);
   // Marks the world dead and returns the error to throw, naming the bodies
   // whose state is out of range.
   OdeError Fail(const OdeError& raised, const std::string& during);
