@@ -24,6 +24,7 @@
 #include "simpartner/control_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "bench_args.h"
 
 namespace {
 
@@ -72,22 +73,21 @@ struct Receiver {
 
 int main(int argc, char** argv) {
   using namespace simpartner;
-  double seconds = 600;
-  std::string url = "udpm://239.255.76.67:7683?ttl=0&recv_buf_size=4194304";
-  std::string world = std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--seconds" && i + 1 < argc) {
-      seconds = std::stod(argv[++i]);
-    } else if (a == "--lcm-url" && i + 1 < argc) {
-      url = argv[++i];
-    } else if (a == "--help") {
-      std::cout << "usage: drift_bench [--seconds N] [--lcm-url URL] [world.xml]\n";
-      return 0;
-    } else {
-      world = a;
-    }
-  }
+  const bench::BenchArgs args = bench::ParseBenchArgsOrExit(
+      argc, argv,
+      {"drift_bench", "[world.xml]", 1,
+       "Runs simpartner-sim in real time on the world (default models/worlds/flat_ground.xml)\n"
+       "and prints, every 60 s and at the end, how far sim time drifted from wall time and\n"
+       "how many states were lost.",
+       {{"--seconds", bench::ValueKind::kNumber, "S", "how long to run (default 600)"},
+        {"--lcm-url", bench::ValueKind::kText, "URL",
+         "LCM URL (default udpm://239.255.76.67:7683?ttl=0&recv_buf_size=4194304)"}}});
+  double seconds = args.Number("--seconds", 600);  // then the time it ran
+  const std::string url =
+      args.Text("--lcm-url", "udpm://239.255.76.67:7683?ttl=0&recv_buf_size=4194304");
+  const std::string world = args.positional.empty()
+                                ? std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml"
+                                : args.positional[0];
   lcm::LCM bus(url);
   if (!bus.good()) {
     std::cerr << "drift_bench: cannot open LCM at " << url << "\n";

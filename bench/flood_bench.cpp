@@ -25,6 +25,7 @@
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "bench_args.h"
 
 namespace {
 
@@ -68,22 +69,29 @@ void Pump(lcm::LCM* bus, double seconds) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  double rate = 100000;
-  double seconds = 10;
-  std::string kind = "refused";
-  std::string url = "udpm://239.255.76.67:7683?ttl=0";
-  std::string world = std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--rate" && i + 1 < argc) rate = std::stod(argv[++i]);
-    else if (a == "--seconds" && i + 1 < argc) seconds = std::stod(argv[++i]);
-    else if (a == "--kind" && i + 1 < argc) kind = argv[++i];
-    else if (a == "--lcm-url" && i + 1 < argc) url = argv[++i];
-    else if (a == "--help" || a == "-h") {
-      std::printf("bench/flood_bench [--rate N] [--seconds S] [--kind refused|garbage] [world.xml]\n");
-      return 0;
-    } else world = a;
+  const bench::BenchArgs args = bench::ParseBenchArgsOrExit(
+      argc, argv,
+      {"flood_bench", "[world.xml]", 1,
+       "Runs simpartner-sim on the world (default models/worlds/flat_ground.xml), then floods\n"
+       "SIM_COMMAND with bad commands from another thread and prints the sim's real-time factor\n"
+       "and the good commands' replies before and during the flood.",
+       {{"--rate", bench::ValueKind::kNumber, "N", "bad commands per second (default 100000)"},
+        {"--seconds", bench::ValueKind::kNumber, "S", "length of each period (default 10)"},
+        {"--kind", bench::ValueKind::kText, "refused|garbage",
+         "valid commands the sim refuses, or undecodable bytes (default refused)"},
+        {"--lcm-url", bench::ValueKind::kText, "URL",
+         "LCM URL (default udpm://239.255.76.67:7683?ttl=0)"}}});
+  const double rate = args.Number("--rate", 100000);
+  const double seconds = args.Number("--seconds", 10);
+  const std::string kind = args.Text("--kind", "refused");
+  if (kind != "refused" && kind != "garbage") {
+    std::cerr << "flood_bench: --kind '" << kind << "': refused or garbage\n";
+    return 2;
   }
+  const std::string url = args.Text("--lcm-url", "udpm://239.255.76.67:7683?ttl=0");
+  const std::string world = args.positional.empty()
+                                ? std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml"
+                                : args.positional[0];
   const double step = 0.001;
   ChildProcess sim({std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim", "--params", "/dev/null",
                     "--environment=" + world, "--lcm-url", url, "--statusPeriod=0.5",

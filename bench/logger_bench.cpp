@@ -12,7 +12,9 @@
 //      steps/s and step cost with and without the logger
 //   4. the highest multiple of real time the logger keeps up with (no
 //      loss, no spilling, lag bounded)
-//   bench/logger_bench [--seconds S] [--skip 1,2,3,4] [--server-sql STATEMENT ...]
+//   5. bytes per logged step per table, plain and with InnoDB page
+//      compression, and what compression costs the writer
+//   bench/logger_bench [--seconds S] [--skip 1,2,3,4,5] [--server-sql STATEMENT ...]
 // (--server-sql runs a statement as the server's administrator first, e.g.
 // 'SET GLOBAL innodb_adaptive_hash_index = 0', for tuning experiments)
 #include <lcm/lcm-cpp.hpp>
@@ -41,11 +43,13 @@
 #include "simpartner/child_process.h"
 #include "simpartner/logger/logger.h"
 #include "simpartner/logger/private_server.h"
+#include "simpartner/logger/query.h"
 #include "simpartner/logger/sql_text.h"
 #include "simpartner/logger/writer.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/status_t.hpp"
+#include "bench_args.h"
 
 namespace {
 
@@ -417,21 +421,87 @@ void HighestMultiple(const PrivateServer& server, double seconds, const std::str
 
 }  // namespace
 
+// ---- 5. storage per logged step ------------------------------------------
+
+// The same gen3 states written by the logger's writer into plain tables and
+// into tables with InnoDB page compression (simpartner-query compress on):
+// bytes per step per table as InnoDB counts pages and as allocated on disk,
+// an hour at 1 kHz, and what compression costs the writer.
+void StoragePerStep(const PrivateServer& server, double seconds) {
+  const int steps = static_cast<int>(seconds * 1000);
+  std::cout << "\n== 5. storage per logged step, gen3 at every step (" << steps
+            << " steps at 1 ms), plain and InnoDB page-compressed (zlib)\n";
+  const std::vector<Record> records = Gen3Records(steps, 5000);
+  const size_t batch = 100;
+  for (const bool compressed : {false, true}) {
+    const std::string database = compressed ? "simpartner_compressed" : "simpartner_plain";
+    WriterOptions options;
+    options.lcm_url = "bench";
+    options.scratch_dir = server.dir();
+    DbWriter writer(server.LoggerTarget(database), options, [](const std::string&) {});
+    writer.Write({records[0]});  // the model; creates the tables
+    std::unique_ptr<DbConnection> admin = DbConnection::Open(server.AdminTarget(database), false);
+    admin->UseDatabase(false);
+    if (compressed) SetPageCompression(admin.get(), true);
+    uint64_t rows = 0;
+    const double cpu_start = CpuSeconds();
+    const double server_start = ServerCpuSeconds(server);
+    const auto start = Clock::now();
+    for (size_t i = 1; i < records.size(); i += batch) {
+      const std::vector<Record> part(
+          records.begin() + static_cast<std::ptrdiff_t>(i),
+          records.begin() + static_cast<std::ptrdiff_t>(std::min(records.size(), i + batch)));
+      rows += writer.Write(part).rows_written;
+    }
+    const double s = Seconds(Clock::now() - start);
+    const double cpu = CpuSeconds() - cpu_start;
+    const double server_cpu = ServerCpuSeconds(server) - server_start;
+    std::printf("  %s: writer %.0f steps/s, %.0f rows/s (%.1f x real time); CPU per step: "
+                "writer %.0f us, server %.0f us\n",
+                compressed ? "page-compressed" : "plain", steps / s, rows / s, steps / s / 1000.0,
+                1e6 * cpu / steps, 1e6 * server_cpu / steps);
+    std::printf("    %-16s %12s %14s %14s\n", "table", "rows/step", "bytes/step", "on disk/step");
+    double logical = 0, disk = 0;
+    for (const TableStorage& t : ReadTableStorage(admin.get())) {
+      std::printf("    %-16s %12.1f %14.0f %14.0f\n", t.table.c_str(),
+                  static_cast<double>(t.rows) / steps, static_cast<double>(t.logical_bytes) / steps,
+                  static_cast<double>(t.disk_bytes) / steps);
+      logical += static_cast<double>(t.logical_bytes) / steps;
+      disk += static_cast<double>(t.disk_bytes) / steps;
+    }
+    std::printf("    %-16s %12s %14.0f %14.0f  -> one hour at 1 kHz: %.1f GB on disk\n", "all", "",
+                logical, disk, disk * 3.6e6 / 1e9);
+  }
+}
+
 int main(int argc, char** argv) {
+  const bench::BenchArgs args = bench::ParseBenchArgsOrExit(
+      argc, argv,
+      {"logger_bench", "", 0,
+       "Figures of the database logger on a private MariaDB server in a temporary directory:\n"
+       "  1. insert methods (row by row, multi-row, LOAD DATA): rows/s\n"
+       "  2. the writer alone on real gen3 states: steps/s per batch size and method\n"
+       "  3. end to end beside a running simpartner-sim at real time: loss, lag, sim cost\n"
+       "  4. the highest multiple of real time the logger keeps up with\n"
+       "  5. bytes per logged step per table, plain and page-compressed, and the writer's cost",
+       {{"--seconds", bench::ValueKind::kNumber, "S",
+         "sim time of parts 3, 4 and 5 (default 20)"},
+        {"--skip", bench::ValueKind::kText, "LIST", "parts to leave out, e.g. 1,2"},
+        {"--server-sql", bench::ValueKind::kText, "STATEMENT",
+         "run as the server's administrator first (repeatable), e.g.\n"
+         "                          'SET GLOBAL innodb_adaptive_hash_index = 0'"}}});
+  const double seconds = args.Number("--seconds", 20);
+  const std::vector<std::string> server_sql = args.All("--server-sql");
   std::set<int> skip;
-  std::vector<std::string> server_sql;
-  double seconds = 20;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--seconds" && i + 1 < argc) seconds = std::stod(argv[++i]);
-    else if (a == "--server-sql" && i + 1 < argc) server_sql.push_back(argv[++i]);
-    else if (a == "--skip" && i + 1 < argc) {
-      std::stringstream list(argv[++i]);
-      std::string item;
-      while (std::getline(list, item, ',')) skip.insert(std::stoi(item));
-    } else {
-      std::cout << "usage: logger_bench [--seconds S] [--skip 1,2,3,4] [--server-sql STATEMENT ...]\n";
-      return a == "--help" ? 0 : 2;
+  {
+    std::stringstream list(args.Text("--skip", ""));
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      if (item.size() != 1 || item[0] < '1' || item[0] > '5') {
+        std::cerr << "logger_bench: --skip '" << item << "': the parts are 1 to 5\n";
+        return 2;
+      }
+      skip.insert(std::stoi(item));
     }
   }
   try {
@@ -448,6 +518,7 @@ int main(int argc, char** argv) {
     if (!skip.count(2)) WriterThroughput(server);
     if (!skip.count(3)) BesideTheSim(server, seconds, dir);
     if (!skip.count(4)) HighestMultiple(server, seconds, dir);
+    if (!skip.count(5)) StoragePerStep(server, seconds);
     server.Stop();
     std::filesystem::remove_all(dir);
   } catch (const std::exception& e) {

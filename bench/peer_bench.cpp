@@ -42,6 +42,7 @@
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/sim_node.h"
 #include "simpartner/sim/simulation.h"
+#include "bench_args.h"
 
 namespace {
 
@@ -279,29 +280,21 @@ void Print(const std::string& world, const char* setting, const Figures& f, doub
 }  // namespace
 
 int main(int argc, char** argv) {
-  double stand = 20, drive = 5;
-  std::string only, url = "udpm://239.255.76.67:7667?ttl=0";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--stand" && i + 1 < argc) stand = std::stod(argv[++i]);
-    else if (a == "--drive" && i + 1 < argc) drive = std::stod(argv[++i]);
-    else if (a == "--only" && i + 1 < argc) only = argv[++i];
-    else if (a == "--lcm-url" && i + 1 < argc) url = argv[++i];
-    else if (a == "--help") {
-      std::cout << "usage: peer_bench [--stand SECONDS] [--drive SECONDS]\n"
-                   "                  [--only ours|bare|mujoco]\n"
-                   "                  [--lcm-url URL]\n"
-                   "WorkPartner gen3 and gen4 on flat ground, 1 ms steps: stand still (default\n"
-                   "20 s), then drive straight with the wheels at 1.5 rad/s (default 5 s), in our\n"
-                   "sim (bare Simulation::Step; SimNode publishing on LCM) and in MuJoCo 2.2 on\n"
-                   "the exported MJCF (default settings; accurate settings). Prints us/step,\n"
-                   "the ratio to ours, wheel load / weight, standing drift [mm], speed [m/s].\n";
-      return 0;
-    } else {
-      std::cerr << "peer_bench: unknown argument '" << a << "' (--help)\n";
-      return 2;
-    }
-  }
+  const simpartner::bench::BenchArgs args = simpartner::bench::ParseBenchArgsOrExit(
+      argc, argv,
+      {"peer_bench", "", 0,
+       "WorkPartner gen3 and gen4 on flat ground, 1 ms steps: stand still, then drive straight\n"
+       "with the wheels at 1.5 rad/s, in our sim (bare Simulation::Step; SimNode publishing on\n"
+       "LCM) and in MuJoCo 2.2 on the exported MJCF (default settings; accurate settings).\n"
+       "Prints us/step, the ratio to ours, wheel load / weight, standing drift [mm], speed [m/s].",
+       {{"--stand", simpartner::bench::ValueKind::kNumber, "SECONDS", "standing time, at least 2 (default 20)"},
+        {"--drive", simpartner::bench::ValueKind::kNumber, "SECONDS", "driving time (default 5)"},
+        {"--only", simpartner::bench::ValueKind::kText, "ours|bare|mujoco", "run only these rows"},
+        {"--lcm-url", simpartner::bench::ValueKind::kText, "URL",
+         "LCM URL of ours+pub (default udpm://239.255.76.67:7667?ttl=0)"}}});
+  const double stand = args.Number("--stand", 20), drive = args.Number("--drive", 5);
+  const std::string only = args.Text("--only", "");
+  const std::string url = args.Text("--lcm-url", "udpm://239.255.76.67:7667?ttl=0");
   if (!(stand >= 2.0) || !(drive >= 0.0) ||
       (!only.empty() && only != "ours" && only != "bare" && only != "mujoco")) {
     std::cerr << "peer_bench: --stand needs >= 2 s, --drive >= 0, --only ours, bare or mujoco\n";

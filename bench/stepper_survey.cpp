@@ -34,6 +34,7 @@
 #include "simpartner/command_t.hpp"
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/simulation.h"
+#include "bench_args.h"
 
 namespace {
 
@@ -172,19 +173,17 @@ Outcome Run(const model::World& world, const Parameters& params, const Scenario&
 }  // namespace
 
 int main(int argc, char** argv) {
-  double scale = 1.0;
-  std::vector<std::string> worlds;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--seconds-scale" && i + 1 < argc) {
-      scale = std::stod(argv[++i]);
-    } else if (a == "--help") {
-      std::cout << "usage: stepper_survey [--seconds-scale S] [world.xml ...]\n";
-      return 0;
-    } else {
-      worlds.push_back(a);
-    }
-  }
+  const simpartner::bench::BenchArgs args = simpartner::bench::ParseBenchArgsOrExit(
+      argc, argv,
+      {"stepper_survey", "[world.xml ...]", -1,
+       "Which stepper keeps WorkPartner stable: for every world (default: each generation on\n"
+       "flat ground, the slippery ground, the test track) and stepper setting, runs hold,\n"
+       "stretch, drive and stretch+drive and prints STABLE/UNSTABLE with the joint error,\n"
+       "still and vertical speeds, distance and wall time.",
+       {{"--seconds-scale", simpartner::bench::ValueKind::kNumber, "S",
+         "multiplies every scenario's length (default 1)"}}});
+  const double scale = args.Number("--seconds-scale", 1.0);
+  std::vector<std::string> worlds = args.positional;
   if (worlds.empty()) {
     for (const char* w : {"gen1_flat.xml", "flat_ground_gen2.xml", "flat_ground.xml",
                           "gen4_flat.xml", "slippery_ground.xml", "test_track.xml"})

@@ -30,6 +30,7 @@
 #include "simpartner/control_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/viewer/xvfb.h"
+#include "bench_args.h"
 
 namespace {
 
@@ -160,24 +161,19 @@ RunFigures RunViewer(const std::string& url, const std::filesystem::path& dir, i
 }  // namespace
 
 int main(int argc, char** argv) {
-  double seconds = 12;
-  int width = 1280, height = 720;
-  std::string world;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--seconds" && i + 1 < argc) {
-      seconds = std::max(4.0, std::atof(argv[++i]));
-    } else if (arg == "--width" && i + 1 < argc) {
-      width = std::atoi(argv[++i]);
-    } else if (arg == "--height" && i + 1 < argc) {
-      height = std::atoi(argv[++i]);
-    } else if (arg == "--help") {
-      std::cout << "usage: viewer_bench [--seconds N] [--width W --height H] [world.xml]\n";
-      return 0;
-    } else {
-      world = arg;
-    }
-  }
+  const simpartner::bench::BenchArgs args = simpartner::bench::ParseBenchArgsOrExit(
+      argc, argv,
+      {"viewer_bench", "[world.xml]", 1,
+       "How fast simpartner-viewer draws under a private Xvfb (Mesa llvmpipe) beside a sim at\n"
+       "real time (default world: the test track with gen3): frames per second, the viewer's\n"
+       "and the X server's CPU, and the sim's real-time factor, uncapped and at 60 and 30 fps.",
+       {{"--seconds", simpartner::bench::ValueKind::kNumber, "S", "per run, at least 4 (default 12)"},
+        {"--width", simpartner::bench::ValueKind::kInteger, "W", "window width (default 1280)"},
+        {"--height", simpartner::bench::ValueKind::kInteger, "H", "window height (default 720)"}}});
+  const double seconds = std::max(4.0, args.Number("--seconds", 12));
+  const int width = static_cast<int>(args.Integer("--width", 1280));
+  const int height = static_cast<int>(args.Integer("--height", 720));
+  std::string world = args.positional.empty() ? "" : args.positional[0];
   const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                     ("sp_viewer_bench_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);

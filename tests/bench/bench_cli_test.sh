@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Every bench program answers --help (exit 0, usage and what it measures)
+# and refuses a misspelled option, a malformed value or a stray argument
+# with exit 2 and, for an option, the nearest name. No bench runs for real:
+# each of these ends while reading its command line (a timeout catches one
+# that starts anyway).
+#   tests/bench/bench_cli_test.sh SOURCE_DIR BINARY_DIR
+set -uo pipefail
+source_dir=$1
+binary_dir=$2
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# bench | a line of its help | a misspelling | the option it must suggest
+cases=(
+  "sim_bench|Microseconds per step|--stpes 10|--steps"
+  "latency_bench|one-way latency|--cout 10|--count"
+  "stepper_survey|Which stepper keeps WorkPartner stable|--seconds-scal 1|--seconds-scale"
+  "drift_bench|drifted from wall time|--secnds 5|--seconds"
+  "logger_bench|Figures of the database logger|--skp 1|--skip"
+  "viewer_bench|How fast simpartner-viewer draws|--widht 640|--width"
+  "flood_bench|floods|--rat 5|--rate"
+  "peer_bench|MuJoCo 2.2|--stnad 3|--stand"
+  "multi_host_bench|Needs root|--rte 5|--rate"
+)
+listed=" "
+for c in "${cases[@]}"; do
+  IFS='|' read -r bench help_line wrong suggestion <<<"$c"
+  listed+="$bench "
+  [[ -f $source_dir/bench/$bench.cpp ]] || continue  # not in this tree
+  path=$binary_dir/bench/$bench
+  if [[ ! -x $path ]]; then
+    fail "$bench: $path is not built"
+    continue
+  fi
+  out=$(timeout 20 "$path" --help 2>&1); status=$?
+  [[ $status -eq 0 ]] || fail "$bench --help exited $status: $out"
+  [[ $out == *"$help_line"* ]] || fail "$bench --help does not say '$help_line': $out"
+  [[ $out == *"$suggestion"* ]] || fail "$bench --help does not list $suggestion: $out"
+  # shellcheck disable=SC2086  # $wrong is an option and its value
+  out=$(timeout 20 "$path" $wrong 2>&1 </dev/null); status=$?
+  [[ $status -eq 2 ]] || fail "$bench $wrong exited $status (want 2): $out"
+  [[ $out == *"did you mean '$suggestion'?"* ]] || fail "$bench $wrong: no did-you-mean '$suggestion': $out"
+done
+
+# Every bench program in bench/ has a case above (a new one must answer too).
+for source in "$source_dir"/bench/*.cpp; do
+  grep -q '^int main' "$source" || continue
+  bench=$(basename "$source" .cpp)
+  [[ $listed == *" $bench "* ]] || fail "bench/$bench.cpp has no case in $0"
+done
+
+# The parser all but multi_host_bench share (bench/bench_args.h).
+expect_refusal() {  # expected text, then the command line
+  local want=$1; shift
+  local out status
+  out=$(timeout 20 "$binary_dir/bench/$1" "${@:2}" 2>&1 </dev/null); status=$?
+  [[ $status -eq 2 && $out == *"$want"* ]] || fail "$*: exited $status, want 2 and '$want': $out"
+}
+expect_refusal "--steps 'many': not a whole number" sim_bench --steps many
+expect_refusal "--seconds 'x': not a number" logger_bench --seconds x
+expect_refusal "needs a value (--count N)" latency_bench --count
+expect_refusal "takes no arguments" logger_bench world.xml
+expect_refusal "one too many (it takes [world.xml])" latency_bench a.xml b.xml
+expect_refusal "--kind 'flood': refused or garbage" flood_bench --kind flood
+# Far from anything: no guess, the list of what it takes.
+expect_refusal "unknown option; it takes: --count --lcm-url --help" latency_bench --zzzzzzzz
+
+if (( failures > 0 )); then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "all bench command lines answered as expected"
