@@ -18,6 +18,8 @@
 
 #include "../logger/logger_test_support.h"
 #include "../support/hostile_corpus.h"
+#include "../support/asan_env.h"
+#include "../support/text_file.h"
 #include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
@@ -32,20 +34,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The caller's ASan options, and no complaint that the preloaded library
-// (tests/viewer/keep_libraries_loaded.c) comes before ASan's runtime.
-std::string AsanOptions() {
-  const char* given = std::getenv("ASAN_OPTIONS");
-  return (given != nullptr && *given != '\0' ? std::string(given) + ":" : std::string()) +
-         "verify_asan_link_order=0";
-}
-
-std::string ReadFile(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::AsanOptions;
+using test_support::ReadText;
 
 // The test's side of the bus: newest step, the sim's newest status and the
 // replies to this test's commands.
@@ -116,7 +106,7 @@ class HostileProcessTest : public logger::testing::ServerTest {
     return std::make_unique<ChildProcess>(argv, (dir_ / log).string());
   }
   bool WaitForText(const std::string& log, const std::string& text, double seconds, Observer* bus) {
-    return bus->Until([&] { return ReadFile(dir_ / log).find(text) != std::string::npos; }, seconds);
+    return bus->Until([&] { return ReadText(dir_ / log).find(text) != std::string::npos; }, seconds);
   }
 
   std::string url_;
@@ -129,12 +119,12 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
                        "--db-options", server_->logger_options(), "--spool",
                        (dir_ / "spool").string(), "--status-period", "1"},
                       "logger.log");
-  ASSERT_TRUE(WaitForText("logger.log", ": logging udpm://", 30, &bus)) << ReadFile(dir_ / "logger.log");
+  ASSERT_TRUE(WaitForText("logger.log", ": logging udpm://", 30, &bus)) << ReadText(dir_ / "logger.log");
   auto sim = Start({bin + "/sim_core/simpartner-sim", "--params", "/dev/null",
                     "--environment=" + (dir_ / "world.xml").string(), "--lcm-url", url_,
                     "--statusPeriod=0.2"},
                    "sim.log");
-  ASSERT_TRUE(bus.Until([&] { return bus.last_step > 100; }, 20)) << ReadFile(dir_ / "sim.log");
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > 100; }, 20)) << ReadText(dir_ / "sim.log");
 
   viewer::XvfbServer xvfb(640, 360, (dir_ / "xvfb.log").string());
   const std::string shot = (dir_ / "after.png").string();
@@ -170,7 +160,7 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
     bus.Pump(0.03);
     for (const Process& p : processes)
       ASSERT_TRUE(p.child->running()) << p.name << " died after '" << m.name << "' on " << m.channel
-                                      << ":\n" << ReadFile(dir_ / p.log);
+                                      << ":\n" << ReadText(dir_ / p.log);
   }
 
   // The sim: still stepping at its pace, counted the refusals, takes a
@@ -180,7 +170,7 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   EXPECT_GT(bus.last_step, step_after_corpus + 500) << "the sim stopped stepping";
   ASSERT_TRUE(bus.Until([&] { return bus.has_status && bus.status.bad_messages >= undecodable_for_sim; }, 5))
       << "bad_messages " << bus.status.bad_messages << " of " << undecodable_for_sim << "\n"
-      << ReadFile(dir_ / "sim.log");
+      << ReadText(dir_ / "sim.log");
   EXPECT_EQ(bus.status.run_state, status_t::RUN_RUNNING);
   EXPECT_GE(bus.status.target_speed, 1.0);  // the nonsense speeds were refused
   command_t good{};
@@ -194,7 +184,7 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   bus.lcm().publish(channels::kCommand, &good);
   ASSERT_TRUE(bus.Until([&] { return !bus.replies.empty(); }, 5));
   EXPECT_TRUE(bus.replies.back().accepted) << bus.replies.back().reason;
-  const std::string sim_log = ReadFile(dir_ / "sim.log");
+  const std::string sim_log = ReadText(dir_ / "sim.log");
   EXPECT_NE(sim_log.find("SIM_COMMAND: 48 bytes refused as simpartner.command_t: field 'sender' at "
                          "byte 32: string length 0"),
             std::string::npos)
@@ -202,11 +192,11 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
 
   // The viewer: its screenshot, taken after the corpus, shows a state the
   // sim published after the corpus.
-  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << ReadFile(dir_ / "viewer.log");
+  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << ReadText(dir_ / "viewer.log");
   // Its exit (GL teardown, the sanitizers' leak check) took over 10 s once
   // with the whole system of another test beside it on 2 cores.
-  ASSERT_EQ(viewer->Wait(std::chrono::seconds(60)).value_or(-1), 0) << ReadFile(dir_ / "viewer.log");
-  const std::string viewer_log = ReadFile(dir_ / "viewer.log");
+  ASSERT_EQ(viewer->Wait(std::chrono::seconds(60)).value_or(-1), 0) << ReadText(dir_ / "viewer.log");
+  const std::string viewer_log = ReadText(dir_ / "viewer.log");
   const size_t at = viewer_log.find(", step ", viewer_log.find("simpartner-viewer: screenshot"));
   ASSERT_NE(at, std::string::npos) << viewer_log;
   EXPECT_GT(std::atoll(viewer_log.c_str() + at + 7), step_after_corpus) << viewer_log;
@@ -218,7 +208,7 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   quit.sender = "hostile-test";
   quit.action = control_t::ACTION_QUIT;
   bus.lcm().publish(channels::kControl, &quit);
-  ASSERT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0) << ReadFile(dir_ / "sim.log");
+  ASSERT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0) << ReadText(dir_ / "sim.log");
   bus.Pump(0.5);
   const int64_t last = bus.last_step;
   const auto end = Clock::now() + std::chrono::seconds(60);
@@ -228,7 +218,7 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
     if (rows >= last) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
   }
-  EXPECT_EQ(rows, last) << ReadFile(dir_ / "logger.log");
+  EXPECT_EQ(rows, last) << ReadText(dir_ / "logger.log");
   EXPECT_EQ(QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = 1"), last);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1) << "a forged model became a simulation";
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Pose p JOIN SimulationRow r USING (simulationRowID) "
@@ -238,9 +228,9 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
                      "WHERE r.simulationID = 1"),
             2 * last);
   logger->Signal(SIGTERM);
-  EXPECT_EQ(logger->Wait(std::chrono::seconds(60)).value_or(-1), 0) << ReadFile(dir_ / "logger.log");
-  EXPECT_NE(ReadFile(dir_ / "logger.log").find("refused as simpartner.state_t"), std::string::npos)
-      << ReadFile(dir_ / "logger.log");
+  EXPECT_EQ(logger->Wait(std::chrono::seconds(60)).value_or(-1), 0) << ReadText(dir_ / "logger.log");
+  EXPECT_NE(ReadText(dir_ / "logger.log").find("refused as simpartner.state_t"), std::string::npos)
+      << ReadText(dir_ / "logger.log");
 }
 
 }  // namespace

@@ -23,6 +23,8 @@
 #include <thread>
 
 #include "../support/netns.h"
+#include "../support/asan_env.h"
+#include "../support/text_file.h"
 #include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
@@ -41,20 +43,8 @@ using Clock = std::chrono::steady_clock;
 const std::string kSource = SP_SOURCE_DIR;
 const std::string kBinary = SP_BINARY_DIR;
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// The caller's ASan options, and no complaint that the preloaded library
-// (tests/viewer/keep_libraries_loaded.c) comes before ASan's runtime.
-std::string AsanOptions() {
-  const char* given = std::getenv("ASAN_OPTIONS");
-  return (given != nullptr && *given != '\0' ? std::string(given) + ":" : std::string()) +
-         "verify_asan_link_order=0";
-}
+using test_support::AsanOptions;
+using test_support::ReadText;
 
 // What the sim host itself hears of its sim: the newest state (when it came,
 // where body 0 was) and every warning its statuses carried.
@@ -124,14 +114,14 @@ class MultiHostTest : public ::testing::Test {
   void TearDown() override {
     if (HasFailure()) {
       for (const char* log : {"sim.log", "logger.log", "viewer.log", "sequencer.log"})
-        if (fs::exists(dir_ / log)) std::cerr << "---- " << log << " (tail)\n" << Tail(ReadFile(dir_ / log)) << "\n";
+        if (fs::exists(dir_ / log)) std::cerr << "---- " << log << " (tail)\n" << Tail(ReadText(dir_ / log)) << "\n";
     }
     fs::remove_all(dir_);
   }
   static std::string Tail(const std::string& text) {
     return text.size() > 3000 ? "..." + text.substr(text.size() - 3000) : text;
   }
-  std::string Log(const std::string& name) { return ReadFile(dir_ / name); }
+  std::string Log(const std::string& name) { return ReadText(dir_ / name); }
   std::unique_ptr<ChildProcess> Start(const std::vector<std::string>& argv, const std::string& log) {
     return std::make_unique<ChildProcess>(argv, (dir_ / log).string());
   }

@@ -29,6 +29,7 @@
 #include "simpartner/child_process.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/viewer/xvfb.h"
+#include "../support/asan_env.h"
 #include "../support/text_file.h"
 
 namespace simpartner {
@@ -213,7 +214,6 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
                              "  <set target=\"Axle1Motor\" at=\"0.0\">1000.0,0.0</set>\n"
                              "  <pause seconds=\"600\"/>\n"
                              "</sequence>\n";
-  const char* asan = std::getenv("ASAN_OPTIONS");
   StepRecorder bus(url_);
   launcher_ = std::make_unique<ChildProcess>(
       std::vector<std::string>{
@@ -221,8 +221,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
           // The viewer's and keyboard teleop's Mesa and D-Bus allocations,
           // as in their own process tests.
           "LSAN_OPTIONS=suppressions=" + kSource + "/tests/viewer/lsan.supp",
-          "ASAN_OPTIONS=" + std::string(asan != nullptr && *asan != '\0' ? std::string(asan) + ":" : "") +
-              "verify_asan_link_order=0",
+          "ASAN_OPTIONS=" + test_support::AsanOptions(),
           "/bin/bash", kSource + "/scripts/run", "--bin", kBinary, "--state", (dir_ / "state").string(),
           "--teleop=keyboard", "--sequence", sequence.string(), "--restart-sim", "--lcm-url", url_,
           // gen1 (0.2 ms of a core per step here, gen3 0.7 ms): real time

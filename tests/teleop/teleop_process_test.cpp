@@ -29,6 +29,7 @@
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/viewer/xvfb.h"
+#include "../support/asan_env.h"
 #include "../support/text_file.h"
 
 namespace simpartner {
@@ -524,8 +525,7 @@ TEST_F(TeleopProcessTest, KeyboardWindowDrivesWithRealKeyPresses) {
                                "LSAN_OPTIONS=suppressions=" + std::string(SP_SOURCE_DIR) +
                                    "/tests/viewer/lsan.supp",
                                "LD_PRELOAD=" SP_KEEP_LOADED_LIB,
-                               "ASAN_OPTIONS=" + std::string(std::getenv("ASAN_OPTIONS") ? std::getenv("ASAN_OPTIONS") : "") +
-                                   ":verify_asan_link_order=0",
+                               "ASAN_OPTIONS=" + test_support::AsanOptions(),
                                kBinary + "/teleop/simpartner-teleop", "--keyboard", "--lcm-url",
                                url},
       (dir_ / "teleop.log").string());

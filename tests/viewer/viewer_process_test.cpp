@@ -18,6 +18,7 @@
 #include <sstream>
 #include <thread>
 
+#include "../support/asan_env.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
 #include "simpartner/control_t.hpp"
@@ -147,13 +148,7 @@ class Listener {
   lcm::LCM lcm_;
 };
 
-// The caller's ASan options (scripts/test sets some), plus leave to an
-// LD_PRELOADed library the place ASan wants first.
-std::string AsanOptions() {
-  const char* given = std::getenv("ASAN_OPTIONS");
-  return (given != nullptr && *given != '\0' ? std::string(given) + ":" : std::string()) +
-         "verify_asan_link_order=0";
-}
+using test_support::AsanOptions;
 
 double ColorDistance(const RgbImage::Rgb& a, const RgbImage::Rgb& b) {
   return std::sqrt(static_cast<double>((a.r - b.r) * (a.r - b.r) + (a.g - b.g) * (a.g - b.g) +
