@@ -116,6 +116,9 @@ class MultiHostTest : public ::testing::Test {
       for (const char* log : {"sim.log", "logger.log", "viewer.log", "sequencer.log"})
         if (fs::exists(dir_ / log)) std::cerr << "---- " << log << " (tail)\n" << Tail(ReadText(dir_ / log)) << "\n";
     }
+    // The server first: its stop needs its files (a server left running
+    // after its directory is gone is never stopped).
+    server_.reset();
     fs::remove_all(dir_);
   }
   static std::string Tail(const std::string& text) {
