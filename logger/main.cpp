@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
   try {
     const CommandLine command_line = ParseCommandLine(argc, argv, logger::LoggerFlags());
     if (command_line.Has("help")) {
-      std::cout << FormatUsage("simpartner-logger", logger::LoggerSummary(), logger::LoggerFlags());
+      std::cout << FormatUsage("simpartner-logger", logger::LoggerSummary(), logger::LoggerFlags(),
+                               {parameter_sections::kDatabase, parameter_sections::kTransport});
       return 0;
     }
     const Parameters params = LoadParameters(command_line);

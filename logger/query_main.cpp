@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
         ParseCommandLine(static_cast<int>(args.size()), args.data(), kFlags);
     if (command_line.Has("help") ||
         (command_line.positional.empty() && !command_line.Has("print-parameters"))) {
-      std::cout << FormatUsage("simpartner-query", kSummary, kFlags);
+      std::cout << FormatUsage("simpartner-query", kSummary, kFlags, {parameter_sections::kDatabase});
       return command_line.Has("help") ? 0 : 2;
     }
     const Parameters params = LoadParameters(command_line);

@@ -18,7 +18,10 @@ int main(int argc, char** argv) {
   try {
     const CommandLine command_line = ParseCommandLine(argc, argv, sim::SimFlags());
     if (command_line.Has("help")) {
-      std::cout << FormatUsage("simpartner-sim", sim::SimSummary(), sim::SimFlags());
+      std::cout << FormatUsage("simpartner-sim", sim::SimSummary(), sim::SimFlags(),
+                               {parameter_sections::kWorld, parameter_sections::kStepping,
+                                parameter_sections::kContact, parameter_sections::kRunning,
+                                parameter_sections::kTransport});
       return 0;
     }
     const Parameters params = LoadParameters(command_line);

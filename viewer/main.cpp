@@ -8,7 +8,8 @@ int main(int argc, char** argv) {
   try {
     const CommandLine command_line = ParseCommandLine(argc, argv, viewer::ViewerFlags());
     if (command_line.Has("help")) {
-      std::cout << FormatUsage("simpartner-viewer", viewer::ViewerSummary(), viewer::ViewerFlags());
+      std::cout << FormatUsage("simpartner-viewer", viewer::ViewerSummary(), viewer::ViewerFlags(),
+                               {parameter_sections::kTransport});
       return 0;
     }
     const Parameters params = LoadParameters(command_line);

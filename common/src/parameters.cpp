@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "simpartner/data_paths.h"
 #include "simpartner/edit_distance.h"
@@ -400,11 +401,20 @@ std::vector<std::string> ParameterKeys() {
   return keys;
 }
 
-std::string DescribeParameters() {
+std::string DescribeParameters(const std::vector<std::string>& sections) {
   Parameters params;
+  const std::vector<Entry> entries = BindEntries(&params);
+  for (const std::string& wanted : sections) {
+    if (std::none_of(entries.begin(), entries.end(),
+                     [&wanted](const Entry& e) { return e.section == wanted; }))
+      throw std::invalid_argument("DescribeParameters: no parameter section '" + wanted + "'");
+  }
   std::string out;
   std::string section;
-  for (const Entry& e : BindEntries(&params)) {
+  for (const Entry& e : entries) {
+    if (!sections.empty() &&
+        std::find(sections.begin(), sections.end(), e.section) == sections.end())
+      continue;
     if (e.section != section) {
       section = e.section;
       out += "\n  " + section + ":\n";
@@ -415,7 +425,8 @@ std::string DescribeParameters() {
 }
 
 std::string FormatUsage(const std::string& program, const std::string& summary,
-                        const std::vector<FlagSpec>& process_flags) {
+                        const std::vector<FlagSpec>& process_flags,
+                        const std::vector<std::string>& sections) {
   std::string out = "Usage: " + program + " [options] [--key=value ...]\n\n" + summary +
                     "\n\nOptions:\n";
   auto line = [&out](const std::string& left, const std::string& help) {
@@ -432,7 +443,10 @@ std::string FormatUsage(const std::string& program, const std::string& summary,
   line("--print-parameters", "print the effective parameters (file + overrides) as key=value and exit");
   line("--help", "show this text");
   out += "\nParameters (key=default, in parameters.txt or as --key=value):\n";
-  out += DescribeParameters();
+  out += DescribeParameters(sections);
+  if (!sections.empty())
+    out += "\n  (parameters.txt is shared by every program: its other keys are for the "
+           "other programs, accepted and checked here but not used)\n";
   return out;
 }
 

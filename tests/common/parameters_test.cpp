@@ -6,6 +6,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 namespace simpartner {
 namespace {
@@ -217,6 +218,20 @@ TEST(Parameters, ShippedFileDocumentsEveryKey) {
   }
   for (const std::string& key : ParameterKeys())
     EXPECT_TRUE(mentioned.count(key)) << "parameters.txt does not mention '" << key << "'";
+}
+
+// --help of a program lists the sections it reads: each key once, under its
+// own section, and none of another; a misspelled section is caught.
+TEST(Parameters, UsageListsOnlyTheGivenSections) {
+  const std::string viewer = FormatUsage("viewer", "summary", {}, {parameter_sections::kTransport});
+  EXPECT_NE(viewer.find("    lcmUrl="), std::string::npos) << viewer;
+  EXPECT_EQ(viewer.find("stepsize="), std::string::npos) << viewer;
+  EXPECT_EQ(viewer.find("dbname="), std::string::npos) << viewer;
+  EXPECT_NE(viewer.find("other programs"), std::string::npos) << viewer;
+  const std::string all = FormatUsage("sim", "summary", {});
+  for (const std::string& key : ParameterKeys())
+    EXPECT_NE(all.find("    " + key + "="), std::string::npos) << key;
+  EXPECT_THROW(DescribeParameters({"Trnasport"}), std::invalid_argument);
 }
 
 }  // namespace

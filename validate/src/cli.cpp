@@ -54,7 +54,9 @@ int RunValidate(int argc, const char* const* argv, std::ostream& out, std::ostre
   try {
     command_line = ParseCommandLine(argc, argv, ValidateFlags());
     if (command_line.Has("help")) {
-      out << FormatUsage("simpartner-validate", ValidateSummary(), ValidateFlags());
+      out << FormatUsage("simpartner-validate", ValidateSummary(), ValidateFlags(),
+                         {parameter_sections::kWorld, parameter_sections::kStepping,
+                          parameter_sections::kContact});
       return 0;
     }
     if (!command_line.positional.empty()) {

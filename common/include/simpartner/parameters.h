@@ -17,6 +17,17 @@ namespace simpartner {
 inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 inline constexpr const char* kDefaultParametersFile = "parameters.txt";
 
+// The sections of parameters.txt. One file serves every program; each
+// program's --help lists only the sections it reads.
+namespace parameter_sections {
+inline constexpr const char* kDatabase = "Database logging (simpartner-logger)";
+inline constexpr const char* kWorld = "World";
+inline constexpr const char* kStepping = "Stepping (ODE)";
+inline constexpr const char* kContact = "Default contact material";
+inline constexpr const char* kRunning = "Running";
+inline constexpr const char* kTransport = "Transport";
+}  // namespace parameter_sections
+
 struct Parameters {
   // Database logging (logger).
   std::string dbname = "simpartner";
@@ -66,7 +77,7 @@ struct Parameters {
   template <class Visitor>
   void Visit(Visitor& v) {
     constexpr double kInf = std::numeric_limits<double>::infinity();
-    v.Section("Database logging (simpartner-logger)");
+    v.Section(parameter_sections::kDatabase);
     v.String("dbname", dbname, "database (schema) name");
     v.String("dbserver", dbserver,
              "server as host[:port] or a unix socket path; empty = the "
@@ -77,13 +88,13 @@ struct Parameters {
     v.Int("logInterval", logInterval, 1, 1000000,
           "steps between logged rows when logEveryStep=0");
 
-    v.Section("World");
+    v.Section(parameter_sections::kWorld);
     v.Path("environment", environment,
            "world XML file (in a parameters file: relative to that file; on "
            "the command line: as given, else looked up as data: $SIMPARTNER_DATA, "
            "the shipped models/worlds)");
 
-    v.Section("Stepping (ODE)");
+    v.Section(parameter_sections::kStepping);
     v.Double("stepsize", stepsize, 1e-5, 0.1,
              "fixed step [s]; stable range roughly 0.001 to 0.02");
     v.Choice("stepper", stepper, {"accurate", "quick"},
@@ -105,7 +116,7 @@ struct Parameters {
     v.Int("maxContacts", maxContacts, 1, 256,
           "most contact points generated per touching pair of geoms");
 
-    v.Section("Default contact material");
+    v.Section(parameter_sections::kContact);
     v.Double("contactMu", contactMu, 0.0, kInf, "Coulomb friction coefficient");
     v.Double("contactBounce", contactBounce, 0.0, 1.0, "restitution");
     v.Double("contactBounceVelocity", contactBounceVelocity, 0.0, kInf,
@@ -115,7 +126,7 @@ struct Parameters {
     v.Double("rollingFriction", rollingFriction, 0.0, 1.0,
              "[m] rolling resistance length (0 = none, as the original)");
 
-    v.Section("Running");
+    v.Section(parameter_sections::kRunning);
     v.Double("speed", speed, 0.0, 1000.0,
              "real-time factor; 0 = as fast as possible");
     v.Double("duration", duration, 0.0, kInf,
@@ -132,7 +143,7 @@ struct Parameters {
     v.Double("maxAngularVelocity", maxAngularVelocity, 0.0, kInf,
              "[rad/s] likewise for rotation");
 
-    v.Section("Transport");
+    v.Section(parameter_sections::kTransport);
     v.String("lcmUrl", lcmUrl,
              "LCM URL (also --lcm-url); ttl=0 keeps traffic on this host");
   }
@@ -191,12 +202,16 @@ bool PrintParametersIfAsked(const CommandLine& command_line, const Parameters& p
                             std::ostream& out);
 
 // Documentation of every key (type, range, default, meaning) for --help and
-// for checking that parameters.txt documents every key.
-std::string DescribeParameters();
+// for checking that parameters.txt documents every key; with sections (of
+// parameter_sections), only theirs. An unknown section is a programming
+// error (std::invalid_argument).
+std::string DescribeParameters(const std::vector<std::string>& sections = {});
 std::vector<std::string> ParameterKeys();
 
-// Usage text of a program: its flags, then the parameter keys.
+// Usage text of a program: its flags, then the parameter keys of the
+// sections it reads (all when empty).
 std::string FormatUsage(const std::string& program, const std::string& summary,
-                        const std::vector<FlagSpec>& process_flags);
+                        const std::vector<FlagSpec>& process_flags,
+                        const std::vector<std::string>& sections = {});
 
 }  // namespace simpartner
