@@ -25,10 +25,20 @@ class DataPathsTest : public ::testing::Test {
     std::ofstream(dir_ / "b/models/worlds/w.xml") << "b";
     std::ofstream(dir_ / "b/models/worlds/only_b.xml") << "b";
     roots_ = {{(dir_ / "a").string(), "first"}, {(dir_ / "b").string(), "second"}};
+    // "As given" is relative to the working directory: an empty one, so
+    // that a run from the source tree (which has models/worlds) gives the
+    // same answers as one from ctest's directory.
+    fs::create_directories(dir_ / "cwd");
+    previous_cwd_ = fs::current_path();
+    fs::current_path(dir_ / "cwd");
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override {
+    fs::current_path(previous_cwd_);
+    fs::remove_all(dir_);
+  }
 
   fs::path dir_;
+  fs::path previous_cwd_;
   std::vector<DataRoot> roots_;
 };
 
