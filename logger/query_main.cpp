@@ -14,8 +14,10 @@ namespace {
 
 const std::vector<simpartner::FlagSpec> kFlags = {
     {"db-options", true,
-     "MariaDB client option file (default, when dbserver is empty: state/mariadb/reader.cnf of "
-     "the private server; delete and prune: state/mariadb/admin.cnf)"},
+     "MariaDB client option file (default, when dbserver is empty: reader.cnf of the private "
+     "server of simpartner-mariadb, in $SIMPARTNER_STATE/mariadb, ./state/mariadb, then "
+     "~/.local/state/simpartner/mariadb when installed or the source tree's state/mariadb; "
+     "delete, prune, storage and compress: admin.cnf there)"},
     {"body", true, "poses, forces, plot: only this body (e.g. Wheel1)"},
     {"joint", true, "joints, plot: only this joint (e.g. Axle1)"},
     {"out", true, "write the CSV (or the plot's PNG) to this file; -o is the same"},
@@ -139,7 +141,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> warnings;
     const logger::DbTarget target = logger::ResolveDbTarget(
         params, command_line.Value("db-options", ""),
-        admin ? "state/mariadb/admin.cnf" : logger::kPrivateReaderOptions, &warnings);
+        admin ? logger::kPrivateAdminOptions : logger::kPrivateReaderOptions, &warnings);
     for (const std::string& w : warnings) std::cerr << "simpartner-query: warning: " << w << "\n";
     std::unique_ptr<logger::DbConnection> db = logger::DbConnection::Open(target, false);
     db->UseDatabase(false);

@@ -295,6 +295,7 @@ PYBIND11_MODULE(simpartner, m) {
         py::arg("dbname") = "simpartner", py::arg("dbserver") = "", py::arg("velocities") = false,
         "A logged simulation from the database: dict with time (n,), bodies {name: (n, 7 or 10)}, "
         "joints {name: (n, 15), angles unwrapped}, body_columns, joint_columns. simulation: an id, "
-        "'last' or 'running'. db_options: client option file (default "
-        "state/mariadb/reader.cnf of the private server).");
+        "'last' or 'running'. db_options: client option file (default: reader.cnf of the "
+        "private server of simpartner-mariadb, in $SIMPARTNER_STATE/mariadb, ./state/mariadb or "
+        "~/.local/state/simpartner/mariadb).");
 }

@@ -96,6 +96,77 @@ std::vector<DataRoot> DataRoots() {
   return roots;
 }
 
+namespace {
+
+bool InBuildTree() {
+  const fs::path program = ProgramFile();
+  return !program.empty() && IsInside(program, SP_DATA_BUILD_DIR);
+}
+
+// ${XDG_STATE_HOME:-$HOME/.local/state}/simpartner, as simpartner-mariadb
+// computes it (a relative XDG_STATE_HOME is ignored).
+DataRoot InstalledStateDirectory() {
+  const char* xdg = std::getenv("XDG_STATE_HOME");
+  const char* home = std::getenv("HOME");
+  if (xdg != nullptr && fs::path(xdg).is_absolute())
+    return DataRoot{(fs::path(xdg) / "simpartner").lexically_normal().string(), "XDG_STATE_HOME"};
+  if (home != nullptr && *home != '\0')
+    return DataRoot{(fs::path(home) / ".local/state/simpartner").lexically_normal().string(),
+                    "$HOME/.local/state"};
+  return DataRoot{};
+}
+
+DataRoot StateFromEnvironment() {
+  const char* state = std::getenv(kStateEnvironmentVariable);
+  if (state == nullptr || *state == '\0') return DataRoot{};
+  return DataRoot{fs::absolute(state).lexically_normal().string(), kStateEnvironmentVariable};
+}
+
+}  // namespace
+
+DataRoot StateDirectory() {
+  const DataRoot from_environment = StateFromEnvironment();
+  if (!from_environment.directory.empty()) return from_environment;
+  if (InBuildTree()) return DataRoot{};
+  return InstalledStateDirectory();
+}
+
+std::vector<DataRoot> PrivateServerDirectories() {
+  std::vector<DataRoot> out;
+  auto add = [&out](const fs::path& state, const std::string& source) {
+    const std::string directory = (state / "mariadb").lexically_normal().string();
+    for (const DataRoot& r : out)
+      if (r.directory == directory) return;
+    out.push_back(DataRoot{directory, source});
+  };
+  const DataRoot from_environment = StateFromEnvironment();
+  if (!from_environment.directory.empty()) add(from_environment.directory, from_environment.source);
+  add(fs::absolute("state"), "working directory");
+  if (InBuildTree()) {
+    add(fs::path(SP_DATA_SOURCE_DIR) / "state", "source tree");
+  } else {
+    const DataRoot installed = InstalledStateDirectory();
+    if (!installed.directory.empty()) add(installed.directory, installed.source);
+  }
+  return out;
+}
+
+std::vector<DataCandidate> PrivateServerFileCandidates(const std::string& name,
+                                                       const std::vector<DataRoot>& directories) {
+  if (fs::path(name).is_absolute()) return {DataCandidate{name, "as given"}};
+  std::vector<DataCandidate> out;
+  for (const DataRoot& d : directories)
+    out.push_back(DataCandidate{(fs::path(d.directory) / name).lexically_normal().string(), d.source});
+  return out;
+}
+
+std::string DescribePrivateServerLookup() {
+  return std::string("the private server's files are looked for in $") + kStateEnvironmentVariable +
+         "/mariadb, state/mariadb of the working directory, then the source tree's state/mariadb "
+         "(programs of a build tree) or ${XDG_STATE_HOME:-$HOME/.local/state}/simpartner/mariadb "
+         "(installed programs)";
+}
+
 std::vector<DataCandidate> DataFileCandidates(const std::string& name,
                                               const std::vector<std::string>& kind_dirs,
                                               const std::vector<DataRoot>& roots) {

@@ -110,18 +110,23 @@ DbTarget ResolveDbTarget(const Parameters& params, const std::string& option_fil
                           "with [client] user= and password= (mode 0600)");
       throw ConfigError(diagnostics);
     }
-    // Relative to the working directory, else (a build's programs) to the
-    // source tree where scripts/run keeps state/: found as data, so a
-    // program run from elsewhere says where it looked.
-    try {
-      target.option_file = FindDataFile(default_option_file, "MariaDB option");
-    } catch (const DataFileNotFound& e) {
+    // The private server's file (common/.../data_paths.h says where it is
+    // looked for, as simpartner-mariadb puts it).
+    const std::vector<DataCandidate> tried = PrivateServerFileCandidates(default_option_file);
+    for (const DataCandidate& c : tried) {
+      struct stat file {};
+      if (::stat(c.path.c_str(), &file) == 0 && !S_ISDIR(file.st_mode)) {
+        target.option_file = c.path;
+        break;
+      }
+    }
+    if (target.option_file.empty()) {
       diagnostics.Add(default_option_file, 0, "dbserver",
                       "dbserver is empty, so the private server's option file is used, but it "
                       "is in none of these places:\n" +
-                          FormatCandidates(e.tried()) +
-                          "start the server with scripts/mariadb start (scripts/run starts it in "
-                          "the repository's state/), run from the directory holding its state/, "
+                          FormatCandidates(tried) +
+                          "start the server with simpartner-mariadb start (scripts/mariadb start "
+                          "in a source tree; scripts/run starts it in the repository's state/), "
                           "or set dbserver and --db-options");
       throw ConfigError(diagnostics);
     }

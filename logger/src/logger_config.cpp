@@ -1,5 +1,7 @@
 #include "simpartner/logger/logger_config.h"
 
+#include "simpartner/data_paths.h"
+
 #include <unistd.h>
 
 #include <cmath>
@@ -35,8 +37,13 @@ std::vector<FlagSpec> LoggerFlags() {
   return {
       {"db-options", true,
        "MariaDB client option file with [client] user, password and socket or host (mode "
-       "0600); default state/mariadb/logger.cnf of the private server when dbserver is empty"},
-      {"spool", true, "directory for records waiting for the database (default state/logger-spool)"},
+       "0600); default when dbserver is empty: logger.cnf of the private server of "
+       "simpartner-mariadb, in $SIMPARTNER_STATE/mariadb, ./state/mariadb, then "
+       "~/.local/state/simpartner/mariadb when installed or the source tree's state/mariadb"},
+      {"spool", true,
+       "directory for records waiting for the database (default state/logger-spool; installed: "
+       "${XDG_STATE_HOME:-~/.local/state}/simpartner/logger-spool; $SIMPARTNER_STATE/logger-spool "
+       "when that is set)"},
       {"insert", true,
        "auto (default: multi-row INSERTs for small batches, LOAD DATA LOCAL for big ones), "
        "multirow or loaddata"},
@@ -62,6 +69,10 @@ LoggerOptions MakeLoggerOptions(const CommandLine& command_line, const Parameter
   LoggerOptions options;
   options.lcm_url = params.lcmUrl;
   options.log_interval = params.logEveryStep ? 1 : params.logInterval;
+  // An installed logger keeps its spool beside the private server's files
+  // (not in whatever directory it was started from).
+  const DataRoot state = StateDirectory();
+  if (!state.directory.empty()) options.spool_dir = state.directory + "/logger-spool";
   options.spool_dir = command_line.Value("spool", options.spool_dir);
   const std::string insert = command_line.Value("insert", "auto");
   if (insert == "auto") options.insert_method = InsertMethod::kAuto;

@@ -627,7 +627,8 @@ DeleteSummary DeleteIds(DbConnection* db, const std::vector<uint32_t>& ids) {
       throw Error("deleting needs an administrator: " + e.server() + " refuses DELETE to this user (" +
                   e.cause() + "); the logger's and the reader's users have no DELETE. Use "
                   "--db-options with the administrator's option file (the private server's is "
-                  "state/mariadb/admin.cnf, the default of delete and prune). Nothing was deleted");
+                  "admin.cnf beside its reader.cnf, the default of delete and prune). Nothing was "
+                  "deleted");
     throw;
   }
   summary.simulations = ids;
@@ -717,8 +718,8 @@ std::vector<TableStorage> ReadTableStorage(DbConnection* db) {
 void SetPageCompression(DbConnection* db, bool on) {
   for (const std::string& t : PerStepTables())
     db->Execute("ALTER TABLE " + t + " PAGE_COMPRESSED=" + (on ? "1" : "0"),
-                "ALTER TABLE " + t + " PAGE_COMPRESSED (needs the administrator: --db-options "
-                "state/mariadb/admin.cnf)");
+                "ALTER TABLE " + t + " PAGE_COMPRESSED (needs the administrator: the private "
+                "server's admin.cnf, or --db-options)");
 }
 
 }  // namespace simpartner::logger

@@ -108,5 +108,32 @@ TEST_F(DataPathsTest, SimpartnerDataComesFirstAndMayListSeveralDirectories) {
   EXPECT_EQ(roots[2].source, "source tree");
 }
 
+// The private server's files (simpartner-mariadb's directory): from the
+// build tree, $SIMPARTNER_STATE, the working directory, the source tree;
+// never ~/.local/state (that is an installed program's; installed_sim_test
+// covers it).
+TEST_F(DataPathsTest, PrivateServerFilesAreLookedForWhereTheScriptPutsThem) {
+  const char* saved = std::getenv(kStateEnvironmentVariable);
+  const std::string previous = saved ? saved : "";
+  ::setenv(kStateEnvironmentVariable, (dir_ / "st").string().c_str(), 1);
+  const std::vector<DataRoot> with = PrivateServerDirectories();
+  ::unsetenv(kStateEnvironmentVariable);
+  const std::vector<DataRoot> without = PrivateServerDirectories();
+  if (saved) ::setenv(kStateEnvironmentVariable, previous.c_str(), 1);
+  ASSERT_EQ(with.size(), 3u);
+  EXPECT_EQ(with[0].directory, (dir_ / "st/mariadb").string());
+  EXPECT_EQ(with[0].source, "SIMPARTNER_STATE");
+  EXPECT_EQ(with[1].directory, (fs::current_path() / "state/mariadb").string());
+  EXPECT_EQ(with[2].directory,
+            (fs::path(SP_SOURCE_DIR) / "state/mariadb").lexically_normal().string());
+  EXPECT_EQ(with[2].source, "source tree");
+  ASSERT_EQ(without.size(), 2u);
+  EXPECT_EQ(without[0].directory, with[1].directory);
+  const auto c = PrivateServerFileCandidates("reader.cnf", with);
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[0].path, (dir_ / "st/mariadb/reader.cnf").string());
+  EXPECT_EQ(PrivateServerFileCandidates("/x/reader.cnf").size(), 1u);
+}
+
 }  // namespace
 }  // namespace simpartner

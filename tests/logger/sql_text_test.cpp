@@ -88,7 +88,7 @@ TEST_F(DbTargetTest, ConfigurationErrorsNameTheKeyOrFile) {
   EXPECT_NE(ErrorOf(p, "").find("/nonexistent/state/mariadb/logger.cnf: dbserver: dbserver is empty, "
                                 "so the private server's option file is used, but it is in none of "
                                 "these places:\n  /nonexistent/state/mariadb/logger.cnf (as given)\n"
-                                "start the server with scripts/mariadb start"),
+                                "start the server with simpartner-mariadb start"),
             std::string::npos) << ErrorOf(p, "");
   p.dbserver = "db:3306";
   EXPECT_NE(ErrorOf(p, "").find("dbserver: server 'db:3306' needs credentials: pass --db-options"),

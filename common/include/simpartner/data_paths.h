@@ -76,4 +76,40 @@ std::string FormatCandidates(const std::vector<DataCandidate>& candidates);
 // The lookup order in words, for --help texts.
 std::string DescribeDataLookup();
 
+// Where the private MariaDB server of simpartner-mariadb (scripts/mariadb
+// in a source tree) keeps its files, the client option files logger.cnf,
+// reader.cnf and admin.cnf among them. The script's default directory is
+// $SIMPARTNER_STATE/mariadb when that is set, else <source tree>/state/mariadb
+// for the script of a source tree, else (installed)
+// ${XDG_STATE_HOME:-$HOME/.local/state}/simpartner/mariadb. A program
+// looks, in order, in:
+//   1. $SIMPARTNER_STATE/mariadb, when SIMPARTNER_STATE is set;
+//   2. state/mariadb of the working directory;
+//   3. the source tree's state/mariadb, when the program runs from its
+//      build tree;
+//   4. ${XDG_STATE_HOME:-$HOME/.local/state}/simpartner/mariadb, when it
+//      does not (an installed program; a relative XDG_STATE_HOME is
+//      ignored, as the XDG rule says).
+inline constexpr const char* kStateEnvironmentVariable = "SIMPARTNER_STATE";
+
+// Where this process keeps what it writes between runs (simpartner-mariadb's
+// mariadb/, the logger's logger-spool/): $SIMPARTNER_STATE when set; else
+// for a program of a build tree nothing (its state/ is relative to the
+// working directory, as scripts/run uses it); else (installed)
+// ${XDG_STATE_HOME:-$HOME/.local/state}/simpartner. directory is empty when
+// there is none.
+DataRoot StateDirectory();
+
+// The directories of steps 1 to 4 for this process, without duplicates
+// (whether or not they exist).
+std::vector<DataRoot> PrivateServerDirectories();
+
+// Every path of the private server's file name (e.g. "reader.cnf") under
+// each of those directories; an absolute name is tried as given only.
+std::vector<DataCandidate> PrivateServerFileCandidates(
+    const std::string& name, const std::vector<DataRoot>& directories = PrivateServerDirectories());
+
+// That order in words, for messages and --help texts.
+std::string DescribePrivateServerLookup();
+
 }  // namespace simpartner

@@ -33,14 +33,17 @@ struct DbTarget {
   std::string Server() const;
 };
 
-// Default client option files of the private server scripts/mariadb starts,
-// relative to the working directory (the repository root for scripts/run).
-inline constexpr const char* kPrivateLoggerOptions = "state/mariadb/logger.cnf";
-inline constexpr const char* kPrivateReaderOptions = "state/mariadb/reader.cnf";
+// Default client option files of the private server simpartner-mariadb
+// (scripts/mariadb) starts: names in its directory, which
+// PrivateServerDirectories() (simpartner/data_paths.h) finds.
+inline constexpr const char* kPrivateLoggerOptions = "logger.cnf";
+inline constexpr const char* kPrivateReaderOptions = "reader.cnf";
+inline constexpr const char* kPrivateAdminOptions = "admin.cnf";
 
 // dbserver (host[:port] or a socket path; empty = the option file's socket
-// or host), dbname and the option file (`option_file`, or
-// `default_option_file` when dbserver is empty). Throws ConfigError naming
+// or host), dbname and the option file (`option_file`, or when dbserver is
+// empty `default_option_file`: a kPrivate*Options name looked for in the
+// private server's directories, or an absolute path). Throws ConfigError naming
 // the key or file. Warnings (e.g. an option file others can read) go to
 // *warnings.
 DbTarget ResolveDbTarget(const Parameters& params, const std::string& option_file,
