@@ -301,21 +301,22 @@ TEST_F(ReceiverTest, HostileLengthsAndCountsAreRefusedAndLoggingGoesOn) {
   Start();
   Publish(channels::kModel, TwoBodyModel(5));
   Publish(channels::kState, State(5, 1));
-  // command_t: 8-byte fingerprint, utime, request_id, then sender's length.
+  // command_t: 8-byte fingerprint, utime, request_id, simulation_id, then
+  // sender's length.
   command_t command{};
   command.sender = "";
   command.robot = "";
   command.target = "";
   std::vector<uint8_t> sender_zero = Encode(command);
-  PutInt32(&sender_zero, 24, 0);
+  PutInt32(&sender_zero, 32, 0);
   PublishRaw(channels::kCommand, sender_zero);
   std::vector<uint8_t> sender_negative = Encode(command);
-  PutInt32(&sender_negative, 24, -5);
+  PutInt32(&sender_negative, 32, -5);
   PublishRaw(channels::kCommand, sender_negative);
   // command_t num_values: after three empty strings (5 bytes each), port
-  // (4), action (1) and apply_at_step (8): byte 24 + 15 + 13 = 52.
+  // (4), action (1) and apply_at_step (8): byte 32 + 15 + 13 = 60.
   std::vector<uint8_t> values_huge = Encode(command);
-  PutInt32(&values_huge, 52, INT32_MAX);
+  PutInt32(&values_huge, 60, INT32_MAX);
   PublishRaw(channels::kCommand, values_huge);
   // state_t: fingerprint, utime, simulation_id, step, sim_time: num_bodies
   // at byte 40.
@@ -339,11 +340,11 @@ TEST_F(ReceiverTest, HostileLengthsAndCountsAreRefusedAndLoggingGoesOn) {
   const std::string text = out_.str();
   const std::string command_refused =
       "SIM_COMMAND: " + std::to_string(sender_zero.size()) + " bytes refused as simpartner.command_t";
-  EXPECT_NE(text.find(command_refused + ": field 'sender' at byte 24: string length 0"),
+  EXPECT_NE(text.find(command_refused + ": field 'sender' at byte 32: string length 0"),
             std::string::npos) << text;
-  EXPECT_NE(text.find(command_refused + ": field 'sender' at byte 24: string length -5"),
+  EXPECT_NE(text.find(command_refused + ": field 'sender' at byte 32: string length -5"),
             std::string::npos) << text;
-  EXPECT_NE(text.find("field 'num_values' at byte 52: count 2147483647"), std::string::npos) << text;
+  EXPECT_NE(text.find("field 'num_values' at byte 60: count 2147483647"), std::string::npos) << text;
   EXPECT_NE(text.find("refused as simpartner.state_t: field 'num_bodies' at byte 40: count -1 is negative"),
             std::string::npos) << text;
   EXPECT_NE(text.find("field 'num_bodies' at byte 40: count 2147483647"), std::string::npos) << text;
