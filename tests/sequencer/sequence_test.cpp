@@ -393,7 +393,10 @@ TEST(SequencerCommandLine, BadOptionsAreUsageErrors) {
 TEST(SequencerCommandLine, MissingFileIsNamed) {
   std::ostringstream out, err;
   EXPECT_EQ(RunSequencer({"--check", "/nonexistent/seq.xml"}, out, err), 2);
-  EXPECT_NE(err.str().find("/nonexistent/seq.xml: cannot be read"), std::string::npos) << err.str();
+  // The data lookup's miss: the file, then every full path it tried.
+  EXPECT_NE(err.str().find("/nonexistent/seq.xml: cannot read sequence file: not found; tried:"),
+            std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("  /nonexistent/seq.xml (as given)"), std::string::npos) << err.str();
 }
 
 }  // namespace
