@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "../tests/support/netns.h"
+#include "bench_args.h"
 #include "simpartner/channels.h"
-#include "simpartner/edit_distance.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/state_t.hpp"
@@ -154,55 +154,30 @@ void Print(const char* what, const Figures& f) {
   std::fflush(stdout);
 }
 
-const char* const kUsage =
-    "bench/multi_host_bench [--seconds S] [--rate HZ] [--port N] [--world WORLD.xml]\n"
-    "Publishes SIM_STATE messages of the world's robot (default gen3, models/worlds/flat_ground.xml)\n"
-    "at HZ (default 1000) for S seconds (default 60) from one network namespace to another over a\n"
-    "bridge (LCM udpm ttl=1, port N, default 7667, inside the namespaces only), then within one\n"
-    "namespace, and prints the states lost and the one-way latency p50/p99. The receiver uses\n"
-    "recv_buf_size=4194304 and a 100000-message queue, as simpartner-logger does. Needs root.\n";
-
 int Run(int argc, char** argv) {
+  const bench::BenchArgs args = bench::ParseBenchArgsOrExit(
+      argc, argv,
+      {"multi_host_bench", "", 0,
+       "Publishes SIM_STATE messages of the world's robot (default gen3, models/worlds/flat_ground.xml)\n"
+       "at HZ for S seconds from one network namespace to another over a bridge (LCM udpm ttl=1,\n"
+       "port N, inside the namespaces only), then within one namespace, and prints the states lost\n"
+       "and the one-way latency p50/p99. The receiver uses recv_buf_size=4194304 and a\n"
+       "100000-message queue, as simpartner-logger does. Needs root.",
+       {{"--seconds", bench::ValueKind::kNumber, "S", "how long each path is measured (default 60)"},
+        {"--rate", bench::ValueKind::kNumber, "HZ", "states per second (default 1000)"},
+        {"--port", bench::ValueKind::kInteger, "N", "the LCM port inside the namespaces (default 7667)"},
+        {"--world", bench::ValueKind::kText, "WORLD.xml",
+         "the world whose robot's state is sent (default models/worlds/flat_ground.xml)"}}});
   Options options;
-  const std::vector<std::string> known = {"--seconds", "--rate", "--port", "--world", "--help"};
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "multi_host_bench: %s needs a value\n%s", a.c_str(), kUsage);
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    auto number = [&](const std::string& text) {
-      char* end = nullptr;
-      const double v = std::strtod(text.c_str(), &end);
-      if (end == text.c_str() || *end != '\0' || !(v > 0)) {
-        std::fprintf(stderr, "multi_host_bench: %s: '%s' is not a positive number\n", a.c_str(), text.c_str());
-        std::exit(2);
-      }
-      return v;
-    };
-    if (a == "--help" || a == "-h") {
-      std::printf("%s", kUsage);
-      return 0;
-    } else if (a == "--seconds") {
-      options.seconds = number(value());
-    } else if (a == "--rate") {
-      options.rate = number(value());
-    } else if (a == "--port") {
-      options.port = static_cast<int>(number(value()));
-    } else if (a == "--world") {
-      options.world = value();
-    } else {
-      std::string hint;
-      size_t best = 4;  // at most 3 edits away
-      for (const std::string& k : known) {
-        const size_t d = EditDistance(a, k);
-        if (d < best) best = d, hint = k;
-      }
-      std::fprintf(stderr, "multi_host_bench: unknown option '%s'%s\n%s", a.c_str(),
-                   hint.empty() ? "" : (" (did you mean '" + hint + "'?)").c_str(), kUsage);
+  options.seconds = args.Number("--seconds", options.seconds);
+  options.rate = args.Number("--rate", options.rate);
+  options.port = static_cast<int>(args.Integer("--port", options.port));
+  options.world = args.Text("--world", options.world);
+  for (const auto& [name, value] : {std::pair<const char*, double>{"--seconds", options.seconds},
+                                    {"--rate", options.rate},
+                                    {"--port", static_cast<double>(options.port)}}) {
+    if (!(value > 0)) {
+      std::fprintf(stderr, "multi_host_bench: %s: %g is not a positive number\n", name, value);
       return 2;
     }
   }

@@ -50,7 +50,7 @@ for source in "$source_dir"/bench/*.cpp; do
   [[ $listed == *" $bench "* ]] || fail "bench/$bench.cpp has no case in $0"
 done
 
-# The parser all but multi_host_bench share (bench/bench_args.h).
+# The parser every bench shares (bench/bench_args.h).
 expect_refusal() {  # expected text, then the command line
   local want=$1; shift
   local out status
