@@ -1,6 +1,7 @@
 #include "simpartner/logger/receiver.h"
 
 #include <cmath>
+#include <numeric>
 #include <utility>
 
 #include "simpartner/bus_decode.h"
@@ -451,14 +452,58 @@ void Receiver::CloseSilent() {
                                seconds + " s and no RUN_STOPPED (last step seen " +
                                std::to_string(clock.step) + ")";
     ended_.insert(simulation);
+    clock.closed_silent = true;
     {
       std::lock_guard<std::mutex> lock(stats_mutex_);
       ++stats_.simulations_silent;
     }
     reporter_->Say("bus simulation " + std::to_string(simulation) + ": " + reason +
-                   "; closing it");
+                   "; closing it (it is reopened if the sim is heard again)");
     Push(MakeEndedRecord(simulation, NowMicros(), EndedPayload{clock.step, EndKind::kSilent, reason}));
   }
+}
+
+void Receiver::Heard(int64_t simulation) {
+  SimClock& clock = clocks_[simulation];
+  const auto now = std::chrono::steady_clock::now();
+  if (clock.closed_silent) {
+    // Stopped, not dead (SIGSTOP, a debugger, a link down): the close was
+    // wrong, so it is undone, and the silence becomes a gap.
+    clock.closed_silent = false;
+    clock.silence_after_step = clock.step;
+    clock.silence_seconds = std::chrono::duration<double>(now - clock.heard).count();
+    ended_.erase(simulation);
+    {
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      --stats_.simulations_silent;
+      ++stats_.simulations_reopened;
+    }
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "the sim was heard again after %.1f s of silence (last step seen %lld)",
+                  clock.silence_seconds, static_cast<long long>(clock.step));
+    reporter_->Say("bus simulation " + std::to_string(simulation) + ": " + text + "; reopening it");
+    Push(MakeReopenedRecord(simulation, NowMicros(), text));
+  }
+  clock.heard = now;
+}
+
+void Receiver::PushSilenceGap(const state_t& state, const ModelShape& shape) {
+  SimClock& clock = clocks_[state.simulation_id];
+  const int64_t before = clock.silence_after_step;
+  if (before < 0) return;
+  clock.silence_after_step = -1;
+  if (state.step <= before) return;
+  // Logged steps (multiples of the stride) strictly between the two: those
+  // lost while the link was down; none if the sim was stopped.
+  const int64_t stride = std::lcm<int64_t>(shape.state_every, options_.log_interval);
+  const int64_t missing = (state.step - 1) / stride - before / stride;
+  char reason[200];
+  std::snprintf(reason, sizeof reason,
+                "the sim was silent for %.1f s (no SIM_STATE or SIM_STATUS): closed as silent "
+                "after %g s, reopened when heard again",
+                clock.silence_seconds, options_.sim_silence);
+  Push(MakeGapRecord(state.simulation_id, NowMicros(), GapPayload{before, state.step, missing, reason}));
 }
 
 std::string Receiver::CheckStepRate(const state_t& s, int64_t received_us, const ModelShape& shape) {
@@ -512,6 +557,7 @@ void Receiver::Deliver(Record record, const state_t* decoded) {
       Invalid(channels::kState, problem);
       return;
     }
+    PushSilenceGap(s, shape);
     const int64_t step = s.step;
     {
       std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -597,8 +643,7 @@ void Receiver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& chan
 void Receiver::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   state_t state;
   if (!Decode(buffer, channel, &state)) return;
-  if (models_.count(state.simulation_id) > 0)
-    clocks_[state.simulation_id].heard = std::chrono::steady_clock::now();
+  if (models_.count(state.simulation_id) > 0) Heard(state.simulation_id);
   Deliver(MakeRecord(RecordKind::kState, state.simulation_id, buffer), &state);
 }
 
@@ -647,7 +692,7 @@ void Receiver::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& cha
   status_t status;
   if (!Decode(buffer, channel, &status)) return;
   if (models_.count(status.simulation_id) == 0) return;
-  clocks_[status.simulation_id].heard = std::chrono::steady_clock::now();
+  Heard(status.simulation_id);
   if (status.run_state != status_t::RUN_STOPPED) return;
   if (ended_.count(status.simulation_id) > 0) return;
   ended_.insert(status.simulation_id);

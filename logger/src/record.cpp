@@ -44,11 +44,12 @@ const char* RecordKindName(RecordKind kind) {
     case RecordKind::kCommandReply: return "command reply";
     case RecordKind::kSimulationEnded: return "simulation ended";
     case RecordKind::kGap: return "gap";
+    case RecordKind::kSimulationReopened: return "simulation reopened";
   }
   return "unknown";
 }
 
-bool IsKnownRecordKind(uint8_t kind) { return kind >= 1 && kind <= 7; }
+bool IsKnownRecordKind(uint8_t kind) { return kind >= 1 && kind <= 8; }
 
 Record MakeGapRecord(int64_t simulation_id, int64_t received_us, const GapPayload& gap) {
   Record r;
@@ -73,6 +74,15 @@ Record MakeEndedRecord(int64_t simulation_id, int64_t received_us, const EndedPa
   return r;
 }
 
+Record MakeReopenedRecord(int64_t simulation_id, int64_t received_us, const std::string& reason) {
+  Record r;
+  r.kind = RecordKind::kSimulationReopened;
+  r.simulation_id = simulation_id;
+  r.received_us = received_us;
+  r.payload.assign(reason.begin(), reason.end());
+  return r;
+}
+
 GapPayload ReadGap(const Record& record) {
   CheckSize(record, 24, true);
   return GapPayload{GetI64(record.payload, 0), GetI64(record.payload, 8),
@@ -86,5 +96,7 @@ EndedPayload ReadEnded(const Record& record) {
   return EndedPayload{GetI64(record.payload, 0), kind == 1 ? EndKind::kSilent : EndKind::kStopped,
                       TextFrom(record, 16)};
 }
+
+std::string ReadReopened(const Record& record) { return TextFrom(record, 0); }
 
 }  // namespace simpartner::logger

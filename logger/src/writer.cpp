@@ -336,10 +336,14 @@ WriteResult DbWriter::Write(const std::vector<Record>& records) {
       } else if (record.kind == RecordKind::kSimulationEnded) {
         CloseSimulation(record);
         ++i;
+      } else if (record.kind == RecordKind::kSimulationReopened) {
+        ReopenSimulation(record);
+        ++i;
       } else {
         std::vector<const Record*> run;
         while (i < records.size() && records[i].kind != RecordKind::kModel &&
-               records[i].kind != RecordKind::kSimulationEnded) {
+               records[i].kind != RecordKind::kSimulationEnded &&
+               records[i].kind != RecordKind::kSimulationReopened) {
           run.push_back(&records[i]);
           ++i;
         }
@@ -723,6 +727,19 @@ void DbWriter::CloseSimulation(const Record& record) {
           (ended.kind == EndKind::kStopped
                ? " at step " + std::to_string(ended.last_step)
                : std::string()));
+}
+
+void DbWriter::ReopenSimulation(const Record& record) {
+  SimInfo* sim = FindSimulation(record.simulation_id);
+  if (sim == nullptr) return;
+  const std::string sid = std::to_string(sim->id);
+  // Open again as if it had never closed: a reader takes endTime NULL as
+  // running; lastStep is set again when it closes.
+  db_->Execute("UPDATE Simulation SET endTime = NULL, endReason = NULL, lastStep = NULL"
+               " WHERE simulationID = " + sid + " AND endTime IS NOT NULL",
+               "UPDATE Simulation (reopen " + sid + ")");
+  if (db_->QueryInt("SELECT ROW_COUNT()", "SELECT ROW_COUNT()", 0) == 0) return;  // open already
+  notice_("reopened simulation " + sid + ": " + ReadReopened(record));
 }
 
 void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_present,

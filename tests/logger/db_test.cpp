@@ -468,6 +468,43 @@ TEST_F(DbTest, ASilentSimulationIsClosedWithItsReason) {
   EXPECT_EQ(closed, 1u);
 }
 
+// A simulation closed as silent whose sim is heard again is open again
+// (as a reader sees it), with the silence in LogGap, and closes normally
+// at its end; writing it all again changes nothing.
+TEST_F(DbTest, ASilentSimulationHeardAgainIsReopened) {
+  const SimRun run = ArmRun(30, 5);
+  auto writer = Writer();
+  std::vector<Record> before = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(1, 20)) before.push_back(std::move(r));
+  before.push_back(MakeEndedRecord(5, 0, EndedPayload{20, EndKind::kSilent, "the sim went silent"}));
+  writer->Write(before);
+  auto db = Admin();
+  const std::string state = "SELECT endTime IS NOT NULL, endReason, lastStep FROM Simulation";
+  EXPECT_EQ(QueryRows(db.get(), state), (std::vector<std::string>{"1\tthe sim went silent\t20"}));
+  std::vector<Record> after = {MakeReopenedRecord(5, 0, "heard again after 4.0 s"),
+                               MakeGapRecord(5, 0, GapPayload{20, 21, 0, "the sim was silent for 4.0 s"})};
+  for (Record& r : run.StateRecords(21, 25)) after.push_back(std::move(r));
+  writer->Write(after);
+  EXPECT_EQ(QueryRows(db.get(), state), (std::vector<std::string>{"0\tNULL\tNULL"}));
+  std::vector<Record> end = run.StateRecords(26, 30);
+  end.push_back(MakeEndedRecord(5, 0, EndedPayload{30, EndKind::kStopped, ""}));
+  writer->Write(end);
+  const auto expect_final = [&] {
+    EXPECT_EQ(QueryRows(db.get(), state), (std::vector<std::string>{"1\tthe sim stopped\t30"}));
+    EXPECT_EQ(QueryRows(db.get(), "SELECT simulationID, firstStep, lastStep, missing, reason FROM LogGap"),
+              (std::vector<std::string>{"1\t20\t21\t0\tthe sim was silent for 4.0 s"}));
+    ExpectEveryStepOnce("simpartner", 1, 1, 30, 3, 2);
+  };
+  expect_final();
+  size_t reopened = 0;
+  for (const std::string& n : notices_)
+    reopened += n == "reopened simulation 1: heard again after 4.0 s";
+  EXPECT_EQ(reopened, 1u) << ::testing::PrintToString(notices_);
+  // A replayed spool, in order: the same rows.
+  for (const auto* records : {&before, &after, &end}) writer->Write(*records);
+  expect_final();
+}
+
 TEST_F(DbTest, TheLoggerUserHasOnlyTheRightsItNeeds) {
   auto writer = Writer();
   const SimRun run = ArmRun(3, 1);

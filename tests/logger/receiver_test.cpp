@@ -454,6 +454,74 @@ TEST_F(ReceiverTest, ASilentSimIsClosedAtTheLastStepSeen) {
   EXPECT_TRUE(Queued().empty());
 }
 
+// A sim closed as silent that is heard again (stopped, not dead) is
+// reopened, the silence goes in as a gap from the last step before it to
+// the first after (none missing: the sim went on where it stopped), and
+// its RUN_STOPPED then closes it.
+TEST_F(ReceiverTest, ASilentSimHeardAgainIsReopenedWithTheSilenceAsAGap) {
+  Start(1, 0.3);
+  Publish(channels::kModel, TwoBodyModel(5));
+  for (int step = 1; step <= 7; ++step) Publish(channels::kState, State(5, step));
+  for (int i = 0; i < 5; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    receiver_->Tick();
+  }
+  EXPECT_EQ(receiver_->Stats().simulations_silent, 1u);
+  Queued();
+  status_t running{};
+  running.simulation_id = 5;
+  running.run_state = status_t::RUN_RUNNING;
+  running.step = 7;
+  Publish(channels::kStatus, running);  // heard again: reopened at once
+  Publish(channels::kState, State(5, 8));
+  Publish(channels::kState, State(5, 9));
+  status_t stopped = running;
+  stopped.run_state = status_t::RUN_STOPPED;
+  stopped.step = 9;
+  Publish(channels::kStatus, stopped);
+  const std::vector<Record> q = Queued();
+  ASSERT_EQ(q.size(), 5u);
+  EXPECT_EQ(q[0].kind, RecordKind::kSimulationReopened);
+  EXPECT_EQ(q[0].simulation_id, 5);
+  EXPECT_NE(ReadReopened(q[0]).find("last step seen 7"), std::string::npos) << ReadReopened(q[0]);
+  ASSERT_EQ(q[1].kind, RecordKind::kGap);
+  const GapPayload gap = ReadGap(q[1]);
+  EXPECT_EQ(gap.first_step, 7);
+  EXPECT_EQ(gap.last_step, 8);
+  EXPECT_EQ(gap.missing, 0);
+  EXPECT_NE(gap.reason.find("the sim was silent for 0."), std::string::npos) << gap.reason;
+  EXPECT_EQ(q[2].kind, RecordKind::kState);
+  EXPECT_EQ(q[3].kind, RecordKind::kState);
+  ASSERT_EQ(q[4].kind, RecordKind::kSimulationEnded);
+  EXPECT_EQ(ReadEnded(q[4]).kind, EndKind::kStopped);
+  EXPECT_EQ(ReadEnded(q[4]).last_step, 9);
+  const ReceiverStats stats = receiver_->Stats();
+  EXPECT_EQ(stats.simulations_silent, 0u);
+  EXPECT_EQ(stats.simulations_reopened, 1u);
+  EXPECT_NE(out_.str().find("reopening it"), std::string::npos) << out_.str();
+}
+
+// Steps lost while the link was down are counted in the silence's gap
+// (every 2nd step logged: 12, 14 and 16 lost between 11 and 17).
+TEST_F(ReceiverTest, StepsLostDuringASilenceAreItsMissingSteps) {
+  Start(2, 0.3);
+  Publish(channels::kModel, TwoBodyModel(5));
+  for (int step = 1; step <= 11; ++step) Publish(channels::kState, State(5, step));
+  for (int i = 0; i < 5; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    receiver_->Tick();
+  }
+  Queued();
+  Publish(channels::kState, State(5, 17));
+  const std::vector<Record> q = Queued();
+  ASSERT_EQ(q.size(), 2u);  // reopened, gap; 17 is not a logged step
+  ASSERT_EQ(q[1].kind, RecordKind::kGap);
+  const GapPayload gap = ReadGap(q[1]);
+  EXPECT_EQ(gap.first_step, 11);
+  EXPECT_EQ(gap.last_step, 17);
+  EXPECT_EQ(gap.missing, 3);
+}
+
 TEST(ReceiverUrlTest, ReceiveBufferIsAddedToUdpmUrls) {
   EXPECT_EQ(WithReceiveBuffer("udpm://239.255.76.67:7667?ttl=0"),
             "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304");

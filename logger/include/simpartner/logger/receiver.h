@@ -8,7 +8,8 @@
 // store, a step number beyond what the sim's rate allows) is counted per
 // channel, reported, and never written. Steps the queue could not keep (its
 // spool disk full) are recorded as a gap with that reason; a simulation
-// whose sim goes silent is closed.
+// whose sim goes silent is closed, and reopened if the sim is heard again
+// (it was stopped, or its link was down), with the silence as a gap.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -34,7 +35,8 @@ struct ReceiverOptions {
   std::string sender;             // sender name in SIM_MODEL_REQUEST
   uint64_t max_waiting_bytes = 64u << 20;  // messages waiting for their model
   // A simulation with no SIM_STATE or SIM_STATUS for this long (and no
-  // RUN_STOPPED) is closed: its sim died. [s]
+  // RUN_STOPPED) is closed: its sim died, as far as anyone can tell. If
+  // the sim is heard again it is reopened. [s]
   double sim_silence = 10.0;
   // Records other than states that the queue refused (its spool disk
   // full), held in memory until it takes them again.
@@ -67,7 +69,8 @@ struct ReceiverStats {
   uint64_t lost_spool_bytes = 0;
   uint64_t lost_states = 0;        // of which states (recorded in LogGap)
   uint64_t held = 0;               // other records refused, held in memory to be queued later
-  uint64_t simulations_silent = 0; // closed because their sim went silent
+  uint64_t simulations_silent = 0; // closed because their sim went silent (and not heard since)
+  uint64_t simulations_reopened = 0;  // closed as silent, then heard again
   uint64_t model_requests = 0;
   int64_t simulation_id = 0;       // the simulation followed (latest model)
   int64_t last_step = -1;          // its last state received
@@ -135,6 +138,12 @@ class Receiver {
   // Says once that the queue takes records again after refusing some.
   void SpoolRecovered();
   void CloseSilent();
+  // The sim of a simulation with a model spoke (SIM_STATE or SIM_STATUS):
+  // reopens the simulation if it was closed as silent.
+  void Heard(int64_t simulation);
+  // After a reopening: the silence as a gap, from the last step before it
+  // to `state`, the first after.
+  void PushSilenceGap(const state_t& state, const ModelShape& shape);
   void Wait(Record record);
 
   // Per simulation: the newest state accepted and when it came (for the
@@ -143,6 +152,11 @@ class Receiver {
     int64_t step = -1;
     int64_t received_us = 0;
     std::chrono::steady_clock::time_point heard{};
+    bool closed_silent = false;
+    // Reopened after a silence: its last step before it, and how long it
+    // lasted, until the next state gives the end of the gap.
+    int64_t silence_after_step = -1;
+    double silence_seconds = 0;
   };
   // What the queue refused, in order: a run of states of one simulation
   // (first..last, how many: queued later as a gap record), or another

@@ -17,6 +17,10 @@ enum class RecordKind : uint8_t {
   kCommandReply = 5,     // payload: command_reply_t
   kSimulationEnded = 6,  // payload: EndedPayload (the sim stopped, or went silent)
   kGap = 7,              // payload: GapPayload (steps the logger could not keep)
+  // payload: the reason (text). A simulation closed because its sim went
+  // silent is heard again (it was stopped, or its link was down): it is
+  // open again, and the silence follows as a kGap record.
+  kSimulationReopened = 8,
 };
 
 const char* RecordKindName(RecordKind kind);
@@ -43,7 +47,7 @@ struct GapPayload {
 
 enum class EndKind : int64_t {
   kStopped = 0,  // the sim said RUN_STOPPED
-  kSilent = 1,   // nothing from the sim for a while: it died
+  kSilent = 1,   // nothing from the sim for a while: it died, or a kSimulationReopened follows
 };
 
 struct EndedPayload {
@@ -54,9 +58,11 @@ struct EndedPayload {
 
 Record MakeGapRecord(int64_t simulation_id, int64_t received_us, const GapPayload& gap);
 Record MakeEndedRecord(int64_t simulation_id, int64_t received_us, const EndedPayload& ended);
+Record MakeReopenedRecord(int64_t simulation_id, int64_t received_us, const std::string& reason);
 // Throw std::runtime_error if the payload has the wrong size. Records of an
 // older spool (without kind and reason) read with the defaults.
 GapPayload ReadGap(const Record& record);
 EndedPayload ReadEnded(const Record& record);
+std::string ReadReopened(const Record& record);
 
 }  // namespace simpartner::logger

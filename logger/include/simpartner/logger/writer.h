@@ -88,6 +88,8 @@ class DbWriter {
 
   void WriteModel(const Record& record, WriteResult* result);
   void CloseSimulation(const Record& record);
+  // Undoes a close: the sim of a simulation closed as silent was heard again.
+  void ReopenSimulation(const Record& record);
   // check_present: look up which steps are already there first. Without
   // it, steps above the last one committed are taken as new, and a
   // duplicate key (someone else wrote them) makes the caller retry with it.
