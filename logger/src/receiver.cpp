@@ -665,8 +665,10 @@ void Receiver::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& ch
     Invalid(channel, problem + " is not valid UTF-8 that fits its column");
     return;
   }
-  int64_t simulation = 0;
-  {
+  // Logged under the simulation it was meant for when the logger knows
+  // it, else (0 = any, or one never seen) under the one followed.
+  int64_t simulation = command.simulation_id;
+  if (simulation == 0 || models_.count(simulation) == 0) {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     simulation = stats_.simulation_id;
   }

@@ -291,6 +291,15 @@ std::vector<Migration> BuildMigrations() {
                       " ADD COLUMN IF NOT EXISTS continuousAngle2 DOUBLE NULL COMMENT 'axis 2 (0 if none)',"
                       " ADD COLUMN IF NOT EXISTS continuousAngle3 DOUBLE NULL COMMENT 'axis 3 (0 if none)'"),
       }});
+  m.push_back(Migration{
+      6,
+      "Command.meantForBusSimulationID: the simulation a command was meant for "
+      "(command_t.simulation_id, 0 = any; NULL in rows logged before)",
+      {
+          std::string("ALTER TABLE Command ADD COLUMN IF NOT EXISTS meantForBusSimulationID BIGINT NULL"
+                      " COMMENT 'command_t.simulation_id: the Simulation.busSimulationID the sender meant it for; 0 = any; NULL = logged before the logger stored it'"
+                      " AFTER simulationID"),
+      }});
   return m;
 }
 

@@ -972,8 +972,8 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
                    "simulationID,sensorID,step,simulationTime,receivedUtime,vals,text",
                    "step = step");
   RowSink commands(db_.get(), InsertMethod::kMultiRowInsert, "", "Command",
-                   "simulationID,receivedUtime,sentUtime,sender,requestID,robot,target,port,action,"
-                   "applyAtStep,vals,text",
+                   "simulationID,meantForBusSimulationID,receivedUtime,sentUtime,sender,requestID,"
+                   "robot,target,port,action,applyAtStep,vals,text",
                    "requestID = requestID");
   RowSink replies(db_.get(), InsertMethod::kMultiRowInsert, "", "CommandReply",
                   "simulationID,receivedUtime,sender,requestID,target,accepted,reason,"
@@ -1000,6 +1000,7 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
       if (!DecodeRecord(*r, &c, notice_)) continue;
       commands.BeginRow();
       commands.Int(sim->id);
+      commands.Int(c.simulation_id);
       commands.Int(r->received_us);
       commands.Int(c.utime);
       commands.Text(c.sender);

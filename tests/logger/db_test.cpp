@@ -91,15 +91,23 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   for (const std::string& statement : Migrations().at(0).statements) old->Execute(statement, "");
   old->Execute("INSERT INTO SchemaVersion VALUES (1, 'v1', NOW())", "");
   old->Execute("INSERT INTO LogGap VALUES (1, 11, 14, 4, NOW())", "");  // a gap of that logger
+  for (const std::string& statement : Migrations().at(1).statements) old->Execute(statement, "");
+  old->Execute("INSERT INTO SchemaVersion VALUES (2, 'v2', NOW())", "");
+  old->Execute("INSERT INTO Command (simulationID, receivedUtime, sentUtime, sender, requestID, robot, "
+               "target, port, action, applyAtStep, vals, text) VALUES (1, 5, 4, 'teleop', 1, '', "
+               "'Spin', 0, 'SET', -1, '1', '')", "");  // a command of that logger
   std::vector<std::string> notices;
   auto b = DbConnection::Open(server_->LoggerTarget("simpartner_b"), false);
-  EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 1);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 5);
+  EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 2);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 6);
   ASSERT_EQ(notices.size(), 4u);
-  EXPECT_NE(notices[0].find("applied schema migration 2"), std::string::npos);
-  EXPECT_NE(notices[1].find("applied schema migration 3 (LogGap.reason"), std::string::npos);
-  EXPECT_NE(notices[2].find("applied schema migration 4 (Material"), std::string::npos);
-  EXPECT_NE(notices[3].find("applied schema migration 5 (JointPose.continuousAngle"), std::string::npos);
+  EXPECT_NE(notices[0].find("applied schema migration 3 (LogGap.reason"), std::string::npos);
+  EXPECT_NE(notices[1].find("applied schema migration 4 (Material"), std::string::npos);
+  EXPECT_NE(notices[2].find("applied schema migration 5 (JointPose.continuousAngle"), std::string::npos);
+  EXPECT_NE(notices[3].find("applied schema migration 6 (Command.meantForBusSimulationID"), std::string::npos);
+  // Commands logged before migration 6: whom they were meant for is unknown.
+  EXPECT_EQ(QueryRows(old.get(), "SELECT sender, meantForBusSimulationID IS NULL FROM Command"),
+            (std::vector<std::string>{"teleop\t1"}));
   // Joint rows logged before migration 5 have no continuous angle: NULL.
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = "
                      "'simpartner_b' AND TABLE_NAME = 'JointPose' AND COLUMN_NAME LIKE "
@@ -119,7 +127,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   // Migrations cut short after adding their columns run again harmlessly.
   old->Execute("DELETE FROM SchemaVersion WHERE version >= 3", "");
   EXPECT_EQ(MigrateSchema(b.get(), nullptr), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 5);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 6);
 
   // A database from a newer logger is left alone.
   old->Execute("INSERT INTO SchemaVersion VALUES (99, 'from the future', NOW())", "");
@@ -128,7 +136,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
     FAIL() << "a newer schema was accepted";
   } catch (const DbError& e) {
     EXPECT_NE(std::string(e.what()).find("database 'simpartner_b' has schema version 99, newer than "
-                                         "this program's 5"),
+                                         "this program's 6"),
               std::string::npos) << e.what();
   }
 }
@@ -283,6 +291,7 @@ TEST_F(DbTest, ARestartedSimIsANewSimulationAndTheOldOneIsClosed) {
   records.push_back(testing::MakeRecord(RecordKind::kSensor, 100, reading, 555));
   command_t command = sim::testing::Command("Spin", command_t::ACTION_SET, {10, 0.5});
   command.text = "it's a \"test\"";
+  command.simulation_id = 100;
   records.push_back(testing::MakeRecord(RecordKind::kCommand, 100, command, 556));
   records.push_back(second.ModelRecord());
   for (Record& r : second.StateRecords(1, 5)) records.push_back(std::move(r));
@@ -299,8 +308,8 @@ TEST_F(DbTest, ARestartedSimIsANewSimulationAndTheOldOneIsClosed) {
   ExpectEveryStepOnce("simpartner", 2, 1, 5, 3, 2);
   EXPECT_EQ(QueryRows(db.get(), "SELECT s.name, r.step, r.vals FROM SensorReading r JOIN Sensor s USING (sensorID)"),
             (std::vector<std::string>{"ArmPosition\t20\t1.5,-2.25"}));
-  EXPECT_EQ(QueryRows(db.get(), "SELECT simulationID, target, action, vals, text FROM Command"),
-            (std::vector<std::string>{"1\tSpin\tSET\t10,0.5\tit's a \"test\""}));
+  EXPECT_EQ(QueryRows(db.get(), "SELECT simulationID, meantForBusSimulationID, target, action, vals, text FROM Command"),
+            (std::vector<std::string>{"1\t100\tSpin\tSET\t10,0.5\tit's a \"test\""}));
 }
 
 TEST_F(DbTest, LoadDataWritesTheSameRowsAsInsert) {

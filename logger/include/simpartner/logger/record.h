@@ -13,7 +13,7 @@ enum class RecordKind : uint8_t {
   kModel = 1,            // payload: model_t as on the bus
   kState = 2,            // payload: state_t
   kSensor = 3,           // payload: sensor_reading_t
-  kCommand = 4,          // payload: command_t (simulation = the one followed)
+  kCommand = 4,          // payload: command_t (simulation = the one meant, if known, else the one followed)
   kCommandReply = 5,     // payload: command_reply_t
   kSimulationEnded = 6,  // payload: EndedPayload (the sim stopped, or went silent)
   kGap = 7,              // payload: GapPayload (steps the logger could not keep)
