@@ -4,7 +4,9 @@
 // survive: the server away for 30 s, SIGKILL and restart, a restarted sim,
 // bad messages, a server refusing writes, a stop while the server is away,
 // its spool disk full while the server is away, a forged step number, a
-// stopped (SIGSTOP) server, a sim that dies without a word.
+// stopped (SIGSTOP) server, a sim that dies without a word, a sim stopped
+// (SIGSTOP) for longer than the silence that closes it; commands logged
+// with the simulation they were meant for.
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 #include <signal.h>
@@ -12,6 +14,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -690,6 +693,107 @@ TEST_F(LoggerProcessTest, AKilledSimsSimulationIsClosed) {
                     list_log);
   ASSERT_EQ(list.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile(list_log);
   EXPECT_NE(ReadFile(list_log).find("the sim went silent"), std::string::npos) << ReadFile(list_log);
+}
+
+// A sim stopped (SIGSTOP, as under a debugger) for longer than
+// --sim-silence is closed as silent, and reopened when it goes on
+// (SIGCONT): one simulation, the silence in LogGap from the last step
+// before it to the first after, every step logged once, and the
+// simulation closed normally at its end.
+TEST_F(LoggerProcessTest, ASimStoppedLongerThanTheSilenceIsReopenedWhenItGoesOn) {
+  ChildProcess& logger = StartLogger({"--sim-silence", "2"});
+  ASSERT_TRUE(WaitForReady(0));
+  ChildProcess& sim = StartSim({"--duration=8"});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 1000; }, 30)) << ReadFile(LoggerLog(0));
+  sim.Signal(SIGSTOP);
+  const auto stopped = Clock::now();
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 10)) << ReadFile(LoggerLog(0));
+  // While it is silent, the database says so; every step it sent is in.
+  const int64_t last_before = QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = 1");
+  EXPECT_EQ(Steps(), last_before);
+  {
+    auto db = Admin();
+    const auto row = QueryRows(db.get(), "SELECT endReason, lastStep FROM Simulation WHERE simulationID = 1");
+    ASSERT_EQ(row.size(), 1u);
+    EXPECT_EQ(row[0].rfind("the sim went silent: no SIM_STATE or SIM_STATUS for 2 s", 0), 0u) << row[0];
+    EXPECT_EQ(row[0].substr(row[0].rfind('\t') + 1), std::to_string(last_before)) << row[0];
+  }
+  std::this_thread::sleep_until(stopped + std::chrono::seconds(4));
+  sim.Signal(SIGCONT);
+  const auto open_again = [&] {
+    try {
+      return QueryInt("SELECT COUNT(*) FROM Simulation WHERE endTime IS NULL AND endReason IS NULL "
+                      "AND lastStep IS NULL AND simulationID = 1") == 1;
+    } catch (const DbError&) {
+      return false;
+    }
+  };
+  EXPECT_TRUE(WaitFor(open_again, 10)) << "still closed after the sim went on\n" << ReadFile(LoggerLog(0));
+  EXPECT_TRUE(WaitFor([&] { return Steps() > last_before + 500; }, 10)) << ReadFile(LoggerLog(0));
+  ASSERT_EQ(sim.Wait(std::chrono::seconds(60)).value_or(-1), 0);
+  ASSERT_TRUE(WaitFor([&] {
+    try {
+      return QueryInt("SELECT COUNT(*) FROM Simulation WHERE endReason = 'the sim stopped'") == 1;
+    } catch (const DbError&) {
+      return false;
+    }
+  }, 30)) << "not closed as stopped\n" << ReadFile(LoggerLog(0));
+  EXPECT_EQ(StopLogger(logger), 0);
+  const std::string log = ReadFile(LoggerLog(0));
+  const size_t closed = log.find("closed simulation 1: the sim went silent");
+  const size_t reopened = log.find("reopened simulation 1");
+  EXPECT_NE(closed, std::string::npos) << log;
+  EXPECT_NE(reopened, std::string::npos) << log;
+  EXPECT_LT(closed, reopened) << log;
+
+  auto db = Admin();
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1);
+  EXPECT_EQ(QueryRows(db.get(), "SELECT endTime IS NOT NULL, endReason, lastStep FROM Simulation"),
+            (std::vector<std::string>{"1\tthe sim stopped\t8000"}));
+  // The sim re-anchors its clock after a stall and loses no step.
+  ExpectEveryStepOnce(1, 1, 8000, 3, 2);
+  const auto gaps = QueryRows(db.get(), "SELECT firstStep, lastStep, missing, reason FROM LogGap");
+  ASSERT_EQ(gaps.size(), 1u) << ::testing::PrintToString(gaps);
+  EXPECT_EQ(gaps[0].rfind(std::to_string(last_before) + "\t" + std::to_string(last_before + 1) + "\t0\t", 0), 0u)
+      << gaps[0];
+  // "... silent for 4.0 s ...": the time it was stopped.
+  const size_t at = gaps[0].find("silent for ");
+  ASSERT_NE(at, std::string::npos) << gaps[0];
+  const double silent_s = std::atof(gaps[0].c_str() + at + 11);
+  EXPECT_GE(silent_s, 3.5) << gaps[0];
+  EXPECT_LE(silent_s, 6.0) << gaps[0];
+}
+
+// Commands say which simulation they were meant for (command_t.simulation_id,
+// 0 = whichever runs): the Command table keeps it beside the simulation
+// that ran when the command was seen.
+TEST_F(LoggerProcessTest, CommandsAreLoggedWithTheSimulationTheyWereMeantFor) {
+  ChildProcess& logger = StartLogger();
+  ASSERT_TRUE(WaitForReady(0));
+  ChildProcess& sim = StartSim({"--duration=4"});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 300; }, 30)) << ReadFile(LoggerLog(0));
+  // simpartner-cmd addresses the simulation it learned from SIM_MODEL.
+  const std::string cmd_log = (dir_ / "cmd.log").string();
+  ChildProcess cmd({std::string(SP_BINARY_DIR) + "/client/simpartner-cmd", "--lcm-url", url_,
+                    "--timeout", "5", "set", "ArmMotor", "1000,1000,1000,0,0,0.5,20,0,0"},
+                   cmd_log);
+  ASSERT_EQ(cmd.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile(cmd_log);
+  // One meant for any simulation, as an old sender would send it.
+  lcm::LCM bus(TestUrl());
+  command_t any = sim::testing::Command("ArmMotor", command_t::ACTION_SET,
+                                        {1000, 1000, 1000, 0, 0, 0.0, 20.0, 0.0, 0.0});
+  any.sender = "any-simulation";
+  any.simulation_id = 0;
+  Publish(&bus, channels::kCommand, any);
+  ASSERT_EQ(sim.Wait(std::chrono::seconds(60)).value_or(-1), 0);
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(0));
+  EXPECT_EQ(StopLogger(logger), 0);
+  const std::string bus_id = std::to_string(QueryInt("SELECT busSimulationID FROM Simulation"));
+  ASSERT_NE(bus_id, "0");
+  auto db = Admin();
+  EXPECT_EQ(QueryRows(db.get(), "SELECT simulationID, sender = 'any-simulation', meantForBusSimulationID "
+                                "FROM Command ORDER BY receivedUtime"),
+            (std::vector<std::string>{"1\t0\t" + bus_id, "1\t1\t0"}));
 }
 
 // An idle logger says its status once, not once a period: a line is
