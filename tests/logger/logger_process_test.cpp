@@ -764,6 +764,46 @@ TEST_F(LoggerProcessTest, ASimStoppedLongerThanTheSilenceIsReopenedWhenItGoesOn)
   EXPECT_LE(silent_s, 6.0) << gaps[0];
 }
 
+// A link down for longer than --sim-silence (the test as the sim: steps
+// 1001..1499 never sent): closed as silent, reopened when states come
+// again, the lost steps counted in the silence's one LogGap row.
+TEST_F(LoggerProcessTest, ALinkDownLongerThanTheSilenceIsOneGapInOneSimulation) {
+  ChildProcess& logger = StartLogger({"--sim-silence", "1"});
+  const SimRun run = testing::ArmRun(2000, 5151);
+  lcm::LCM bus(TestUrl());
+  ASSERT_TRUE(WaitForReady(0));
+  Publish(&bus, channels::kModel, run.model);
+  PublishStates(&bus, run, 1, 1000);
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 10)) << ReadFile(LoggerLog(0));
+  PublishStates(&bus, run, 1500, 2000);
+  PublishStopped(&bus, run, 2000);
+  ASSERT_TRUE(WaitFor([&] {
+    try {
+      return QueryInt("SELECT COUNT(*) FROM Simulation WHERE endReason = 'the sim stopped'") == 1;
+    } catch (const DbError&) {
+      return false;
+    }
+  }, 30)) << ReadFile(LoggerLog(0));
+  EXPECT_EQ(StopLogger(logger), 0);
+  auto db = Admin();
+  EXPECT_EQ(QueryRows(db.get(), "SELECT simulationID, lastStep FROM Simulation"),
+            (std::vector<std::string>{"1\t2000"}));
+  EXPECT_EQ(Steps(), 1000 + 501);
+  const auto gaps = QueryRows(db.get(), "SELECT firstStep, lastStep, missing FROM LogGap");
+  EXPECT_EQ(gaps, (std::vector<std::string>{"1000\t1500\t499"}));
+  const std::string list_log = (dir_ / "list.txt").string();
+  ChildProcess list({std::string(SP_BINARY_DIR) + "/logger/simpartner-query", "--params", "/dev/null",
+                     "--db-options", server_->reader_options(), "list"},
+                    list_log);
+  ASSERT_EQ(list.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile(list_log);
+  // id, ..., steps, last step, missing, state
+  std::istringstream listing(ReadFile(list_log));
+  std::string header, row;
+  std::getline(listing, header);
+  std::getline(listing, row);
+  EXPECT_NE(row.find(" 1501       2000      499  the sim stopped"), std::string::npos) << ReadFile(list_log);
+}
+
 // Commands say which simulation they were meant for (command_t.simulation_id,
 // 0 = whichever runs): the Command table keeps it beside the simulation
 // that ran when the command was seen.
