@@ -448,7 +448,7 @@ void Receiver::CloseSilent() {
     if (now - clock.heard < silence) continue;
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%g", options_.sim_silence);
-    const std::string reason = std::string("the sim went silent: no SIM_STATE or SIM_STATUS for ") +
+    const std::string reason = std::string(kSilentReasonStart) + "no SIM_STATE or SIM_STATUS for " +
                                seconds + " s and no RUN_STOPPED (last step seen " +
                                std::to_string(clock.step) + ")";
     ended_.insert(simulation);

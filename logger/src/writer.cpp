@@ -692,9 +692,22 @@ void DbWriter::WriteModel(const Record& record, WriteResult* result) {
       component(model.actuators[i].robot, "ACTUATOR", model.actuators[i].name, actuator_ids, i);
     components.Finish();
   }
+  // Closed as silent by a logger before this one, but its sim talks: open
+  // again (steps lost meanwhile show as a gap when states come).
+  bool reopened = false;
+  if (resumed) {
+    db_->Execute("UPDATE Simulation SET endTime = NULL, endReason = NULL, lastStep = NULL"
+                 " WHERE simulationID = " + std::to_string(info.id) + " AND endReason LIKE " +
+                 Quoted(std::string(kSilentReasonStart) + "%"),
+                 "UPDATE Simulation (reopen " + std::to_string(info.id) + ")");
+    reopened = db_->QueryInt("SELECT ROW_COUNT()", "SELECT ROW_COUNT()", 0) > 0;
+  }
   CloseOthers(info, model.host,
               "a new simulation started on the bus (the sim restarted or was reset)");
   db_->Commit();
+  if (reopened)
+    notice_("reopened simulation " + std::to_string(info.id) +
+            ": its sim announced its model again after it was closed as silent");
   notice_(std::string(resumed ? "resuming" : "logging") + " simulation " +
           std::to_string(info.id) + " (bus simulation id " + std::to_string(model.simulation_id) +
           " from " + model.host + ", world '" + model.world_name + "', " +

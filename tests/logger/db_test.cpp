@@ -514,6 +514,35 @@ TEST_F(DbTest, ASilentSimulationHeardAgainIsReopened) {
   expect_final();
 }
 
+// A logger started after another closed a simulation as silent: the
+// sim's model coming again shows it alive, so it is open again.
+TEST_F(DbTest, ASilentSimulationIsReopenedByTheNextLoggerWhenItsModelComes) {
+  const SimRun run = ArmRun(30, 5);
+  {
+    auto writer = Writer();
+    std::vector<Record> records = {run.ModelRecord()};
+    for (Record& r : run.StateRecords(1, 20)) records.push_back(std::move(r));
+    records.push_back(MakeEndedRecord(
+        5, 0, EndedPayload{20, EndKind::kSilent, "the sim went silent: no SIM_STATE or SIM_STATUS for 10 s"}));
+    writer->Write(records);
+  }
+  auto db = Admin();
+  const std::string state = "SELECT endTime IS NOT NULL, lastStep FROM Simulation";
+  EXPECT_EQ(QueryRows(db.get(), state), (std::vector<std::string>{"1\t20"}));
+  auto next = Writer();
+  std::vector<Record> records = {run.ModelRecord()};
+  for (Record& r : run.StateRecords(21, 30)) records.push_back(std::move(r));
+  next->Write(records);
+  EXPECT_EQ(QueryRows(db.get(), state), (std::vector<std::string>{"0\tNULL"}));
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1);
+  ExpectEveryStepOnce("simpartner", 1, 1, 30, 3, 2);
+  // A simulation closed for another reason stays closed.
+  next->Write({MakeEndedRecord(5, 0, EndedPayload{30, EndKind::kStopped, ""})});
+  auto third = Writer();
+  third->Write({run.ModelRecord()});
+  EXPECT_EQ(QueryRows(db.get(), state), (std::vector<std::string>{"1\t30"}));
+}
+
 TEST_F(DbTest, TheLoggerUserHasOnlyTheRightsItNeeds) {
   auto writer = Writer();
   const SimRun run = ArmRun(3, 1);

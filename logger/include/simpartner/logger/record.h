@@ -50,6 +50,10 @@ enum class EndKind : int64_t {
   kSilent = 1,   // nothing from the sim for a while: it died, or a kSimulationReopened follows
 };
 
+// How the reason of a simulation closed because its sim went silent begins
+// (Simulation.endReason): such a close is undone when the sim talks again.
+inline constexpr const char* kSilentReasonStart = "the sim went silent: ";
+
 struct EndedPayload {
   int64_t last_step = 0;  // the sim's last step (stopped) or the last one seen (silent)
   EndKind kind = EndKind::kStopped;
