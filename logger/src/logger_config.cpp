@@ -52,7 +52,7 @@ std::vector<FlagSpec> LoggerFlags() {
       {"drain-timeout", true, "seconds to go on writing after SIGINT/SIGTERM (default 10)"},
       {"sim-silence", true,
        "seconds without SIM_STATE or SIM_STATUS after which a simulation whose sim sent no "
-       "RUN_STOPPED is closed as dead (default 10)"},
+       "RUN_STOPPED is closed as dead; reopened if the sim is heard again (default 10)"},
   };
 }
 
