@@ -469,8 +469,14 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
   const GeomInfo& g2 = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(o2)) - 1];
   const SurfaceProperties combined = CombineSurfaces(g1.surface, g2.surface);
   dSurfaceParameters surface{};
-  surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+  // Slip1/Slip2 give the friction rows their own compliance (velocity per
+  // force, as ODE's CFM is, so the same at any step); without them the
+  // world CFM, meant for joints, let a cornering wheel creep sideways.
+  surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM | dContactSlip1 |
+                 dContactSlip2;
   surface.mu = combined.mu;
+  surface.slip1 = params_.contactSlip;
+  surface.slip2 = params_.contactSlip;
   surface.soft_erp = combined.soft_erp;
   // A physical stiffness and damping are those of the whole contact: its n
   // points share them (k/n, c/n each), which keeps ERP and multiplies CFM

@@ -58,6 +58,7 @@ struct Parameters {
   double contactSoftERP = 0.2;
   double contactSoftCFM = 1e-5;
   double rollingFriction = 0.0;
+  double contactSlip = 1e-7;
 
   // Running.
   double speed = 1.0;
@@ -125,6 +126,10 @@ struct Parameters {
     v.Double("contactSoftCFM", contactSoftCFM, 0.0, 1.0, "contact CFM");
     v.Double("rollingFriction", rollingFriction, 0.0, 1.0,
              "[m] rolling resistance length (0 = none, as the original)");
+    v.Double("contactSlip", contactSlip, 1e-12, 1e-2,
+             "[m/(N s)] tangential compliance of every contact: sliding speed per "
+             "newton of friction force below mu N (ODE's force-dependent slip; "
+             "step-independent; must be > 0 for ODE's solver)");
 
     v.Section(parameter_sections::kRunning);
     v.Double("speed", speed, 0.0, 1000.0,
