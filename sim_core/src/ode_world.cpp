@@ -142,6 +142,7 @@ void OdeWorld::Build() {
   dWorldSetStepThreadingImplementation(world_, dThreadingImplementationGetFunctions(threading_),
                                        threading_);
   dWorldSetGravity(world_, world.gravity.x(), world.gravity.y(), world.gravity.z());
+  gravity_ = world.gravity.norm();
   dWorldSetERP(world_, params.globalERP);
   dWorldSetCFM(world_, params.globalCFM);
   dWorldSetContactMaxCorrectingVel(world_, params.contactMaxCorrectingVel);
@@ -515,6 +516,17 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
       if (anisotropic) {
         contact.surface.mode |= dContactMu2;
         contact.surface.mu2 = combined.mu2;
+      } else if (combined.friction_direction == model::FrictionDirection::kSlip &&
+                 SlipVelocity(o1, o2, contact.geom).norm() > combined.mu * gravity_ * params_.stepsize) {
+        // Isotropic Coulomb: a sliding contact's force is mu N against the
+        // slip and nothing across it (the cone). A second row holding up to
+        // mu N across (ODE's pyramid) kept a slide from turning, so a
+        // skidding vehicle could not drift. Only for slips one step of
+        // friction cannot stop (mu g h): below, the across force mu N
+        // v_across / |v| is a damping that an explicit step overshoots, and
+        // the contact is held as a sticking one.
+        contact.surface.mode |= dContactMu2;
+        contact.surface.mu2 = 0.0;
       }
     }
     // Sticking without a direction: which way it will slide is not known,
@@ -557,8 +569,7 @@ bool OdeWorld::FrictionDirection1(const SurfaceProperties& combined, dGeomID o1,
   return SlipDirection(o1, o2, contact, direction);
 }
 
-bool OdeWorld::SlipDirection(dGeomID o1, dGeomID o2, const dContactGeom& contact,
-                             Eigen::Vector3d* direction) const {
+Eigen::Vector3d OdeWorld::SlipVelocity(dGeomID o1, dGeomID o2, const dContactGeom& contact) const {
   const Eigen::Vector3d normal = FromOde(contact.normal);
   const dBodyID b1 = dGeomGetBody(o1);
   const dBodyID b2 = dGeomGetBody(o2);
@@ -567,6 +578,12 @@ bool OdeWorld::SlipDirection(dGeomID o1, dGeomID o2, const dContactGeom& contact
   if (b2 != nullptr) dBodyGetPointVel(b2, contact.pos[0], contact.pos[1], contact.pos[2], v2);
   Eigen::Vector3d slip = FromOde(v1) - FromOde(v2);
   slip -= slip.dot(normal) * normal;
+  return slip;
+}
+
+bool OdeWorld::SlipDirection(dGeomID o1, dGeomID o2, const dContactGeom& contact,
+                             Eigen::Vector3d* direction) const {
+  const Eigen::Vector3d slip = SlipVelocity(o1, o2, contact);
   if (slip.norm() <= kSlipDirectionSpeed) return false;
   *direction = slip.normalized();
   return true;

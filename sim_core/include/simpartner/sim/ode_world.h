@@ -213,6 +213,8 @@ class OdeWorld {
   bool FrictionDirection1(const SurfaceProperties& combined, dGeomID o1, const GeomInfo& g1,
                           dGeomID o2, const GeomInfo& g2, const dContactGeom& contact,
                           Eigen::Vector3d* direction) const;
+  // The sliding velocity of o1 against o2 at the contact, in its plane.
+  Eigen::Vector3d SlipVelocity(dGeomID o1, dGeomID o2, const dContactGeom& contact) const;
   // Along the sliding velocity of o1 against o2 at the contact; false when
   // it slides slower than kSlipDirectionSpeed (sticking).
   bool SlipDirection(dGeomID o1, dGeomID o2, const dContactGeom& contact,
@@ -227,6 +229,7 @@ class OdeWorld {
   std::vector<Eigen::Vector3d> contact_force_, contact_torque_;
   std::vector<std::string> messages_;
   int contact_count_ = 0;
+  double gravity_ = 0.0;  // [m/s^2] |g|, for the slip one step of friction can stop
   // Ray casting state (the ray geom lives outside the space).
   dGeomID ray_ = nullptr;
   int ray_exclude_body_ = -1;
