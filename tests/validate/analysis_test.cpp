@@ -88,6 +88,21 @@ TEST(ValidateSkidSteerRadius, SlippingWheelsTurnWiderThanTheSteering) {
   EXPECT_NEAR(SkidSteerRadius(v), 6.0389, 1e-3);
 }
 
+// A wheel touching at its two rim edges, each with half its load: as the
+// edges close in, the point wheel's answer; 0.14 m apart (gen1's wheels),
+// the edges scrub, which the point misses, and the answer moves.
+TEST(ValidateSkidSteerRadius, TwoRimEdgesCloseTogetherAreThePointWheel) {
+  SkidSteerVehicle v;
+  v.front_load = 316.0;
+  v.rear_load = 351.0;
+  v.alpha = 0.2972;
+  const double point = SkidSteerRadius(v);
+  v.contact_half_width = 1e-5;
+  EXPECT_NEAR(SkidSteerRadius(v), point, 1e-4);
+  v.contact_half_width = 0.07;
+  EXPECT_GT(std::abs(SkidSteerRadius(v) - point), 0.001);
+}
+
 // Per-wheel loads: the same loads given per wheel give the per-axle answer
 // (front left, front right, rear left, rear right), and moving load to the
 // outer (right) wheels of a left turn, whose slip pushes outwards, turns

@@ -96,13 +96,13 @@ void ExpectTheSteeringsCircle(const ExperimentResult& r, double alpha, double to
 }
 
 TEST(Validation, CircleEqualSpeedsWithTheThesisFrictionFollowsTheSteering) {
-  ExpectTheSteeringsCircle(RunNamed("circle_equal"), 0.2972, 0.005);
+  ExpectTheSteeringsCircle(RunNamed("circle_equal"), 0.2972, 0.0003);
 }
 
 // Isotropic friction along the slip: with equal wheel speeds every wheel
-// slides, and the vehicle turns outside the steering's circle (an ideal
-// point-wheel Coulomb vehicle: 4.6 to 4.9 m with the run's loads), the
-// same for both mu.
+// slides, and the vehicle turns outside the steering's circle (the Coulomb
+// cone's steady state of the same vehicle: 4.68 to 4.75 m with the run's
+// loads), the same for both mu.
 TEST(Validation, CircleEqualSpeedsIsotropicSlidesOutsideTheSteeringsCircle) {
   const ExperimentResult r = RunNamed("circle_equal");
   const double r05 = r.Measured("radius, isotropic mu 0.5"), r1 = r.Measured("radius, isotropic mu 1");
@@ -113,21 +113,23 @@ TEST(Validation, CircleEqualSpeedsIsotropicSlidesOutsideTheSteeringsCircle) {
   EXPECT_NEAR(r05 / r1, 1.0, 0.01);
 }
 
-// SPEC 8: 5.98 m within 0.25 % for 1.00 / 1.10 m/s, with the thesis's friction.
-TEST(Validation, CircleDifferentialSpeedsWithTheThesisFrictionWithinAQuarterPercent) {
+// 1.00 / 1.10 m/s with the thesis's friction: tighter than the thesis's own
+// 0.03 % at the point it measured (issue 13); the world CFM on the friction
+// rows made this +0.11 %.
+TEST(Validation, CircleDifferentialSpeedsWithTheThesisFrictionWithinThreeHundredthsOfAPercent) {
   const ExperimentResult r = RunNamed("circle_differential");
-  ExpectTheSteeringsCircle(r, 0.2, 0.0025);
+  ExpectTheSteeringsCircle(r, 0.2, 0.0003);
   EXPECT_LE(r.Measured("worst deviation from the fitted circle, thesis friction"), 0.001);
 }
 
 TEST(Validation, CircleDifferentialSpeedsIsotropicAndMatchedSpeeds) {
   const ExperimentResult r = RunNamed("circle_differential");
-  // 1.10 asks for 6.3 m, the steering for 5.98 m; the wheels slide a little
-  // and the radius falls between, near the Coulomb steady state (6.03 m
-  // with the run's loads; the report's check holds it to 0.3 %).
-  const double isotropic = r.Measured("radius, isotropic mu 1, vs the steady state");
-  EXPECT_GT(isotropic, AxleCentres(0.2));
-  EXPECT_LT(isotropic, 6.05);
+  // 1.10 asks for 6.3 m, the steering for 5.98 m; the wheels slide by a few
+  // mm/s, below mu g h, so every contact holds across its slip and the
+  // vehicle follows its steering (the Coulomb cone's 6.025 m is not reached:
+  // see the report).
+  EXPECT_NEAR(r.Measured("radius, isotropic mu 1, held across the slip"), AxleCentres(0.2),
+              0.003 * AxleCentres(0.2));
   // Outer wheels at (5.98 + 0.3) / (5.98 - 0.3) = 1.1056 m/s: no slip needed.
   EXPECT_NEAR(r.Measured("radius, 1.00 / 1.10563 m/s (matched)"), AxleCentres(0.2),
               0.0025 * AxleCentres(0.2));

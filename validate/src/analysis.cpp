@@ -107,8 +107,14 @@ double SkidSteerRadius(const SkidSteerVehicle& v) {
     const Eigen::Vector2d left(-heading.y(), heading.x());
     const double left_load = per_wheel ? v.wheel_loads[index] : load;
     const double right_load = per_wheel ? v.wheel_loads[index + 1] : load;
-    wheels.push_back({mid + v.half_track * left, heading, v.v_left, left_load});
-    wheels.push_back({mid - v.half_track * left, heading, v.v_right, right_load});
+    const bool two_edges = v.contact_half_width > 0.0;
+    for (int k = 0; k < (two_edges ? 2 : 1); ++k) {
+      const double edge = two_edges ? (k == 0 ? -v.contact_half_width : v.contact_half_width) : 0.0;
+      const double share = two_edges ? 0.5 : 1.0;
+      wheels.push_back({mid + (v.half_track + edge) * left, heading, v.v_left, share * left_load});
+      wheels.push_back(
+          {mid - (v.half_track + edge) * left, heading, v.v_right, share * right_load});
+    }
     index += 2;
   }
   // Residual of the balance; eps smooths |slip| near zero for Newton.

@@ -43,6 +43,10 @@ struct SkidSteerVehicle {
   // [N] front left, front right, rear left, rear right; when set (all > 0)
   // they replace front_load and rear_load (a turn moves load outwards).
   double wheel_loads[4] = {0.0, 0.0, 0.0, 0.0};
+  // [m] A wheel touching along a line (a cylinder's two rim edges, each
+  // carrying half its load) rather than at one point: the yaw rate makes
+  // the two edges slide at different speeds, a scrub the point misses.
+  double contact_half_width = 0.0;
 };
 double SkidSteerRadius(const SkidSteerVehicle& vehicle);
 
