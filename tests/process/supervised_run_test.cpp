@@ -203,6 +203,37 @@ TEST_F(SupervisedRunTest, WrongWorldFailsBeforeServerOrLoggerStart) {
   EXPECT_FALSE(fs::exists(dir_ / "state/runs")) << out;
 }
 
+// A process that dies young (within 3 s of its start) is a start-up
+// failure: the launcher backs off 0.5, 1, 2, 4 s rather than spin, and a
+// crash after a healthy run is restarted at once (the next test). The
+// teleop here is a stand-in that passes --check and then crashes.
+TEST_F(SupervisedRunTest, ProcessThatKeepsDyingYoungIsRestartedWithGrowingBackOff) {
+  const fs::path bin = dir_ / "bin";
+  fs::create_directories(bin / "teleop");
+  for (const char* room : {"sim_core", "logger", "viewer", "sequencer"})
+    fs::create_directory_symlink(fs::path(kBinary) / room, bin / room);
+  const fs::path teleop = bin / "teleop/simpartner-teleop";
+  std::ofstream(teleop) << "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\nkill -SEGV $$\n";
+  fs::permissions(teleop, fs::perms::owner_all);
+  launcher_ = std::make_unique<ChildProcess>(
+      std::vector<std::string>{"/bin/bash", kSource + "/scripts/run", "--bin", bin.string(), "--state",
+                               (dir_ / "state").string(), "--no-viewer", "--no-logger", "--teleop",
+                               "--lcm-url", url_, "--duration=9",
+                               "--environment=" + kSource + "/models/worlds/gen1_flat.xml"},
+      (dir_ / "launcher.log").string());
+  EXPECT_EQ(launcher_->Wait(std::chrono::seconds(120)).value_or(-1), 0) << ReadText(dir_ / "launcher.log");
+  const std::string log = RunLog();
+  // Each young death's line, in order, with the wait doubling.
+  size_t at = 0;
+  for (const char* wait : {"0.500", "1.000", "2.000", "4.000"}) {
+    const std::string line = std::string("; restarting in ") + wait + " s";
+    at = log.find(line, at);
+    ASSERT_NE(at, std::string::npos) << "no '" << line << "' after the previous one in\n" << log;
+  }
+  EXPECT_NE(log.find("teleop died (killed by SEGV) after 0."), std::string::npos) << log;
+  EXPECT_EQ(log.find("restarting now"), std::string::npos) << log;
+}
+
 // kill -9 each process in turn while the sim runs in real time; then the
 // sim itself; then SIGTERM to the launcher.
 TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll) {
@@ -262,12 +293,11 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
     const Clock::time_point killed = Clock::now();
     const int64_t killed_us = WallMicros();
     ASSERT_EQ(::kill(old_pid, SIGKILL), 0);
-    // Restarted by the launcher (its 0.5 s back-off), then back: it says
-    // it works again. The launcher's part is bounded at 2 s; the process's
-    // own start-up (a sanitized viewer on llvmpipe, on 2 shared cores) is
-    // measured and bounded at 10 s. The bounds and the rate tolerance
-    // below hold on a machine shared with other work (load 10 on 2 cores
-    // when written); the figures printed are the measurement.
+    // Restarted by the launcher at once (it had run more than 3 s), then
+    // back within 2 s of the kill: it says it works again (the viewer and
+    // teleop learned the model, the logger logs, the sequencer plays).
+    // Measured in the sanitized tree beside the sim, viewer, logger and
+    // server on 2 cores: 0.3-1.2 s; the figures printed are the measurement.
     ASSERT_TRUE(bus.Until([&] { return AnnouncedPid(RunLog(), v.name) != old_pid; }, 10)) << RunLog();
     const double restarted_after = SecondsSince(killed);
     ASSERT_TRUE(bus.Until([&] { return Count(Log(v.name), v.back_sign) > signs_before; }, 10))
@@ -275,8 +305,17 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
     const double back_after = SecondsSince(killed);
     const pid_t new_pid = AnnouncedPid(RunLog(), v.name);
     EXPECT_TRUE(Exists(new_pid));
-    EXPECT_LT(restarted_after, 3.0) << RunLog();
-    EXPECT_LT(back_after, 10.0) << RunLog();
+    EXPECT_LT(restarted_after, 2.0) << RunLog();
+    // A crash mid-run is restarted without the start-up back-off: the
+    // launcher's line for this death says so.
+    {
+      const std::string log = RunLog();
+      const size_t death = log.find(v.name + " died (killed by KILL) after ");
+      ASSERT_NE(death, std::string::npos) << log;
+      const std::string line = log.substr(death, log.find('\n', death) - death);
+      EXPECT_NE(line.find("; restarting now"), std::string::npos) << line;
+    }
+    EXPECT_LT(back_after, 2.0) << RunLog();
     double rows_after = -1;
     if (v.name == "logger") {
       // Rows flow again (the model is re-announced every second).
