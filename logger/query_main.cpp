@@ -37,7 +37,8 @@ const char* kSummary =
     "  poses SIM             position (m) and axis-angle (rad) of every body per step, CSV\n"
     "  forces SIM            contact force (N) and torque (N m) on every body per step, CSV\n"
     "  joints SIM            joint anchors, angles, rates and constraint force on body1, CSV\n"
-    "  plot WHAT SIM         a PNG (-o FILE.png) or, with DISPLAY and no -o, a window; WHAT:\n"
+    "  plot WHAT SIM         a PNG (-o FILE.png) or, with DISPLAY and no -o, a window\n"
+    "                        (the command ends when the window is closed); WHAT:\n"
     "                        position, velocity (--body B), angle, rate, force (--joint J),\n"
     "                        wheel-forces, track (x-z from above; --body, default the chassis)\n"
     "  delete SIM            remove one simulation (administrator; not while open without --force)\n"
@@ -193,9 +194,14 @@ int main(int argc, char** argv) {
         DrawPlotPng(plot, out_path);
         std::cerr << "simpartner-query: " << plot.title << " -> " << out_path << "\n";
       } else if (std::getenv("DISPLAY") != nullptr && *std::getenv("DISPLAY") != '\0') {
+        // Like a plot window of any command-line tool: the command ends when
+        // the window is closed, so a script's next line sees it gone.
+        std::cerr << "simpartner-query: " << plot.title
+                  << " in a window; close it (or press q in it) to end\n";
         ShowPlotWindow(plot);
       } else {
-        std::cerr << "simpartner-query: plot needs -o FILE.png (no DISPLAY for a window)\n";
+        std::cerr << "simpartner-query: plot: no DISPLAY for a window; write a PNG with "
+                     "-o FILE.png, or run it in a desktop session (or over ssh -X) for a window\n";
         return 2;
       }
       return 0;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -77,7 +78,8 @@ void RunGnuplot(const fs::path& script, const fs::path& log, const std::string& 
     ChildProcess gnuplot({FindProgram("gnuplot"), script.string()}, log.string());
     status = gnuplot.Wait(timeout).value_or(-1);
   } catch (const std::exception& e) {
-    throw Error(what + ": cannot run gnuplot (install gnuplot-nox): " + e.what());
+    throw Error(what + ": cannot run gnuplot (install gnuplot-x11, or gnuplot-nox for PNGs only): " +
+                e.what());
   }
   if (status != 0) {
     std::ifstream in(log);
@@ -185,14 +187,25 @@ void ShowPlotWindow(const Plot& plot) {
   if (terminals.empty())
     throw Error("plot '" + plot.title +
                 "': this gnuplot has no window terminal (Debian's gnuplot-nox draws files only); "
-                "install gnuplot-qt or gnuplot-x11 for a window, or write a PNG with -o FILE.png");
+                "install gnuplot-x11 or gnuplot-qt for a window, or write a PNG with -o FILE.png");
   const Scratch scratch("plot " + plot.title);
-  // `pause mouse close` keeps gnuplot (and the window) until it is closed.
+  // The window is titled like the plot, so that it can be told apart (and
+  // found by a test). `pause mouse close` keeps gnuplot, and with it the
+  // zoom and the mouse readout, until the window is closed.
   WritePlotFiles(plot, scratch.path() / "data.txt", scratch.path() / "plot.gp",
-                 "set terminal " + terminals.front() + " size 900,540 enhanced\n",
+                 "set terminal " + terminals.front() + " size 900,540 enhanced title " +
+                     Quote(plot.title) + "\n",
                  "pause mouse close\n");
-  RunGnuplot(scratch.path() / "plot.gp", scratch.path() / "gnuplot.log", "plot " + plot.title,
-             std::chrono::hours(24 * 365));
+  try {
+    RunGnuplot(scratch.path() / "plot.gp", scratch.path() / "gnuplot.log", "plot " + plot.title,
+               std::chrono::hours(24 * 365));
+  } catch (const Error& e) {
+    const char* display = std::getenv("DISPLAY");
+    std::string message = e.what();
+    while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
+    throw Error(message + "\n(no window could be opened on DISPLAY=" + (display != nullptr ? display : "") +
+                "; write a PNG with -o FILE.png instead)");
+  }
 }
 
 }  // namespace simpartner
