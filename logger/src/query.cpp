@@ -3,6 +3,7 @@
 #include <cppconn/exception.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -681,6 +682,20 @@ const std::vector<std::string>& PerStepTables() {
   return tables;
 }
 
+bool PageCompressedOption(const std::string& create_options) {
+  // MariaDB 10.11 writes `page_compressed`='1' (quoted) in CREATE_OPTIONS;
+  // the value may also come unquoted or as ON.
+  const std::string key = "page_compressed`=";
+  const size_t at = create_options.find(key);
+  if (at == std::string::npos) return false;
+  std::string value = create_options.substr(at + key.size());
+  value = value.substr(0, value.find(' '));
+  value.erase(std::remove(value.begin(), value.end(), '\''), value.end());
+  std::transform(value.begin(), value.end(), value.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return value == "1" || value == "on" || value == "yes";
+}
+
 std::vector<TableStorage> ReadTableStorage(DbConnection* db) {
   std::string list;
   for (const std::string& t : PerStepTables()) list += (list.empty() ? "" : ", ") + t;
@@ -704,9 +719,7 @@ std::vector<TableStorage> ReadTableStorage(DbConnection* db) {
       ts.rows = r->getUInt64(1);
       ts.logical_bytes = r->getUInt64(2);
       ts.disk_bytes = r->isNull(3) ? 0 : r->getUInt64(3);
-      const std::string options = r->getString(4);
-      ts.compressed = options.find("page_compressed`=1") != std::string::npos ||
-                      options.find("page_compressed`='on'") != std::string::npos;
+      ts.compressed = PageCompressedOption(r->getString(4));
       out.push_back(ts);
     } catch (const sql::SQLException&) {
       db->Rethrow("read the size of " + t);

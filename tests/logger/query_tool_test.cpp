@@ -1,14 +1,19 @@
 // simpartner-query's plots, exports (time range, every Nth step,
 // velocities, unwrapped angles) and deletes, on a private MariaDB holding
 // simulations logged by the real writer from the real sim library.
+#include <dirent.h>
+
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <thread>
 
 #include "logger_test_support.h"
 #include "simpartner/child_process.h"
 #include "simpartner/logger/query.h"
 #include "simpartner/logger/writer.h"
+#include "simpartner/viewer/xvfb.h"
 
 namespace simpartner::logger {
 namespace {
@@ -394,6 +399,222 @@ TEST_F(QueryToolTest, PruneKeepsTheNewestAndOpenOnes) {
   EXPECT_EQ(DeleteSimulation(Admin().get(), "1", true).steps, 10u);
 }
 
+// The forms CREATE_OPTIONS takes (MariaDB 10.11 quotes the value; the
+// earlier parse looked for it unquoted and reported every table as plain).
+TEST(PageCompressedOption, ReadsTheOptionInItsForms) {
+  EXPECT_TRUE(PageCompressedOption("`page_compressed`='1'"));
+  EXPECT_TRUE(PageCompressedOption("row_format=dynamic `page_compressed`='1' `page_compression_level`='6'"));
+  EXPECT_TRUE(PageCompressedOption("`page_compressed`=1"));
+  EXPECT_TRUE(PageCompressedOption("`page_compressed`='on'"));
+  EXPECT_FALSE(PageCompressedOption("`page_compressed`='0'"));
+  EXPECT_FALSE(PageCompressedOption("`page_compressed`='off'"));
+  EXPECT_FALSE(PageCompressedOption("`page_compression_level`='1'"));
+  EXPECT_FALSE(PageCompressedOption(""));
+}
+
+// `compress on|off` rebuilds the per-step tables with InnoDB page
+// compression and back: the server then reports PAGE_COMPRESSED, `storage`
+// says so, every row reads back the same to the bit, and the writer goes on
+// writing into them. Only an administrator may do it; bad uses change nothing.
+TEST_F(QueryToolTest, CompressionRebuildsTheStepTablesWithTheSameRows) {
+  Log(SpinRun(1500, 41));
+  const std::vector<std::string> tables = {"SimulationRow", "Pose", "ForceAndTorque", "JointPose"};
+  // The table's options as the server has them, not as the tool parses them.
+  auto compressed = [&](const std::string& table) {
+    const std::vector<std::string> options = QueryRows(
+        Admin().get(), "SELECT LOWER(CREATE_OPTIONS) FROM information_schema.TABLES WHERE "
+                       "TABLE_SCHEMA = 'simpartner' AND TABLE_NAME = '" + table + "'");
+    EXPECT_EQ(options.size(), 1u) << table;
+    // MariaDB 10.11 writes `page_compressed`='1'.
+    return !options.empty() && (options[0].find("page_compressed`='1'") != std::string::npos ||
+                                options[0].find("page_compressed`=1") != std::string::npos);
+  };
+  // Every stored value of the two big tables, as text, folded into one number each.
+  auto checksum = [&] {
+    std::vector<std::string> sums = QueryRows(Admin().get(),
+                     "SELECT COUNT(*), SUM(CRC32(CONCAT_WS(',', simulationRowID, bodyID, x, y, z, "
+                     "axisX, axisY, axisZ, angle))) FROM Pose");
+    const std::vector<std::string> joints = QueryRows(Admin().get(),
+                     "SELECT COUNT(*), SUM(CRC32(CONCAT_WS(',', simulationRowID, jointID, anchorx, "
+                     "anchory, anchorz, angle, angle2, angle3, rate, rate2, rate3, F_x, F_y))) "
+                     "FROM JointPose");
+    sums.insert(sums.end(), joints.begin(), joints.end());
+    return sums;
+  };
+  const std::vector<std::string> before = checksum();
+  ASSERT_EQ(before.size(), 2u);
+  EXPECT_EQ(before[0].substr(0, before[0].find('\t')), std::to_string(1500 * 3));
+  // `storage`'s line for a table: rows, bytes, on disk, compressed (yes/no).
+  auto storage_line = [&](const std::string& table) {
+    std::string output;
+    EXPECT_EQ(RunQuery({"storage", "--db-options", server_->admin_options()}, &output), 0) << output;
+    std::istringstream lines(output);
+    std::string line;
+    while (std::getline(lines, line)) {
+      std::istringstream fields(line);
+      std::string name, rest;
+      fields >> name;
+      std::getline(fields, rest);
+      if (name == table) return rest;
+    }
+    ADD_FAILURE() << "no line for " << table << " in:\n" << output;
+    return std::string();
+  };
+  auto storage_says = [&](const std::string& table, const std::string& compression) {
+    std::istringstream fields(storage_line(table));
+    long long rows = -1, bytes = -1, disk = -1;
+    std::string last;
+    fields >> rows >> bytes >> disk >> last;
+    return bytes > 0 && last == compression;
+  };
+  {
+    std::istringstream pose(storage_line("Pose"));
+    long long rows = 0;
+    pose >> rows;
+    // InnoDB's row count is an estimate, even after ANALYZE TABLE.
+    EXPECT_NEAR(static_cast<double>(rows), 1500.0 * 3, 1500.0 * 3 * 0.5);
+  }
+  EXPECT_TRUE(storage_says("Pose", "no"));
+
+  std::string output;
+  EXPECT_EQ(RunQuery({"compress", "on", "--db-options", server_->reader_options()}, &output), 1);
+  EXPECT_NE(output.find("needs the administrator"), std::string::npos) << output;
+  EXPECT_EQ(RunQuery({"compress", "maybe", "--db-options", server_->admin_options()}, &output), 2);
+  EXPECT_NE(output.find("compress 'maybe': on or off"), std::string::npos) << output;
+  EXPECT_EQ(RunQuery({"compress", "--db-options", server_->admin_options()}, &output), 2);
+  EXPECT_NE(output.find("compress needs on or off"), std::string::npos) << output;
+  EXPECT_EQ(RunQuery({"storage", "7", "--db-options", server_->admin_options()}, &output), 2);
+  EXPECT_NE(output.find("storage takes no SIM"), std::string::npos) << output;
+  for (const std::string& t : tables) EXPECT_FALSE(compressed(t)) << t;
+
+  EXPECT_EQ(RunQuery({"compress", "on", "--db-options", server_->admin_options()}, &output), 0) << output;
+  EXPECT_NE(output.find("page compression on for SimulationRow Pose ForceAndTorque JointPose"),
+            std::string::npos)
+      << output;
+  for (const std::string& t : tables) {
+    EXPECT_TRUE(compressed(t)) << t;
+    EXPECT_TRUE(storage_says(t, "yes")) << t;
+  }
+  EXPECT_EQ(checksum(), before);
+  // The logger's writer goes on into the compressed tables.
+  Log(SpinRun(200, 42));
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow r JOIN Pose p USING (simulationRowID) "
+                     "WHERE r.simulationID = 2"),
+            200 * 3);
+
+  EXPECT_EQ(RunQuery({"compress", "off", "--db-options", server_->admin_options()}, &output), 0) << output;
+  for (const std::string& t : tables) {
+    EXPECT_FALSE(compressed(t)) << t;
+    EXPECT_TRUE(storage_says(t, "no")) << t;
+  }
+  EXPECT_EQ(QueryRows(Admin().get(), "SELECT COUNT(*), SUM(CRC32(CONCAT_WS(',', simulationRowID, "
+                                     "bodyID, x, y, z, axisX, axisY, axisZ, angle))) FROM Pose "
+                                     "JOIN SimulationRow USING (simulationRowID) WHERE simulationID = 1"),
+            std::vector<std::string>{before[0]});
+}
+
+// Processes whose name starts with `name` and that run on `display` (their
+// environment says DISPLAY=display): what a plot window leaves behind.
+std::vector<pid_t> ProcessesOnDisplay(const std::string& name, const std::string& display) {
+  std::vector<pid_t> found;
+  DIR* proc = ::opendir("/proc");
+  if (proc == nullptr) return found;
+  while (const dirent* entry = ::readdir(proc)) {
+    const std::string pid = entry->d_name;
+    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string comm;
+    std::getline(std::ifstream("/proc/" + pid + "/comm"), comm);
+    if (comm.rfind(name, 0) != 0) continue;
+    std::ifstream environ("/proc/" + pid + "/environ");
+    std::string variable;
+    while (std::getline(environ, variable, '\0'))
+      if (variable == "DISPLAY=" + display) found.push_back(static_cast<pid_t>(std::stol(pid)));
+  }
+  ::closedir(proc);
+  return found;
+}
+
+// With a DISPLAY and no -o, a plot is a gnuplot window titled like the plot
+// (on a private Xvfb here): what it shows is a drawn plot (a light page, a
+// coloured curve), the command waits while it is open, and pressing q in it
+// ends the command with nothing left running.
+TEST_F(QueryToolTest, PlotWindowShowsThePlotAndTheCommandEndsWhenItIsClosed) {
+  Log(SpinRun(2000, 61));
+  const std::filesystem::path screen_dir = dir_ / "screen";
+  std::filesystem::create_directories(screen_dir);
+  viewer::XvfbServer xvfb(1024, 768, (dir_ / "xvfb.log").string(), screen_dir.string());
+  const std::string query_log = (dir_ / "window.log").string();
+  ::setenv("DISPLAY", xvfb.display().c_str(), 1);
+  ChildProcess query({std::string(SP_BINARY_DIR) + "/logger/simpartner-query", "plot", "rate",
+                      "last", "--joint", "Axle", "--db-options", server_->reader_options()},
+                     query_log);
+  ::unsetenv("DISPLAY");
+  auto query_said = [&] {
+    std::ifstream in(query_log);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  // `expected_status` < 0: any (a search that may find nothing yet).
+  auto xdotool = [&](std::vector<std::string> args, int expected_status = 0) {
+    args.insert(args.begin(), {"/usr/bin/env", "DISPLAY=" + xvfb.display(), "/usr/bin/xdotool"});
+    const std::string log = (dir_ / "xdotool.log").string();
+    ChildProcess run(args, log);
+    const int status = run.Wait(std::chrono::seconds(10)).value_or(-1);
+    if (expected_status >= 0) {
+      EXPECT_EQ(status, expected_status) << args[3];
+    }
+    std::ifstream in(log);
+    std::string first_line;
+    std::getline(in, first_line);
+    return first_line;
+  };
+  // The command names the window it opens: "simpartner-query: TITLE in a window; ...".
+  std::string title;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  std::string window;
+  while (std::chrono::steady_clock::now() < deadline && query.running()) {
+    const std::string said = query_said();
+    const std::string prefix = "simpartner-query: ", suffix = " in a window; close it";
+    const size_t end = said.find(suffix);
+    if (title.empty() && end != std::string::npos && said.rfind(prefix, 0) == 0)
+      title = said.substr(prefix.size(), end - prefix.size());
+    if (!title.empty()) {
+      window = xdotool({"search", "--name", "rate of joint Axle"}, -1);
+      if (!window.empty()) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  ASSERT_FALSE(window.empty()) << "no window; the command said:\n" << query_said();
+  EXPECT_NE(title.find("Axle"), std::string::npos) << title;
+  EXPECT_EQ(xdotool({"getwindowname", window}), title);
+  // Give gnuplot a moment to draw after mapping the window, then look.
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  const viewer::ScreenImage screen = xvfb.ReadScreen();
+  size_t light = 0, coloured = 0;
+  std::set<uint32_t> colours;
+  for (const uint32_t p : screen.pixels) {
+    const int r = p >> 16 & 0xff, g = p >> 8 & 0xff, b = p & 0xff;
+    colours.insert(p);
+    if (r > 200 && g > 200 && b > 200) ++light;
+    // Text, axes and the page are grey; a curve has a hue.
+    if (std::max({r, g, b}) - std::min({r, g, b}) > 80) ++coloured;
+  }
+  // The root window is black: the window's light page covers much of the
+  // 1024x768 screen (900x540 asked), and the curve is a few hundred pixels.
+  EXPECT_GT(light, 900u * 540u / 2) << colours.size() << " colours";
+  EXPECT_GT(coloured, 300u) << colours.size() << " colours";
+  EXPECT_TRUE(query.running()) << "the command ended with its window open:\n" << query_said();
+  EXPECT_FALSE(ProcessesOnDisplay("gnuplot", xvfb.display()).empty());
+
+  // No window manager: focus the window directly, then press q in it.
+  xdotool({"windowfocus", window});
+  xdotool({"key", "q"});
+  EXPECT_EQ(query.Wait(std::chrono::seconds(10)).value_or(-1), 0) << query_said();
+  EXPECT_EQ(ProcessesOnDisplay("gnuplot", xvfb.display()), std::vector<pid_t>{});
+  EXPECT_EQ(xdotool({"search", "--name", "rate of joint Axle"}, 1), "");
+}
+
 // The program: a PNG from the command line, errors on standard error.
 TEST_F(QueryToolTest, ProgramPlotsAndRefuses) {
   Log(SpinRun(500, 41));
@@ -411,8 +632,9 @@ TEST_F(QueryToolTest, ProgramPlotsAndRefuses) {
       << output;
   EXPECT_NE(output.find("joints: Shoulder (HINGE) Axle (HINGE)"), std::string::npos) << output;
   EXPECT_NE(output.find(" Wheel ("), std::string::npos) << output;
-  // No -o and a display: a window, which gnuplot-nox cannot draw (and no X
-  // server answers here): an error naming gnuplot, not a hang.
+  // No -o and a display where no X server answers: an error naming gnuplot
+  // and the display (or, with gnuplot-nox, that it has no window
+  // terminal), not a hang.
   ::setenv("DISPLAY", ":97", 1);
   EXPECT_EQ(RunQuery({"plot", "rate", "last", "--joint", "Axle", "--db-options",
                       server_->reader_options()},

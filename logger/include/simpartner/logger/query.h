@@ -117,6 +117,9 @@ struct TableStorage {
 // Writes the per-step tables' dirty pages to disk and reads their sizes.
 // Needs the administrator (FLUSH TABLES, information_schema.INNODB_SYS_TABLESPACES).
 std::vector<TableStorage> ReadTableStorage(DbConnection* db);
+// Whether information_schema.TABLES.CREATE_OPTIONS (lower case) asks for
+// page compression.
+bool PageCompressedOption(const std::string& create_options);
 
 // Switches InnoDB page compression (zlib, MariaDB's PAGE_COMPRESSED) of the
 // per-step tables on or off. Rebuilds each table, rows already logged
