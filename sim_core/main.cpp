@@ -6,6 +6,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "simpartner/bus_url.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/parameters.h"
 #include "simpartner/sim/check.h"
@@ -36,7 +37,10 @@ int main(int argc, char** argv) {
     const int stop_fd = BlockStopSignalsIntoFd();
     if (stop_fd < 0) throw std::runtime_error("cannot create a signalfd for SIGINT/SIGTERM");
 
-    lcm::LCM bus(params.lcmUrl);
+    // Every datagram on the group reaches this socket, the sim's own
+    // states too: with a default buffer, a sim starved of CPU for some tens
+    // of milliseconds lost the commands that came in behind them.
+    lcm::LCM bus(WithReceiveBuffer(params.lcmUrl));
     if (!bus.good()) {
       std::cerr << "simpartner-sim: cannot open LCM at '" << params.lcmUrl << "'\n";
       return 1;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 
+#include "simpartner/bus_url.h"
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
@@ -45,7 +46,9 @@ Client::Client(ClientOptions options)
   // random point keep their replies apart.
   std::random_device random;
   next_request_id_ = (static_cast<int64_t>(random()) << 20) + 1;
-  lcm_ = std::make_unique<lcm::LCM>(options_.url);
+  // A large socket buffer (unless the URL sets one): a reply must not be
+  // dropped behind a burst of states from a sim running flat out.
+  lcm_ = std::make_unique<lcm::LCM>(WithReceiveBuffer(options_.url));
   if (!lcm_->good())
     throw ClientError("cannot open the LCM bus '" + options_.url +
                       "' (expected e.g. udpm://239.255.76.67:7667?ttl=0)");

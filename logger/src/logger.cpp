@@ -61,11 +61,6 @@ double LagHistogram::Percentile(double p) const {
   return static_cast<double>(max_);
 }
 
-std::string WithReceiveBuffer(const std::string& url) {
-  if (url.rfind("udpm://", 0) != 0 || url.find("recv_buf_size=") != std::string::npos) return url;
-  return url + (url.find('?') == std::string::npos ? "?" : "&") + "recv_buf_size=4194304";
-}
-
 Logger::Logger(LoggerOptions options, Reporter* reporter)
     : options_(std::move(options)), reporter_(reporter) {
   options_.lcm_url = WithReceiveBuffer(options_.lcm_url);

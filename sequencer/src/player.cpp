@@ -42,14 +42,6 @@ std::string Short(std::string text) {
   return text;
 }
 
-// A sim as fast as possible sends states faster than a default socket
-// buffer holds while the sequencer is busy: ask for 4 MiB (as the logger
-// does) unless the URL says otherwise.
-std::string WithReceiveBuffer(const std::string& url) {
-  if (url.rfind("udpm://", 0) != 0 || url.find("recv_buf_size=") != std::string::npos) return url;
-  return url + (url.find('?') == std::string::npos ? "?" : "&") + "recv_buf_size=4194304";
-}
-
 // Why playing stopped: the file line (0 when none) and the reason.
 struct Stop {
   int line = 0;
@@ -64,7 +56,7 @@ class Player {
 
   ExitCode Run() {
     client::ClientOptions co;
-    co.url = WithReceiveBuffer(options_.url);
+    co.url = options_.url;  // the client asks for a large socket buffer
     co.program = "sequencer";
     co.model_timeout = options_.model_timeout;
     try {

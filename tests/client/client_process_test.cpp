@@ -240,30 +240,40 @@ TEST_F(ClientProcessTest, ConcurrentSendersAndClientsGetTheirOwnReplies) {
   std::vector<std::thread> senders;
   for (int t = 0; t < 2; ++t) {
     senders.emplace_back([&, t] {
-      const Target motor = a.Find(t == 0 ? "Axle3Motor" : "Axle4Motor");
-      for (int n = 0; n < 200; ++n) {
-        a.Send(SetVelocity(motor, {0.5}));
-        ++sent;
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      try {
+        const Target motor = a.Find(t == 0 ? "Axle3Motor" : "Axle4Motor");
+        for (int n = 0; n < 200; ++n) {
+          a.Send(SetVelocity(motor, {0.5}));
+          ++sent;
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << "sender " << t << ": " << e.what();
       }
       ++done;
     });
   }
   int refused = 0;
   int k = 0;
-  // At least 20 round trips, and on until both senders are through.
-  for (; k < 20 || done < 2; ++k) {
-    // a: accepted commands for Axle1Motor; b: refused ones for Axle2Motor.
-    const command_reply_t ra = a.Command(SetVelocity(a.Find("Axle1Motor"), {0.1 * k}));
-    EXPECT_EQ(ra.target, "Axle1Motor");
-    EXPECT_TRUE(ra.accepted);
-    try {
-      b.Command(SetVelocity(b.Find("Axle2Motor"), {2000.0 + k}));
-    } catch (const Refused& e) {
-      EXPECT_EQ(e.target(), "Axle2Motor");
-      EXPECT_NE(e.reason().find(std::to_string(2000 + k)), std::string::npos) << e.reason();
-      ++refused;
+  // At least 20 round trips, and on until both senders are through. A
+  // failure (a lost reply times out) is reported, and the senders are
+  // still joined: an exception past them would abort the whole program.
+  try {
+    for (; k < 20 || done < 2; ++k) {
+      // a: accepted commands for Axle1Motor; b: refused ones for Axle2Motor.
+      const command_reply_t ra = a.Command(SetVelocity(a.Find("Axle1Motor"), {0.1 * k}));
+      EXPECT_EQ(ra.target, "Axle1Motor");
+      EXPECT_TRUE(ra.accepted);
+      try {
+        b.Command(SetVelocity(b.Find("Axle2Motor"), {2000.0 + k}));
+      } catch (const Refused& e) {
+        EXPECT_EQ(e.target(), "Axle2Motor");
+        EXPECT_NE(e.reason().find(std::to_string(2000 + k)), std::string::npos) << e.reason();
+        ++refused;
+      }
     }
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "round trip " << k << ": " << e.what();
   }
   for (std::thread& t : senders) t.join();
   EXPECT_EQ(refused, k);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../support/hostile_corpus.h"
+#include "simpartner/bus_url.h"
 #include "simpartner/channels.h"
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
@@ -261,6 +262,17 @@ TEST(DecodeFromBus, DescribesTheChannelTypeSizeAndReason) {
             "string length 0 (an LCM string holds at least its NUL)");
   EXPECT_TRUE(print);
   EXPECT_EQ(counter.count("SIM_COMMAND"), 1u);
+}
+
+// Every process that must not lose a datagram (logger, client, sequencer)
+// opens its udpm socket with a 4 MiB buffer unless the URL sets one.
+TEST(BusUrlTest, ReceiveBufferIsAddedToUdpmUrls) {
+  EXPECT_EQ(WithReceiveBuffer("udpm://239.255.76.67:7667?ttl=0"),
+            "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304");
+  EXPECT_EQ(WithReceiveBuffer("udpm://239.255.76.67:7667"),
+            "udpm://239.255.76.67:7667?recv_buf_size=4194304");
+  EXPECT_EQ(WithReceiveBuffer("udpm://x:1?recv_buf_size=100"), "udpm://x:1?recv_buf_size=100");
+  EXPECT_EQ(WithReceiveBuffer("memq://"), "memq://");
 }
 
 }  // namespace

@@ -522,15 +522,6 @@ TEST_F(ReceiverTest, StepsLostDuringASilenceAreItsMissingSteps) {
   EXPECT_EQ(gap.missing, 3);
 }
 
-TEST(ReceiverUrlTest, ReceiveBufferIsAddedToUdpmUrls) {
-  EXPECT_EQ(WithReceiveBuffer("udpm://239.255.76.67:7667?ttl=0"),
-            "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304");
-  EXPECT_EQ(WithReceiveBuffer("udpm://239.255.76.67:7667"),
-            "udpm://239.255.76.67:7667?recv_buf_size=4194304");
-  EXPECT_EQ(WithReceiveBuffer("udpm://x:1?recv_buf_size=100"), "udpm://x:1?recv_buf_size=100");
-  EXPECT_EQ(WithReceiveBuffer("memq://"), "memq://");
-}
-
 TEST(FitsTextTest, Utf8AndLength) {
   EXPECT_TRUE(FitsText("Wheel1", 255));
   EXPECT_TRUE(FitsText("Pyörä \xe2\x82\xac \xf0\x9f\x98\x80", 255));

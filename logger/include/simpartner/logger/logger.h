@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "simpartner/bus_url.h"
 #include "simpartner/logger/db.h"
 #include "simpartner/logger/receiver.h"
 #include "simpartner/logger/record_queue.h"
@@ -76,10 +77,6 @@ struct LoggerStats {
   std::string db_problem;  // last failure, while failing
   double db_stalled_s = 0; // a database call has waited this long (0: none waiting)
 };
-
-// The URL with recv_buf_size=4194304 added for udpm when it has none, so a
-// burst does not overflow the socket buffer.
-std::string WithReceiveBuffer(const std::string& url);
 
 class Logger {
  public:
