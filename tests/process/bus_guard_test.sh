@@ -70,18 +70,25 @@ for _ in range(3):
 PY
 }
 
+starts=0
+sim_log=
 start_sim() {
+  # A log of its own for each sim: the background shell truncates a shared
+  # one only when it gets to run, and under load the wait below read the
+  # previous sim's "running" and went on.
+  starts=$((starts + 1))
+  sim_log=$work/sim.$starts.log
   # (ip netns exec becomes the sim, so $! is the sim's own PID.)
   ip netns exec "$ns_host" "$bin/sim_core/simpartner-sim" --params /dev/null --lcm-url 'udpm://239.255.76.67:7667?ttl=0' \
-    --environment="$src/models/worlds/flat_ground.xml" --duration=30 >"$work/sim.log" 2>&1 &
+    --environment="$src/models/worlds/flat_ground.xml" --duration=30 >"$sim_log" 2>&1 &
   sim_pid=$!
   for _ in $(seq 1 300); do
-    grep -q "simpartner-sim: running" "$work/sim.log" 2>/dev/null && break
+    grep -q "simpartner-sim: running" "$sim_log" 2>/dev/null && break
     sleep 0.1
   done
-  if ! grep -q "simpartner-sim: running" "$work/sim.log"; then
-    echo "FAIL: simpartner-sim did not start:" >&2
-    cat "$work/sim.log" >&2
+  if ! grep -q "simpartner-sim: running" "$sim_log"; then
+    echo "FAIL: simpartner-sim did not start in 30 s:" >&2
+    cat "$sim_log" >&2
     exit 1
   fi
   sleep 0.3
@@ -91,7 +98,7 @@ stop_sim() {
   wait "$sim_pid" 2>/dev/null || true
   sim_pid=
 }
-seen() { grep -q "SIM_COMMAND: $1 bytes refused" "$work/sim.log"; }
+seen() { grep -q "SIM_COMMAND: $1 bytes refused" "$sim_log"; }
 failures=0
 expect() {  # expect yes|no SIZE WHAT
   if [[ $1 == yes ]] && ! seen "$2"; then
