@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdint>
+#include <functional>
 #include <cstdio>
 #include <limits>
 #include <optional>
@@ -27,6 +28,13 @@ constexpr double kMinRollingSine = 0.01;
 // sink of the OdeWorld stepping on this thread (set only during Step), and
 // to stderr otherwise, so nothing passes silently.
 thread_local std::vector<std::string>* t_message_sink = nullptr;
+
+// A strict order of geom pairs (by address: any fixed order will do, the
+// pairs are only looked up).
+bool GeomPairBefore(dGeomID a1, dGeomID a2, dGeomID b1, dGeomID b2) {
+  const std::less<dGeomID> before;
+  return before(a1, b1) || (a1 == b1 && before(a2, b2));
+}
 
 std::string FormatOde(int number, const char* format, va_list args) {
   char text[512];
@@ -507,6 +515,10 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
     // direction along the slip (or the rolling direction), sliding
     // friction is mu N against the slip whatever the heading, and mu2 is
     // what holds the slip from turning.
+    const bool isotropic_slip =
+        !anisotropic && combined.friction_direction == model::FrictionDirection::kSlip;
+    const LastContact* last =
+        isotropic_slip ? NearestLastContact(o1, o2, FromOde(contact.geom.pos)) : nullptr;
     Eigen::Vector3d direction;
     if (FrictionDirection1(combined, o1, g1, o2, g2, contact.geom, &direction)) {
       contact.surface.mode |= dContactFDir1;
@@ -516,27 +528,55 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
       if (anisotropic) {
         contact.surface.mode |= dContactMu2;
         contact.surface.mu2 = combined.mu2;
-      } else if (combined.friction_direction == model::FrictionDirection::kSlip &&
-                 SlipVelocity(o1, o2, contact.geom).norm() > combined.mu * gravity_ * params_.stepsize) {
+      } else if (isotropic_slip) {
         // Isotropic Coulomb: a sliding contact's force is mu N against the
-        // slip and nothing across it (the cone). A second row holding up to
-        // mu N across (ODE's pyramid) kept a slide from turning, so a
-        // skidding vehicle could not drift. Only for slips one step of
-        // friction cannot stop (mu g h): below, the across force mu N
-        // v_across / |v| is a damping that an explicit step overshoots, and
-        // the contact is held as a sticking one.
-        contact.surface.mode |= dContactMu2;
-        contact.surface.mu2 = 0.0;
+        // slip (the cone). A second row holding up to mu N across it (ODE's
+        // pyramid) kept a slide from turning, so a skidding vehicle could
+        // not drift. Across the slip the cone's force is mu N v_across /
+        // |v|, a damping of mu N / |v|:
+        // - a slip one step of friction cannot stop (above mu g h) turns
+        //   by little in a step, and the across row is left free (mu2 0);
+        // - a slower slip turns within a step (time constant |v| / mu g),
+        //   which an explicit damping overshoots: the across row gets the
+        //   damping implicitly, as its compliance (slip2, velocity per
+        //   force) |v| / (mu N), N the load of this point at the last
+        //   step. A new contact has no load yet and is held across for
+        //   that step, as a sticking one is.
+        const double slip_speed = SlipVelocity(o1, o2, contact.geom).norm();
+        if (slip_speed > combined.mu * gravity_ * params_.stepsize) {
+          contact.surface.mode |= dContactMu2;
+          contact.surface.mu2 = 0.0;
+        } else if (last != nullptr && last->load > 0.0 && combined.mu > 0.0) {
+          contact.surface.slip2 =
+              std::max(params_.contactSlip, slip_speed / (combined.mu * last->load));
+        }
+      }
+    } else if (last != nullptr) {
+      // Sticking: which way it will slide is not known; the force that
+      // holds it is. Its first direction along that force makes the
+      // pyramid's mu N the cone's bound on it (with ODE's directions a
+      // force at 45 degrees to them held up to sqrt(2) mu N), and the
+      // slide it starts is along it.
+      const Eigen::Vector3d normal = FromOde(contact.geom.normal);
+      const Eigen::Vector3d held = last->friction - last->friction.dot(normal) * normal;
+      if (held.norm() > 1e-9 * (1.0 + last->load)) {
+        const Eigen::Vector3d along = held.normalized();
+        contact.surface.mode |= dContactFDir1;
+        contact.fdir1[0] = along.x();
+        contact.fdir1[1] = along.y();
+        contact.fdir1[2] = along.z();
       }
     }
-    // Sticking without a direction: which way it will slide is not known,
-    // so mu holds in every direction (the force that starts a slide is the
-    // mu N that then brakes it).
+    // Sticking without a direction or a force: mu holds in every
+    // direction (the force that starts a slide is the mu N that then
+    // brakes it).
     const dJointID joint = dJointCreateContact(world_, contacts_, &contact);
     dJointAttach(joint, b1, b2);
     dJointFeedback* feedback = NextFeedback();
     dJointSetFeedback(joint, feedback);
-    contact_records_.push_back(ContactRecord{g1.body, g2.body, feedback});
+    contact_records_.push_back(
+        ContactRecord{g1.body, g2.body, feedback, o1, o2, FromOde(contact.geom.pos),
+                      FromOde(contact.geom.normal)});
   }
   contact_count_ += n;
 }
@@ -633,8 +673,42 @@ void OdeWorld::Step() {
       contact_torque_[record.body2] += FromOde(record.feedback->t2);
     }
   }
+  RecordLastContacts();
   dJointGroupEmpty(contacts_);
   TrackContinuousAngles(false);
+}
+
+void OdeWorld::RecordLastContacts() {
+  last_contacts_.clear();
+  for (const ContactRecord& record : contact_records_) {
+    // geom1 has the body; the normal points into it (ODE: moving geom1
+    // along the normal by the depth separates them), so its load is f1.n.
+    const Eigen::Vector3d force = FromOde(record.feedback->f1);
+    const double load = force.dot(record.normal);
+    last_contacts_.push_back(LastContact{record.geom1, record.geom2, record.position,
+                                         std::max(0.0, load), force - load * record.normal});
+  }
+  std::stable_sort(last_contacts_.begin(), last_contacts_.end(),
+                   [](const LastContact& a, const LastContact& b) {
+                     return GeomPairBefore(a.geom1, a.geom2, b.geom1, b.geom2);
+                   });
+}
+
+const OdeWorld::LastContact* OdeWorld::NearestLastContact(dGeomID geom1, dGeomID geom2,
+                                                          const Eigen::Vector3d& position) const {
+  const auto first = std::lower_bound(
+      last_contacts_.begin(), last_contacts_.end(), std::make_pair(geom1, geom2),
+      [](const LastContact& a, const std::pair<dGeomID, dGeomID>& pair) {
+        return GeomPairBefore(a.geom1, a.geom2, pair.first, pair.second);
+      });
+  const LastContact* nearest = nullptr;
+  for (auto it = first; it != last_contacts_.end() && it->geom1 == geom1 && it->geom2 == geom2;
+       ++it) {
+    if (nearest == nullptr ||
+        (it->position - position).squaredNorm() < (nearest->position - position).squaredNorm())
+      nearest = &*it;
+  }
+  return nearest;
 }
 
 void OdeWorld::TrackContinuousAngles(bool first) {

@@ -160,8 +160,18 @@ class OdeWorld {
   struct ContactRecord {
     int body1, body2;                // flat body indices, -1 = world
     dJointFeedback* feedback;
+    dGeomID geom1, geom2;            // geom1 has a body; normal points into it
+    Eigen::Vector3d position, normal;
   };
-
+  // One contact point as it ended the last step: what an isotropic
+  // contact at about the same place needs to approximate Coulomb's cone
+  // this step (Collide).
+  struct LastContact {
+    dGeomID geom1, geom2;
+    Eigen::Vector3d position;
+    double load;                     // [N] along the normal
+    Eigen::Vector3d friction;        // [N] on geom1's body, in the contact plane
+  };
   void Build();
   // Adds each rotational axis's change since the last call to its
   // continuous angle. Called after every step, so a wheel may turn up to
@@ -226,6 +236,12 @@ class OdeWorld {
   std::vector<std::unique_ptr<dJointFeedback[]>> feedback_chunks_;
   size_t feedback_used_ = 0;
   std::vector<ContactRecord> contact_records_;
+  std::vector<LastContact> last_contacts_;  // sorted by (geom1, geom2)
+  void RecordLastContacts();
+  // The last step's contact point of the pair nearest to position, or
+  // nullptr when the pair did not touch.
+  const LastContact* NearestLastContact(dGeomID geom1, dGeomID geom2,
+                                        const Eigen::Vector3d& position) const;
   std::vector<Eigen::Vector3d> contact_force_, contact_torque_;
   std::vector<std::string> messages_;
   int contact_count_ = 0;
