@@ -121,5 +121,50 @@ TEST(ValidateSkidSteerRadius, PerWheelLoadsReplaceThePerAxleOnes) {
   EXPECT_LT(SkidSteerRadius(v), per_axle);
 }
 
+// The steady state with the inner wheels rolling, at speeds matched to the
+// steering: every wheel rolls, nothing slides, and the held inner wheels
+// give the whole centripetal force m w^2 rho of the mass at the joint,
+// rho = a / sin(alpha/2) from the turn's centre, w = v_inner / (R - t),
+// R = a cot(alpha/2). With equal loads the two share it equally (the
+// vehicle is symmetric about the line from the joint to the centre).
+TEST(ValidateSkidSteerRolling, MatchedSpeedsNeedOnlyTheCentripetalForce) {
+  SkidSteerVehicle v;
+  v.front_load = v.rear_load = 330.0;
+  v.alpha = 0.2;
+  const double r = 0.6 / std::tan(0.1);
+  v.v_left = 1.0;
+  v.v_right = (r + 0.3) / (r - 0.3);
+  const SkidSteerRolling rolling = SkidSteerRollingInnerWheels(v);
+  EXPECT_NEAR(rolling.radius, r, 1e-9);
+  EXPECT_EQ(rolling.edge, 0);
+  const double w = 1.0 / (r - 0.3), rho = 0.6 / std::sin(0.1);
+  EXPECT_NEAR(rolling.friction_needed, v.mass * w * w * rho / 2.0 / 330.0, 1e-6);
+}
+
+// gen1's circle at 1.00 / 1.10 m/s on rim edges 0.14 m apart: with half of
+// each wheel's load on each edge, the held inner edges would need more than
+// mu N, and the all-sliding steady state turns wider than the steering.
+// With 60 % of the inner wheels' load on their edges nearer the middle
+// (the sim puts 53 and 60 % there) they need less than mu N, and the
+// sliding solve, started as always from the steering's radius, finds that
+// steady state: the steering's circle.
+TEST(ValidateSkidSteerRolling, InnerWheelsRollWhenTheirHeldEdgesCarryEnough) {
+  SkidSteerVehicle v;
+  v.front_load = v.rear_load = 333.5;
+  v.alpha = 0.2;
+  v.v_right = 1.1;
+  v.contact_half_width = 0.07;
+  const double steering = 0.6 / std::tan(0.1);
+  const SkidSteerRolling even = SkidSteerRollingInnerWheels(v);
+  EXPECT_GT(even.friction_needed, 1.0);
+  EXPECT_GT(SkidSteerRadius(v), steering + 0.02);
+  v.middle_edge_share[0] = v.middle_edge_share[2] = 0.6;  // front left, rear left
+  const SkidSteerRolling uneven = SkidSteerRollingInnerWheels(v);
+  EXPECT_LT(uneven.friction_needed, 1.0);
+  EXPECT_EQ(uneven.edge, -1);
+  EXPECT_NEAR(uneven.radius, steering, 1e-9);
+  EXPECT_NEAR(SkidSteerRadius(v), steering, 1e-3);
+}
+
 }  // namespace
 }  // namespace simpartner::validate

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 namespace simpartner::validate {
@@ -47,7 +48,26 @@ struct SkidSteerVehicle {
   // carrying half its load) rather than at one point: the yaw rate makes
   // the two edges slide at different speeds, a scrub the point misses.
   double contact_half_width = 0.0;
+  // With two edges: the share of each wheel's load (same order as
+  // wheel_loads) on its edge nearer the vehicle's middle; 0 = half.
+  double middle_edge_share[4] = {0.0, 0.0, 0.0, 0.0};
 };
 double SkidSteerRadius(const SkidSteerVehicle& vehicle);
+
+// A second steady state of the same vehicle, when the inner (slower) wheels
+// can roll: the whole vehicle turns about the point where its axle lines
+// cross, each inner wheel holding one contact (an edge, or the point) at
+// rest on the ground while the others slide with mu N against their slip.
+// It is a Coulomb steady state when the two held contacts can balance the
+// sliding ones and the centripetal force within mu N each:
+// friction_needed, the smallest possible max |F| / (mu N) of the two, is
+// at most 1. radius as SkidSteerRadius's (a cot(alpha/2), the steering's
+// own circle); edge -1 inner rim edge, +1 outer, 0 a point wheel.
+struct SkidSteerRolling {
+  double radius = std::numeric_limits<double>::quiet_NaN();
+  double friction_needed = std::numeric_limits<double>::infinity();
+  int edge = 0;
+};
+SkidSteerRolling SkidSteerRollingInnerWheels(const SkidSteerVehicle& vehicle);
 
 }  // namespace simpartner::validate
