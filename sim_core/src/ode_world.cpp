@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdint>
-#include <functional>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <optional>
 
@@ -517,8 +517,8 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
     // what holds the slip from turning.
     const bool isotropic_slip =
         !anisotropic && combined.friction_direction == model::FrictionDirection::kSlip;
-    const LastContact* last =
-        isotropic_slip ? NearestLastContact(o1, o2, FromOde(contact.geom.pos)) : nullptr;
+    // Looked up only where it is used: a slow slide, or a sticking contact.
+    const auto last = [&] { return NearestLastContact(o1, o2, FromOde(contact.geom.pos)); };
     Eigen::Vector3d direction;
     if (FrictionDirection1(combined, o1, g1, o2, g2, contact.geom, &direction)) {
       contact.surface.mode |= dContactFDir1;
@@ -546,20 +546,21 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
         if (slip_speed > combined.mu * gravity_ * params_.stepsize) {
           contact.surface.mode |= dContactMu2;
           contact.surface.mu2 = 0.0;
-        } else if (last != nullptr && last->load > 0.0 && combined.mu > 0.0) {
+        } else if (const LastContact* point = last();
+                   point != nullptr && point->load > 0.0 && combined.mu > 0.0) {
           contact.surface.slip2 =
-              std::max(params_.contactSlip, slip_speed / (combined.mu * last->load));
+              std::max(params_.contactSlip, slip_speed / (combined.mu * point->load));
         }
       }
-    } else if (last != nullptr) {
+    } else if (const LastContact* point = isotropic_slip ? last() : nullptr; point != nullptr) {
       // Sticking: which way it will slide is not known; the force that
       // holds it is. Its first direction along that force makes the
       // pyramid's mu N the cone's bound on it (with ODE's directions a
       // force at 45 degrees to them held up to sqrt(2) mu N), and the
       // slide it starts is along it.
       const Eigen::Vector3d normal = FromOde(contact.geom.normal);
-      const Eigen::Vector3d held = last->friction - last->friction.dot(normal) * normal;
-      if (held.norm() > 1e-9 * (1.0 + last->load)) {
+      const Eigen::Vector3d held = point->friction - point->friction.dot(normal) * normal;
+      if (held.norm() > 1e-9 * (1.0 + point->load)) {
         const Eigen::Vector3d along = held.normalized();
         contact.surface.mode |= dContactFDir1;
         contact.fdir1[0] = along.x();

@@ -111,9 +111,9 @@ CircleRunResult RunCircle(const Context& context, const CircleFriction& friction
   out.front = FitCircle(front);
   out.rear = FitCircle(rear);
   out.legs = FitCircle(legs);
-  for (double& load : out.wheel_load) load /= static_cast<double>(std::max<size_t>(1, times.size()));
-  for (double& share : out.middle_edge_share)
-    share /= static_cast<double>(std::max<size_t>(1, times.size()));
+  const double samples = static_cast<double>(std::max<size_t>(1, times.size()));
+  for (double& load : out.wheel_load) load /= samples;
+  for (double& share : out.middle_edge_share) share /= samples;
   out.radius_error.title = "rear axle: distance to the fitted centre - r";
   for (size_t i = 0; i < rear.size(); ++i) {
     out.radius_error.x.push_back(times[i]);
@@ -320,14 +320,14 @@ ExperimentResult CircleDifferentialSpeeds(const Context& context) {
                                    thesis.legs.radius, legs, kCircleDifferentialTolerance, "m"));
   result.checks.push_back(Absolute("worst deviation from the fitted circle, thesis friction",
                                    thesis.WorstDeviation(), 0.0, 0.001, "m"));
-  const double coulomb = CoulombRadius(isotropic, 1.0, kAlpha, 1.00, 1.10);
+  const SkidSteerVehicle ideal = IdealVehicle(isotropic, 1.0, kAlpha, 1.00, 1.10);
+  const double coulomb = SkidSteerRadius(ideal);
   result.checks.push_back(Relative("radius, isotropic mu 1, vs the steady state of the same vehicle",
                                    isotropic.Radius(), coulomb, kIsotropicDifferentialTolerance,
                                    "m"));
   // Why that steady state is the steering's circle: the inner wheels roll
   // (one rim edge each at rest on the ground), the outer ones slide, which
   // is a Coulomb steady state when the held edges need at most mu N.
-  const SkidSteerVehicle ideal = IdealVehicle(isotropic, 1.0, kAlpha, 1.00, 1.10);
   const SkidSteerRolling rolling = SkidSteerRollingInnerWheels(ideal);
   result.checks.push_back(AtMost("friction the inner wheels' held rim edges need, of mu N",
                                  rolling.friction_needed, 1.0, ""));
