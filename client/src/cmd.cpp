@@ -13,6 +13,7 @@
 #include "simpartner/command_t.hpp"
 #include "simpartner/sensor_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "simpartner/text.h"
 
 namespace simpartner::client {
 namespace {
@@ -23,15 +24,9 @@ struct UsageError : ClientError {
   using ClientError::ClientError;
 };
 
-std::string Num(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
-}
-
 std::string Join(const std::vector<double>& values) {
   std::string out;
-  for (size_t k = 0; k < values.size(); ++k) out += (k ? "," : "") + Num(values[k]);
+  for (size_t k = 0; k < values.size(); ++k) out += (k ? "," : "") + FormatNumber(values[k]);
   return out;
 }
 
@@ -47,9 +42,9 @@ const char* RunStateName(int run_state) {
 
 std::string FormatStatus(const status_t& s) {
   std::ostringstream out;
-  out << RunStateName(s.run_state) << ", step " << s.step << ", t = " << Num(s.sim_time)
-      << " s, " << Num(s.real_time_factor) << "x real time (target "
-      << (s.target_speed <= 0 ? std::string("as fast as possible") : Num(s.target_speed) + "x")
+  out << RunStateName(s.run_state) << ", step " << s.step << ", t = " << FormatNumber(s.sim_time)
+      << " s, " << FormatNumber(s.real_time_factor) << "x real time (target "
+      << (s.target_speed <= 0 ? std::string("as fast as possible") : FormatNumber(s.target_speed) + "x")
       << "), simulation " << s.simulation_id << " on " << s.host << ", commands "
       << s.commands_accepted << " accepted / " << s.commands_rejected << " refused, "
       << s.bad_messages << " bad messages";
@@ -60,17 +55,17 @@ std::string FormatStatus(const status_t& s) {
 
 std::string FormatBody(const std::string& name, const body_state_t& b) {
   std::ostringstream out;
-  out << name << " position " << Num(b.position[0]) << "," << Num(b.position[1]) << ","
-      << Num(b.position[2]) << " orientation " << Num(b.orientation[0]) << ","
-      << Num(b.orientation[1]) << "," << Num(b.orientation[2]) << "," << Num(b.orientation[3])
-      << " velocity " << Num(b.linear_velocity[0]) << "," << Num(b.linear_velocity[1]) << ","
-      << Num(b.linear_velocity[2]);
+  out << name << " position " << FormatNumber(b.position[0]) << "," << FormatNumber(b.position[1]) << ","
+      << FormatNumber(b.position[2]) << " orientation " << FormatNumber(b.orientation[0]) << ","
+      << FormatNumber(b.orientation[1]) << "," << FormatNumber(b.orientation[2]) << "," << FormatNumber(b.orientation[3])
+      << " velocity " << FormatNumber(b.linear_velocity[0]) << "," << FormatNumber(b.linear_velocity[1]) << ","
+      << FormatNumber(b.linear_velocity[2]);
   return out.str();
 }
 
 std::string FormatState(const state_t& s, const Catalog& catalog, int body) {
   std::ostringstream out;
-  out << "step " << s.step << ", t = " << Num(s.sim_time) << " s";
+  out << "step " << s.step << ", t = " << FormatNumber(s.sim_time) << " s";
   const auto& names = catalog.body_names();
   for (size_t i = 0; i < s.bodies.size(); ++i) {
     if (body >= 0 && static_cast<int>(i) != body) continue;
@@ -80,9 +75,9 @@ std::string FormatState(const state_t& s, const Catalog& catalog, int body) {
   if (body < 0) {
     const auto& joints = catalog.joint_names();
     for (size_t j = 0; j < s.joints.size() && j < joints.size(); ++j)
-      out << "\n  joint " << joints[j] << " position " << Num(s.joints[j].position[0]) << ","
-          << Num(s.joints[j].position[1]) << " rate " << Num(s.joints[j].rate[0]) << ","
-          << Num(s.joints[j].rate[1]);
+      out << "\n  joint " << joints[j] << " position " << FormatNumber(s.joints[j].position[0]) << ","
+          << FormatNumber(s.joints[j].position[1]) << " rate " << FormatNumber(s.joints[j].rate[0]) << ","
+          << FormatNumber(s.joints[j].rate[1]);
   }
   return out.str();
 }
@@ -251,7 +246,7 @@ int RunRead(const Options& o, std::ostream& out) {
   const sensor_reading_t r =
       client.WaitForReading(target.qualified_name(), reply.applied_at_step - 1, o.timeout);
   out << target.name << " (" << target.kind_name() << ") step " << r.step << ", t = "
-      << Num(r.sim_time) << " s: ";
+      << FormatNumber(r.sim_time) << " s: ";
   if (!r.text.empty() || r.values.empty()) out << "'" << r.text << "'";
   else out << Join(r.values);
   out << "\n";

@@ -8,23 +8,11 @@
 #include "simpartner/actuator_t.hpp"
 #include "simpartner/client/errors.h"
 #include "simpartner/command_shape.h"
+#include "simpartner/text.h"
+#include "simpartner/text.h"
 
 namespace simpartner::client {
 namespace {
-
-std::string Trim(const std::string& s) {
-  const size_t b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
-  const size_t e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
-
-std::string Num(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  return out.str();
-}
 
 command_t Addressed(const Target& target, int action, int64_t apply_at_step) {
   command_t command{};
@@ -51,7 +39,7 @@ void CheckSize(const Target& target, const command_t& command) {
 
 std::string JoinValues(const std::vector<double>& values) {
   std::string out;
-  for (size_t k = 0; k < values.size(); ++k) out += (k ? "," : "") + Num(values[k]);
+  for (size_t k = 0; k < values.size(); ++k) out += (k ? "," : "") + FormatNumber(values[k], 17);
   return out;
 }
 
@@ -107,7 +95,7 @@ command_t BuildCommand(const Target& target, int action, const std::vector<doubl
       throw BadValues(target.name,
                       "values[" + std::to_string(k) + "]" +
                           (k < names.size() ? " (" + names[k] + ")" : std::string()),
-                      Num(values[k]), "expected a finite number");
+                      FormatNumber(values[k], 17), "expected a finite number");
   }
   command_t command = Addressed(target, action, apply_at_step);
   command.values = values;

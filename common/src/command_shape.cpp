@@ -144,15 +144,28 @@ std::string CheckValueCount(const CommandTargetShape& target, int action, int co
          std::to_string(count);
 }
 
-const char* ActionName(int action) {
-  switch (action) {
-    case command_t::ACTION_SET: return "set";
-    case command_t::ACTION_HOLD: return "hold";
-    case command_t::ACTION_SET_STOPS: return "stops";
-    case command_t::ACTION_SENSOR_PARAMS: return "params";
-    case command_t::ACTION_READ: return "read";
-    default: return "unknown action";
-  }
+const std::vector<ActionSpelling>& ActionSpellings() {
+  static const std::vector<ActionSpelling> kSpellings = {
+      {command_t::ACTION_SET, "set", "set", "SET"},
+      {command_t::ACTION_HOLD, "hold", "hold", "HOLD"},
+      {command_t::ACTION_SET_STOPS, "stops", "stops", "SET_STOPS"},
+      {command_t::ACTION_SENSOR_PARAMS, "params", "sensorParams", "SENSOR_PARAMS"},
+      {command_t::ACTION_READ, "read", "read", "READ"},
+  };
+  return kSpellings;
+}
+
+const ActionSpelling& SpellAction(int action) {
+  static const ActionSpelling kUnknown = {-1, "unknown action", "unknown action", "UNKNOWN"};
+  for (const ActionSpelling& s : ActionSpellings())
+    if (s.action == action) return s;
+  return kUnknown;
+}
+
+int ActionOfSequenceElement(const std::string& element) {
+  for (const ActionSpelling& s : ActionSpellings())
+    if (element == s.sequence_element) return s.action;
+  return -1;
 }
 
 }  // namespace simpartner

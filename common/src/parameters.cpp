@@ -14,35 +14,12 @@
 
 #include "simpartner/data_paths.h"
 #include "simpartner/edit_distance.h"
+#include "simpartner/text.h"
 
 namespace simpartner {
 namespace {
 
 constexpr const char* kCommandLine = "command line";
-
-std::string Trim(const std::string& s) {
-  const char* ws = " \t\r\n";
-  const size_t begin = s.find_first_not_of(ws);
-  if (begin == std::string::npos) return "";
-  const size_t end = s.find_last_not_of(ws);
-  return s.substr(begin, end - begin + 1);
-}
-
-std::string FormatDouble(double value) {
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  // Shortest form that reads back the same value.
-  for (int precision = 1; precision <= 17; ++precision) {
-    std::ostringstream candidate;
-    candidate.precision(precision);
-    candidate << value;
-    if (std::strtod(candidate.str().c_str(), nullptr) == value)
-      return candidate.str();
-  }
-  return out.str();
-}
 
 // One key of Parameters: how to set it from text and how to show it.
 struct Entry {
@@ -101,7 +78,7 @@ class EntryBinder {
 
   void Double(const char* key, double& field, double min, double max,
               const char* doc) {
-    const std::string range = "number " + FormatDouble(min) + " to " + FormatDouble(max);
+    const std::string range = "number " + ShortestNumber(min) + " to " + ShortestNumber(max);
     Add(key, "real", range, doc,
         [&field, min, max, range](const std::string& text,
                                   const std::string&) -> std::string {
@@ -116,7 +93,7 @@ class EntryBinder {
           field = value;
           return "";
         },
-        [&field] { return FormatDouble(field); });
+        [&field] { return ShortestNumber(field); });
   }
 
   void String(const char* key, std::string& field, const char* doc) {

@@ -9,6 +9,7 @@
 
 #include "simpartner/data_paths.h"
 #include "simpartner/logger/sql_text.h"
+#include "simpartner/text.h"
 
 #include <cctype>
 #include <fstream>
@@ -16,13 +17,6 @@
 
 namespace simpartner::logger {
 namespace {
-
-std::string Trim(const std::string& s) {
-  const char* ws = " \t\r\n";
-  const size_t begin = s.find_first_not_of(ws);
-  if (begin == std::string::npos) return "";
-  return s.substr(begin, s.find_last_not_of(ws) - begin + 1);
-}
 
 std::string Unquote(const std::string& s) {
   if (s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front())

@@ -10,6 +10,7 @@
 #include "simpartner/command_t.hpp"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "simpartner/text.h"
 
 namespace simpartner::logger {
 namespace {
@@ -25,19 +26,13 @@ int64_t NowMicros() {
       .count();
 }
 
-std::string Num(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
 // First non-finite value of an array, as "field[i] = value", or "". The
 // name is only built for the message (this runs for every body and joint
 // of every state).
 template <size_t N, class Name>
 std::string NonFiniteIn(const double (&values)[N], const Name& field) {
   for (size_t i = 0; i < N; ++i)
-    if (!std::isfinite(values[i])) return field() + "[" + std::to_string(i) + "] = " + Num(values[i]);
+    if (!std::isfinite(values[i])) return field() + "[" + std::to_string(i) + "] = " + FormatNumber(values[i]);
   return "";
 }
 
@@ -120,7 +115,7 @@ std::string CheckModel(const model_t& m) {
   std::string p;
   if (m.state_every < 1) return "state_every = " + std::to_string(m.state_every) + " (must be >= 1)";
   if (!std::isfinite(m.step_size) || m.step_size <= 0)
-    return "step_size = " + Num(m.step_size) + " (must be a positive number)";
+    return "step_size = " + FormatNumber(m.step_size) + " (must be a positive number)";
   if (!(p = NonFinite(m.gravity, "gravity")).empty()) return p;
   if (!(p = CheckName(m.host, "host", kNameBytes)).empty()) return p;
   if (!(p = CheckName(m.world_file, "world_file", kPathBytes)).empty()) return p;
@@ -133,7 +128,7 @@ std::string CheckModel(const model_t& m) {
     if (!(p = CheckName(r.name, f + ".name", kNameBytes)).empty()) return p;
     if (!(p = CheckName(r.model, f + ".model", kNameBytes)).empty()) return p;
     if (!(p = CheckName(r.file, f + ".file", kPathBytes)).empty()) return p;
-    if (!std::isfinite(r.total_mass)) return f + ".total_mass = " + Num(r.total_mass);
+    if (!std::isfinite(r.total_mass)) return f + ".total_mass = " + FormatNumber(r.total_mass);
   }
   for (size_t i = 0; i < m.materials.size(); ++i) {
     const material_t& mat = m.materials[i];
@@ -145,7 +140,7 @@ std::string CheckModel(const model_t& m) {
           {mat.soft_erp, ".soft_erp"}, {mat.soft_cfm, ".soft_cfm"},
           {mat.stiffness, ".stiffness"}, {mat.damping, ".damping"},
           {mat.rolling_friction, ".rolling_friction"}})
-      if (!std::isfinite(value)) return f + field + " = " + Num(value);
+      if (!std::isfinite(value)) return f + field + " = " + FormatNumber(value);
     if (mat.friction_direction != material_t::FRICTION_SLIP &&
         mat.friction_direction != material_t::FRICTION_ROLLING)
       return f + ".friction_direction = " + std::to_string(mat.friction_direction) +
@@ -157,7 +152,7 @@ std::string CheckModel(const model_t& m) {
     if (!InRange(b.robot, robots, true)) return f + ".robot = " + std::to_string(b.robot) + " (no such robot)";
     if (!(p = CheckName(b.name, f + ".name", kNameBytes)).empty()) return p;
     if (!(p = CheckName(b.material, f + ".material", kNameBytes)).empty()) return p;
-    if (!std::isfinite(b.mass)) return f + ".mass = " + Num(b.mass);
+    if (!std::isfinite(b.mass)) return f + ".mass = " + FormatNumber(b.mass);
     if (!(p = NonFinite(b.geometry.size, f + ".geometry.size")).empty()) return p;
     if (!(p = NonFinite(b.com, f + ".com")).empty()) return p;
     if (!(p = NonFinite(b.inertia, f + ".inertia")).empty()) return p;
@@ -183,7 +178,7 @@ std::string CheckModel(const model_t& m) {
     if (!InRange(s.body, bodies, true)) return f + ".body = " + std::to_string(s.body) + " (no such body)";
     if (!InRange(s.joint, joints, true)) return f + ".joint = " + std::to_string(s.joint) + " (no such joint)";
     if (!(p = CheckName(s.name, f + ".name", kNameBytes)).empty()) return p;
-    if (!std::isfinite(s.rate)) return f + ".rate = " + Num(s.rate);
+    if (!std::isfinite(s.rate)) return f + ".rate = " + FormatNumber(s.rate);
   }
   for (size_t i = 0; i < m.actuators.size(); ++i) {
     const actuator_t& a = m.actuators[i];
@@ -203,7 +198,7 @@ std::string CheckState(const state_t& s, const ModelShape& shape) {
     return "num_joints = " + std::to_string(s.num_joints) + " but the model of simulation " +
            std::to_string(s.simulation_id) + " has " + std::to_string(shape.joints);
   if (s.step < 0) return "step = " + std::to_string(s.step) + " (negative)";
-  if (!std::isfinite(s.sim_time)) return "sim_time = " + Num(s.sim_time);
+  if (!std::isfinite(s.sim_time)) return "sim_time = " + FormatNumber(s.sim_time);
   std::string p;
   for (size_t i = 0; i < s.bodies.size(); ++i) {
     const body_state_t& b = s.bodies[i];
@@ -219,7 +214,7 @@ std::string CheckState(const state_t& s, const ModelShape& shape) {
                                   b.orientation[2] * b.orientation[2] +
                                   b.orientation[3] * b.orientation[3]);
     if (std::abs(norm - 1.0) > 1e-3)
-      return f("orientation")() + " has length " + Num(norm) + " (a unit quaternion is needed)";
+      return f("orientation")() + " has length " + FormatNumber(norm) + " (a unit quaternion is needed)";
   }
   for (size_t j = 0; j < s.joints.size(); ++j) {
     const joint_state_t& js = s.joints[j];
@@ -239,7 +234,7 @@ std::string CheckSensorReading(const sensor_reading_t& r, const ModelShape& shap
   if (r.sensor < 0 || r.sensor >= shape.sensors)
     return "sensor = " + std::to_string(r.sensor) + " but the model of simulation " +
            std::to_string(r.simulation_id) + " has " + std::to_string(shape.sensors) + " sensors";
-  if (!std::isfinite(r.sim_time)) return "sim_time = " + Num(r.sim_time);
+  if (!std::isfinite(r.sim_time)) return "sim_time = " + FormatNumber(r.sim_time);
   if (!FitsText(r.text, kTextBytes)) return "text is not valid UTF-8 of at most 65535 bytes";
   return "";
 }

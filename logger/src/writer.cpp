@@ -17,6 +17,7 @@
 
 #include "simpartner/bus_decode.h"
 #include "simpartner/command_reply_t.hpp"
+#include "simpartner/command_shape.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/logger/axis_angle.h"
 #include "simpartner/logger/receiver.h"
@@ -128,17 +129,6 @@ const char* ActuatorName(int8_t kind) {
     case 0: return "JOINT_VELOCITY";
     case 1: return "ANGLE";
     case 2: return "LINEAR_MOTOR";
-  }
-  return "UNKNOWN";
-}
-
-const char* ActionName(int8_t action) {
-  switch (action) {
-    case 0: return "SET";
-    case 1: return "HOLD";
-    case 2: return "SET_STOPS";
-    case 3: return "SENSOR_PARAMS";
-    case 4: return "READ";
   }
   return "UNKNOWN";
 }
@@ -1021,7 +1011,7 @@ void DbWriter::WriteRun(const std::vector<const Record*>& run, bool check_presen
       commands.Text(c.robot);
       commands.Text(c.target);
       commands.Int(c.port);
-      commands.Text(ActionName(c.action));
+      commands.Text(SpellAction(c.action).database);
       commands.Int(c.apply_at_step);
       commands.Text(JoinValues(c.values));
       commands.Text(c.text);

@@ -23,6 +23,7 @@
 #include <sstream>
 
 #include "simpartner/data_paths.h"
+#include "simpartner/text.h"
 #include "dtd_texts.h"  // generated: kWorldDtdText, kRobotDtdText
 
 namespace simpartner::model {
@@ -32,20 +33,6 @@ namespace {
 // |R^T R - I| is 3e-4. Two decimals (0.71: 8e-3) or any real shear fail.
 constexpr double kOrthonormalTolerance = 2e-3;
 constexpr const char* kWorldBodyName = "world";
-
-std::string Trim(const std::string& s) {
-  const char* ws = " \t\r\n";
-  const size_t begin = s.find_first_not_of(ws);
-  if (begin == std::string::npos) return "";
-  return s.substr(begin, s.find_last_not_of(ws) - begin + 1);
-}
-
-std::string FormatNumber(double value) {
-  std::ostringstream out;
-  out.precision(10);
-  out << value;
-  return out.str();
-}
 
 // libxml2 reports parse and validation errors through a callback; while a
 // ScopedXmlErrors lives they go into a DiagnosticList instead of stderr.
@@ -289,8 +276,8 @@ class Reader {
     if (error > kOrthonormalTolerance || rotation.determinant() < 0) {
       std::ostringstream message;
       message << what << ": rotation part T00..T22 is not a rotation matrix "
-              << "(|R^T R - I| = " << FormatNumber(error) << ", det = "
-              << FormatNumber(rotation.determinant()) << ")";
+              << "(|R^T R - I| = " << FormatNumber(error, 10) << ", det = "
+              << FormatNumber(rotation.determinant(), 10) << ")";
       Error(node, message.str());
       return std::nullopt;
     }
@@ -343,9 +330,9 @@ std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node) {
   };
   auto range = [&](double value, double lo, double hi, const char* field) {
     if (value < lo || value > hi) {
-      reader.Error(at(field), what + ": " + field + " " + FormatNumber(value) +
-                                  " is out of range [" + FormatNumber(lo) + ", " +
-                                  FormatNumber(hi) + "]");
+      reader.Error(at(field), what + ": " + field + " " + FormatNumber(value, 10) +
+                                  " is out of range [" + FormatNumber(lo, 10) + ", " +
+                                  FormatNumber(hi, 10) + "]");
       ok = false;
     }
   };
@@ -358,9 +345,9 @@ std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node) {
   range(m.rolling_friction, 0.0, 1.0, "rollingFriction");
   // A zero stiffness would make ERP 0: nothing holds the bodies apart.
   if (m.stiffness && (*m.stiffness <= 0.0 || *m.stiffness > limits::kMaxContactStiffness)) {
-    reader.Error(at("stiffness"), what + ": stiffness " + FormatNumber(*m.stiffness) +
+    reader.Error(at("stiffness"), what + ": stiffness " + FormatNumber(*m.stiffness, 10) +
                                       " N/m is out of range (0, " +
-                                      FormatNumber(limits::kMaxContactStiffness) + "]");
+                                      FormatNumber(limits::kMaxContactStiffness, 10) + "]");
     ok = false;
   }
   if (m.damping) range(*m.damping, 0.0, limits::kMaxContactDamping, "damping");
@@ -391,11 +378,11 @@ GeometryKind ParseGeometryKind(const std::string& type) {
 }
 
 std::string Range(double lo, double hi, const char* unit) {
-  return "[" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]" + unit;
+  return "[" + FormatNumber(lo, 10) + ", " + FormatNumber(hi, 10) + "]" + unit;
 }
 
 std::string VectorText(const Eigen::Vector3d& v) {
-  return "(" + FormatNumber(v.x()) + ", " + FormatNumber(v.y()) + ", " + FormatNumber(v.z()) + ")";
+  return "(" + FormatNumber(v.x(), 10) + ", " + FormatNumber(v.y(), 10) + ", " + FormatNumber(v.z(), 10) + ")";
 }
 
 // True when every coordinate of p is within limits::kMaxCoordinate.
@@ -404,7 +391,7 @@ bool CoordinatesInRange(const Eigen::Vector3d& p) {
 }
 
 std::string CoordinateRangeText() {
-  return "|x|, |y|, |z| <= " + FormatNumber(limits::kMaxCoordinate) + " m";
+  return "|x|, |y|, |z| <= " + FormatNumber(limits::kMaxCoordinate, 10) + " m";
 }
 
 // The physical ranges of one body (models/README.md, "Physical ranges"):
@@ -418,14 +405,14 @@ void CheckBodyRanges(Reader& reader, const xmlNode* node, const Body& body,
     return child != nullptr ? child : node;
   };
   if (!body.is_static && (body.mass < kMinMass || body.mass > kMaxMass)) {
-    reader.Error(child_or_node("mass"), what + ": mass " + FormatNumber(body.mass) +
+    reader.Error(child_or_node("mass"), what + ": mass " + FormatNumber(body.mass, 10) +
                                             " kg is out of range " +
                                             Range(kMinMass, kMaxMass, " kg"));
   }
   const Geometry& g = body.geometry;
   auto size = [&](double value, const char* element, const std::string& field) {
     if (value < kMinSize || value > kMaxSize)
-      reader.Error(child_or_node(element), what + ": " + field + " " + FormatNumber(value) +
+      reader.Error(child_or_node(element), what + ": " + field + " " + FormatNumber(value, 10) +
                                                " m is out of range " +
                                                Range(kMinSize, kMaxSize, " m"));
   };
@@ -452,13 +439,13 @@ void CheckBodyRanges(Reader& reader, const xmlNode* node, const Body& body,
   if (body.linear_velocity.norm() > kMaxLinearSpeed)
     reader.Error(child_or_node("translationalVelocity"),
                  what + ": translationalVelocity " + VectorText(body.linear_velocity) +
-                     " m/s is out of range: speed at most " + FormatNumber(kMaxLinearSpeed) +
+                     " m/s is out of range: speed at most " + FormatNumber(kMaxLinearSpeed, 10) +
                      " m/s");
   if (body.angular_velocity.norm() > kMaxAngularSpeed)
     reader.Error(child_or_node("rotationalVelocity"),
                  what + ": rotationalVelocity " + VectorText(body.angular_velocity) +
                      " rad/s is out of range: rotation at most " +
-                     FormatNumber(kMaxAngularSpeed) + " rad/s");
+                     FormatNumber(kMaxAngularSpeed, 10) + " rad/s");
   if (body.is_static || reader.ErrorCount() != errors_before) return;
   // Inertia: of the file, or of the solid when computed (then a problem
   // comes from the mass and size, so it is reported at the body).
@@ -476,8 +463,8 @@ void CheckBodyRanges(Reader& reader, const xmlNode* node, const Body& body,
   } else if (largest > kMaxInertiaRatio * smallest) {
     reader.Error(at, what + ": principal moments of inertia " + VectorText(moments) +
                          " kg m^2" + source + " differ by a factor of " +
-                         FormatNumber(largest / smallest) + "; at most " +
-                         FormatNumber(kMaxInertiaRatio));
+                         FormatNumber(largest / smallest, 10) + "; at most " +
+                         FormatNumber(kMaxInertiaRatio, 10));
   }
 }
 
@@ -500,7 +487,7 @@ std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* ki
   if (mass != nullptr) {
     if (const auto m = reader.Number(mass, what + " mass")) {
       if (*m <= 0.0)
-        reader.Error(mass, what + ": mass must be positive, got " + FormatNumber(*m));
+        reader.Error(mass, what + ": mass must be positive, got " + FormatNumber(*m, 10));
       body.mass = *m;
     }
   } else if (!body.is_static) {
@@ -515,7 +502,7 @@ std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* ki
     const auto v = reader.Number(n, what + " " + field);
     if (!v) return 0.0;
     if (*v <= 0.0)
-      reader.Error(n, what + ": " + field + " must be positive, got " + FormatNumber(*v));
+      reader.Error(n, what + ": " + field + " must be positive, got " + FormatNumber(*v, 10));
     return *v;
   };
   auto forbid = [&](const xmlNode* n, const char* field) {
@@ -536,7 +523,7 @@ std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* ki
         for (int i = 0; i < 3; ++i) {
           if ((*s)[i] <= 0.0)
             reader.Error(size, what + ": size " + "xyz"[i] + " must be positive, got " +
-                                   FormatNumber((*s)[i]));
+                                   FormatNumber((*s)[i], 10));
         }
         body.geometry.size = *s;
       }
@@ -583,11 +570,11 @@ std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* ki
       const double tolerance = 1e-9 * p.cwiseAbs().maxCoeff();
       if (p.minCoeff() <= 0.0) {
         reader.Error(inertia, what + ": inertia is not positive definite (principal moments " +
-                                  FormatNumber(p[0]) + ", " + FormatNumber(p[1]) + ", " +
-                                  FormatNumber(p[2]) + ")");
+                                  FormatNumber(p[0], 10) + ", " + FormatNumber(p[1], 10) + ", " +
+                                  FormatNumber(p[2], 10) + ")");
       } else if (p[0] + p[1] < p[2] - tolerance) {
-        reader.Error(inertia, what + ": principal moments " + FormatNumber(p[0]) + ", " +
-                                  FormatNumber(p[1]) + ", " + FormatNumber(p[2]) +
+        reader.Error(inertia, what + ": principal moments " + FormatNumber(p[0], 10) + ", " +
+                                  FormatNumber(p[1], 10) + ", " + FormatNumber(p[2], 10) +
                                   " break the triangle inequality (no real body has them)");
       }
     }
@@ -694,15 +681,15 @@ std::optional<Joint> ReadJoint(Reader& reader, const xmlNode* node,
     const auto hi = reader.Number(Reader::Child(limits, "hi"), what + " limits hi");
     if (!lo || !hi) continue;
     if (*lo > *hi) {
-      reader.Error(limits, what + ": limits lo " + FormatNumber(*lo) + " > hi " +
-                               FormatNumber(*hi));
+      reader.Error(limits, what + ": limits lo " + FormatNumber(*lo, 10) + " > hi " +
+                               FormatNumber(*hi, 10));
       continue;
     }
     // ODE's angular stops only work within [-pi, pi].
     const bool angular = joint.kind != JointKind::kSlider;
     if (angular && (*lo < -M_PI || *hi > M_PI)) {
-      reader.Error(limits, what + ": angular limits [" + FormatNumber(*lo) + ", " +
-                               FormatNumber(*hi) + "] must lie within [-pi, pi]");
+      reader.Error(limits, what + ": angular limits [" + FormatNumber(*lo, 10) + ", " +
+                               FormatNumber(*hi, 10) + "] must lie within [-pi, pi]");
       continue;
     }
     joint.lo_stop[axis - 1] = *lo;
@@ -732,10 +719,10 @@ void CheckMassRatios(Reader& reader, const std::vector<Body>& bodies,
     if (heavy->mass > kMaxJointMassRatio * light->mass)
       reader.ErrorAt(joint.where, "joint",
                      "joint '" + joint.name + "': body '" + heavy->name + "' (" +
-                         FormatNumber(heavy->mass) + " kg) is " +
-                         FormatNumber(heavy->mass / light->mass) + " times as heavy as body '" +
-                         light->name + "' (" + FormatNumber(light->mass) +
-                         " kg); across a joint at most " + FormatNumber(kMaxJointMassRatio));
+                         FormatNumber(heavy->mass, 10) + " kg) is " +
+                         FormatNumber(heavy->mass / light->mass, 10) + " times as heavy as body '" +
+                         light->name + "' (" + FormatNumber(light->mass, 10) +
+                         " kg); across a joint at most " + FormatNumber(kMaxJointMassRatio, 10));
   }
   if (!robot_wide) return;
   const Body* heaviest = nullptr;
@@ -747,11 +734,11 @@ void CheckMassRatios(Reader& reader, const std::vector<Body>& bodies,
   }
   if (heaviest != nullptr && heaviest->mass > kMaxRobotMassRatio * lightest->mass)
     reader.ErrorAt(lightest->where, "body",
-                   "body '" + lightest->name + "' (" + FormatNumber(lightest->mass) +
-                       " kg) is " + FormatNumber(heaviest->mass / lightest->mass) +
+                   "body '" + lightest->name + "' (" + FormatNumber(lightest->mass, 10) +
+                       " kg) is " + FormatNumber(heaviest->mass / lightest->mass, 10) +
                        " times lighter than body '" + heaviest->name + "' (" +
-                       FormatNumber(heaviest->mass) + " kg); within a robot at most " +
-                       FormatNumber(kMaxRobotMassRatio));
+                       FormatNumber(heaviest->mass, 10) + " kg); within a robot at most " +
+                       FormatNumber(kMaxRobotMassRatio, 10));
 }
 
 // Legacy port attribute: integer in (1024, 65535].
@@ -832,7 +819,7 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
   if (const xmlNode* rate = Reader::Child(node, "rate")) {
     if (const auto r = reader.Number(rate, what + " rate")) {
       if (*r < 0.0 || *r > 10000.0)
-        reader.Error(rate, what + ": rate " + FormatNumber(*r) + " Hz is out of range [0, 10000]");
+        reader.Error(rate, what + ": rate " + FormatNumber(*r, 10) + " Hz is out of range [0, 10000]");
       sensor.rate = *r;
     }
   }
@@ -853,18 +840,18 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
     if (name == "rays") {
       if (*value < 1 || *value > 10000 || *value != std::floor(*value))
         reader.Error(p, what + ": rays must be a whole number from 1 to 10000, got " +
-                            FormatNumber(*value));
+                            FormatNumber(*value, 10));
       else
         sensor.rays = static_cast<int>(*value);
     } else if (name == "halfSpan") {
       if (*value < 0.0 || *value > M_PI)
-        reader.Error(p, what + ": halfSpan " + FormatNumber(*value) +
+        reader.Error(p, what + ": halfSpan " + FormatNumber(*value, 10) +
                             " rad is out of range [0, pi]");
       else
         sensor.half_span = *value;
     } else if (name == "range") {
       if (*value <= 0.0 || *value > 1e4)
-        reader.Error(p, what + ": range " + FormatNumber(*value) +
+        reader.Error(p, what + ": range " + FormatNumber(*value, 10) +
                             " m is out of range (0, 10000]");
       else
         sensor.range = *value;
@@ -1030,7 +1017,7 @@ class FileDescriptor {
 };
 
 std::string SizeText(long long bytes) {
-  return std::to_string(bytes) + " bytes (" + FormatNumber(static_cast<double>(bytes) / 1048576.0) +
+  return std::to_string(bytes) + " bytes (" + FormatNumber(static_cast<double>(bytes) / 1048576.0, 10) +
          " MiB)";
 }
 
@@ -1201,7 +1188,7 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     if (const auto gravity = reader.Vector(g, "gravity")) {
       world.gravity = *gravity;
       if (gravity->norm() > 1e4)
-        reader.Error(g, "gravity of magnitude " + FormatNumber(gravity->norm()) +
+        reader.Error(g, "gravity of magnitude " + FormatNumber(gravity->norm(), 10) +
                             " m/s^2 is not plausible (at most 10000)");
     }
   }
@@ -1252,7 +1239,7 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
       const auto v = reader.Number(Reader::Child(h, tag), std::string("heightfield ") + tag);
       if (v && *v <= 0.0)
         reader.Error(Reader::Child(h, tag), std::string("heightfield ") + tag +
-                                                " must be positive, got " + FormatNumber(*v));
+                                                " must be positive, got " + FormatNumber(*v, 10));
       return v.value_or(0.0);
     };
     field.width = positive("width");
@@ -1261,8 +1248,8 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
       const double extent = std::string(tag) == "width" ? field.width : field.depth;
       if (extent > limits::kMaxCoordinate)
         reader.Error(Reader::Child(h, tag), std::string("heightfield ") + tag + " " +
-                                                FormatNumber(extent) + " m is out of range (0, " +
-                                                FormatNumber(limits::kMaxCoordinate) + "] m");
+                                                FormatNumber(extent, 10) + " m is out of range (0, " +
+                                                FormatNumber(limits::kMaxCoordinate, 10) + "] m");
     }
     bool ok = true;
     field.scale = reader.NumberOr(h, "scale", 1.0, "heightfield", &ok);
@@ -1270,11 +1257,11 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     field.thickness = reader.NumberOr(h, "thickness", 1.0, "heightfield", &ok);
     if (field.thickness <= 0.0)
       reader.Error(Reader::Child(h, "thickness"), "heightfield thickness must be positive, got " +
-                                                      FormatNumber(field.thickness));
+                                                      FormatNumber(field.thickness, 10));
     else if (field.thickness > limits::kMaxCoordinate)
       reader.Error(Reader::Child(h, "thickness"),
-                   "heightfield thickness " + FormatNumber(field.thickness) +
-                       " m is out of range (0, " + FormatNumber(limits::kMaxCoordinate) + "] m");
+                   "heightfield thickness " + FormatNumber(field.thickness, 10) +
+                       " m is out of range (0, " + FormatNumber(limits::kMaxCoordinate, 10) + "] m");
     if (const xmlNode* p = Reader::Child(h, "position")) {
       if (const auto position = reader.Vector(p, "heightfield position")) {
         field.position = *position;
@@ -1320,9 +1307,9 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
                          "heightfield sample " + std::to_string(index + 1) + place + " '" +
                              token + "' " +
                              (!finite ? std::string("is not a finite number")
-                                      : "gives a height of " + FormatNumber(height) +
+                                      : "gives a height of " + FormatNumber(height, 10) +
                                             " m (offset + scale x sample), out of range: |y| <= " +
-                                            FormatNumber(limits::kMaxCoordinate) + " m"));
+                                            FormatNumber(limits::kMaxCoordinate, 10) + " m"));
           bad_sample = true;
           break;
         }

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "simpartner/client/client.h"
+#include "simpartner/command_shape.h"
 #include "simpartner/sequencer/check.h"
 #include "simpartner/status_t.hpp"
 
@@ -341,7 +342,7 @@ class Player {
 
   void Progress(const PlannedCommand& c, int64_t applied_at_step) {
     out_ << "t=" << Fixed(applied_at_step * dt_, 3) << " s  line " << c.source->line << ": "
-         << ActionName(c.message.action) << " " << c.target.name;
+         << SpellAction(c.message.action).sequence_element << " " << c.target.name;
     if (!c.source->text.empty()) out_ << " " << Short(c.message.text.empty() ? c.source->text : c.message.text);
     out_ << std::endl;  // a user or a test follows the lines as they come
   }

@@ -16,23 +16,12 @@
 #include <sstream>
 
 #include "sequence_dtds.h"
+#include "simpartner/command_shape.h"
 #include "simpartner/command_t.hpp"
+#include "simpartner/text.h"
 
 namespace simpartner::sequencer {
 namespace {
-
-std::string Trim(const std::string& s) {
-  const char* ws = " \t\r\n";
-  const size_t begin = s.find_first_not_of(ws);
-  if (begin == std::string::npos) return "";
-  return s.substr(begin, s.find_last_not_of(ws) - begin + 1);
-}
-
-std::string Num(double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.10g", v);
-  return text;
-}
 
 // libxml2's parse and validation errors go into the diagnostics while this
 // lives (the handler is per thread; the destructor restores it).
@@ -270,7 +259,7 @@ class Builder {
       return std::nullopt;
     }
     if (non_negative && value < 0) {
-      Error(node, what + " " + Num(value) + " is negative");
+      Error(node, what + " " + FormatNumber(value, 10) + " is negative");
       return std::nullopt;
     }
     return value;
@@ -353,16 +342,11 @@ class Builder {
     const std::string name = Name(node);
     if (name == "command") {
       OriginalCommand(node);
-    } else if (name == "set" || name == "hold" || name == "stops" || name == "sensorParams" ||
-               name == "read") {
+    } else if (ActionOfSequenceElement(name) >= 0) {
       Command c;
       c.line = Line(node);
       c.element = name;
-      c.action = name == "set"    ? command_t::ACTION_SET
-                 : name == "hold" ? command_t::ACTION_HOLD
-                 : name == "stops" ? command_t::ACTION_SET_STOPS
-                 : name == "sensorParams" ? command_t::ACTION_SENSOR_PARAMS
-                                          : command_t::ACTION_READ;
+      c.action = static_cast<int8_t>(ActionOfSequenceElement(name));
       if (!Target(node, &c)) return;
       if (c.port == 0 && c.target.empty()) {
         Error(node, "port 0 is the sequencer itself; use <pause seconds=\"...\"/>");
@@ -404,7 +388,7 @@ class Builder {
       const std::optional<double> seconds = NumberText(text, "pause", c.text, false);
       if (!seconds) return;
       if (*seconds < 0) {
-        Error(text, "negative pause " + Num(*seconds) + " s on port 0 (the sequencer)");
+        Error(text, "negative pause " + FormatNumber(*seconds, 10) + " s on port 0 (the sequencer)");
         return;
       }
       Pause(*seconds);
@@ -509,7 +493,7 @@ class Builder {
       if (tolerance) w.tolerance = *tolerance;
       if (const std::optional<double> axis = Number(node, "axis", false, true)) {
         if (*axis != std::floor(*axis) || *axis > 2) {
-          Error(node, "axis " + Num(*axis) + " must be 0, 1 or 2");
+          Error(node, "axis " + FormatNumber(*axis, 10) + " must be 0, 1 or 2");
           ok = false;
         }
         w.axis = static_cast<int>(*axis);
@@ -530,7 +514,7 @@ class Builder {
       }
       if (const std::optional<double> index = Number(node, "index", false, true)) {
         if (*index != std::floor(*index) || *index > 100000) {
-          Error(node, "index " + Num(*index) + " must be a whole number");
+          Error(node, "index " + FormatNumber(*index, 10) + " must be a whole number");
           ok = false;
         }
         w.index = static_cast<int>(*index);
@@ -555,7 +539,7 @@ class Builder {
     const std::optional<double> count = Number(node, "count", true, true);
     if (!count) return;
     if (*count != std::floor(*count) || *count > 1e6) {
-      Error(node, "count " + Num(*count) + " must be a whole number from 0 to 1000000");
+      Error(node, "count " + FormatNumber(*count, 10) + " must be a whole number from 0 to 1000000");
       return;
     }
     std::optional<double> period;
@@ -608,13 +592,13 @@ size_t Sequence::CommandCount() const {
 
 std::string Wait::Describe() const {
   switch (kind) {
-    case Kind::kTime: return "sim time " + Num(sim_time) + " s";
+    case Kind::kTime: return "sim time " + FormatNumber(sim_time, 10) + " s";
     case Kind::kJoint:
       return "joint " + joint + (axis ? " axis " + std::to_string(axis) : "") + " within " +
-             Num(tolerance) + " of " + Num(angle);
+             FormatNumber(tolerance, 10) + " of " + FormatNumber(angle, 10);
     case Kind::kSensor:
       return "sensor " + sensor + " value " + std::to_string(index) + (above ? " above " : " below ") +
-             Num(threshold);
+             FormatNumber(threshold, 10);
   }
   return "";
 }
@@ -641,17 +625,6 @@ bool ParseValues(const std::string& text, std::vector<double>* values, std::stri
     return false;
   }
   return true;
-}
-
-const char* ActionName(int8_t action) {
-  switch (action) {
-    case command_t::ACTION_SET: return "set";
-    case command_t::ACTION_HOLD: return "hold";
-    case command_t::ACTION_SET_STOPS: return "stops";
-    case command_t::ACTION_SENSOR_PARAMS: return "sensorParams";
-    case command_t::ACTION_READ: return "read";
-    default: return "command";
-  }
 }
 
 const std::string& SequenceDtd(int version) {

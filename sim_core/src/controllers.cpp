@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "simpartner/command_t.hpp"
+#include "simpartner/text.h"
 
 namespace simpartner::sim {
 namespace {
@@ -15,13 +16,6 @@ double WrapAngle(double a) {
   a = std::fmod(a + M_PI, 2.0 * M_PI);
   if (a < 0) a += 2.0 * M_PI;
   return a - M_PI;
-}
-
-std::string Num(double v) {
-  std::ostringstream out;
-  out.precision(10);
-  out << v;
-  return out.str();
 }
 
 bool IsRotational(model::JointKind kind) { return kind != model::JointKind::kSlider; }
@@ -203,7 +197,7 @@ ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
   const std::vector<ValueMeaning> layout = CommandLayout(action, kind, joint, v.size());
   for (size_t k = 0; k < v.size(); ++k) {
     if (!std::isfinite(v[k])) {
-      error = "values[" + std::to_string(k) + "] = " + Num(v[k]) + " is not a finite number";
+      error = "values[" + std::to_string(k) + "] = " + FormatNumber(v[k], 10) + " is not a finite number";
       if (k < layout.size()) error += " (" + layout[k].name + ")";
       return parsed;
     }
@@ -226,8 +220,8 @@ ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
       case ValueKind::kGain: lo = 0.0; hi = kMaxGain; break;
     }
     if (v[k] < lo || v[k] > hi) {
-      error = "values[" + std::to_string(k) + "] (" + layout[k].name + ") = " + Num(v[k]) +
-              unit + " is out of range [" + Num(lo) + ", " + Num(hi) + "]";
+      error = "values[" + std::to_string(k) + "] (" + layout[k].name + ") = " + FormatNumber(v[k], 10) +
+              unit + " is out of range [" + FormatNumber(lo, 10) + ", " + FormatNumber(hi, 10) + "]";
       return parsed;
     }
   }
@@ -239,20 +233,20 @@ ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
   auto field = [](size_t index) { return "values[" + std::to_string(index) + "]"; };
   auto check_force = [&](size_t index) {
     if (v[index] < 0.0 || v[index] > kMaxMotorForce)
-      error = field(index) + " (max force) = " + Num(v[index]) + " is out of range [0, " +
-              Num(kMaxMotorForce) + "]";
+      error = field(index) + " (max force) = " + FormatNumber(v[index], 10) + " is out of range [0, " +
+              FormatNumber(kMaxMotorForce, 10) + "]";
     return error.empty();
   };
   auto check_position = [&](size_t index, const char* what, int a) {
     const double x = v[index];
     const double lo = joint.source->lo_stop[a], hi = joint.source->hi_stop[a];
     if (rotational && (x < -M_PI || x > M_PI)) {
-      error = field(index) + " (" + what + ") = " + Num(x) + " rad is outside [-pi, pi]";
+      error = field(index) + " (" + what + ") = " + FormatNumber(x, 10) + " rad is outside [-pi, pi]";
     } else if (x < lo || x > hi) {
-      error = field(index) + " (" + what + ") = " + Num(x) + " is outside joint '" + joint.name +
-              "' range [" + Num(lo) + ", " + Num(hi) + "]";
+      error = field(index) + " (" + what + ") = " + FormatNumber(x, 10) + " is outside joint '" + joint.name +
+              "' range [" + FormatNumber(lo, 10) + ", " + FormatNumber(hi, 10) + "]";
     } else if (!rotational && std::abs(x) > kMaxSliderPosition) {
-      error = field(index) + " (" + what + ") = " + Num(x) + " m is out of range";
+      error = field(index) + " (" + what + ") = " + FormatNumber(x, 10) + " m is out of range";
     }
     return error.empty();
   };
@@ -282,8 +276,8 @@ ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
         const char* names[3] = {"P", "I", "D"};
         for (int k = 0; k < 3; ++k) {
           if (v[g + k] < 0.0 || v[g + k] > kMaxGain) {
-            error = field(g + k) + " (" + names[k] + " gain) = " + Num(v[g + k]) +
-                    " is out of range [0, " + Num(kMaxGain) + "]";
+            error = field(g + k) + " (" + names[k] + " gain) = " + FormatNumber(v[g + k], 10) +
+                    " is out of range [0, " + FormatNumber(kMaxGain, 10) + "]";
             return parsed;
           }
         }
@@ -300,8 +294,8 @@ ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
           if (!check_force(at(slot_form, 0, a))) return parsed;
           const size_t vi = at(slot_form, 1, a);
           if (std::abs(v[vi]) > kMaxMotorVelocity) {
-            error = field(vi) + " (velocity) = " + Num(v[vi]) + " is out of range [-" +
-                    Num(kMaxMotorVelocity) + ", " + Num(kMaxMotorVelocity) + "]";
+            error = field(vi) + " (velocity) = " + FormatNumber(v[vi], 10) + " is out of range [-" +
+                    FormatNumber(kMaxMotorVelocity, 10) + ", " + FormatNumber(kMaxMotorVelocity, 10) + "]";
             return parsed;
           }
           s.max_force[a] = v[at(slot_form, 0, a)];
@@ -335,8 +329,8 @@ ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
         if (!check_position(base, "low stop", a) || !check_position(base + 1, "high stop", a))
           return parsed;
         if (v[base] > v[base + 1]) {
-          error = field(base) + " (low stop) = " + Num(v[base]) + " is above " + field(base + 1) +
-                  " (high stop) = " + Num(v[base + 1]);
+          error = field(base) + " (low stop) = " + FormatNumber(v[base], 10) + " is above " + field(base + 1) +
+                  " (high stop) = " + FormatNumber(v[base + 1], 10);
           return parsed;
         }
         parsed.lo[a] = v[base];
@@ -381,7 +375,7 @@ std::string FormatValues(const std::vector<double>& values) {
   std::string out;
   for (size_t i = 0; i < values.size(); ++i) {
     if (i) out += ",";
-    out += Num(values[i]);
+    out += FormatNumber(values[i], 10);
   }
   return out;
 }

@@ -8,6 +8,7 @@
 #include "simpartner/check.h"
 #include "simpartner/model/model_message.h"
 #include "simpartner/sensor_t.hpp"
+#include "simpartner/text.h"
 
 namespace simpartner::sim {
 namespace {
@@ -16,13 +17,6 @@ int64_t WallMicros() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
              std::chrono::system_clock::now().time_since_epoch())
       .count();
-}
-
-std::string Num(double v) {
-  std::ostringstream out;
-  out.precision(10);
-  out << v;
-  return out.str();
 }
 
 void Copy3(const Eigen::Vector3d& v, double* out) {
@@ -232,21 +226,21 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
                         ", got " + std::to_string(values.size()));
         for (size_t k = 0; k < values.size(); ++k) {
           if (!std::isfinite(values[k]))
-            return reject(what + ": values[" + std::to_string(k) + "] = " + Num(values[k]) +
+            return reject(what + ": values[" + std::to_string(k) + "] = " + FormatNumber(values[k], 10) +
                           " is not a finite number");
         }
         if (values[0] < 0 || values[0] > 10000)
-          return reject(what + ": values[0] (rate) = " + Num(values[0]) +
+          return reject(what + ": values[0] (rate) = " + FormatNumber(values[0], 10) +
                         " Hz is out of range [0, 10000]");
         if (values.size() == 4) {
           if (values[1] < 1 || values[1] > 10000 || values[1] != std::floor(values[1]))
-            return reject(what + ": values[1] (rays) = " + Num(values[1]) +
+            return reject(what + ": values[1] (rays) = " + FormatNumber(values[1], 10) +
                           " must be a whole number from 1 to 10000");
           if (values[2] < 0 || values[2] > M_PI)
-            return reject(what + ": values[2] (halfSpan) = " + Num(values[2]) +
+            return reject(what + ": values[2] (halfSpan) = " + FormatNumber(values[2], 10) +
                           " rad is out of range [0, pi]");
           if (values[3] <= 0 || values[3] > 1e4)
-            return reject(what + ": values[3] (range) = " + Num(values[3]) +
+            return reject(what + ": values[3] (range) = " + FormatNumber(values[3], 10) +
                           " m is out of range (0, 10000]");
         }
         break;
@@ -404,9 +398,9 @@ void Simulation::CheckHealth() {
       bad.push_back(QualifiedBodyName(flat_, static_cast<int>(i)));
       if (worst.empty()) {
         worst = !finite ? "non-finite state"
-                        : "speed " + Num(v) + " m/s, rotation " + Num(w) +
-                              " rad/s beyond maxLinearVelocity " + Num(params_.maxLinearVelocity) +
-                              " / maxAngularVelocity " + Num(params_.maxAngularVelocity);
+                        : "speed " + FormatNumber(v, 10) + " m/s, rotation " + FormatNumber(w, 10) +
+                              " rad/s beyond maxLinearVelocity " + FormatNumber(params_.maxLinearVelocity, 10) +
+                              " / maxAngularVelocity " + FormatNumber(params_.maxAngularVelocity, 10);
       }
     }
   }

@@ -13,26 +13,21 @@
 #include <vector>
 
 #include "simpartner/model/loader.h"
+#include "simpartner/text.h"
 
 namespace simpartner::model {
 namespace {
 
-std::string Num(double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
-
 std::string Pose(double x, double y, double z) {
-  return "<transformation><T00>1</T00><T01>0</T01><T02>0</T02><T03>" + Num(x) +
-         "</T03><T10>0</T10><T11>1</T11><T12>0</T12><T13>" + Num(y) +
-         "</T13><T20>0</T20><T21>0</T21><T22>1</T22><T23>" + Num(z) + "</T23></transformation>";
+  return "<transformation><T00>1</T00><T01>0</T01><T02>0</T02><T03>" + ShortestNumber(x) +
+         "</T03><T10>0</T10><T11>1</T11><T12>0</T12><T13>" + ShortestNumber(y) +
+         "</T13><T20>0</T20><T21>0</T21><T22>1</T22><T23>" + ShortestNumber(z) + "</T23></transformation>";
 }
 
 std::string Xyz(const char* tag, double x, double y, double z, const char* cx = "x",
                 const char* cy = "y", const char* cz = "z") {
-  return std::string("<") + tag + "><" + cx + ">" + Num(x) + "</" + cx + "><" + cy + ">" +
-         Num(y) + "</" + cy + "><" + cz + ">" + Num(z) + "</" + cz + "></" + tag + ">";
+  return std::string("<") + tag + "><" + cx + ">" + ShortestNumber(x) + "</" + cx + "><" + cy + ">" +
+         ShortestNumber(y) + "</" + cy + "><" + cz + ">" + ShortestNumber(z) + "</" + cz + "></" + tag + ">";
 }
 
 // One object per line so that each element's line is known: line 1 is
@@ -50,10 +45,10 @@ struct ObjectSpec {
 
 std::string ObjectWorld(const ObjectSpec& o) {
   const std::string size = o.type == "Box" ? Xyz("size", o.size[0], o.size[1], o.size[2])
-                                           : "<radius>" + Num(o.size[0]) + "</radius>";
+                                           : "<radius>" + ShortestNumber(o.size[0]) + "</radius>";
   return "<world name=\"W\">\n"
          "<object type=\"" + o.type + "\" name=\"Thing\">\n"
-         "<mass>" + Num(o.mass) + "</mass>\n" +
+         "<mass>" + ShortestNumber(o.mass) + "</mass>\n" +
          size + "\n" +
          Pose(o.position[0], o.position[1], o.position[2]) + "\n" +
          Xyz("translationalVelocity", o.velocity[0], o.velocity[1], o.velocity[2], "vx", "vy",
@@ -172,9 +167,9 @@ TEST(PhysicalRanges, StaticObjectMassIsNotLimited) {
 // joint on line 4.
 std::string PairRobot(double mass_a, double mass_b, double anchor_x = 0.5) {
   return "<robot name=\"Pair\">\n"
-         "<body type=\"Box\" name=\"A\"><mass>" + Num(mass_a) + "</mass>" + Xyz("size", 1, 1, 1) +
+         "<body type=\"Box\" name=\"A\"><mass>" + ShortestNumber(mass_a) + "</mass>" + Xyz("size", 1, 1, 1) +
          Pose(0, 0.5, 0) + "</body>\n"
-         "<body type=\"Box\" name=\"B\"><mass>" + Num(mass_b) + "</mass>" +
+         "<body type=\"Box\" name=\"B\"><mass>" + ShortestNumber(mass_b) + "</mass>" +
          Xyz("size", 1, 1, 1) + Pose(1, 0.5, 0) + "</body>\n"
          "<joint type=\"Hinge\" name=\"J\"><body1>A</body1><body2>B</body2>" +
          Xyz("anchor", anchor_x, 0.5, 0) + Xyz("axis1", 0, 0, 1) + "</joint>\n</robot>\n";

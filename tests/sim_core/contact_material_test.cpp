@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "test_worlds.h"
+#include "simpartner/text.h"
 
 namespace simpartner::sim {
 namespace {
@@ -20,14 +21,8 @@ using testing::Vec;
 
 constexpr double kG = 9.81;
 
-std::string Num(double v) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
-
 std::string Velocity(double vx, double vy, double vz) {
-  return "<translationalVelocity><vx>" + Num(vx) + "</vx><vy>" + Num(vy) + "</vy><vz>" + Num(vz) +
+  return "<translationalVelocity><vx>" + ShortestNumber(vx) + "</vx><vy>" + ShortestNumber(vy) + "</vy><vz>" + ShortestNumber(vz) +
          "</vz></translationalVelocity>";
 }
 
@@ -45,7 +40,7 @@ std::string SlidingBoxWorld(const std::string& material, double mass, double lx,
                             double lz, double vx, double vz) {
   return "<world name=\"Slide\"><surface material=\"floor\"><a>0</a><b>1</b><c>0</c><d>0</d>"
          "</surface>" + material +
-         "<object type=\"Box\" name=\"Box\" material=\"floor\"><mass>" + Num(mass) + "</mass>" +
+         "<object type=\"Box\" name=\"Box\" material=\"floor\"><mass>" + ShortestNumber(mass) + "</mass>" +
          Vec("size", lx, ly, lz) + Transform(0, ly / 2, 0) + Velocity(vx, 0, vz) +
          "</object></world>";
 }
@@ -306,9 +301,9 @@ TEST(ContactMaterial, GroundAsksForTheRollingDirectionOfTheWheelOnIt) {
 // default material with its bottom face 1e-7 m into it.
 std::string BoxOnPlaneWorld(double stiffness, double damping, double mass, double side) {
   return "<world name=\"Sink\"><surface><a>0</a><b>1</b><c>0</c><d>0</d></surface>"
-         "<material name=\"stiff\"><stiffness>" + Num(stiffness) + "</stiffness><damping>" +
-         Num(damping) + "</damping></material>"
-         "<object type=\"Box\" name=\"Box\" material=\"stiff\"><mass>" + Num(mass) + "</mass>" +
+         "<material name=\"stiff\"><stiffness>" + ShortestNumber(stiffness) + "</stiffness><damping>" +
+         ShortestNumber(damping) + "</damping></material>"
+         "<object type=\"Box\" name=\"Box\" material=\"stiff\"><mass>" + ShortestNumber(mass) + "</mass>" +
          Vec("size", side, side, side) + Transform(0, side / 2 - 1e-7, 0) + "</object></world>";
 }
 

@@ -33,20 +33,6 @@ Check Make(std::string label, double measured, double target, double tolerance,
 
 }  // namespace
 
-std::string FormatNumber(double value) {
-  if (!std::isfinite(value)) return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
-  char text[64];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
-}
-
-std::string FormatFixed(double value, int decimals) {
-  if (!std::isfinite(value)) return FormatNumber(value);
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 std::string Check::MeasuredText() const { return WithUnit(FormatNumber(measured), unit); }
 
 std::string Check::TargetText() const {

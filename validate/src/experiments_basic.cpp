@@ -10,8 +10,6 @@
 namespace simpartner::validate {
 namespace {
 
-std::string Num(double v) { return FormatNumber(v); }
-
 // Least-squares slope of y = k t through the origin.
 double SlopeThroughOrigin(const std::vector<double>& t, const std::vector<double>& y) {
   double ty = 0.0, tt = 0.0;
@@ -49,7 +47,7 @@ ExperimentResult FreeFall(const Context& context) {
     const int particle = run.Body("TestParticle");
     const double h0 = run.Position(particle).y();
     Series error;
-    error.title = "g " + Num(c.g) + ", dt " + Num(c.dt) + " s";
+    error.title = "g " + FormatNumber(c.g) + ", dt " + FormatNumber(c.dt) + " s";
     run.RunUntil(kDuration, [&] {
       const double t = run.time();
       error.x.push_back(t);
@@ -58,10 +56,10 @@ ExperimentResult FreeFall(const Context& context) {
     result.sim_seconds += run.time();
     const double slope = SlopeThroughOrigin(error.x, error.y);
     const double target = c.g * c.dt / 2.0;
-    result.checks.push_back(Relative("error slope, g " + Num(c.g) + ", dt " + Num(c.dt) + " s",
+    result.checks.push_back(Relative("error slope, g " + FormatNumber(c.g) + ", dt " + FormatNumber(c.dt) + " s",
                                      slope, target, 0.01, "m/s"));
     Series fitted;
-    fitted.title = "fit " + Num(slope) + " t";
+    fitted.title = "fit " + FormatNumber(slope) + " t";
     fitted.style = "dashed";
     fitted.x = {0.0, kDuration};
     fitted.y = {0.0, slope * kDuration};
@@ -180,8 +178,8 @@ ExperimentResult SlidingCube(const Context& context) {
   result.plots = {plot, errors};
   result.notes =
       "The cube (`sliding_cube.xml`, mu 0.5 on cube and floor) starts at 10 m/s. Coulomb "
-      "friction gives v = v0 - mu g t until it stops at t = " + Num(t_stop) +
-      " s after v0^2 / (2 mu g) = " + Num(v0 * v0 / (2 * mu * g)) +
+      "friction gives v = v0 - mu g t until it stops at t = " + FormatNumber(t_stop) +
+      " s after v0^2 / (2 mu g) = " + FormatNumber(v0 * v0 / (2 * mu * g)) +
       " m. The first check is the largest velocity error over the slide against 1 % of v0; "
       "the second is the largest deviation of one step's velocity change from mu g dt "
       "against 1 % of mu g dt, where a stepwise error would show.";
@@ -295,10 +293,10 @@ ExperimentResult RollingSphere(const Context& context) {
   result.notes =
       "Beyond the original, whose rolling sphere never stopped: two solid 1 kg spheres of "
       "radius 0.1 m roll at 1 m/s without slipping (`rolling_sphere.xml`). The ground and one "
-      "sphere have a rolling resistance length rho = " + Num(rho) +
+      "sphere have a rolling resistance length rho = " + FormatNumber(rho) +
       " m (ODE's rolling friction, which bounds the rolling torque by rho N); a solid sphere "
-      "then decelerates at 5/7 rho g / r = " + Num(deceleration) + " m/s^2 and comes to rest "
-      "after " + Num(t_stop) + " s and " + Num(distance) + " m. The other sphere has none, as in "
+      "then decelerates at 5/7 rho g / r = " + FormatNumber(deceleration) + " m/s^2 and comes to rest "
+      "after " + FormatNumber(t_stop) + " s and " + FormatNumber(distance) + " m. The other sphere has none, as in "
       "the original, and rolls on. The 5 % tolerance on the time and distance is ours.";
   return result;
 }

@@ -11,8 +11,6 @@
 namespace simpartner::validate {
 namespace {
 
-std::string Num(double v) { return FormatNumber(v); }
-
 constexpr double kWheelRadius = 0.235;  // SPEC 7
 constexpr double kAxleDistance = 0.6;   // SPEC 7: a, Turner joint to each axle
 constexpr double kWheelWidth = 0.14;    // workpartner_gen1.xml: the wheels' cylinder length
@@ -196,9 +194,9 @@ void AddPaths(const CircleRunResult& run, const std::string& label, Plot* paths,
 
 std::string CircleRow(const std::string& friction, const std::string& speeds,
                       const CircleRunResult& run, const std::string& reference) {
-  return "| " + friction + " | " + speeds + " | " + Num(run.front.radius) + " | " +
-         Num(run.rear.radius) + " | " + Num(run.legs.radius) + " | " +
-         Num(run.WorstDeviation() * 1000.0) + " | " + reference + " |\n";
+  return "| " + friction + " | " + speeds + " | " + FormatNumber(run.front.radius) + " | " +
+         FormatNumber(run.rear.radius) + " | " + FormatNumber(run.legs.radius) + " | " +
+         FormatNumber(run.WorstDeviation() * 1000.0) + " | " + reference + " |\n";
 }
 
 const char* kCircleTableHead =
@@ -236,7 +234,7 @@ ExperimentResult CircleEqualSpeeds(const Context& context) {
   result.checks.push_back(Relative("radius of the mean of the four wheels, thesis friction",
                                    thesis.legs.radius, legs, kCircleEqualTolerance, "m"));
   rows += CircleRow(kThesisFriction.Describe(), "1 / 1 m/s", thesis,
-                    "a cot(alpha/2) = " + Num(axle) + ", x cos(alpha/2) = " + Num(legs));
+                    "a cot(alpha/2) = " + FormatNumber(axle) + ", x cos(alpha/2) = " + FormatNumber(legs));
   AddPaths(thesis, "thesis friction", &paths, &errors);
 
   // A second check: isotropic friction against the steady state of the
@@ -246,27 +244,27 @@ ExperimentResult CircleEqualSpeeds(const Context& context) {
         RunCircle(context, Isotropic(mu), settle, duration, "gen1_circle_equal_speeds.xml");
     result.sim_seconds += run.sim_seconds;
     const double coulomb = CoulombRadius(run, mu, kAlpha, kSpeed, kSpeed);
-    result.checks.push_back(Relative("radius, isotropic mu " + Num(mu) +
+    result.checks.push_back(Relative("radius, isotropic mu " + FormatNumber(mu) +
                                          ", vs the steady state of the same vehicle",
                                      run.Radius(), coulomb, kIsotropicEqualTolerance, "m"));
     rows += CircleRow(Isotropic(mu).Describe(), "1 / 1 m/s", run,
-                      "steady state, isotropic Coulomb: " + Num(coulomb));
-    AddPaths(run, "isotropic mu " + Num(mu), &paths, &errors);
+                      "steady state, isotropic Coulomb: " + FormatNumber(coulomb));
+    AddPaths(run, "isotropic mu " + FormatNumber(mu), &paths, &errors);
   }
   paths.series.push_back(CirclePoints(thesis.rear.centre, axle,
-                                      "r = a cot(alpha/2) = " + Num(axle) + " m"));
+                                      "r = a cot(alpha/2) = " + FormatNumber(axle) + " m"));
   result.plots = {paths, errors};
   result.notes =
       "gen1 on flat ground plays `sequences/gen1_circle_equal_speeds.xml`: `TurnerMotor` steers "
       "to alpha = 0.2972 rad (P 100, I 100), then at t = 2 s all four wheels turn at 1 m/s / "
-      "0.235 m (1000 N m motors). Circles are fitted (least squares) over " + Num(duration) +
-      " s after " + Num(settle) + " s of settling to three points: each axle's centre (the "
+      "0.235 m (1000 N m motors). Circles are fitted (least squares) over " + FormatNumber(duration) +
+      " s after " + FormatNumber(settle) + " s of settling to three points: each axle's centre (the "
       "midpoint of its two wheels) and the mean of the four wheel centres.\n\n" +
       kCircleTableHead + rows +
       "\n**Which point each number is.** Rolling without slip, the axle centres ride "
-      "a cot(alpha/2) = " + Num(axle) + " m about the turn's centre; the mean of the four "
+      "a cot(alpha/2) = " + FormatNumber(axle) + " m about the turn's centre; the mean of the four "
       "wheels, on the chord between the axle centres, rides a cot(alpha/2) cos(alpha/2) = " +
-      Num(legs) + " m. The thesis averaged the legs' positions, so its 4.30 m belongs to the "
+      FormatNumber(legs) + " m. The thesis averaged the legs' positions, so its 4.30 m belongs to the "
       "second point (8.5 % off it); the target 4.01 m is the first.\n\n"
       "**The thesis's friction.** It ran these circles with \"0.5 and 1.0 for tangential and "
       "normal friction\". Read in the wheel's frame, as vehicle simulators do: 0.5 along each "
@@ -274,9 +272,9 @@ ExperimentResult CircleEqualSpeeds(const Context& context) {
       "wheel's plane); `gen1_flat_thesis.xml`'s ground asks for the rolling direction of "
       "every wheel on it (docs/contacts.md). The outer wheels then slip along their rolling "
       "direction while the grip across holds each wheel on its path, and the vehicle turns "
-      "where its steering points: " + Num(thesis.Radius()) + " m at the axle centres (" +
+      "where its steering points: " + FormatNumber(thesis.Radius()) + " m at the axle centres (" +
       FormatFixed((thesis.Radius() / axle - 1.0) * 100.0, 2) + " % from a cot(alpha/2)), " +
-      Num(thesis.legs.radius) + " m for the mean of the wheels (" +
+      FormatNumber(thesis.legs.radius) + " m for the mean of the wheels (" +
       FormatFixed((thesis.legs.radius / legs - 1.0) * 100.0, 2) + " %). Read instead with the "
       "first direction along each contact's sliding velocity (the sim's default, "
       "`frictionDirection` slip), the same coefficients give 4.719 m, the isotropic mu 0.5 "
@@ -335,17 +333,17 @@ ExperimentResult CircleDifferentialSpeeds(const Context& context) {
   std::fill(even_edges.middle_edge_share, even_edges.middle_edge_share + 4, 0.0);
   const SkidSteerRolling rolling_even = SkidSteerRollingInnerWheels(even_edges);
   const double coulomb_even = SkidSteerRadius(even_edges);
-  result.checks.push_back(Relative("radius, 1.00 / " + Num(matched) + " m/s (matched), isotropic mu 1",
+  result.checks.push_back(Relative("radius, 1.00 / " + FormatNumber(matched) + " m/s (matched), isotropic mu 1",
                                    exact.Radius(), axle, 0.0025, "m"));
   result.checks.push_back(Absolute("worst deviation from the fitted circle, matched speeds",
                                    exact.WorstDeviation(), 0.0, 0.001, "m"));
   rows += CircleRow(kThesisFriction.Describe(), "1.00 / 1.10 m/s", thesis,
-                    "a cot(alpha/2) = " + Num(axle) + ", x cos(alpha/2) = " + Num(legs));
+                    "a cot(alpha/2) = " + FormatNumber(axle) + ", x cos(alpha/2) = " + FormatNumber(legs));
   rows += CircleRow(Isotropic(1.0).Describe(), "1.00 / 1.10 m/s", isotropic,
-                    "steady state, isotropic Coulomb: " + Num(coulomb) +
-                        " (inner wheels rolling: a cot(alpha/2) = " + Num(axle) + ")");
-  rows += CircleRow(Isotropic(1.0).Describe(), "1.00 / " + Num(matched) + " m/s", exact,
-                    "no slip needed: a cot(alpha/2) = " + Num(axle));
+                    "steady state, isotropic Coulomb: " + FormatNumber(coulomb) +
+                        " (inner wheels rolling: a cot(alpha/2) = " + FormatNumber(axle) + ")");
+  rows += CircleRow(Isotropic(1.0).Describe(), "1.00 / " + FormatNumber(matched) + " m/s", exact,
+                    "no slip needed: a cot(alpha/2) = " + FormatNumber(axle));
   Plot paths;
   paths.file = "circle_differential.png";
   paths.title = "gen1, alpha 0.2 rad, inner 1.00 / outer 1.10 m/s, thesis friction: axle-centre paths";
@@ -357,8 +355,8 @@ ExperimentResult CircleDifferentialSpeeds(const Context& context) {
   rear.title = "rear axle";
   paths.series = {front, rear,
                   CirclePoints(thesis.rear.centre, thesis.rear.radius,
-                               "fitted, r = " + Num(thesis.Radius()) + " m"),
-                  CirclePoints(thesis.rear.centre, axle, "r = a cot(alpha/2) = " + Num(axle) + " m")};
+                               "fitted, r = " + FormatNumber(thesis.Radius()) + " m"),
+                  CirclePoints(thesis.rear.centre, axle, "r = a cot(alpha/2) = " + FormatNumber(axle) + " m")};
   Plot errors;
   errors.file = "circle_differential_error.png";
   errors.title = "gen1, alpha 0.2 rad: distance of the rear axle centre from the fitted circle";
@@ -367,23 +365,23 @@ ExperimentResult CircleDifferentialSpeeds(const Context& context) {
   Series e0 = thesis.radius_error, e1 = isotropic.radius_error, e2 = exact.radius_error;
   e0.title = "1.00 / 1.10 m/s, thesis friction";
   e1.title = "1.00 / 1.10 m/s, isotropic mu 1";
-  e2.title = "1.00 / " + Num(matched) + " m/s (matched), isotropic mu 1";
+  e2.title = "1.00 / " + FormatNumber(matched) + " m/s (matched), isotropic mu 1";
   errors.series = {e0, e1, e2};
   result.plots = {paths, errors};
   result.notes =
       "As the circle above, steering alpha = 0.2 rad, the inner (left) wheels at 1.00 m/s and "
       "the outer at 1.10 m/s (`sequences/gen1_circle_differential.xml`); circles fitted over " +
-      Num(duration) + " s (about one lap) after " + Num(settle) + " s of settling.\n\n" +
+      FormatNumber(duration) + " s (about one lap) after " + FormatNumber(settle) + " s of settling.\n\n" +
       kCircleTableHead + rows +
-      "\n**Which point each number is.** The target 5.98 m is a cot(alpha/2) = " + Num(axle) +
+      "\n**Which point each number is.** The target 5.98 m is a cot(alpha/2) = " + FormatNumber(axle) +
       " m, the axle centres' radius; the thesis's 5.9516 m was the mean of the legs, whose "
-      "rolling radius is a cot(alpha/2) cos(alpha/2) = " + Num(legs) + " m, so it came within " +
+      "rolling radius is a cot(alpha/2) cos(alpha/2) = " + FormatNumber(legs) + " m, so it came within " +
       FormatFixed(std::abs(5.9516 / legs - 1.0) * 100.0, 2) + " % of the point it measured.\n\n"
       "Rolling without slip on the steering's circle needs the outer wheels at (r + 0.3) / "
-      "(r - 0.3) = " + Num(matched) + " times the inner ones' speed; at 1.10 the outer wheels "
+      "(r - 0.3) = " + FormatNumber(matched) + " times the inner ones' speed; at 1.10 the outer wheels "
       "slip a little along their rolling direction and the grip across holds the path. With "
       "the thesis's friction (wheel frame, as above) the axle centres ride " +
-      Num(thesis.Radius()) + " m, " + FormatFixed((thesis.Radius() / axle - 1.0) * 100.0, 2) +
+      FormatNumber(thesis.Radius()) + " m, " + FormatFixed((thesis.Radius() / axle - 1.0) * 100.0, 2) +
       " % outside a cot(alpha/2). Until 2026-11-23 it was +0.11 %: the world CFM (1e-5) "
       "acted on the friction rows too and let the wheels creep sideways; friction now has "
       "its own compliance, `contactSlip` = 1e-7 m/(N s), a velocity per force and so the "
@@ -391,19 +389,19 @@ ExperimentResult CircleDifferentialSpeeds(const Context& context) {
       "matched speed (`gen1_circle_matched.xml`) needs no slip and is the formula's own case. "
       "**The isotropic run** is checked against the Coulomb steady state of the same ideal "
       "vehicle as the circles at equal speeds (`SkidSteerRadius`; each wheel's load and each "
-      "rim edge's share of it measured in the run): " + Num(isotropic.Radius()) +
-      " m against " + Num(coulomb) + " m. That steady state is the steering's circle: the "
+      "rim edge's share of it measured in the run): " + FormatNumber(isotropic.Radius()) +
+      " m against " + FormatNumber(coulomb) + " m. That steady state is the steering's circle: the "
       "inner wheels roll, each on the rim edge nearer the vehicle's middle, which stays at "
-      "rest on the ground, and the outer wheels (slower than the " + Num(matched) +
+      "rest on the ground, and the outer wheels (slower than the " + FormatNumber(matched) +
       " m/s rolling needs) slide. It holds when the two resting edges can balance the "
       "sliding ones and the centripetal force within mu N each (`SkidSteerRollingInnerWheels`): "
-      "they need " + Num(rolling.friction_needed) + " of mu N with the run's edge loads (the "
+      "they need " + FormatNumber(rolling.friction_needed) + " of mu N with the run's edge loads (the "
       "inner wheels carry " + FormatFixed(ideal.middle_edge_share[0] * 100.0, 1) + " and " +
       FormatFixed(ideal.middle_edge_share[2] * 100.0, 1) + " % of their load, front and rear, "
       "on that edge). With half of each wheel's load on each edge, as the solve assumed "
-      "until 2026-11-25, they would need " + Num(rolling_even.friction_needed) +
+      "until 2026-11-25, they would need " + FormatNumber(rolling_even.friction_needed) +
       " of mu N, the inner wheels cannot roll, and the all-sliding steady state turns at " +
-      Num(coulomb_even) + " m: the 6.025 m this report used to compare with, 0.74 % from the "
+      FormatNumber(coulomb_even) + " m: the 6.025 m this report used to compare with, 0.74 % from the "
       "run. The difference was the edge loads, not the sim's friction: a rigid contact "
       "model gives a steady turn whose radius depends on how each wheel's load is shared "
       "across its width.";
@@ -441,8 +439,8 @@ GaitRun RunGait(const Context& context, const GaitSequence& gait) {
   // The speed is measured over whole cycles: a file that does not last
   // them would measure something else.
   if (std::abs(times.end - file_end) > 0.5 * run.dt())
-    throw Error(gait.file + " lasts " + Num(times.end) + " s, not the " + Num(file_end) +
-                " s of " + std::to_string(gait.cycles) + " cycles of " + Num(gait.cycle_time) +
+    throw Error(gait.file + " lasts " + FormatNumber(times.end) + " s, not the " + FormatNumber(file_end) +
+                " s of " + std::to_string(gait.cycles) + " cycles of " + FormatNumber(gait.cycle_time) +
                 " s");
   // The unit tests play the first three cycles of the same file.
   const int cycles = context.quick ? std::min(3, gait.cycles) : gait.cycles;
@@ -532,9 +530,9 @@ ExperimentResult SkiddingWheels(const Context& context) {
       "The light gen1 (18 kg, `slippery_ground.xml`: ice, mu 0.025) starts its four wheels at "
       "1 rad/s (1000 N m motors). The wheels skid at first and the ice pushes the robot with "
       "at most mu m g, so it accelerates at mu g = 0.245 m/s^2 (measured " +
-      Num(run.acceleration) + ") until the wheels roll at 0.235 m/s after about a second; on "
+      FormatNumber(run.acceleration) + ") until the wheels roll at 0.235 m/s after about a second; on "
       "flat ground nothing then resists the rolling, so it keeps that speed (measured " +
-      Num(run.speed) + " m/s).\n\n"
+      FormatNumber(run.speed) + " m/s).\n\n"
       "**The original's 0.0038 m/s is not physical for this setting.** A vehicle needs "
       "traction only to accelerate or to overcome resistance; with no slope and no rolling "
       "resistance, any mu > 0 lets it reach the wheels' speed. The original's figure suggests "
@@ -581,11 +579,11 @@ ExperimentResult GaitExperiment(const Context& context, const GaitSequence& sequ
       "legs' geometry (0.3 m links, hips 0.48 m above the axles) and are sent at 50 Hz "
       "(P 100, target one time constant ahead) by the shipped sequence `sequences/" +
       sequence.file + "`; every move follows 0.5 - 0.5 cos(pi u) over its phase. Cycle " +
-      Num(sequence.cycle_time) + " s; " + std::to_string(gait.cycles) +
-      " cycles, the speed measured over all but the first: " + Num(gait.speed) +
-      " m/s (the original: " + Num(original) + " m/s).\n\n"
+      FormatNumber(sequence.cycle_time) + " s; " + std::to_string(gait.cycles) +
+      " cycles, the speed measured over all but the first: " + FormatNumber(gait.speed) +
+      " m/s (the original: " + FormatNumber(original) + " m/s).\n\n"
       "**Expected speed.** If the held wheels do not slip, the body advances one stride (" +
-      Num(sequence.stride) + " m) per cycle: " + Num(expected) + " m/s. They do not slip if "
+      FormatNumber(sequence.stride) + " m) per cycle: " + FormatNumber(expected) + " m/s. They do not slip if "
       "the largest force the move needs stays below the friction they can give, mu N: " +
       friction_bound + " The check holds the speed to 10 % of stride / cycle: the leg "
       "controllers lag their targets and the wheels roll a little under the moving legs, "
@@ -593,7 +591,7 @@ ExperimentResult GaitExperiment(const Context& context, const GaitSequence& sequ
       FormatFixed((gait.speed / expected - 1.0) * 100.0, 1) + " %).\n\n"
       "**Against skidding wheels.** The SPEC's ordering (the original: gaits 0.057 and 0.048 "
       "m/s, skidding wheels 0.0038 m/s) does not hold here, and should not: skidding wheels "
-      "at 1 rad/s on the same ice reach " + Num(skid.speed) + " m/s (see skid), " +
+      "at 1 rad/s on the same ice reach " + FormatNumber(skid.speed) + " m/s (see skid), " +
       FormatFixed(skid.speed / gait.speed, 1) + " times the gait. On homogeneous flat ground "
       "with Coulomb friction and no rolling resistance, a wheeled robot that can walk by "
       "friction can also roll; the gaits win only where rolling meets a resistance a held "

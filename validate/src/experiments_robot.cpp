@@ -13,8 +13,6 @@
 namespace simpartner::validate {
 namespace {
 
-std::string Num(double v) { return FormatNumber(v); }
-
 // SPEC 8: the real robot's static wheel loads [N], wheels 1..4: the means
 // of its four test runs (SPEC 8's notes), which gen4 is calibrated on.
 constexpr double kRealWheelLoads[4] = {579.15, 774.90, 669.12, 676.03};
@@ -127,7 +125,7 @@ ExperimentResult Gen4StaticLoads(const Context& context) {
   result.notes =
       "gen4 (`gen4_flat.xml`, 275.15 kg) stands on flat ground; the wheel loads are the "
       "vertical contact forces on Wheel1..4 averaged over 0.5 s after 1.5 s of settling, at "
-      "step " + Num(run.dt()) + " s.\n\n"
+      "step " + FormatNumber(run.dt()) + " s.\n\n"
       "**Calibration, not validation.** The real robot's loads (SPEC 8) are the means of four "
       "test runs; gen4 is calibrated on them: four model values were chosen so that its four "
       "loads come out as these means, each from a cause the thesis names, and "
@@ -267,10 +265,10 @@ ExperimentResult Scanner(const Context& context) {
       "gen2 stands 6 m from a static wall (`scanner_wall.xml`; the scanner sits on the torso's "
       "turning axis, 5.335 m from the wall). The torso turns at omega = 0.01 rad/s: every step "
       "`TorsoTurnMotor` gets the angle target omega (t + 1/P) with P = 100, so its velocity "
-      "output is omega without lag (largest torso angle error " + Num(worst_angle) +
+      "output is omega without lag (largest torso angle error " + FormatNumber(worst_angle) +
       " rad). Every 0.1 s the scanner is read; ray k, at alpha_k = -0.1 + 0.02 k rad from the "
       "torso's heading, must read L / cos(alpha_k + omega t) while that is within the 10 m "
-      "range. The run lasts until the middle ray reaches the range (" + Num(duration) + " s).";
+      "range. The run lasts until the middle ray reaches the range (" + FormatNumber(duration) + " s).";
   return result;
 }
 
@@ -345,7 +343,7 @@ ExperimentResult PoleTask(const Context& context) {
       "targets), lift the elbows 0.3 rad, drive 3 m at 2 rad/s, lower the elbows to where "
       "the pole was picked up, open the claws and back away 0.25 m. The front/rear load "
       "ratio is taken while the lifted pole is held still before the drive: " +
-      Num(front / 2.0) + " N per front wheel and " + Num(rear / 2.0) +
+      FormatNumber(front / 2.0) + " N per front wheel and " + FormatNumber(rear / 2.0) +
       " N per rear one (the original: about 700 / 350 N). The team's \"close to 2:1\" is "
       "checked within 10 %. The pole rests on the second pair when its centre is at the "
       "cube tops' height plus its radius, over the cubes, both ends on them, at rest, and "
@@ -574,14 +572,14 @@ ExperimentResult TestTrack(const Context& context) {
   result.notes =
       "gen4 on the heightfield track (`test_track.xml`, from `scripts/make_test_track.py`; our "
       "reconstruction of the original's run 4) with all four wheels at 1.5 rad/s from t = 1 s "
-      "(JointController, " + Num(kTorque) + " N m, the SPEC's default force per axis)" +
+      "(JointController, " + FormatNumber(kTorque) + " N m, the SPEC's default force per axis)" +
       (planks_only ? std::string(", here only from 2.3 m before the planks (the unit tests' "
                                  "short drive)")
                    : std::string(" for 104.75 s, the original's run time")) +
-      ". It covered " + Num(distance) + " m in " + Num(duration) + " s (no slip: " +
-      Num(no_slip * duration) + " m, a bound: along the slope and over the bumps the wheels "
+      ". It covered " + FormatNumber(distance) + " m in " + FormatNumber(duration) + " s (no slip: " +
+      FormatNumber(no_slip * duration) + " m, a bound: along the slope and over the bumps the wheels "
       "roll a path longer than its x; the original simulator: 34.5 m in 104.75 s). Speed "
-      "along x, averaged over 1 s: " + Num(level_speed) + " m/s on the " + reference.name +
+      "along x, averaged over 1 s: " + FormatNumber(level_speed) + " m/s on the " + reference.name +
       " (" + FormatFixed((1.0 - level_speed / no_slip) * 100.0, 2) +
       " % below no slip: the tyres' slip under the wheels' drive torque).\n\n"
       "**Validation on data not used in the calibration: the wheel-force events.** The thesis "

@@ -1,4 +1,5 @@
 #include "simpartner/viewer/scene.h"
+#include "simpartner/text.h"
 
 #include <cmath>
 #include <sstream>
@@ -14,12 +15,6 @@ constexpr double kQuaternionTolerance = 1e-3;
 // message cannot make it allocate gigabytes.
 constexpr int64_t kMaxHeightfieldSamples = 16 * 1024 * 1024;
 constexpr double kMaxSize = 1e5;  // [m]
-
-std::string Num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 bool Finite3(const double v[3]) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
@@ -46,7 +41,7 @@ std::string BodyLabel(const model_t& m, int i) {
 // First non-finite entry of a 3-vector field, as "name[k] = value".
 std::optional<std::string> NonFinite(const char* field, const double v[3], int n = 3) {
   for (int k = 0; k < n; ++k)
-    if (!std::isfinite(v[k])) return std::string(field) + "[" + std::to_string(k) + "] = " + Num(v[k]);
+    if (!std::isfinite(v[k])) return std::string(field) + "[" + std::to_string(k) + "] = " + FormatNumber(v[k]);
   return std::nullopt;
 }
 
@@ -71,11 +66,11 @@ std::optional<std::string> CheckModel(const model_t& m) {
     return "num_bodies = " + std::to_string(m.num_bodies) + " but " +
            std::to_string(m.bodies.size()) + " bodies";
   if (!Finite3(m.up) || std::abs(Eigen::Vector3d(m.up[0], m.up[1], m.up[2]).norm() - 1) > 1e-3)
-    return "up = (" + Num(m.up[0]) + ", " + Num(m.up[1]) + ", " + Num(m.up[2]) +
+    return "up = (" + FormatNumber(m.up[0]) + ", " + FormatNumber(m.up[1]) + ", " + FormatNumber(m.up[2]) +
            ") is not a unit vector";
   if (m.has_plane) {
     for (int k = 0; k < 4; ++k)
-      if (!std::isfinite(m.plane[k])) return "plane[" + std::to_string(k) + "] = " + Num(m.plane[k]);
+      if (!std::isfinite(m.plane[k])) return "plane[" + std::to_string(k) + "] = " + FormatNumber(m.plane[k]);
     if (Eigen::Vector3d(m.plane[0], m.plane[1], m.plane[2]).norm() < 1e-9)
       return "plane normal (a, b, c) is zero";
   }
@@ -99,14 +94,14 @@ std::optional<std::string> CheckModel(const model_t& m) {
       const bool may_be_zero = g.kind == geometry_t::KIND_CAPSULE && k == 1;
       if (!std::isfinite(g.size[k]) || g.size[k] < 0 || (g.size[k] == 0 && !may_be_zero) ||
           g.size[k] > kMaxSize)
-        return where + ".geometry.size[" + std::to_string(k) + "] = " + Num(g.size[k]) + " (" +
+        return where + ".geometry.size[" + std::to_string(k) + "] = " + FormatNumber(g.size[k]) + " (" +
                BodyLabel(m, i) + ")";
     }
     if (auto bad = NonFinite("initial_position", b.initial_position))
       return where + "." + *bad + " (" + BodyLabel(m, i) + ")";
     const double qn = Quat(b.initial_orientation).norm();
     if (!std::isfinite(qn) || std::abs(qn - 1) > kQuaternionTolerance)
-      return where + ".initial_orientation has length " + Num(qn) + " (" + BodyLabel(m, i) + ")";
+      return where + ".initial_orientation has length " + FormatNumber(qn) + " (" + BodyLabel(m, i) + ")";
     if (b.robot < -1 || b.robot >= m.num_robots)
       return where + ".robot = " + std::to_string(b.robot) + " (" + BodyLabel(m, i) + ") but " +
              std::to_string(m.num_robots) + " robots";
@@ -130,7 +125,7 @@ std::optional<std::string> CheckModel(const model_t& m) {
     if (!std::isfinite(Quat(sensor.orientation).norm()) || Quat(sensor.orientation).norm() < 1e-9)
       return "sensors[" + std::to_string(s) + "].orientation is not a rotation";
     for (double p : sensor.params)
-      if (!std::isfinite(p)) return "sensors[" + std::to_string(s) + "].params has " + Num(p);
+      if (!std::isfinite(p)) return "sensors[" + std::to_string(s) + "].params has " + FormatNumber(p);
   }
   const heightfield_t& h = m.heightfield;
   if (h.present) {
@@ -146,12 +141,12 @@ std::optional<std::string> CheckModel(const model_t& m) {
              std::to_string(count);
     for (double v : {h.width, h.depth})
       if (!std::isfinite(v) || v <= 0 || v > kMaxSize)
-        return "heightfield width/depth = " + Num(v);
+        return "heightfield width/depth = " + FormatNumber(v);
     if (!std::isfinite(h.scale) || !std::isfinite(h.offset) || !Finite3(h.position))
       return "heightfield scale/offset/position is not finite";
     for (size_t k = 0; k < h.samples.size(); ++k)
       if (!std::isfinite(h.samples[k]))
-        return "heightfield.samples[" + std::to_string(k) + "] = " + Num(h.samples[k]);
+        return "heightfield.samples[" + std::to_string(k) + "] = " + FormatNumber(h.samples[k]);
   }
   return std::nullopt;
 }
@@ -238,7 +233,7 @@ Verdict Scene::OfferState(state_t&& s) {
                       std::to_string(s.step) + "), the model has " + std::to_string(m.num_joints) +
                       ": ignored");
   if (!std::isfinite(s.sim_time))
-    return Reject(Rejection::kNonFinite, "SIM_STATE", "sim_time = " + Num(s.sim_time) + ": ignored");
+    return Reject(Rejection::kNonFinite, "SIM_STATE", "sim_time = " + FormatNumber(s.sim_time) + ": ignored");
   for (int i = 0; i < s.num_bodies; ++i) {
     const body_state_t& b = s.bodies[static_cast<size_t>(i)];
     const std::string where = "bodies[" + std::to_string(i) + "].";
@@ -252,12 +247,12 @@ Verdict Scene::OfferState(state_t&& s) {
     for (int k = 0; k < 4; ++k)
       if (!std::isfinite(b.orientation[k]))
         return Reject(Rejection::kNonFinite, "SIM_STATE",
-                      where + "orientation[" + std::to_string(k) + "] = " + Num(b.orientation[k]) +
+                      where + "orientation[" + std::to_string(k) + "] = " + FormatNumber(b.orientation[k]) +
                           " (" + BodyLabel(m, i) + ", step " + std::to_string(s.step) + "): ignored");
     const double qn = Quat(b.orientation).norm();
     if (std::abs(qn - 1) > kQuaternionTolerance)
       return Reject(Rejection::kBadQuaternion, "SIM_STATE",
-                    where + "orientation has length " + Num(qn) + " (" + BodyLabel(m, i) +
+                    where + "orientation has length " + FormatNumber(qn) + " (" + BodyLabel(m, i) +
                         ", step " + std::to_string(s.step) + "): ignored");
   }
   for (int j = 0; j < s.num_joints; ++j) {
@@ -281,8 +276,8 @@ Verdict Scene::OfferStatus(const status_t& status) {
   Verdict v;
   if (!std::isfinite(status.sim_time) || !std::isfinite(status.real_time_factor))
     return Reject(Rejection::kNonFinite, "SIM_STATUS",
-                  "sim_time = " + Num(status.sim_time) + ", real_time_factor = " +
-                      Num(status.real_time_factor) + ": ignored");
+                  "sim_time = " + FormatNumber(status.sim_time) + ", real_time_factor = " +
+                      FormatNumber(status.real_time_factor) + ": ignored");
   v.accepted = true;
   // A status of another simulation means the sim restarted (or a paused
   // one is running that we have not heard the model of).
@@ -314,7 +309,7 @@ Verdict Scene::OfferSensorReading(const sensor_reading_t& r) {
   for (size_t k = 0; k < r.values.size(); ++k)
     if (!std::isfinite(r.values[k]))
       return Reject(Rejection::kNonFinite, "SIM_SENSOR",
-                    what + ": values[" + std::to_string(k) + "] = " + Num(r.values[k]) +
+                    what + ": values[" + std::to_string(k) + "] = " + FormatNumber(r.values[k]) +
                         ": ignored");
   v.accepted = true;
   if (r.kind == sensor_t::KIND_SCANNER) {

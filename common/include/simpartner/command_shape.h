@@ -34,7 +34,28 @@ std::string DescribeValueForms(const CommandTargetShape& target, int action);
 // (three slots x, y, z) or 2 (per axis), got 3".
 std::string CheckValueCount(const CommandTargetShape& target, int action, int count);
 
-// Name of an action for messages: "set", "hold", "stops", "params", "read".
-const char* ActionName(int action);
+// The spellings of one action (command_t::ACTION_*), in one table because
+// three places spell it: a client's command word and messages ("stops"),
+// a version-2 sequence file's element ("<stops>"), and the logger's
+// Command.action column ("SET_STOPS", the lcm constant's name).
+struct ActionSpelling {
+  int action;
+  const char* word;              // "set", "hold", "stops", "params", "read"
+  const char* sequence_element;  // "set", "hold", "stops", "sensorParams", "read"
+  const char* database;          // "SET", "HOLD", "SET_STOPS", "SENSOR_PARAMS", "READ"
+};
+
+// The five actions, in command_t::ACTION_* order.
+const std::vector<ActionSpelling>& ActionSpellings();
+
+// The spellings of action; for a value outside the table the words are
+// "unknown action" and the database name "UNKNOWN".
+const ActionSpelling& SpellAction(int action);
+
+// The action a sequence element names, or -1 when it names none.
+int ActionOfSequenceElement(const std::string& element);
+
+// Name of an action for messages: SpellAction(action).word.
+inline const char* ActionName(int action) { return SpellAction(action).word; }
 
 }  // namespace simpartner

@@ -98,7 +98,4 @@ const std::string& SequenceDtd(int version);
 // false with a message naming the bad item.
 bool ParseValues(const std::string& text, std::vector<double>* values, std::string* error);
 
-// command_t action name as the files and messages write it: "set", "hold"...
-const char* ActionName(int8_t action);
-
 }  // namespace simpartner::sequencer

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "simpartner/text.h"
+
 namespace simpartner::validate {
 
 enum class Comparison {
@@ -36,10 +38,9 @@ Check Absolute(std::string label, double measured, double target, double toleran
 Check AtLeast(std::string label, double measured, double minimum, std::string unit);
 Check AtMost(std::string label, double measured, double maximum, std::string unit);
 
-// Short number text: 6 significant digits, no trailing zeros ("0.0049",
-// "1.2e-13").
-std::string FormatNumber(double value);
-// Fixed decimals for tables in the report ("1354.1", "-1.87").
-std::string FormatFixed(double value, int decimals);
+// Numbers in checks and the report: FormatNumber (6 significant digits,
+// "0.0049", "1.2e-13") and FormatFixed ("1354.1"), from simpartner/text.h.
+using simpartner::FormatFixed;
+using simpartner::FormatNumber;
 
 }  // namespace simpartner::validate
