@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
         sim::Simulation sim(*loaded.world, params, 1);
         // The same constraint rows as the sim holding its pose: a motor
         // (velocity 0, 1000 per axis) on every actuated joint.
-        for (const sim::FlatActuator& actuator : sim.flat().actuators) {
+        for (const model::FlatActuator& actuator : sim.flat().actuators) {
           const int joint = actuator.joint;
           for (int axis = 0; joint >= 0 && axis < sim.flat().joints[joint].num_axes; ++axis)
             sim.ode().SetMotor(joint, axis, 0.0, 1000.0);

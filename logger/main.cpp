@@ -1,12 +1,11 @@
 // simpartner-logger: parse flags, load parameters, log the bus into the
 // database until SIGINT or SIGTERM.
-#include <signal.h>
-#include <sys/signalfd.h>
 #include <unistd.h>
 
 #include <iostream>
 
 #include "simpartner/logger/logger_config.h"
+#include "simpartner/stop_signals.h"
 
 int main(int argc, char** argv) {
   using namespace simpartner;
@@ -30,12 +29,7 @@ int main(int argc, char** argv) {
 
     // Signals arrive as a readable fd in the receive loop (blocked before any
     // thread starts, so no thread takes them asynchronously).
-    sigset_t signals;
-    sigemptyset(&signals);
-    sigaddset(&signals, SIGINT);
-    sigaddset(&signals, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-    const int stop_fd = signalfd(-1, &signals, SFD_CLOEXEC);
+    const int stop_fd = BlockStopSignalsIntoFd();
 
     logger::Logger logger(options, &reporter);
     reporter.Say("logging " + options.lcm_url + " into database '" + options.db.database + "' on " +

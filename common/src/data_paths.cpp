@@ -160,13 +160,6 @@ std::vector<DataCandidate> PrivateServerFileCandidates(const std::string& name,
   return out;
 }
 
-std::string DescribePrivateServerLookup() {
-  return std::string("the private server's files are looked for in $") + kStateEnvironmentVariable +
-         "/mariadb, state/mariadb of the working directory, then the source tree's state/mariadb "
-         "(programs of a build tree) or ${XDG_STATE_HOME:-$HOME/.local/state}/simpartner/mariadb "
-         "(installed programs)";
-}
-
 std::vector<DataCandidate> DataFileCandidates(const std::string& name,
                                               const std::vector<std::string>& kind_dirs,
                                               const std::vector<DataRoot>& roots) {

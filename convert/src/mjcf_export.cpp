@@ -8,8 +8,8 @@
 
 #include "xml_text.h"
 #include "simpartner/convert/urdf_import.h"
-#include "simpartner/sim/flat_model.h"
-#include "simpartner/sim/ode_world.h"
+#include "simpartner/model/flat_model.h"
+#include "simpartner/model/surface.h"
 
 namespace simpartner::convert {
 namespace {
@@ -48,7 +48,7 @@ struct TreeNode {
 class Writer {
  public:
   Writer(const model::World& world, const Parameters& params, const MjcfGains& gains)
-      : world_(world), flat_(sim::Flatten(world)), params_(params), gains_(gains),
+      : world_(world), flat_(model::Flatten(world)), params_(params), gains_(gains),
         c_(YUpToZUp()) {}
 
   MjcfExport Run();
@@ -73,7 +73,7 @@ class Writer {
   }
 
   const model::World& world_;
-  sim::FlatModel flat_;
+  model::FlatModel flat_;
   const Parameters& params_;
   MjcfGains gains_;
   Eigen::Matrix3d c_;
@@ -89,7 +89,7 @@ class Writer {
 };
 
 const model::Material* Writer::MaterialOf(int body) const {
-  const sim::FlatBody& flat = flat_.bodies[static_cast<size_t>(body)];
+  const model::FlatBody& flat = flat_.bodies[static_cast<size_t>(body)];
   const std::string& name = flat.source->material;
   if (name.empty()) return nullptr;
   if (flat.robot >= 0) {
@@ -111,7 +111,7 @@ void Writer::BuildTree() {
       for (int at : frontier) {
         for (size_t j = 0; j < flat_.joints.size(); ++j) {
           if (joint_used[j]) continue;
-          const sim::FlatJoint& joint = flat_.joints[j];
+          const model::FlatJoint& joint = flat_.joints[j];
           const int a = Static(joint.body1) ? -1 : joint.body1;
           const int b = Static(joint.body2) ? -1 : joint.body2;
           int child = -1;
@@ -146,7 +146,7 @@ void Writer::BuildTree() {
     grow({b});
   }
   for (size_t j = 0; j < flat_.joints.size(); ++j) {
-    const sim::FlatJoint& joint = flat_.joints[j];
+    const model::FlatJoint& joint = flat_.joints[j];
     if (joint_used[j] || (Static(joint.body1) && Static(joint.body2))) continue;
     not_carried_.push_back("joint '" + JointName(static_cast<int>(j)) +
                            "' closes a loop of bodies; MuJoCo's body tree has no place for it "
@@ -155,7 +155,7 @@ void Writer::BuildTree() {
 }
 
 std::string Writer::ContactAttributes(const model::Material* material) {
-  const sim::SurfaceProperties surface = sim::ResolveSurface(material, params_);
+  const model::SurfaceProperties surface = model::ResolveSurface(material, params_);
   std::ostringstream out;
   // MuJoCo takes the larger friction of two geoms unless their priorities
   // differ; ours takes the smaller, so lower friction gets higher priority.
@@ -202,7 +202,7 @@ std::string Writer::GeomAttributes(const model::Geometry& geometry,
 
 void Writer::WriteBody(int body, const std::string& indent, std::ostringstream& out) {
   const TreeNode& node = tree_[static_cast<size_t>(body)];
-  const sim::FlatBody& flat = flat_.bodies[static_cast<size_t>(body)];
+  const model::FlatBody& flat = flat_.bodies[static_cast<size_t>(body)];
   const model::Body& source = *flat.source;
   const Eigen::Isometry3d pose = ZUpPose(body);
   const Eigen::Isometry3d relative = node.parent < 0 ? pose : ZUpPose(node.parent).inverse() * pose;
@@ -221,7 +221,7 @@ void Writer::WriteBody(int body, const std::string& indent, std::ostringstream& 
     for (int k = 0; k < 3; ++k) qvel_.push_back(w[k]);
     any_velocity_ = any_velocity_ || v.norm() > 0 || w.norm() > 0;
   } else if (node.joint >= 0) {
-    const sim::FlatJoint& joint = flat_.joints[static_cast<size_t>(node.joint)];
+    const model::FlatJoint& joint = flat_.joints[static_cast<size_t>(node.joint)];
     const model::Joint& spec = *joint.source;
     // MuJoCo's joint value is the child relative to its parent; ours is
     // body1 relative to body2: the axis turns round when body1 is the
@@ -283,24 +283,24 @@ void Writer::WriteBody(int body, const std::string& indent, std::ostringstream& 
 MjcfExport Writer::Run() {
   // Names: ours where they are unique in the world, else "<robot>/<name>".
   std::map<std::string, int> body_count, joint_count;
-  for (const sim::FlatBody& b : flat_.bodies) ++body_count[b.name];
-  for (const sim::FlatJoint& j : flat_.joints) ++joint_count[j.name];
-  for (const sim::FlatBody& b : flat_.bodies)
+  for (const model::FlatBody& b : flat_.bodies) ++body_count[b.name];
+  for (const model::FlatJoint& j : flat_.joints) ++joint_count[j.name];
+  for (const model::FlatBody& b : flat_.bodies)
     names_.push_back(body_count[b.name] > 1 && b.robot >= 0
                          ? world_.robots[static_cast<size_t>(b.robot)].name + "/" + b.name
                          : b.name);
-  for (const sim::FlatJoint& j : flat_.joints)
+  for (const model::FlatJoint& j : flat_.joints)
     joint_names_.push_back(joint_count[j.name] > 1 && j.robot >= 0
                                ? world_.robots[static_cast<size_t>(j.robot)].name + "/" + j.name
                                : j.name);
-  for (const sim::FlatActuator& a : flat_.actuators)
+  for (const model::FlatActuator& a : flat_.actuators)
     if (a.source->kind == model::ActuatorKind::kAngle && a.joint >= 0) angle_joints_.insert(a.joint);
 
   // Friction priorities: every friction value in use, the lowest first.
   std::set<double> mus;
-  mus.insert(sim::ResolveSurface(nullptr, params_).mu);
+  mus.insert(model::ResolveSurface(nullptr, params_).mu);
   auto note_material = [&](const model::Material& m) {
-    const sim::SurfaceProperties s = sim::ResolveSurface(&m, params_);
+    const model::SurfaceProperties s = model::ResolveSurface(&m, params_);
     mus.insert(s.mu);
     if (s.bounce > 0)
       not_carried_.push_back("material '" + m.name + "': bounce " + NumberText(s.bounce) +
@@ -340,9 +340,9 @@ MjcfExport Writer::Run() {
   }
 
   std::ostringstream actuators;
-  for (const sim::FlatActuator& a : flat_.actuators) {
+  for (const model::FlatActuator& a : flat_.actuators) {
     if (a.joint < 0) continue;
-    const sim::FlatJoint& joint = flat_.joints[static_cast<size_t>(a.joint)];
+    const model::FlatJoint& joint = flat_.joints[static_cast<size_t>(a.joint)];
     const std::string joint_name = JointName(a.joint);
     const std::string force = " ctrllimited=\"false\" forcelimited=\"true\" forcerange=\"" +
                               NumberText(-gains_.force_limit) + " " +
@@ -362,7 +362,7 @@ MjcfExport Writer::Run() {
       not_carried_.push_back("actuator '" + a.name + "' drives a joint without axes (left out)");
   }
 
-  for (const sim::FlatSensor& s : flat_.sensors)
+  for (const model::FlatSensor& s : flat_.sensors)
     not_carried_.push_back("sensor '" + s.name + "' (" + model::ToString(s.source->kind) +
                            "): MuJoCo sensors differ; left out");
   if (world_.heightfield)

@@ -116,7 +116,7 @@ struct ValueMeaning {
 // The meaning of every value of an actuator command of `count` values, or
 // an empty list when count fits neither form (the caller reports that).
 std::vector<ValueMeaning> CommandLayout(int action, model::ActuatorKind kind,
-                                        const FlatJoint& joint, size_t count) {
+                                        const model::FlatJoint& joint, size_t count) {
   const int n = joint.num_axes;
   const char* kSlotNames = "xyz";
   std::string used_slots;
@@ -186,7 +186,7 @@ std::vector<ValueMeaning> CommandLayout(int action, model::ActuatorKind kind,
 }  // namespace
 
 ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
-                                   model::ActuatorKind kind, const FlatJoint& joint,
+                                   model::ActuatorKind kind, const model::FlatJoint& joint,
                                    const ActuatorSetting& current) {
   ParsedCommand parsed;
   parsed.setting = current;
@@ -345,7 +345,7 @@ ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& v,
   }
 }
 
-std::vector<double> SettingToSlotValues(const ActuatorSetting& s, const FlatJoint& joint) {
+std::vector<double> SettingToSlotValues(const ActuatorSetting& s, const model::FlatJoint& joint) {
   std::vector<double> values;
   auto group = [&](const double* per_axis, double fill) {
     double slots[3] = {fill, fill, fill};

@@ -107,7 +107,7 @@ void InstallOdeHandlers() {
   if (dGetMessageHandler() != &OdeMessage) dSetMessageHandler(&OdeMessage);
 }
 
-OdeWorld::OdeWorld(const FlatModel& model, const Parameters& params)
+OdeWorld::OdeWorld(const model::FlatModel& model, const Parameters& params)
     : model_(model), params_(params) {
   InstallOdeHandlers();
   try {
@@ -133,14 +133,14 @@ OdeWorld::OdeWorld(const FlatModel& model, const Parameters& params)
 }
 
 std::string OdeWorld::BodyName(size_t body) const {
-  const FlatBody& b = model_.bodies[body];
+  const model::FlatBody& b = model_.bodies[body];
   if (b.robot < 0) return b.name;
   return model_.world->robots[static_cast<size_t>(b.robot)].name + "/" + b.name;
 }
 
 void OdeWorld::Build() {
   const Parameters& params = params_;
-  const FlatModel& model = model_;
+  const model::FlatModel& model = model_;
   // dWorldQuickStep may reorder constraints with ODE's random generator:
   // seeding it makes every run of the same inputs identical.
   dRandSetSeed(0);
@@ -181,7 +181,7 @@ void OdeWorld::Build() {
     if (owner >= 0) {
       // The geom frame is the body frame (geoms are only offset, never
       // turned), where the spin axis is fixed.
-      const FlatBody& flat = model_.bodies[static_cast<size_t>(owner)];
+      const model::FlatBody& flat = model_.bodies[static_cast<size_t>(owner)];
       const std::vector<model::Joint>& joints =
           flat.robot < 0 ? model_.world->joints
                          : model_.world->robots[static_cast<size_t>(flat.robot)].robot.joints;
@@ -227,7 +227,7 @@ void OdeWorld::Build() {
   // is offset by -com in the body frame.
   bodies_.resize(model.bodies.size());
   for (size_t i = 0; i < model.bodies.size(); ++i) {
-    const FlatBody& flat = model.bodies[i];
+    const model::FlatBody& flat = model.bodies[i];
     const model::Body& src = *flat.source;
     Body& body = bodies_[i];
     building_body_ = static_cast<int>(i);
@@ -283,7 +283,7 @@ void OdeWorld::Build() {
   // Joints, created in the initial pose so that ODE's zero angles are the
   // pose of the files.
   for (size_t j = 0; j < model.joints.size(); ++j) {
-    const FlatJoint& flat = model.joints[j];
+    const model::FlatJoint& flat = model.joints[j];
     auto joint = std::make_unique<Joint>();
     joint->kind = flat.source->kind;
     dJointID id = nullptr;
@@ -377,76 +377,11 @@ OdeError OdeWorld::Fail(const OdeError& raised, const std::string& during) {
   return OdeError(raised.ode_message(), during, SuspectBodies());
 }
 
-SurfaceProperties ResolveSurface(const model::Material* material, const Parameters& params) {
-  SurfaceProperties s;
-  if (material == nullptr) {
-    s.mu = params.contactMu;
-    s.mu2 = params.contactMu;
-    s.bounce = params.contactBounce;
-    s.bounce_velocity = params.contactBounceVelocity;
-    s.soft_erp = params.contactSoftERP;
-    s.soft_cfm = params.contactSoftCFM;
-    s.rolling_friction = params.rollingFriction;
-  } else {
-    s.mu = material->mu;
-    s.mu2 = material->Mu2();
-    s.friction_direction = material->friction_direction;
-    s.bounce = material->bounce;
-    s.bounce_velocity = material->bounce_velocity;
-    s.rolling_friction = material->rolling_friction;
-    if (material->HasStiffness()) {
-      // ODE's contact is an implicit spring-damper: these give stiffness k
-      // and damping c whatever the step h.
-      const double h = params.stepsize;
-      const double k = *material->stiffness;
-      const double c = material->damping.value_or(0.0);
-      s.stiffness = k;
-      s.damping = c;
-      s.soft_erp = h * k / (h * k + c);
-      s.soft_cfm = 1.0 / (h * k + c);
-    } else {
-      s.soft_erp = material->soft_erp;
-      s.soft_cfm = material->soft_cfm;
-    }
-  }
-  return s;
-}
-
-SurfaceProperties CombineSurfaces(const SurfaceProperties& a, const SurfaceProperties& b) {
-  SurfaceProperties s;
-  s.mu = std::min(a.mu, b.mu);
-  s.mu2 = std::min(a.mu2, b.mu2);
-  // Either side may ask for the rolling direction: a tyre's material, or a
-  // ground's for every wheel on it. Which wheel's axis gives it is decided
-  // per contact (FrictionDirection1): the one geom of the pair that spins.
-  const bool a_rolls = a.friction_direction == model::FrictionDirection::kRolling;
-  const bool b_rolls = b.friction_direction == model::FrictionDirection::kRolling;
-  s.friction_direction =
-      a_rolls || b_rolls ? model::FrictionDirection::kRolling : model::FrictionDirection::kSlip;
-  s.rolling_friction = std::min(a.rolling_friction, b.rolling_friction);
-  s.bounce = std::max(a.bounce, b.bounce);
-  s.bounce_velocity = std::max(a.bounce_velocity, b.bounce_velocity);
-  if (!a.HasStiffness() && !b.HasStiffness()) {
-    s.soft_erp = std::min(a.soft_erp, b.soft_erp);
-    s.soft_cfm = std::max(a.soft_cfm, b.soft_cfm);
-  } else {
-    // The softer decides whole, so that a physical tyre on a per-step
-    // ground keeps its own k and c: k = ERP / (h CFM), compared at the same
-    // h without dividing (a CFM may be 0).
-    const SurfaceProperties& softer = a.soft_erp * b.soft_cfm <= b.soft_erp * a.soft_cfm ? a : b;
-    s.soft_erp = softer.soft_erp;
-    s.soft_cfm = softer.soft_cfm;
-    s.stiffness = softer.stiffness;
-    s.damping = softer.damping;
-  }
-  return s;
-}
-
-SurfaceProperties OdeWorld::Surface(const std::string& material) const {
-  if (material.empty()) return ResolveSurface(nullptr, params_);
+model::SurfaceProperties OdeWorld::Surface(const std::string& material) const {
+  if (material.empty()) return model::ResolveSurface(nullptr, params_);
   const model::Material* m = model_.world->FindMaterial(material);
   SP_CHECK_MSG(m != nullptr, "material '" + material + "' was not checked by the loader");
-  return ResolveSurface(m, params_);
+  return model::ResolveSurface(m, params_);
 }
 
 dJointFeedback* OdeWorld::NextFeedback() {
@@ -476,7 +411,7 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
   if (n <= 0) return;
   const GeomInfo& g1 = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(o1)) - 1];
   const GeomInfo& g2 = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(o2)) - 1];
-  const SurfaceProperties combined = CombineSurfaces(g1.surface, g2.surface);
+  const model::SurfaceProperties combined = model::CombineSurfaces(g1.surface, g2.surface);
   dSurfaceParameters surface{};
   // Slip1/Slip2 give the friction rows their own compliance (velocity per
   // force, as ODE's CFM is, so the same at any step); without them the
@@ -582,7 +517,7 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
   contact_count_ += n;
 }
 
-bool OdeWorld::FrictionDirection1(const SurfaceProperties& combined, dGeomID o1,
+bool OdeWorld::FrictionDirection1(const model::SurfaceProperties& combined, dGeomID o1,
                                   const GeomInfo& g1, dGeomID o2, const GeomInfo& g2,
                                   const dContactGeom& contact, Eigen::Vector3d* direction) const {
   const Eigen::Vector3d normal = FromOde(contact.normal);
@@ -742,7 +677,7 @@ BodyReadout OdeWorld::ReadBody(int index) const {
   out.contact_force = contact_force_[static_cast<size_t>(index)];
   out.contact_torque = contact_torque_[static_cast<size_t>(index)];
   if (body.body == nullptr) {
-    const FlatBody& flat = model_.bodies[static_cast<size_t>(index)];
+    const model::FlatBody& flat = model_.bodies[static_cast<size_t>(index)];
     out.position = flat.pose.translation();
     out.orientation = Eigen::Quaterniond(flat.pose.linear());
     out.linear_velocity.setZero();
@@ -813,7 +748,7 @@ JointReadout OdeWorld::ReadJoint(int index) const {
     }
   }
   out.anchor = FromOde(anchor);
-  const FlatJoint& flat = model_.joints[static_cast<size_t>(index)];
+  const model::FlatJoint& flat = model_.joints[static_cast<size_t>(index)];
   if (flat.body1 < 0 && flat.body2 >= 0) {
     // Attached as (world, body): ODE swapped it to (body, world), so the
     // force on body2 is in f1/t1 and the world takes the rest.
@@ -836,17 +771,6 @@ void OdeWorld::SetJointParam(int joint, int parameter, double value) {
     case model::JointKind::kUniversal: dJointSetUniversalParam(id, parameter, value); break;
     case model::JointKind::kHinge2: dJointSetHinge2Param(id, parameter, value); break;
     default: SP_CHECK_MSG(false, "joint kind has no motor or stops");
-  }
-}
-
-double OdeWorld::GetJointParam(int joint, int parameter) const {
-  const dJointID id = joints_[static_cast<size_t>(joint)]->joint;
-  switch (joints_[static_cast<size_t>(joint)]->kind) {
-    case model::JointKind::kHinge: return dJointGetHingeParam(id, parameter);
-    case model::JointKind::kSlider: return dJointGetSliderParam(id, parameter);
-    case model::JointKind::kUniversal: return dJointGetUniversalParam(id, parameter);
-    case model::JointKind::kHinge2: return dJointGetHinge2Param(id, parameter);
-    default: return 0.0;
   }
 }
 

@@ -79,15 +79,15 @@ constexpr size_t kMaxWarnings = 64;
 
 }  // namespace
 
-std::string QualifiedBodyName(const FlatModel& model, int body) {
-  const FlatBody& b = model.bodies[static_cast<size_t>(body)];
+std::string QualifiedBodyName(const model::FlatModel& model, int body) {
+  const model::FlatBody& b = model.bodies[static_cast<size_t>(body)];
   if (b.robot < 0) return b.name;
   return model.world->robots[static_cast<size_t>(b.robot)].name + "/" + b.name;
 }
 
 Simulation::Simulation(model::World world, Parameters params, int64_t simulation_id)
     : world_(std::move(world)), params_(std::move(params)), simulation_id_(simulation_id) {
-  flat_ = Flatten(world_);
+  flat_ = model::Flatten(world_);
   Build();
 }
 
@@ -95,12 +95,12 @@ void Simulation::Build() {
   ode_.reset();
   ode_ = std::make_unique<OdeWorld>(flat_, params_);
   controllers_.clear();
-  for (const FlatActuator& a : flat_.actuators) {
-    const FlatJoint& joint = flat_.joints[static_cast<size_t>(a.joint)];
+  for (const model::FlatActuator& a : flat_.actuators) {
+    const model::FlatJoint& joint = flat_.joints[static_cast<size_t>(a.joint)];
     controllers_.emplace_back(joint.num_axes, joint.source->kind != model::JointKind::kSlider);
   }
   sensors_.clear();
-  for (const FlatSensor& s : flat_.sensors) {
+  for (const model::FlatSensor& s : flat_.sensors) {
     SensorState state;
     state.rate = s.source->rate;
     state.rays = s.source->rays;
@@ -199,16 +199,16 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
     return reject(error);
 
   if (pending.actuator >= 0) {
-    const FlatActuator& actuator = flat_.actuators[static_cast<size_t>(pending.actuator)];
+    const model::FlatActuator& actuator = flat_.actuators[static_cast<size_t>(pending.actuator)];
     pending.command.target = actuator.name;
-    const FlatJoint& joint = flat_.joints[static_cast<size_t>(actuator.joint)];
+    const model::FlatJoint& joint = flat_.joints[static_cast<size_t>(actuator.joint)];
     pending.parsed = ParseActuatorCommand(command.action, values, actuator.source->kind, joint,
                                           controllers_[static_cast<size_t>(pending.actuator)].setting());
     if (!pending.parsed.error.empty())
       return reject("actuator '" + actuator.name + "' (" + ToString(actuator.source->kind) +
                     "): " + pending.parsed.error);
   } else {
-    const FlatSensor& sensor = flat_.sensors[static_cast<size_t>(pending.sensor)];
+    const model::FlatSensor& sensor = flat_.sensors[static_cast<size_t>(pending.sensor)];
     pending.command.target = sensor.name;
     const std::string what = "sensor '" + sensor.name + "' (" + ToString(sensor.source->kind) + ")";
     switch (command.action) {
@@ -277,8 +277,8 @@ void Simulation::ApplyPending(const Pending& pending) {
   reply.applied_at_step = step_;
   if (pending.actuator >= 0) {
     const size_t index = static_cast<size_t>(pending.actuator);
-    const FlatActuator& actuator = flat_.actuators[index];
-    const FlatJoint& joint = flat_.joints[static_cast<size_t>(actuator.joint)];
+    const model::FlatActuator& actuator = flat_.actuators[index];
+    const model::FlatJoint& joint = flat_.joints[static_cast<size_t>(actuator.joint)];
     ActuatorController& controller = controllers_[index];
     const std::vector<double> previous = SettingToSlotValues(controller.setting(), joint);
     reply.previous = previous;
@@ -434,7 +434,7 @@ std::vector<sensor_reading_t> Simulation::TakeSensorReadings() {
 std::vector<warning_t> Simulation::TakeWarnings() { return std::exchange(warnings_, {}); }
 
 sensor_reading_t Simulation::ReadSensor(int index) {
-  const FlatSensor& sensor = flat_.sensors[static_cast<size_t>(index)];
+  const model::FlatSensor& sensor = flat_.sensors[static_cast<size_t>(index)];
   const SensorState& state = sensors_[static_cast<size_t>(index)];
   sensor_reading_t r{};
   r.utime = WallMicros();
@@ -573,7 +573,7 @@ void Simulation::FillModel(model_t* m) const {
   }
   m->num_robots = static_cast<int16_t>(m->robots.size());
   for (size_t i = 0; i < flat_.bodies.size(); ++i) {
-    const FlatBody& fb = flat_.bodies[i];
+    const model::FlatBody& fb = flat_.bodies[i];
     const model::Body& src = *fb.source;
     body_t b{};
     b.id = static_cast<int32_t>(i);
@@ -598,7 +598,7 @@ void Simulation::FillModel(model_t* m) const {
   }
   m->num_bodies = static_cast<int32_t>(m->bodies.size());
   for (size_t j = 0; j < flat_.joints.size(); ++j) {
-    const FlatJoint& fj = flat_.joints[j];
+    const model::FlatJoint& fj = flat_.joints[j];
     joint_t out{};
     out.id = static_cast<int32_t>(j);
     out.name = fj.name;
@@ -618,7 +618,7 @@ void Simulation::FillModel(model_t* m) const {
   }
   m->num_joints = static_cast<int32_t>(m->joints.size());
   for (size_t s = 0; s < flat_.sensors.size(); ++s) {
-    const FlatSensor& fs = flat_.sensors[s];
+    const model::FlatSensor& fs = flat_.sensors[s];
     const SensorState& state = sensors_[s];
     sensor_t out{};
     out.id = static_cast<int32_t>(s);
@@ -638,7 +638,7 @@ void Simulation::FillModel(model_t* m) const {
   }
   m->num_sensors = static_cast<int32_t>(m->sensors.size());
   for (size_t a = 0; a < flat_.actuators.size(); ++a) {
-    const FlatActuator& fa = flat_.actuators[a];
+    const model::FlatActuator& fa = flat_.actuators[a];
     actuator_t out{};
     out.id = static_cast<int32_t>(a);
     out.name = fa.name;
@@ -646,7 +646,7 @@ void Simulation::FillModel(model_t* m) const {
     out.kind = ToLcm(fa.source->kind);
     out.joint = fa.joint;
     out.port = fa.source->port;
-    const FlatJoint& joint = flat_.joints[static_cast<size_t>(fa.joint)];
+    const model::FlatJoint& joint = flat_.joints[static_cast<size_t>(fa.joint)];
     out.num_axes = static_cast<int8_t>(joint.num_axes);
     out.axis_slot[0] = static_cast<int8_t>(joint.slot[0]);
     out.axis_slot[1] = static_cast<int8_t>(joint.slot[1]);

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "simpartner/model/model.h"
-#include "simpartner/sim/flat_model.h"
+#include "simpartner/model/flat_model.h"
 #include "simpartner/sim/ode_world.h"
 #include "simpartner/sim/simulation.h"
 
@@ -140,7 +140,7 @@ std::vector<CrashCase> CrashCases() {
 // when ODE did not fail, 4 on any other exception.
 [[noreturn]] void RunCrashCase(const CrashCase& c) {
   const model::World world = c.world();
-  const FlatModel flat = Flatten(world);
+  const model::FlatModel flat = model::Flatten(world);
   const Parameters params;
   try {
     std::unique_ptr<OdeWorld> ode = std::make_unique<OdeWorld>(flat, params);
@@ -156,7 +156,7 @@ std::vector<CrashCase> CrashCases() {
   // The process goes on: a new world (the sim's reset) steps as usual.
   model::World healthy = Ground();
   healthy.objects.push_back(Box("Cube", 1, {1, 1, 1}, {0, 0.5, 0}));
-  const FlatModel healthy_flat = Flatten(healthy);
+  const model::FlatModel healthy_flat = model::Flatten(healthy);
   OdeWorld ode(healthy_flat, params);
   for (int n = 0; n < 1000; ++n) ode.Step();
   const double y = ode.ReadBody(0).position.y();
@@ -185,7 +185,7 @@ TEST(OdeFailureDeadWorld, StepAfterAFailureThrowsAgain) {
         model::World w = Ground();
         w.objects.push_back(Box("Far1", 1, {1, 1, 1}, {1e10, 0.5, 0}));
         w.objects.push_back(Box("Far2", 1, {1, 1, 1}, {1e10, 0.5, 3}));
-        const FlatModel flat = Flatten(w);
+        const model::FlatModel flat = model::Flatten(w);
         const Parameters params;
         OdeWorld ode(flat, params);
         try {

@@ -81,7 +81,7 @@ CircleRunResult RunCircle(const Context& context, const CircleFriction& friction
   constexpr double kSteerTime = 2.0;
   run.PlaySequence(sequence);
   CircleRunResult out;
-  for (const sim::FlatBody& b : run.sim().flat().bodies) out.mass += b.source->mass;
+  for (const model::FlatBody& b : run.sim().flat().bodies) out.mass += b.source->mass;
   std::vector<Eigen::Vector2d> front, rear, legs;
   std::vector<double> times;
   const int every = std::max<int>(1, static_cast<int>(std::lround(0.01 / run.dt())));

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "simpartner/diagnostic.h"
-#include "simpartner/sim/ode_world.h"
+#include "simpartner/model/surface.h"
 #include "simpartner/validate/analysis.h"
 #include "simpartner/validate/experiment.h"
 #include "simpartner/validate/sim_run.h"
@@ -108,9 +108,9 @@ ExperimentResult Gen4StaticLoads(const Context& context) {
   // longer legs 2 and 4 are than legs 1 and 3 (their wheels sit lower).
   const model::Body& tyre_body = *run.sim().flat().bodies[static_cast<size_t>(wheel[0])].source;
   const model::World& world = run.sim().world();
-  const sim::SurfaceProperties contact = sim::CombineSurfaces(
-      sim::ResolveSurface(world.FindMaterial(tyre_body.material), run.sim().params()),
-      sim::ResolveSurface(world.FindMaterial(world.plane_material), run.sim().params()));
+  const model::SurfaceProperties contact = model::CombineSurfaces(
+      model::ResolveSurface(world.FindMaterial(tyre_body.material), run.sim().params()),
+      model::ResolveSurface(world.FindMaterial(world.plane_material), run.sim().params()));
   if (!contact.HasStiffness())
     throw Error("gen4_flat.xml: the tyre against the ground has no physical stiffness "
                 "(workpartner_gen4.xml's gen4Tyre should give <stiffness>)");

@@ -38,7 +38,7 @@ SimRun::SimRun(const Context& context, const std::string& world, Parameters para
   model::World loaded = model::LoadWorldOrThrow(path);
   for (model::RobotInstance& robot : loaded.robots) robot.placement.pretranslate(move_robots);
   sim_ = std::make_unique<sim::Simulation>(std::move(loaded), std::move(params), 1);
-  for (const sim::FlatBody& b : sim_->flat().bodies) com_offsets_.push_back(b.source->com);
+  for (const model::FlatBody& b : sim_->flat().bodies) com_offsets_.push_back(b.source->com);
 }
 
 int64_t SimRun::StepAt(double t) const { return std::llround(t / dt()); }
@@ -191,7 +191,7 @@ Eigen::Vector3d SimRun::CentreOfMass(int robot) const {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double mass = 0.0;
   for (size_t i = 0; i < sim_->flat().bodies.size(); ++i) {
-    const sim::FlatBody& flat = sim_->flat().bodies[i];
+    const model::FlatBody& flat = sim_->flat().bodies[i];
     if (flat.source->is_static || (robot >= 0 && flat.robot != robot)) continue;
     const sim::BodyReadout b = Read(static_cast<int>(i));
     sum += flat.source->mass * (b.position + b.orientation * com_offsets_[i]);

@@ -109,7 +109,4 @@ std::vector<DataRoot> PrivateServerDirectories();
 std::vector<DataCandidate> PrivateServerFileCandidates(
     const std::string& name, const std::vector<DataRoot>& directories = PrivateServerDirectories());
 
-// That order in words, for messages and --help texts.
-std::string DescribePrivateServerLookup();
-
 }  // namespace simpartner

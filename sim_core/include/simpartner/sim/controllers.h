@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "simpartner/model/model.h"
-#include "simpartner/sim/flat_model.h"
+#include "simpartner/model/flat_model.h"
 
 namespace simpartner::sim {
 
@@ -82,11 +82,11 @@ bool CommandValues(const std::vector<double>& values, const std::string& text,
 // not use (x and y of a wheel's axle in z) sets nothing but is held to the
 // same range, and a message names the slot.
 ParsedCommand ParseActuatorCommand(int action, const std::vector<double>& values,
-                                   model::ActuatorKind kind, const FlatJoint& joint,
+                                   model::ActuatorKind kind, const model::FlatJoint& joint,
                                    const ActuatorSetting& current);
 
 // The setting as the original's slot form, e.g. "1000,1000,100,0,0,0.2".
-std::vector<double> SettingToSlotValues(const ActuatorSetting& setting, const FlatJoint& joint);
+std::vector<double> SettingToSlotValues(const ActuatorSetting& setting, const model::FlatJoint& joint);
 std::string FormatValues(const std::vector<double>& values);
 
 }  // namespace simpartner::sim

@@ -1,4 +1,4 @@
-// ODE objects built from a FlatModel: bodies, geoms, joints, the collision
+// ODE objects built from a model::FlatModel: bodies, geoms, joints, the collision
 // space, plane and heightfield. One Step() is collide, step, empty the
 // contact group (ODE's demo_buggy loop), with contact forces summed per body
 // from joint feedback. Everything given to ODE was validated by the loader
@@ -14,8 +14,9 @@
 #include <vector>
 
 #include "simpartner/diagnostic.h"
+#include "simpartner/model/flat_model.h"
+#include "simpartner/model/surface.h"
 #include "simpartner/parameters.h"
-#include "simpartner/sim/flat_model.h"
 
 namespace simpartner::sim {
 
@@ -71,40 +72,11 @@ struct JointReadout {
   Eigen::Vector3d force2 = Eigen::Vector3d::Zero(), torque2 = Eigen::Vector3d::Zero();
 };
 
-// Contact properties of one geom, resolved from its material name.
-struct SurfaceProperties {
-  double mu = 1.0;                 // along the first friction direction
-  double mu2 = 1.0;                // across it (= mu when isotropic)
-  model::FrictionDirection friction_direction = model::FrictionDirection::kSlip;
-  double bounce = 0.0, bounce_velocity = 0.1;
-  // ERP and CFM of the whole contact for the step size in use; for a
-  // material with stiffness, computed from stiffness and damping.
-  double soft_erp = 0.2, soft_cfm = 1e-5;
-  // [N/m], [N s/m] of the whole contact; 0 when the softness is per step.
-  double stiffness = 0.0, damping = 0.0;
-  double rolling_friction = 0.0;
-
-  bool HasStiffness() const { return stiffness > 0.0; }
-};
-
-// A material's contact properties for params.stepsize; a geom without one
-// (nullptr) takes the contact defaults of the parameters. With stiffness k
-// and damping c: ERP = h k / (h k + c), CFM = 1 / (h k + c) (ODE's manual,
-// "Soft constraint and constraint force mixing").
-SurfaceProperties ResolveSurface(const model::Material* material, const Parameters& params);
-// The contact between two surfaces, as the sim makes it (docs/contacts.md):
-// mu, mu2 and rolling resistance each the smaller, bounce the larger;
-// softness: between two per-step materials the smaller ERP and the larger
-// CFM, otherwise all of the softer material's (smaller ERP / CFM, i.e.
-// smaller stiffness at this step size); the first friction direction
-// "rolling" when exactly one side has it, else "slip".
-SurfaceProperties CombineSurfaces(const SurfaceProperties& a, const SurfaceProperties& b);
-
 class OdeWorld {
  public:
   // model and its World must outlive this object. Throws OdeError when
   // ODE refuses a part (e.g. an inertia it finds not positive definite).
-  OdeWorld(const FlatModel& model, const Parameters& params);
+  OdeWorld(const model::FlatModel& model, const Parameters& params);
   ~OdeWorld();
   OdeWorld(const OdeWorld&) = delete;
   OdeWorld& operator=(const OdeWorld&) = delete;
@@ -187,12 +159,11 @@ class OdeWorld {
                           double range, int exclude_body);
   static void NearCallback(void* data, dGeomID o1, dGeomID o2);
   void Collide(dGeomID o1, dGeomID o2);
-  SurfaceProperties Surface(const std::string& material) const;
+  model::SurfaceProperties Surface(const std::string& material) const;
   dJointFeedback* NextFeedback();
   void SetJointParam(int joint, int parameter, double value);
-  double GetJointParam(int joint, int parameter) const;
 
-  const FlatModel& model_;
+  const model::FlatModel& model_;
   const Parameters& params_;
   // Each world steps with its own (self-threaded) job list: ODE's default
   // one is shared by the process, and an error thrown out of a step leaves
@@ -211,7 +182,7 @@ class OdeWorld {
   struct GeomInfo {
     int body;                        // flat body index, -1 = plane/heightfield/static
     int owner_body;                  // flat body index even for static objects
-    SurfaceProperties surface;
+    model::SurfaceProperties surface;
     // Unit axis in the geom frame the body spins about (model::SpinAxis:
     // its one hinge, or a cylinder's axis) when it has one; a "rolling"
     // pair takes its rolling direction from the geom of the two that has.
@@ -220,7 +191,7 @@ class OdeWorld {
   };
   // First friction direction of one contact point (unit), or false when
   // ODE's own directions are to be used (a sticking "slip" contact).
-  bool FrictionDirection1(const SurfaceProperties& combined, dGeomID o1, const GeomInfo& g1,
+  bool FrictionDirection1(const model::SurfaceProperties& combined, dGeomID o1, const GeomInfo& g1,
                           dGeomID o2, const GeomInfo& g2, const dContactGeom& contact,
                           Eigen::Vector3d* direction) const;
   // The sliding velocity of o1 against o2 at the contact, in its plane.

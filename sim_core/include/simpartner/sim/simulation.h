@@ -17,7 +17,7 @@
 #include "simpartner/parameters.h"
 #include "simpartner/sensor_reading_t.hpp"
 #include "simpartner/sim/controllers.h"
-#include "simpartner/sim/flat_model.h"
+#include "simpartner/model/flat_model.h"
 #include "simpartner/sim/ode_world.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/warning_t.hpp"
@@ -39,7 +39,7 @@ class Simulation {
   double time() const { return static_cast<double>(step_) * params_.stepsize; }
   bool faulted() const { return faulted_; }
   int64_t simulation_id() const { return simulation_id_; }
-  const FlatModel& flat() const { return flat_; }
+  const model::FlatModel& flat() const { return flat_; }
   const model::World& world() const { return world_; }
   const Parameters& params() const { return params_; }
   OdeWorld& ode() { return *ode_; }
@@ -97,7 +97,7 @@ class Simulation {
 
   model::World world_;
   Parameters params_;
-  FlatModel flat_;
+  model::FlatModel flat_;
   int64_t simulation_id_;
   std::unique_ptr<OdeWorld> ode_;
   std::vector<ActuatorController> controllers_;
@@ -114,6 +114,6 @@ class Simulation {
 };
 
 // Human-readable name of a body for messages: "robot/body" or "body".
-std::string QualifiedBodyName(const FlatModel& model, int body);
+std::string QualifiedBodyName(const model::FlatModel& model, int body);
 
 }  // namespace simpartner::sim

@@ -1,9 +1,9 @@
-#include "simpartner/sim/flat_model.h"
+#include "simpartner/model/flat_model.h"
 
 #include <cmath>
 #include <functional>
 
-namespace simpartner::sim {
+namespace simpartner::model {
 namespace {
 
 // Index of the coordinate axis most aligned with axis, skipping taken.
@@ -22,7 +22,7 @@ int AlignedSlot(const Eigen::Vector3d& axis, int taken) {
 }
 
 template <class Item, class Pred>
-int FindIndex(const std::vector<Item>& items, const model::World& world, const std::string& robot,
+int FindIndex(const std::vector<Item>& items, const World& world, const std::string& robot,
               const std::string& name, Pred&& extra) {
   for (size_t i = 0; i < items.size(); ++i) {
     const Item& item = items[i];
@@ -60,10 +60,10 @@ int FlatModel::FindSensorByPort(int port) const {
   return -1;
 }
 
-FlatModel Flatten(const model::World& world) {
+FlatModel Flatten(const World& world) {
   FlatModel flat;
   flat.world = &world;
-  for (const model::Body& b : world.objects) {
+  for (const Body& b : world.objects) {
     FlatBody body;
     body.name = b.name;
     body.source = &b;
@@ -72,7 +72,7 @@ FlatModel Flatten(const model::World& world) {
     body.angular_velocity = b.angular_velocity;
     flat.bodies.push_back(body);
   }
-  auto add_joint = [&flat](const model::Joint& j, int robot, int body_offset,
+  auto add_joint = [&flat](const Joint& j, int robot, int body_offset,
                            const std::function<int(const std::string&)>& body_index,
                            const Eigen::Isometry3d& frame) {
     FlatJoint joint;
@@ -94,7 +94,7 @@ FlatModel Flatten(const model::World& world) {
     flat.joints.push_back(joint);
   };
   const int object_count = static_cast<int>(world.objects.size());
-  for (const model::Joint& j : world.joints) {
+  for (const Joint& j : world.joints) {
     add_joint(j, -1, 0,
               [&](const std::string& name) {
                 for (int i = 0; i < object_count; ++i)
@@ -106,7 +106,7 @@ FlatModel Flatten(const model::World& world) {
   for (size_t r = 0; r < world.robots.size(); ++r) {
     const model::RobotInstance& instance = world.robots[r];
     const int first_body = static_cast<int>(flat.bodies.size());
-    for (const model::Body& b : instance.robot.bodies) {
+    for (const Body& b : instance.robot.bodies) {
       FlatBody body;
       body.name = b.name;
       body.robot = static_cast<int>(r);
@@ -120,14 +120,14 @@ FlatModel Flatten(const model::World& world) {
       return -1;
     };
     const int first_joint = static_cast<int>(flat.joints.size());
-    for (const model::Joint& j : instance.robot.joints)
+    for (const Joint& j : instance.robot.joints)
       add_joint(j, static_cast<int>(r), first_body, body_index, instance.placement);
     auto joint_index = [&](const std::string& name) {
       for (size_t i = 0; i < instance.robot.joints.size(); ++i)
         if (instance.robot.joints[i].name == name) return first_joint + static_cast<int>(i);
       return -1;
     };
-    for (const model::Sensor& s : instance.robot.sensors) {
+    for (const Sensor& s : instance.robot.sensors) {
       FlatSensor sensor;
       sensor.name = s.name;
       sensor.robot = static_cast<int>(r);
@@ -136,7 +136,7 @@ FlatModel Flatten(const model::World& world) {
       sensor.joint = s.joint.empty() ? -1 : joint_index(s.joint);
       flat.sensors.push_back(sensor);
     }
-    for (const model::Actuator& a : instance.robot.actuators) {
+    for (const Actuator& a : instance.robot.actuators) {
       FlatActuator actuator;
       actuator.name = a.name;
       actuator.robot = static_cast<int>(r);
@@ -148,4 +148,4 @@ FlatModel Flatten(const model::World& world) {
   return flat;
 }
 
-}  // namespace simpartner::sim
+}  // namespace simpartner::model

@@ -9,12 +9,12 @@
 
 #include "simpartner/model/model.h"
 
-namespace simpartner::sim {
+namespace simpartner::model {
 
 struct FlatBody {
   std::string name;
   int robot = -1;                         // index into world.robots, -1 = world object
-  const model::Body* source = nullptr;
+  const Body* source = nullptr;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // body frame in the world
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // world frame
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // world frame
@@ -23,7 +23,7 @@ struct FlatBody {
 struct FlatJoint {
   std::string name;
   int robot = -1;
-  const model::Joint* source = nullptr;
+  const Joint* source = nullptr;
   int body1 = -1;                         // flat body index, -1 = static world
   int body2 = -1;
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();  // world frame
@@ -38,7 +38,7 @@ struct FlatJoint {
 struct FlatSensor {
   std::string name;
   int robot = -1;
-  const model::Sensor* source = nullptr;
+  const Sensor* source = nullptr;
   int body = -1;
   int joint = -1;
 };
@@ -46,12 +46,12 @@ struct FlatSensor {
 struct FlatActuator {
   std::string name;
   int robot = -1;
-  const model::Actuator* source = nullptr;
+  const Actuator* source = nullptr;
   int joint = -1;
 };
 
 struct FlatModel {
-  const model::World* world = nullptr;
+  const World* world = nullptr;
   std::vector<FlatBody> bodies;
   std::vector<FlatJoint> joints;
   std::vector<FlatSensor> sensors;
@@ -68,6 +68,6 @@ struct FlatModel {
 };
 
 // world must outlive the result (it points into it).
-FlatModel Flatten(const model::World& world);
+FlatModel Flatten(const World& world);
 
-}  // namespace simpartner::sim
+}  // namespace simpartner::model
