@@ -5,7 +5,7 @@
 // recv_buf_size=4194304 and a 100000-message subscription queue. Sender and
 // receiver are threads of this process, so their utime stamps come from the
 // same clock and compare directly. Needs root (ip netns); every namespace
-// it makes is removed at the end. Prints figures; README, "Several machines".
+// it makes is removed at the end. Prints figures; docs/several-machines.md.
 #include <lcm/lcm-cpp.hpp>
 #include <unistd.h>
 

@@ -413,7 +413,7 @@ std::string FormatUsage(const std::string& program, const std::string& summary,
     out += padded + help + "\n";
   };
   line("--params FILE", "parameters file (default: ./parameters.txt, else the shipped one, "
-                        "found like any data file; see SIMPARTNER_DATA in the README)");
+                        "found like any data file; see SIMPARTNER_DATA in docs/install.md)");
   line("--lcm-url URL", std::string("LCM URL (default ") + kDefaultLcmUrl + ")");
   for (const FlagSpec& f : process_flags)
     line("--" + f.name + (f.takes_value ? " VALUE" : ""), f.help);

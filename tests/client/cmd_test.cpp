@@ -1,7 +1,7 @@
 // simpartner-cmd against a real sim: each outcome has its exit status and
 // a message saying which (accepted, refused and why, no answer, usage,
 // unknown name). RunCmd in-process for most, the real binary for the
-// README's shell commands.
+// shell commands of docs/driving.md.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -176,7 +176,8 @@ TEST_F(CmdTest, UsageErrorsAndNoSim) {
   EXPECT_TRUE(Contains(r.err, bad + ":3")) << r.err;
 }
 
-// The README's shell commands, as a user types them: the real binary.
+// The shell commands of docs/driving.md, as a user types them: the real
+// binary.
 TEST_F(CmdTest, TheProgramFromAShell) {
   const std::string url = UniqueUrl(13);
   SimProcess sim("gen1_flat.xml", url, (dir_ / "sim.log").string(), {"--speed=0"});

@@ -582,8 +582,8 @@ TEST_F(LoggerProcessTest, ServerKilledAndRestartedLosesAndRepeatsNothing) {
 // simpartner-logger logs it live; lcm-logplayer replays the recording into
 // a second logger writing a second database. Both hold the same rows: the
 // same count in every table and the same checksum over Pose and JointPose.
-// Replayed at 5 times the recorded speed (the logger keeps up; see the
-// README for the speeds measured).
+// Replayed at 5 times the recorded speed (the logger keeps up; see
+// docs/benchmarks.md for the speeds measured).
 TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
   const std::string recording = (dir_ / "run.lcmlog").string();
   ChildProcess recorder({"/usr/bin/lcm-logger", "--quiet", "--force", "--lcm-url=" + TestUrl(),

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Who can reach the bus (README, "Security"). Two network namespaces joined
+# Who can reach the bus (docs/security.md). Two network namespaces joined
 # by a veth pair stand for this host and another machine on its segment;
 # the test makes them and removes them, and no datagram leaves them.
 # In each case a fresh simpartner-sim (ttl=0, port 7667) runs in the

@@ -1,13 +1,14 @@
-// The whole path of a new user of an installed SimPartner, as README.md
-// ("Installing") lists it: `cmake --install` of this build into a temporary
-// prefix, then, with HOME a temporary directory, the working directory
-// another, the prefix's bin/ on PATH and no SIMPARTNER_DATA, SIMPARTNER_STATE
-// or XDG_STATE_HOME: simpartner-mariadb start (its files in
-// ~/.local/state/simpartner/mariadb), simpartner-logger, simpartner-sim
-// --robot gen4 driven by simpartner-cmd, then one simpartner-query plot of a
-// wheel's contact force into a PNG. Neither the logger nor the query tool
-// is told where the server is. Everything runs for real (MariaDB, LCM on a
-// private udpm port with ttl=0); every process is ended by its pid.
+// The whole path of a new user of an installed SimPartner, as docs/install.md
+// ("From the installed package to a plot") lists it: `cmake --install` of
+// this build into a temporary prefix, then, with HOME a temporary
+// directory, the working directory another, the prefix's bin/ on PATH and
+// no SIMPARTNER_DATA, SIMPARTNER_STATE or XDG_STATE_HOME:
+// simpartner-mariadb start (its files in ~/.local/state/simpartner/mariadb),
+// simpartner-logger, simpartner-sim --robot gen4 driven by simpartner-cmd,
+// then one simpartner-query plot of a wheel's contact force into a PNG.
+// Neither the logger nor the query tool is told where the server is.
+// Everything runs for real (MariaDB, LCM on a private udpm port with
+// ttl=0); every process is ended by its pid.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
@@ -132,7 +133,8 @@ TEST_F(InstalledLoggingTest, StartTheServerLogADrivenGen4RunAndPlotAWheelsForce)
       << before;
   EXPECT_NE(before.find("simpartner-mariadb start"), std::string::npos) << before;
 
-  // README.md, "Installing": the commands a user types.
+  // docs/install.md, "From the installed package to a plot": the commands a
+  // user types.
   ASSERT_EQ(Run({"simpartner-mariadb", "start"}, "mariadb_start.log", 90), 0)
       << ReadText(Log("mariadb_start.log"));
   ASSERT_TRUE(fs::is_regular_file(StateDir() / "logger.cnf")) << ReadText(Log("mariadb_start.log"));
