@@ -12,6 +12,7 @@
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
+#include "simpartner/state_request_t.hpp"
 
 namespace simpartner::client {
 namespace {
@@ -52,8 +53,8 @@ Client::Client(ClientOptions options)
   if (!lcm_->good())
     throw ClientError("cannot open the LCM bus '" + options_.url +
                       "' (expected e.g. udpm://239.255.76.67:7667?ttl=0)");
-  for (const char* channel : {channels::kModel, channels::kState, channels::kStatus,
-                              channels::kCommandReply, channels::kSensor}) {
+  for (const char* channel : {channels::kModel, channels::kState, channels::kStateReply,
+                              channels::kStatus, channels::kCommandReply, channels::kSensor}) {
     lcm::Subscription* subscription = lcm_->subscribe(
         channel, &Client::OnMessageBuffer, this);
     subscription->setQueueCapacity(1000);
@@ -121,30 +122,15 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     ++model_count_;
     NoteSimulation(model->simulation_id);
     changed_.notify_all();
-  } else if (channel == channels::kState) {
+  } else if (channel == channels::kState || channel == channels::kStateReply) {
     state_t state;
     {
       std::lock_guard<std::mutex> lock(mutex_);
       if (refused(DecodeFromBus(channel, data, size, &state, &bad_messages_, &print))) return;
       last_heard_ = Clock::now();  // a sim is there, whichever
-      if (catalog_) {
-        // Another simulation's states (a new one announces itself with
-        // SIM_MODEL first) and states that do not fit the model are not
-        // the state of the sim we talk to.
-        if (state.simulation_id != catalog_->simulation_id()) return;
-        if (state.bodies.size() != model_->bodies.size() ||
-            state.joints.size() != model_->joints.size()) {
-          nonsense("state of step " + std::to_string(state.step) + " has " +
-                   std::to_string(state.bodies.size()) + " bodies and " +
-                   std::to_string(state.joints.size()) + " joints, the model " +
-                   std::to_string(model_->bodies.size()) + " and " +
-                   std::to_string(model_->joints.size()));
-          return;
-        }
-      }
-      state_ = state;
-      changed_.notify_all();
+      if (!AcceptState(state, channel)) return;
     }
+    if (channel == channels::kStateReply) return;  // a repeated step: no callback
     std::lock_guard<std::mutex> callback_lock(callback_mutex_);
     if (on_state_ && catalog_known_) on_state_(state);
   } else if (channel == channels::kStatus) {
@@ -183,6 +169,39 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     std::lock_guard<std::mutex> callback_lock(callback_mutex_);
     if (on_reading_) on_reading_(reading);
   }
+}
+
+bool Client::AcceptState(const state_t& state, const std::string& channel) {
+  if (catalog_) {
+    // Another simulation's states (a new one announces itself with
+    // SIM_MODEL first) and states that do not fit the model are not the
+    // state of the sim we talk to.
+    if (state.simulation_id != catalog_->simulation_id()) return false;
+    if (state.bodies.size() != model_->bodies.size() ||
+        state.joints.size() != model_->joints.size()) {
+      const std::string description =
+          channel + ": state of step " + std::to_string(state.step) + " has " +
+          std::to_string(state.bodies.size()) + " bodies and " +
+          std::to_string(state.joints.size()) + " joints, the model " +
+          std::to_string(model_->bodies.size()) + " and " + std::to_string(model_->joints.size()) +
+          "; ignored";
+      if (bad_messages_.Count(channel, description))
+        std::cerr << "simpartner client: " << description << "\n";
+      return false;
+    }
+  }
+  const bool reply = channel == channels::kStateReply;
+  if (reply) {
+    state_reply_ = state;
+    ++state_reply_count_;
+  }
+  // A reply may overtake the SIM_STATE of its own step: it never replaces
+  // a newer state of the same simulation.
+  if (!reply || !state_ || state_->simulation_id != state.simulation_id ||
+      state.step >= state_->step)
+    state_ = state;
+  changed_.notify_all();
+  return true;
 }
 
 void Client::NoteSimulation(int64_t simulation_id) {
@@ -268,6 +287,41 @@ void Client::RequestModel() {
   request.sender = sender_;
   const std::vector<uint8_t> bytes = Encode(request);
   Publish(channels::kModelRequest, bytes.data(), static_cast<int>(bytes.size()));
+}
+
+void Client::PublishStateRequest() {
+  state_request_t request{};
+  request.utime = WallMicros();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    request.simulation_id = options_.any_simulation || !catalog_ ? 0 : catalog_->simulation_id();
+  }
+  request.sender = sender_;
+  const std::vector<uint8_t> bytes = Encode(request);
+  Publish(channels::kStateRequest, bytes.data(), static_cast<int>(bytes.size()));
+}
+
+state_t Client::RequestState(double timeout) {
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  uint64_t seen;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!catalog_) throw NoSim(options_.url, 0.0);
+    ThrowIfRestarted();
+    seen = state_reply_count_;
+  }
+  for (;;) {
+    PublishStateRequest();
+    const Clock::time_point again = std::min(deadline, Clock::now() + std::chrono::milliseconds(250));
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (changed_.wait_until(lock, again, [&] { return state_reply_count_ != seen || restart_; })) {
+      ThrowIfRestarted();
+      return *state_reply_;
+    }
+    if (Clock::now() >= deadline)
+      throw Timeout("SIM_STATE_REPLY to a SIM_STATE_REQUEST", timeout, options_.url);
+  }
 }
 
 int64_t Client::Send(command_t command) {

@@ -1,5 +1,6 @@
 #include "simpartner/client/cmd.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -40,7 +41,15 @@ const char* RunStateName(int run_state) {
   }
 }
 
-std::string FormatStatus(const status_t& s) {
+bool SameWarning(const warning_t& a, const warning_t& b) {
+  return a.step == b.step && a.source == b.source && a.message == b.message;
+}
+
+// A status line and its warnings. Those already in `seen` (a status printed
+// or read before) are not repeated, since the sim keeps its recent warnings
+// in every status; with count_seen a line says how many were left out.
+std::string FormatStatus(const status_t& s, const status_t* seen = nullptr,
+                         bool count_seen = false) {
   std::ostringstream out;
   out << RunStateName(s.run_state) << ", step " << s.step << ", t = " << FormatNumber(s.sim_time)
       << " s, " << FormatNumber(s.real_time_factor) << "x real time (target "
@@ -48,8 +57,17 @@ std::string FormatStatus(const status_t& s) {
       << "), simulation " << s.simulation_id << " on " << s.host << ", commands "
       << s.commands_accepted << " accepted / " << s.commands_rejected << " refused, "
       << s.bad_messages << " bad messages";
-  for (const warning_t& w : s.warnings)
-    out << "\n  step " << w.step << " " << w.source << ": " << w.message;
+  size_t repeated = 0;
+  for (const warning_t& w : s.warnings) {
+    const bool old = seen != nullptr &&
+                     std::any_of(seen->warnings.begin(), seen->warnings.end(),
+                                 [&w](const warning_t& v) { return SameWarning(v, w); });
+    if (old) ++repeated;
+    else out << "\n  step " << w.step << " " << w.source << ": " << w.message;
+  }
+  if (count_seen && repeated > 0)
+    out << "\n  (" << repeated << " earlier warning" << (repeated == 1 ? "" : "s")
+        << " not repeated: simpartner-cmd status lists them)";
   return out.str();
 }
 
@@ -296,7 +314,7 @@ int RunControl(const Options& o, std::ostream& out) {
   const std::optional<status_t> after = AwaitStatus(client, o.timeout, done);
   if (!after)
     throw Timeout("SIM_STATUS confirming '" + verb + "'", o.timeout, o.url);
-  out << "sim " << FormatStatus(*after) << "\n";
+  out << "sim " << FormatStatus(*after, &*before, true) << "\n";
   return kCmdOk;
 }
 
@@ -320,6 +338,11 @@ int RunState(const Options& o, std::ostream& out) {
   Client client(MakeClientOptions(o, true));
   auto catalog = client.catalog();
   int body = o.body.empty() ? -1 : catalog->BodyIndex(o.body);
+  if (!o.follow && o.count < 0) {
+    // The state now, running or paused (a paused sim sends no SIM_STATE).
+    out << FormatState(client.RequestState(o.timeout), *catalog, body) << "\n";
+    return kCmdOk;
+  }
   int64_t last_step = -1;
   long printed = 0;
   do {
@@ -355,10 +378,12 @@ int RunStatus(const Options& o, std::ostream& out) {
   ExpectWords(o, 1, 1);
   Client client(MakeClientOptions(o, false));
   long printed = 0;
+  std::optional<status_t> previous;  // following: each warning once
   do {
     const auto s = AwaitStatus(client, o.timeout, [](const status_t&) { return true; });
     if (!s) throw Timeout("SIM_STATUS", o.timeout, o.url);
-    out << FormatStatus(*s) << "\n" << std::flush;
+    out << FormatStatus(*s, previous ? &*previous : nullptr) << "\n" << std::flush;
+    previous = s;
     ++printed;
   } while (o.follow && (o.count < 0 || printed < o.count));
   return kCmdOk;

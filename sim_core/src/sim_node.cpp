@@ -13,6 +13,7 @@
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
+#include "simpartner/state_request_t.hpp"
 
 namespace simpartner::sim {
 namespace {
@@ -84,6 +85,7 @@ SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd)
   lcm_->subscribe(channels::kCommand, &SimNode::OnCommand, this)->setQueueCapacity(1000);
   lcm_->subscribe(channels::kControl, &SimNode::OnControl, this)->setQueueCapacity(100);
   lcm_->subscribe(channels::kModelRequest, &SimNode::OnModelRequest, this)->setQueueCapacity(100);
+  lcm_->subscribe(channels::kStateRequest, &SimNode::OnStateRequest, this)->setQueueCapacity(100);
   last_status_time_ = Clock::now();
 }
 
@@ -239,6 +241,29 @@ void SimNode::OnModelRequest(const lcm::ReceiveBuffer* buffer, const std::string
   model_request_t request;
   if (!DecodeInput(buffer, channel, &request)) return;
   model_requested_ = true;
+}
+
+void SimNode::OnStateRequest(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  state_request_t request;
+  if (!DecodeInput(buffer, channel, &request)) return;
+  if (request.simulation_id != 0 && request.simulation_id != sim_->simulation_id()) {
+    ReportBadMessage(channel, "request from '" + request.sender + "' is for simulation_id " +
+                                  std::to_string(request.simulation_id) + "; this is " +
+                                  std::to_string(sim_->simulation_id()));
+    return;
+  }
+  state_requested_ = true;
+}
+
+void SimNode::ReplyState() {
+  const auto now = Clock::now();
+  if (!state_requested_ || now - last_state_reply_ < std::chrono::milliseconds(1000 / kStateRepliesPerSecond))
+    return;
+  state_t state;
+  sim_->FillState(&state);
+  Publish(channels::kStateReply, state);
+  state_requested_ = false;
+  last_state_reply_ = now;
 }
 
 template <class T>
@@ -510,6 +535,7 @@ int SimNode::Run() {
     } else {
       PublishPending();
     }
+    ReplyState();
     const auto now = Clock::now();
     if (model_requested_ || now >= next_model) {
       PublishModel();

@@ -6,6 +6,8 @@ namespace simpartner::channels {
 inline constexpr const char* kModel = "SIM_MODEL";                  // model_t
 inline constexpr const char* kModelRequest = "SIM_MODEL_REQUEST";   // model_request_t
 inline constexpr const char* kState = "SIM_STATE";                  // state_t
+inline constexpr const char* kStateRequest = "SIM_STATE_REQUEST";   // state_request_t
+inline constexpr const char* kStateReply = "SIM_STATE_REPLY";       // state_t
 inline constexpr const char* kCommand = "SIM_COMMAND";              // command_t
 inline constexpr const char* kCommandReply = "SIM_COMMAND_REPLY";   // command_reply_t
 inline constexpr const char* kSensor = "SIM_SENSOR";                // sensor_reading_t

@@ -143,6 +143,12 @@ class Client {
   state_t WaitUntilSimTime(double sim_time, double timeout);
   // Waits for a SIM_STATUS newer than the call (e.g. after a Pause).
   status_t WaitForStatus(double timeout);
+  // The sim's state now, running or paused: asks with SIM_STATE_REQUEST
+  // and waits for the answer on SIM_STATE_REPLY (asking again every
+  // 0.25 s). A paused sim sends no SIM_STATE, so this is how it is
+  // inspected. Throws Timeout, SimRestarted. The answer also becomes
+  // LatestState() but is not passed to OnState (it repeats a step).
+  state_t RequestState(double timeout);
 
   // Called on the receive thread for every state / reading of the current
   // simulation. One callback each; an empty function removes it.
@@ -177,6 +183,10 @@ class Client {
   void SendControl(int action, int64_t steps, double speed);
   void ThrowIfRestarted() const;  // requires mutex_ held
   void RequestModel();
+  void PublishStateRequest();
+  // Takes a decoded SIM_STATE or SIM_STATE_REPLY; false when it is not a
+  // state of the learned simulation. Requires mutex_ held.
+  bool AcceptState(const state_t& state, const std::string& channel);
   void NoteSimulation(int64_t simulation_id);  // requires mutex_ held
 
   ClientOptions options_;
@@ -193,6 +203,8 @@ class Client {
   std::optional<state_t> state_;
   std::optional<status_t> status_;
   uint64_t status_count_ = 0;
+  uint64_t state_reply_count_ = 0;
+  std::optional<state_t> state_reply_;
   uint64_t model_count_ = 0;
   std::map<int, sensor_reading_t> readings_;  // by sensor index
   std::map<int64_t, command_reply_t> replies_;

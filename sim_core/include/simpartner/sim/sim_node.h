@@ -1,8 +1,8 @@
 // The physics process on the bus: runs a Simulation against absolute
 // deadlines (or as fast as possible), publishes SIM_STATE, SIM_SENSOR,
-// SIM_COMMAND_REPLY, SIM_MODEL (at start, every modelPeriod and on request)
-// and SIM_STATUS (every statusPeriod and on every change), and obeys
-// SIM_COMMAND and SIM_CONTROL. Undecodable messages are counted and
+// SIM_COMMAND_REPLY, SIM_MODEL (at start, every modelPeriod and on request),
+// SIM_STATE_REPLY (on request, running or paused) and SIM_STATUS (every
+// statusPeriod and on every change), and obeys SIM_COMMAND and SIM_CONTROL. Undecodable messages are counted and
 // reported, never acted on.
 #pragma once
 
@@ -48,6 +48,9 @@ class SimNode {
   // possible).
   static constexpr double kMinSpeed = 1e-3;
   static constexpr double kMaxSpeed = 1000.0;
+  // State requests are answered at most this often (a 40-byte request
+  // returns a whole state); requests in between share the next answer.
+  static constexpr int kStateRepliesPerSecond = 20;
 
   // A line every kProgressEvery of wall time while running (sim time,
   // real-time factor, state) to `out`, e.g. std::cout when it is a
@@ -70,6 +73,9 @@ class SimNode {
   void OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnControl(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnModelRequest(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnStateRequest(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  // Answers pending state requests, at most kStateRepliesPerSecond.
+  void ReplyState();
   // Decodes through the shared total decoder; a refusal is counted and
   // reported.
   template <class T>
@@ -98,6 +104,8 @@ class SimNode {
   bool quit_ = false;
   bool paused_ = false;
   bool model_requested_ = false;
+  bool state_requested_ = false;
+  Clock::time_point last_state_reply_{};
   bool status_changed_ = true;
   int64_t steps_to_run_ = 0;     // >0: single-stepping while paused
   double speed_ = 1.0;           // <= 0: as fast as possible
