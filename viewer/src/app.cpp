@@ -20,6 +20,7 @@
 #include "simpartner/control_t.hpp"
 #include "simpartner/viewer/bus.h"
 #include "simpartner/viewer/keys.h"
+#include "simpartner/viewer/line_of_sight.h"
 #include "simpartner/viewer/renderer.h"
 #include "simpartner/viewer/scene.h"
 
@@ -166,7 +167,9 @@ class Viewer {
       drawn_version_ = scene_.version();
       last_draw = frame_start;
       const auto [width, height] = window_.DrawableSize();
-      renderer_->Draw(scene_, camera_, toggles_, MakeHud(), width, height);
+      // Following, a wall between the robot and the eye is looked past.
+      const Camera drawn = toggles_.follow ? UnblockedCamera(camera_, scene_) : camera_;
+      renderer_->Draw(scene_, drawn, toggles_, MakeHud(), width, height);
       ++frames_;
       UpdateFps(frame_start);
       if (ScreenshotDue(frame_start)) {
