@@ -1,5 +1,6 @@
 // simpartner-teleop-vpad: simpartner-teleop with a virtual game controller
-// driven by a script, for the process tests (not installed).
+// driven by text lines (docs/driving.md), for scripted teleop without a
+// controller and for the process tests.
 #include <iostream>
 
 #include "simpartner/teleop/frontends.h"

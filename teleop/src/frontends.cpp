@@ -18,6 +18,7 @@
 
 #include "simpartner/client/errors.h"
 #include "simpartner/data_paths.h"
+#include "simpartner/teleop/keyboard_window.h"
 #include "simpartner/teleop/session.h"
 
 namespace simpartner::teleop {
@@ -358,16 +359,14 @@ int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostre
 
   Gamepad gamepad(out);
   VirtualPad pad(out);
-  SDL_Window* window = nullptr;
-  SDL_Renderer* renderer = nullptr;
+  std::unique_ptr<KeyboardWindow> window;
   if (keyboard) {
-    window = SDL_CreateWindow("simpartner-teleop", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
-                              640, 160, SDL_WINDOW_SHOWN);
-    if (!window) {
-      err << "simpartner-teleop: cannot open the keyboard window: " << SDL_GetError() << "\n";
+    try {
+      window = std::make_unique<KeyboardWindow>();
+    } catch (const std::runtime_error& e) {
+      err << "simpartner-teleop: " << e.what() << "\n";
       return 1;
     }
-    renderer = SDL_CreateRenderer(window, -1, SDL_RENDERER_SOFTWARE);
     out << "teleop: keyboard window open (hold space and use the arrows or WASD)" << std::endl;
   } else {
     if (virtual_pad) {
@@ -437,24 +436,13 @@ int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostre
       const std::string line = session->StatusLine();
       if (line != last_line) out << "teleop: " << line << std::endl;
       last_line = line;
-      if (window) SDL_SetWindowTitle(window, ("teleop: " + line).c_str());
     }
-    if (renderer) {
-      // Green while moving, amber when stopped by the dead-man, red else.
-      const StopReason stop = session->demand().stop;
-      if (stop == StopReason::kNone) SDL_SetRenderDrawColor(renderer, 40, 160, 60, 255);
-      else if (stop == StopReason::kDeadman) SDL_SetRenderDrawColor(renderer, 200, 150, 30, 255);
-      else SDL_SetRenderDrawColor(renderer, 170, 40, 40, 255);
-      SDL_RenderClear(renderer);
-      SDL_RenderPresent(renderer);
-    }
+    if (window) window->Update(session->StatusLine(), session->demand().stop, KeyboardHelpLines(plan));
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   session->StopAndFlush(input);
   out << "teleop: stopped (" << session->batches_sent() << " command batches sent)" << std::endl;
   if (script_fd != STDIN_FILENO) ::close(script_fd);
-  if (renderer) SDL_DestroyRenderer(renderer);
-  if (window) SDL_DestroyWindow(window);
   return exit_status;
 }
 

@@ -83,7 +83,7 @@ std::string* InstalledSimTest::install_log_ = nullptr;
 
 TEST_F(InstalledSimTest, InstallsTheDataInTheSourceTreesLayout) {
   for (const char* file :
-       {"bin/simpartner-sim", "share/simpartner/parameters.txt",
+       {"bin/simpartner-sim", "bin/simpartner-teleop-vpad", "share/simpartner/parameters.txt",
         "share/simpartner/models/worlds/flat_ground.xml",
         "share/simpartner/models/robots/workpartner_gen4.xml",
         "share/simpartner/models/dtd/world.dtd", "share/simpartner/sequences/gen3_pole_task.xml",

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <set>
 
-#include "simpartner/viewer/font.h"
+#include "simpartner/bitmap_font.h"
 #include "simpartner/viewer/keys.h"
 #include "simpartner/viewer/options.h"
 #include "simpartner/viewer/png_image.h"

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "simpartner/viewer/font.h"
+#include "simpartner/bitmap_font.h"
 #include "simpartner/viewer/mesh.h"
 
 namespace simpartner::viewer {

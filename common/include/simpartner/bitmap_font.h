@@ -1,5 +1,5 @@
-// A tiny built-in 5x7 bitmap font (printable ASCII) for the HUD, so the
-// viewer needs no font files. Glyphs sit in 6x8 cells (one column and one
+// A tiny built-in 5x7 bitmap font (printable ASCII) for the viewer's HUD
+// and teleop's keyboard window, so neither needs font files. Glyphs sit in 6x8 cells (one column and one
 // row of spacing).
 #pragma once
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace simpartner::viewer {
+namespace simpartner {
 
 inline constexpr int kGlyphWidth = 5;
 inline constexpr int kGlyphHeight = 7;
@@ -30,4 +30,4 @@ struct FontAtlas {
 };
 FontAtlas MakeFontAtlas();
 
-}  // namespace simpartner::viewer
+}  // namespace simpartner

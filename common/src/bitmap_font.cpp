@@ -1,6 +1,6 @@
-#include "simpartner/viewer/font.h"
+#include "simpartner/bitmap_font.h"
 
-namespace simpartner::viewer {
+namespace simpartner {
 namespace {
 
 // One glyph per line, 7 rows of 5 pixels ('#' set), ' ' to '~' in order.
@@ -132,4 +132,4 @@ FontAtlas MakeFontAtlas() {
   return atlas;
 }
 
-}  // namespace simpartner::viewer
+}  // namespace simpartner
