@@ -5,6 +5,7 @@
 
 #include "simpartner/convert/mjcf_export.h"
 #include "simpartner/convert/urdf_import.h"
+#include "simpartner/data_paths.h"
 #include "simpartner/model/loader.h"
 #include "xml_lines.h"
 
@@ -45,21 +46,32 @@ InputKind DetectInputKind(const std::string& text, const std::string& file_name)
                     "<body>s)");
 }
 
+// The input as given, else a shipped world or robot found like every
+// program finds its data (data_paths.h), so that `simpartner-convert
+// gen4_flat.xml` works from any directory.
+std::string FindInput(const std::string& name) {
+  try {
+    return FindDataFile(name, "model", {"models/worlds", "models/robots"});
+  } catch (const DataFileNotFound& e) {
+    throw ConvertError(e.diagnostics());
+  }
+}
+
 ConvertOutcome Convert(const ConvertRequest& request) {
+  const std::string input = FindInput(request.input);
   std::string text;
   try {
-    if (!model::ReadFileFromDisk(request.input, &text))
-      throw Located(request.input, 0, "cannot read the file");
+    if (!model::ReadFileFromDisk(input, &text)) throw Located(input, 0, "cannot read the file");
   } catch (const model::ModelFileError& error) {
-    throw Located(request.input, 0, error.what());
+    throw Located(input, 0, error.what());
   }
   ConvertOutcome outcome;
-  outcome.kind = DetectInputKind(text, request.input);
+  outcome.kind = DetectInputKind(text, input);
   switch (outcome.kind) {
     case InputKind::kUrdf: {
       UrdfImportOptions options;
       options.mesh_as_box = request.mesh_as_box;
-      UrdfImportResult result = ImportUrdf(text, request.input, options);
+      UrdfImportResult result = ImportUrdf(text, input, options);
       outcome.text = result.robot_xml;
       outcome.notes = result.notes;
       break;
@@ -68,11 +80,11 @@ ConvertOutcome Convert(const ConvertRequest& request) {
     case InputKind::kRobot: {
       model::World world;
       if (outcome.kind == InputKind::kWorld) {
-        model::WorldLoadResult loaded = model::ParseWorld(text, request.input);
+        model::WorldLoadResult loaded = model::ParseWorld(text, input);
         if (!loaded.world) throw ModelError(loaded.diagnostics);
         world = *loaded.world;
       } else {
-        model::RobotLoadResult loaded = model::ParseRobot(text, request.input);
+        model::RobotLoadResult loaded = model::ParseRobot(text, input);
         if (!loaded.robot) throw ModelError(loaded.diagnostics);
         world = WorldOfRobot(*loaded.robot);
       }

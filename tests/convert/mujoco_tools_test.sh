@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # docs/convert.md's MuJoCo tools on what simpartner-convert writes:
 # mujoco-compile (Debian's libmujoco-samples, which scripts/deps installs)
-# compiles each shipped world's MJCF into a binary model.
+# compiles each shipped world's MJCF into a binary model. The converter
+# runs in another directory with the world's bare name, as a user types
+# it: it finds the shipped world like every program finds its data.
 #   tests/convert/mujoco_tools_test.sh SOURCE_DIR BINARY_DIR
 set -uo pipefail
 src=$1 bin=$2
@@ -11,8 +13,8 @@ dir=$(mktemp -d); trap 'rm -rf "$dir"' EXIT
 failures=0
 for world in gen4_flat pole_task test_track; do
   mjcf=$dir/$world.mjcf.xml
-  if ! out=$("$bin/convert/simpartner-convert" "$src/models/worlds/$world.xml" -o "$mjcf" 2>&1); then
-    echo "FAIL: simpartner-convert $world.xml: $out"; failures=$((failures + 1)); continue
+  if ! converted=$(cd "$dir" && "$bin/convert/simpartner-convert" "$world.xml" -o "$mjcf" 2>&1); then
+    echo "FAIL: simpartner-convert $world.xml in $dir: $converted"; failures=$((failures + 1)); continue
   fi
   out=$(cd "$dir" && timeout 60 mujoco-compile "$mjcf" "$dir/$world.mjb" 2>&1); status=$?
   # A compiled gen3/gen4 world is hundreds of kB; an empty file is a failure
@@ -21,7 +23,7 @@ for world in gen4_flat pole_task test_track; do
   if (( status != 0 )) || [[ $out != *Done* ]] || (( size < 10000 )); then
     echo "FAIL: mujoco-compile $world: status $status, $size bytes: $out"; failures=$((failures + 1))
   else
-    echo "ok: $world.xml -> MJCF -> $size-byte binary model"
+    echo "ok: $world.xml, found from $dir, -> MJCF -> $size-byte binary model"
   fi
 done
 exit $(( failures > 0 ))
