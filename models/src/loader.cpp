@@ -1,10 +1,6 @@
 #include "simpartner/model/loader.h"
 
 #include <Eigen/Eigenvalues>
-#include <libxml/parser.h>
-#include <libxml/tree.h>
-#include <libxml/valid.h>
-#include <libxml/xmlerror.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -12,7 +8,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -24,6 +19,7 @@
 
 #include "simpartner/data_paths.h"
 #include "simpartner/text.h"
+#include "simpartner/xml_document.h"
 #include "dtd_texts.h"  // generated: kWorldDtdText, kRobotDtdText
 
 namespace simpartner::model {
@@ -34,124 +30,6 @@ namespace {
 constexpr double kOrthonormalTolerance = 2e-3;
 constexpr const char* kWorldBodyName = "world";
 
-// libxml2 reports parse and validation errors through a callback; while a
-// ScopedXmlErrors lives they go into a DiagnosticList instead of stderr.
-// libxml2 keeps the handler per thread, and the destructor restores it.
-class ScopedXmlErrors {
- public:
-  ScopedXmlErrors(const std::string& file_name, DiagnosticList* diagnostics)
-      : file_name_(file_name), diagnostics_(diagnostics) {
-    xmlSetStructuredErrorFunc(this, &ScopedXmlErrors::OnError);
-    xmlSetGenericErrorFunc(this, &ScopedXmlErrors::OnGenericError);
-  }
-  ~ScopedXmlErrors() {
-    xmlSetStructuredErrorFunc(nullptr, nullptr);
-    xmlSetGenericErrorFunc(nullptr, nullptr);
-  }
-  ScopedXmlErrors(const ScopedXmlErrors&) = delete;
-  ScopedXmlErrors& operator=(const ScopedXmlErrors&) = delete;
-
- private:
-  static void OnError(void* self_ptr, xmlErrorPtr error) {
-    auto* self = static_cast<ScopedXmlErrors*>(self_ptr);
-    if (error == nullptr || error->level == XML_ERR_WARNING) return;
-    // libxml2 parses on after a fatal error, but what it reports further
-    // down is guesswork about a document it has already misread (say, a
-    // tag mismatch at </world> because it dropped a start tag): keep what
-    // it says about the line of the first fatal error only.
-    if (self->first_fatal_line_ > 0 && error->line > self->first_fatal_line_) return;
-    if (error->level == XML_ERR_FATAL && self->first_fatal_line_ == 0 && error->line > 0)
-      self->first_fatal_line_ = error->line;
-    // Some messages span lines ("...indicate encoding !\nBytes: 0xE9 ...");
-    // a diagnostic is one line.
-    std::string message = Trim(error->message != nullptr ? error->message : "XML error");
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    std::string element;
-    if (error->node != nullptr) {
-      const auto* node = static_cast<const xmlNode*>(error->node);
-      if (node->type == XML_ELEMENT_NODE && node->name != nullptr)
-        element = reinterpret_cast<const char*>(node->name);
-    }
-    self->diagnostics_->Add(self->file_name_, error->line, element, message);
-  }
-  // Messages without structure (rare); kept so nothing reaches stderr.
-  static void OnGenericError(void*, const char*, ...) {}
-
-  std::string file_name_;
-  DiagnosticList* diagnostics_;
-  int first_fatal_line_ = 0;
-};
-
-struct XmlDocFree {
-  void operator()(xmlDoc* doc) const { xmlFreeDoc(doc); }
-};
-struct XmlDtdFree {
-  void operator()(xmlDtd* dtd) const { xmlFreeDtd(dtd); }
-};
-struct XmlValidCtxtFree {
-  void operator()(xmlValidCtxt* ctxt) const { xmlFreeValidCtxt(ctxt); }
-};
-using XmlDocPtr = std::unique_ptr<xmlDoc, XmlDocFree>;
-
-// Parses xml and validates it against dtd_text. Returns null (with
-// diagnostics) when the text is not well-formed or not valid.
-XmlDocPtr ParseAndValidate(const std::string& xml, const std::string& file_name,
-                           const std::string& dtd_text, const char* root_name,
-                           DiagnosticList* diagnostics) {
-  ScopedXmlErrors capture(file_name, diagnostics);
-  if (xml.size() > static_cast<size_t>(INT_MAX)) {
-    diagnostics->Add(file_name, 0, "", "file is too large");
-    return nullptr;
-  }
-  // NONET: never fetch anything; no DTDLOAD/NOENT: a file cannot pull in
-  // other files or expand entities.
-  XmlDocPtr doc(xmlReadMemory(xml.data(), static_cast<int>(xml.size()), file_name.c_str(),
-                              nullptr, XML_PARSE_NONET | XML_PARSE_BIG_LINES));
-  if (doc == nullptr) {
-    if (diagnostics->empty()) diagnostics->Add(file_name, 0, "", "not a well-formed XML file");
-    return nullptr;
-  }
-  const xmlNode* root = xmlDocGetRootElement(doc.get());
-  if (root == nullptr) {
-    diagnostics->Add(file_name, 0, "", "no root element");
-    return nullptr;
-  }
-  if (std::string(reinterpret_cast<const char*>(root->name)) != root_name) {
-    diagnostics->Add(file_name, xmlGetLineNo(root), reinterpret_cast<const char*>(root->name),
-                     std::string("root element must be <") + root_name + ">");
-    return nullptr;
-  }
-  // Declarations in the file itself would change what the DTD allows.
-  if (doc->intSubset != nullptr && doc->intSubset->children != nullptr) {
-    // libxml2 keeps no line for the DTD node; the text has it.
-    const size_t at = xml.find("<!DOCTYPE");
-    const int line = at == std::string::npos
-                         ? 0
-                         : 1 + static_cast<int>(std::count(xml.begin(), xml.begin() + at, '\n'));
-    diagnostics->Add(file_name, line, "DOCTYPE",
-                     "declarations inside the file are not allowed; files are "
-                     "validated against SimPartner's own DTD");
-    return nullptr;
-  }
-  xmlParserInputBufferPtr buffer = xmlParserInputBufferCreateMem(
-      dtd_text.data(), static_cast<int>(dtd_text.size()), XML_CHAR_ENCODING_NONE);
-  std::unique_ptr<xmlDtd, XmlDtdFree> dtd(
-      xmlIOParseDTD(nullptr, buffer, XML_CHAR_ENCODING_NONE));  // takes buffer
-  if (dtd == nullptr) {
-    diagnostics->Add(file_name, 0, "", "internal error: the built-in DTD does not parse");
-    return nullptr;
-  }
-  std::unique_ptr<xmlValidCtxt, XmlValidCtxtFree> validation(xmlNewValidCtxt());
-  const size_t before = diagnostics->size();
-  const int valid = xmlValidateDtd(validation.get(), doc.get(), dtd.get());
-  if (!valid) {
-    if (diagnostics->size() == before)
-      diagnostics->Add(file_name, 0, "", "does not follow the DTD");
-    return nullptr;
-  }
-  return doc;
-}
-
 // Walks a validated document and reports semantic problems with lines.
 class Reader {
  public:
@@ -160,11 +38,10 @@ class Reader {
 
   const std::string& file() const { return file_; }
   SourceLocation Where(const xmlNode* node) const {
-    return SourceLocation{file_, node ? static_cast<int>(xmlGetLineNo(node)) : 0};
+    return SourceLocation{file_, xml::Line(node)};
   }
   void Error(const xmlNode* node, const std::string& message) {
-    diagnostics_->Add(file_, node ? static_cast<int>(xmlGetLineNo(node)) : 0,
-                      node ? Name(node) : std::string(), message);
+    xml::AddAt(diagnostics_, file_, node, message);
   }
   void ErrorAt(const SourceLocation& where, const std::string& element,
                const std::string& message) {
@@ -172,45 +49,11 @@ class Reader {
   }
   size_t ErrorCount() const { return diagnostics_->size(); }
 
-  static std::string Name(const xmlNode* node) {
-    return node && node->name ? reinterpret_cast<const char*>(node->name) : "";
-  }
-  static const xmlNode* Child(const xmlNode* parent, const char* name) {
-    if (parent == nullptr) return nullptr;
-    for (const xmlNode* n = parent->children; n != nullptr; n = n->next)
-      if (n->type == XML_ELEMENT_NODE && Name(n) == name) return n;
-    return nullptr;
-  }
-  static std::vector<const xmlNode*> Children(const xmlNode* parent, const char* name) {
-    std::vector<const xmlNode*> out;
-    if (parent == nullptr) return out;
-    for (const xmlNode* n = parent->children; n != nullptr; n = n->next)
-      if (n->type == XML_ELEMENT_NODE && (name == nullptr || Name(n) == name)) out.push_back(n);
-    return out;
-  }
-  static std::string Text(const xmlNode* node) { return Trim(RawText(node)); }
-  // The element's text as written, whitespace and line breaks included.
-  static std::string RawText(const xmlNode* node) {
-    if (node == nullptr) return "";
-    xmlChar* content = xmlNodeGetContent(node);
-    std::string text = content ? reinterpret_cast<const char*>(content) : "";
-    xmlFree(content);
-    return text;
-  }
-  static std::optional<std::string> Attribute(const xmlNode* node, const char* name) {
-    if (node == nullptr) return std::nullopt;
-    xmlChar* value = xmlGetProp(node, reinterpret_cast<const xmlChar*>(name));
-    if (value == nullptr) return std::nullopt;
-    std::string text = reinterpret_cast<const char*>(value);
-    xmlFree(value);
-    return text;
-  }
-
   // A finite number from the element's text; reports and returns nullopt
   // otherwise. what names the quantity for the message.
   std::optional<double> Number(const xmlNode* node, const std::string& what) {
     if (node == nullptr) return std::nullopt;
-    const std::string text = Text(node);
+    const std::string text = xml::Text(node);
     char* end = nullptr;
     errno = 0;
     const double value = std::strtod(text.c_str(), &end);
@@ -228,7 +71,7 @@ class Reader {
   // Number of child `name`, or fallback when the child is absent.
   double NumberOr(const xmlNode* parent, const char* name, double fallback,
                   const std::string& what, bool* ok) {
-    const xmlNode* child = Child(parent, name);
+    const xmlNode* child = xml::Child(parent, name);
     if (child == nullptr) return fallback;
     const auto value = Number(child, what + " " + name);
     if (!value) {
@@ -241,9 +84,9 @@ class Reader {
   std::optional<Eigen::Vector3d> Vector(const xmlNode* node, const char* cx, const char* cy,
                                         const char* cz, const std::string& what) {
     if (node == nullptr) return std::nullopt;
-    const auto x = Number(Child(node, cx), what + " " + cx);
-    const auto y = Number(Child(node, cy), what + " " + cy);
-    const auto z = Number(Child(node, cz), what + " " + cz);
+    const auto x = Number(xml::Child(node, cx), what + " " + cx);
+    const auto y = Number(xml::Child(node, cy), what + " " + cy);
+    const auto z = Number(xml::Child(node, cz), what + " " + cz);
     if (!x || !y || !z) return std::nullopt;
     return Eigen::Vector3d(*x, *y, *z);
   }
@@ -261,7 +104,7 @@ class Reader {
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 4; ++c) {
         const std::string tag = "T" + std::to_string(r) + std::to_string(c);
-        const auto value = Number(Child(node, tag.c_str()), what + " " + tag);
+        const auto value = Number(xml::Child(node, tag.c_str()), what + " " + tag);
         if (!value) {
           ok = false;
           continue;
@@ -294,12 +137,12 @@ class Reader {
 
 std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node) {
   Material m;
-  m.name = Reader::Attribute(node, "name").value_or("");
+  m.name = xml::Attribute(node, "name").value_or("");
   m.where = reader.Where(node);
   const std::string what = "material '" + m.name + "'";
   bool ok = true;
   auto optional_number = [&](const char* field) -> std::optional<double> {
-    const xmlNode* child = Reader::Child(node, field);
+    const xmlNode* child = xml::Child(node, field);
     if (child == nullptr) return std::nullopt;
     const auto value = reader.Number(child, what + " " + field);
     if (!value) ok = false;
@@ -307,8 +150,8 @@ std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node) {
   };
   m.mu = reader.NumberOr(node, "mu", m.mu, what, &ok);
   m.mu2 = optional_number("mu2");
-  if (const xmlNode* d = Reader::Child(node, "frictionDirection")) {
-    const std::string text = Reader::Text(d);
+  if (const xmlNode* d = xml::Child(node, "frictionDirection")) {
+    const std::string text = xml::Text(d);
     if (text == ToString(FrictionDirection::kSlip)) {
       m.friction_direction = FrictionDirection::kSlip;
     } else if (text == ToString(FrictionDirection::kRolling)) {
@@ -326,7 +169,7 @@ std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node) {
   m.damping = optional_number("damping");
   m.rolling_friction = reader.NumberOr(node, "rollingFriction", m.rolling_friction, what, &ok);
   auto at = [&](const char* field) {
-    return Reader::Child(node, field) ? Reader::Child(node, field) : node;
+    return xml::Child(node, field) ? xml::Child(node, field) : node;
   };
   auto range = [&](double value, double lo, double hi, const char* field) {
     if (value < lo || value > hi) {
@@ -352,7 +195,7 @@ std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node) {
   }
   if (m.damping) range(*m.damping, 0.0, limits::kMaxContactDamping, "damping");
   // One softness, given one way: per step or physical.
-  const bool per_step = Reader::Child(node, "softERP") || Reader::Child(node, "softCFM");
+  const bool per_step = xml::Child(node, "softERP") || xml::Child(node, "softCFM");
   const bool physical = m.stiffness || m.damping;
   if (per_step && physical) {
     reader.Error(at(m.stiffness ? "stiffness" : "damping"),
@@ -401,7 +244,7 @@ void CheckBodyRanges(Reader& reader, const xmlNode* node, const Body& body,
   using namespace limits;
   const size_t errors_before = reader.ErrorCount();
   auto child_or_node = [&](const char* name) {
-    const xmlNode* child = Reader::Child(node, name);
+    const xmlNode* child = xml::Child(node, name);
     return child != nullptr ? child : node;
   };
   if (!body.is_static && (body.mass < kMinMass || body.mass > kMaxMass)) {
@@ -472,18 +315,18 @@ void CheckBodyRanges(Reader& reader, const xmlNode* node, const Body& body,
 // reporting when anything is wrong.
 std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* kind_word) {
   Body body;
-  body.name = Reader::Attribute(node, "name").value_or("");
+  body.name = xml::Attribute(node, "name").value_or("");
   body.where = reader.Where(node);
-  body.material = Reader::Attribute(node, "material").value_or("");
-  body.is_static = Reader::Attribute(node, "static").value_or("false") == "true";
-  body.geometry.kind = ParseGeometryKind(Reader::Attribute(node, "type").value_or("Body"));
+  body.material = xml::Attribute(node, "material").value_or("");
+  body.is_static = xml::Attribute(node, "static").value_or("false") == "true";
+  body.geometry.kind = ParseGeometryKind(xml::Attribute(node, "type").value_or("Body"));
   const std::string what = std::string(kind_word) + " '" + body.name + "'";
   const size_t errors_before = reader.ErrorCount();
 
   if (body.name == kWorldBodyName)
     reader.Error(node, what + ": the name 'world' is reserved for the static world");
 
-  const xmlNode* mass = Reader::Child(node, "mass");
+  const xmlNode* mass = xml::Child(node, "mass");
   if (mass != nullptr) {
     if (const auto m = reader.Number(mass, what + " mass")) {
       if (*m <= 0.0)
@@ -495,9 +338,9 @@ std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* ki
   }
 
   // Geometry dimensions by kind.
-  const xmlNode* size = Reader::Child(node, "size");
-  const xmlNode* radius = Reader::Child(node, "radius");
-  const xmlNode* length = Reader::Child(node, "length");
+  const xmlNode* size = xml::Child(node, "size");
+  const xmlNode* radius = xml::Child(node, "radius");
+  const xmlNode* length = xml::Child(node, "length");
   auto positive = [&](const xmlNode* n, const std::string& field) -> double {
     const auto v = reader.Number(n, what + " " + field);
     if (!v) return 0.0;
@@ -549,10 +392,10 @@ std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* ki
       break;
   }
 
-  if (const xmlNode* com = Reader::Child(node, "centerOfMass")) {
+  if (const xmlNode* com = xml::Child(node, "centerOfMass")) {
     if (const auto c = reader.Vector(com, what + " centerOfMass")) body.com = *c;
   }
-  if (const xmlNode* inertia = Reader::Child(node, "inertia")) {
+  if (const xmlNode* inertia = xml::Child(node, "inertia")) {
     bool ok = true;
     const double ixx = reader.NumberOr(inertia, "Ixx", 0.0, what + " inertia", &ok);
     const double iyy = reader.NumberOr(inertia, "Iyy", 0.0, what + " inertia", &ok);
@@ -579,15 +422,15 @@ std::optional<Body> ReadBody(Reader& reader, const xmlNode* node, const char* ki
       }
     }
   }
-  if (const auto pose = reader.Transformation(Reader::Child(node, "transformation"),
+  if (const auto pose = reader.Transformation(xml::Child(node, "transformation"),
                                               what + " transformation")) {
     body.pose = *pose;
   }
-  if (const xmlNode* v = Reader::Child(node, "translationalVelocity")) {
+  if (const xmlNode* v = xml::Child(node, "translationalVelocity")) {
     if (const auto value = reader.Vector(v, "vx", "vy", "vz", what + " translationalVelocity"))
       body.linear_velocity = *value;
   }
-  if (const xmlNode* w = Reader::Child(node, "rotationalVelocity")) {
+  if (const xmlNode* w = xml::Child(node, "rotationalVelocity")) {
     if (const auto value =
             reader.Vector(w, "omegax", "omegay", "omegaz", what + " rotationalVelocity"))
       body.angular_velocity = *value;
@@ -614,16 +457,16 @@ std::optional<Joint> ReadJoint(Reader& reader, const xmlNode* node,
                                const std::function<bool(const std::string&)>& body_exists,
                                const std::string& owner) {
   Joint joint;
-  joint.name = Reader::Attribute(node, "name").value_or("");
-  joint.kind = ParseJointKind(Reader::Attribute(node, "type").value_or("Fixed"));
+  joint.name = xml::Attribute(node, "name").value_or("");
+  joint.kind = ParseJointKind(xml::Attribute(node, "type").value_or("Fixed"));
   joint.where = reader.Where(node);
   const std::string what = "joint '" + joint.name + "'";
   const size_t errors_before = reader.ErrorCount();
 
-  const xmlNode* b1 = Reader::Child(node, "body1");
-  const xmlNode* b2 = Reader::Child(node, "body2");
-  joint.body1 = Reader::Text(b1);
-  joint.body2 = Reader::Text(b2);
+  const xmlNode* b1 = xml::Child(node, "body1");
+  const xmlNode* b2 = xml::Child(node, "body2");
+  joint.body1 = xml::Text(b1);
+  joint.body2 = xml::Text(b2);
   if (!body_exists(joint.body1))
     reader.Error(b1, what + ": body1 '" + joint.body1 + "' is not a body of " + owner);
   if (!body_exists(joint.body2))
@@ -633,7 +476,7 @@ std::optional<Joint> ReadJoint(Reader& reader, const xmlNode* node,
                          "' to itself (a joint joins exactly two bodies)");
 
   const int axes = AxisCount(joint.kind);
-  const xmlNode* anchor = Reader::Child(node, "anchor");
+  const xmlNode* anchor = xml::Child(node, "anchor");
   const bool needs_anchor = joint.kind != JointKind::kFixed && joint.kind != JointKind::kSlider;
   if (anchor != nullptr) {
     if (const auto a = reader.Vector(anchor, what + " anchor")) {
@@ -647,7 +490,7 @@ std::optional<Joint> ReadJoint(Reader& reader, const xmlNode* node,
   }
   const char* axis_tags[2] = {"axis1", "axis2"};
   for (int i = 0; i < 2; ++i) {
-    const xmlNode* axis = Reader::Child(node, axis_tags[i]);
+    const xmlNode* axis = xml::Child(node, axis_tags[i]);
     if (i < axes) {
       if (axis == nullptr) {
         reader.Error(node, what + ": a " + ToString(joint.kind) + " joint needs <" +
@@ -668,17 +511,17 @@ std::optional<Joint> ReadJoint(Reader& reader, const xmlNode* node,
   }
   if (axes == 2 && reader.ErrorCount() == errors_before &&
       std::abs(joint.axis[0].dot(joint.axis[1])) > 1.0 - 1e-6) {
-    reader.Error(Reader::Child(node, "axis2"), what + ": axis1 and axis2 are parallel");
+    reader.Error(xml::Child(node, "axis2"), what + ": axis1 and axis2 are parallel");
   }
-  for (const xmlNode* limits : Reader::Children(node, "limits")) {
-    const int axis = std::atoi(Reader::Attribute(limits, "axis").value_or("1").c_str());
+  for (const xmlNode* limits : xml::Children(node, "limits")) {
+    const int axis = std::atoi(xml::Attribute(limits, "axis").value_or("1").c_str());
     if (axis < 1 || axis > axes) {
       reader.Error(limits, what + ": a " + ToString(joint.kind) + " joint has no axis " +
                                std::to_string(axis) + " to limit");
       continue;
     }
-    const auto lo = reader.Number(Reader::Child(limits, "lo"), what + " limits lo");
-    const auto hi = reader.Number(Reader::Child(limits, "hi"), what + " limits hi");
+    const auto lo = reader.Number(xml::Child(limits, "lo"), what + " limits lo");
+    const auto hi = reader.Number(xml::Child(limits, "hi"), what + " limits hi");
     if (!lo || !hi) continue;
     if (*lo > *hi) {
       reader.Error(limits, what + ": limits lo " + FormatNumber(*lo, 10) + " > hi " +
@@ -743,7 +586,7 @@ void CheckMassRatios(Reader& reader, const std::vector<Body>& bodies,
 
 // Legacy port attribute: integer in (1024, 65535].
 std::optional<int> ReadPort(Reader& reader, const xmlNode* node, const std::string& what) {
-  const auto text = Reader::Attribute(node, "port");
+  const auto text = xml::Attribute(node, "port");
   if (!text) return 0;
   char* end = nullptr;
   errno = 0;
@@ -778,20 +621,20 @@ struct DeclaredNames {
 std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robot& robot,
                                  const DeclaredNames& declared) {
   Sensor sensor;
-  sensor.name = Reader::Attribute(node, "name").value_or("");
-  sensor.kind = ParseSensorKind(Reader::Attribute(node, "type").value_or("Echo"));
+  sensor.name = xml::Attribute(node, "name").value_or("");
+  sensor.kind = ParseSensorKind(xml::Attribute(node, "type").value_or("Echo"));
   sensor.where = reader.Where(node);
   const std::string what = "sensor '" + sensor.name + "'";
   const size_t errors_before = reader.ErrorCount();
   if (const auto port = ReadPort(reader, node, what)) sensor.port = *port;
 
-  const xmlNode* body_ref = Reader::Child(node, "bodyRef");
-  const xmlNode* joint_ref = Reader::Child(node, "jointRef");
+  const xmlNode* body_ref = xml::Child(node, "bodyRef");
+  const xmlNode* joint_ref = xml::Child(node, "jointRef");
   if (sensor.kind == SensorKind::kForceTorque) {
     if (joint_ref == nullptr) {
       reader.Error(node, what + ": a ForceTorque sensor measures a joint: it needs <jointRef>");
     } else {
-      sensor.joint = Reader::Text(joint_ref);
+      sensor.joint = xml::Text(joint_ref);
       const Joint* joint = robot.FindJoint(sensor.joint);
       if (joint == nullptr && declared.joints.count(sensor.joint) == 0) {
         reader.Error(joint_ref, what + ": '" + sensor.joint + "' is not a joint of robot '" +
@@ -803,12 +646,12 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
   } else if (body_ref == nullptr) {
     reader.Error(node, what + ": a " + ToString(sensor.kind) + " sensor needs <bodyRef>");
   } else {
-    sensor.body = Reader::Text(body_ref);
+    sensor.body = xml::Text(body_ref);
     if (robot.FindBody(sensor.body) == nullptr && declared.bodies.count(sensor.body) == 0)
       reader.Error(body_ref, what + ": '" + sensor.body + "' is not a body of robot '" +
                                  robot.model_name + "'");
   }
-  if (const xmlNode* t = Reader::Child(node, "transformation")) {
+  if (const xmlNode* t = xml::Child(node, "transformation")) {
     if (const auto mount = reader.Transformation(t, what + " transformation")) {
       sensor.mount = *mount;
       if (!CoordinatesInRange(mount->translation()))
@@ -816,7 +659,7 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
                             " m is out of range: " + CoordinateRangeText());
     }
   }
-  if (const xmlNode* rate = Reader::Child(node, "rate")) {
+  if (const xmlNode* rate = xml::Child(node, "rate")) {
     if (const auto r = reader.Number(rate, what + " rate")) {
       if (*r < 0.0 || *r > 10000.0)
         reader.Error(rate, what + ": rate " + FormatNumber(*r, 10) + " Hz is out of range [0, 10000]");
@@ -824,8 +667,8 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
     }
   }
   std::set<std::string> seen;
-  for (const xmlNode* p : Reader::Children(node, "parameter")) {
-    const std::string name = Reader::Attribute(p, "name").value_or("");
+  for (const xmlNode* p : xml::Children(node, "parameter")) {
+    const std::string name = xml::Attribute(p, "name").value_or("");
     if (sensor.kind != SensorKind::kScanner) {
       reader.Error(p, what + ": " + ToString(sensor.kind) + " sensors have no parameter '" +
                           name + "'");
@@ -870,14 +713,14 @@ ActuatorKind ParseActuatorKind(const std::string& type) {
 std::optional<Actuator> ReadActuator(Reader& reader, const xmlNode* node, const Robot& robot,
                                      const DeclaredNames& declared) {
   Actuator actuator;
-  actuator.name = Reader::Attribute(node, "name").value_or("");
-  actuator.kind = ParseActuatorKind(Reader::Attribute(node, "type").value_or(""));
+  actuator.name = xml::Attribute(node, "name").value_or("");
+  actuator.kind = ParseActuatorKind(xml::Attribute(node, "type").value_or(""));
   actuator.where = reader.Where(node);
   const std::string what = "actuator '" + actuator.name + "'";
   const size_t errors_before = reader.ErrorCount();
   if (const auto port = ReadPort(reader, node, what)) actuator.port = *port;
-  const xmlNode* joint_ref = Reader::Child(node, "jointRef");
-  actuator.joint = Reader::Text(joint_ref);
+  const xmlNode* joint_ref = xml::Child(node, "jointRef");
+  actuator.joint = xml::Text(joint_ref);
   const Joint* joint = robot.FindJoint(actuator.joint);
   if (joint == nullptr) {
     if (declared.joints.count(actuator.joint) == 0)
@@ -906,19 +749,19 @@ std::optional<Actuator> ReadActuator(Reader& reader, const xmlNode* node, const 
 // body to itself (reported already): then the graph the file means is
 // unknown.
 void CheckConnected(Reader& reader, const xmlNode* root) {
-  const std::vector<const xmlNode*> bodies = Reader::Children(root, "body");
+  const std::vector<const xmlNode*> bodies = xml::Children(root, "body");
   if (bodies.empty()) return;
   std::set<std::string> names;
-  for (const xmlNode* b : bodies) names.insert(Reader::Attribute(b, "name").value_or(""));
+  for (const xmlNode* b : bodies) names.insert(xml::Attribute(b, "name").value_or(""));
   std::map<std::string, std::vector<std::string>> neighbours;
-  for (const xmlNode* j : Reader::Children(root, "joint")) {
-    const std::string body1 = Reader::Text(Reader::Child(j, "body1"));
-    const std::string body2 = Reader::Text(Reader::Child(j, "body2"));
+  for (const xmlNode* j : xml::Children(root, "joint")) {
+    const std::string body1 = xml::Text(xml::Child(j, "body1"));
+    const std::string body2 = xml::Text(xml::Child(j, "body2"));
     if (names.count(body1) == 0 || names.count(body2) == 0 || body1 == body2) return;
     neighbours[body1].push_back(body2);
     neighbours[body2].push_back(body1);
   }
-  const std::string first = Reader::Attribute(bodies.front(), "name").value_or("");
+  const std::string first = xml::Attribute(bodies.front(), "name").value_or("");
   std::set<std::string> reached = {first};
   std::vector<std::string> frontier = {first};
   while (!frontier.empty()) {
@@ -928,7 +771,7 @@ void CheckConnected(Reader& reader, const xmlNode* root) {
       if (reached.insert(next).second) frontier.push_back(next);
   }
   for (const xmlNode* b : bodies) {
-    const std::string name = Reader::Attribute(b, "name").value_or("");
+    const std::string name = xml::Attribute(b, "name").value_or("");
     if (reached.count(name) == 0)
       reader.Error(b, "body '" + name + "' is not connected to '" + first +
                           "' by any chain of joints (a robot is one connected graph)");
@@ -1087,25 +930,26 @@ const std::string& RobotDtd() {
 
 RobotLoadResult ParseRobot(const std::string& xml, const std::string& file_name) {
   RobotLoadResult result;
-  const XmlDocPtr doc = ParseAndValidate(xml, file_name, RobotDtd(), "robot", &result.diagnostics);
-  if (doc == nullptr) return result;
+  const std::optional<xml::Document> doc = xml::Document::Read(
+      xml, file_name, "robot", xml::Dtd{"robot.dtd", RobotDtd()}, &result.diagnostics);
+  if (!doc) return result;
   Reader reader(file_name, &result.diagnostics);
-  const xmlNode* root = xmlDocGetRootElement(doc.get());
+  const xmlNode* root = doc->root();
   Robot robot;
   robot.file = file_name;
-  robot.model_name = Reader::Attribute(root, "name").value_or("");
-  robot.description = Reader::Text(Reader::Child(root, "description"));
-  for (const xmlNode* n : Reader::Children(root, "material"))
+  robot.model_name = xml::Attribute(root, "name").value_or("");
+  robot.description = xml::Text(xml::Child(root, "description"));
+  for (const xmlNode* n : xml::Children(root, "material"))
     if (auto m = ReadMaterial(reader, n)) robot.materials.push_back(*m);
-  for (const xmlNode* n : Reader::Children(root, "body"))
+  for (const xmlNode* n : xml::Children(root, "body"))
     if (auto b = ReadBody(reader, n, "body")) robot.bodies.push_back(*b);
   // Body names come from the DTD-validated ID attributes, so a joint that
   // names a body which failed its own checks is judged against all names.
   std::set<std::string> body_names;
-  for (const xmlNode* n : Reader::Children(root, "body"))
-    body_names.insert(Reader::Attribute(n, "name").value_or(""));
+  for (const xmlNode* n : xml::Children(root, "body"))
+    body_names.insert(xml::Attribute(n, "name").value_or(""));
   const std::string owner = "robot '" + robot.model_name + "'";
-  for (const xmlNode* n : Reader::Children(root, "joint")) {
+  for (const xmlNode* n : xml::Children(root, "joint")) {
     auto joint = ReadJoint(reader, n,
                            [&](const std::string& name) { return body_names.count(name) > 0; },
                            owner);
@@ -1113,11 +957,11 @@ RobotLoadResult ParseRobot(const std::string& xml, const std::string& file_name)
   }
   DeclaredNames declared;
   declared.bodies = body_names;
-  for (const xmlNode* n : Reader::Children(root, "joint"))
-    declared.joints.insert(Reader::Attribute(n, "name").value_or(""));
-  for (const xmlNode* n : Reader::Children(root, "sensor"))
+  for (const xmlNode* n : xml::Children(root, "joint"))
+    declared.joints.insert(xml::Attribute(n, "name").value_or(""));
+  for (const xmlNode* n : xml::Children(root, "sensor"))
     if (auto s = ReadSensor(reader, n, robot, declared)) robot.sensors.push_back(*s);
-  for (const xmlNode* n : Reader::Children(root, "actuator"))
+  for (const xmlNode* n : xml::Children(root, "actuator"))
     if (auto a = ReadActuator(reader, n, robot, declared)) robot.actuators.push_back(*a);
   CheckConnected(reader, root);
   // Bodies of the robot's own materials; a world's material of the same
@@ -1146,7 +990,7 @@ namespace {
 // A robot's bodies and joint anchors where the world places them must lie
 // within limits::kMaxCoordinate; reported once, at the placing <robot>.
 void CheckPlacement(Reader& reader, const xmlNode* robot_node, const RobotInstance& instance) {
-  const xmlNode* at = Reader::Child(robot_node, "transformation");
+  const xmlNode* at = xml::Child(robot_node, "transformation");
   if (at == nullptr) at = robot_node;
   auto report = [&](const std::string& what, const Eigen::Vector3d& where) {
     reader.Error(at, "robot '" + instance.name + "': placed at " +
@@ -1175,16 +1019,17 @@ bool CannotOpen(const DiagnosticList& diagnostics) {
 WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
                            const FileReader& read) {
   WorldLoadResult result;
-  const XmlDocPtr doc = ParseAndValidate(xml, file_name, WorldDtd(), "world", &result.diagnostics);
-  if (doc == nullptr) return result;
+  const std::optional<xml::Document> doc = xml::Document::Read(
+      xml, file_name, "world", xml::Dtd{"world.dtd", WorldDtd()}, &result.diagnostics);
+  if (!doc) return result;
   Reader reader(file_name, &result.diagnostics);
-  const xmlNode* root = xmlDocGetRootElement(doc.get());
+  const xmlNode* root = doc->root();
   World world;
   world.file = file_name;
-  world.name = Reader::Attribute(root, "name").value_or("");
-  world.description = Reader::Text(Reader::Child(root, "description"));
+  world.name = xml::Attribute(root, "name").value_or("");
+  world.description = xml::Text(xml::Child(root, "description"));
 
-  if (const xmlNode* g = Reader::Child(root, "gravity")) {
+  if (const xmlNode* g = xml::Child(root, "gravity")) {
     if (const auto gravity = reader.Vector(g, "gravity")) {
       world.gravity = *gravity;
       if (gravity->norm() > 1e4)
@@ -1192,11 +1037,11 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
                             " m/s^2 is not plausible (at most 10000)");
     }
   }
-  if (const xmlNode* s = Reader::Child(root, "surface")) {
-    const auto a = reader.Number(Reader::Child(s, "a"), "surface a");
-    const auto b = reader.Number(Reader::Child(s, "b"), "surface b");
-    const auto c = reader.Number(Reader::Child(s, "c"), "surface c");
-    const auto d = reader.Number(Reader::Child(s, "d"), "surface d");
+  if (const xmlNode* s = xml::Child(root, "surface")) {
+    const auto a = reader.Number(xml::Child(s, "a"), "surface a");
+    const auto b = reader.Number(xml::Child(s, "b"), "surface b");
+    const auto c = reader.Number(xml::Child(s, "c"), "surface c");
+    const auto d = reader.Number(xml::Child(s, "d"), "surface d");
     if (a && b && c && d) {
       const Eigen::Vector3d normal(*a, *b, *c);
       if (normal.norm() < 1e-9) {
@@ -1206,24 +1051,24 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
         world.plane << normal / normal.norm(), *d / normal.norm();
       }
     }
-    world.plane_material = Reader::Attribute(s, "material").value_or("");
+    world.plane_material = xml::Attribute(s, "material").value_or("");
   }
-  if (const xmlNode* space = Reader::Child(root, "collisionSpace")) {
-    const std::string type = Reader::Attribute(space, "type").value_or("hash");
+  if (const xmlNode* space = xml::Child(root, "collisionSpace")) {
+    const std::string type = xml::Attribute(space, "type").value_or("hash");
     world.collision_space = type == "simple"     ? CollisionSpaceKind::kSimple
                             : type == "quadtree" ? CollisionSpaceKind::kQuadTree
                                                  : CollisionSpaceKind::kHash;
   }
-  for (const xmlNode* n : Reader::Children(root, "material"))
+  for (const xmlNode* n : xml::Children(root, "material"))
     if (auto m = ReadMaterial(reader, n)) world.materials.push_back(*m);
 
-  if (const xmlNode* h = Reader::Child(root, "heightfield")) {
+  if (const xmlNode* h = xml::Child(root, "heightfield")) {
     Heightfield field;
     field.where = reader.Where(h);
-    field.material = Reader::Attribute(h, "material").value_or("");
+    field.material = xml::Attribute(h, "material").value_or("");
     const size_t errors_before = reader.ErrorCount();
     auto count = [&](const char* attribute) -> int {
-      const std::string text = Reader::Attribute(h, attribute).value_or("");
+      const std::string text = xml::Attribute(h, attribute).value_or("");
       char* end = nullptr;
       const long value = std::strtol(text.c_str(), &end, 10);
       if (text.empty() || *end != '\0' || value < 2 || value > 100000) {
@@ -1236,9 +1081,9 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     field.rows = count("rows");
     field.columns = count("columns");
     auto positive = [&](const char* tag) -> double {
-      const auto v = reader.Number(Reader::Child(h, tag), std::string("heightfield ") + tag);
+      const auto v = reader.Number(xml::Child(h, tag), std::string("heightfield ") + tag);
       if (v && *v <= 0.0)
-        reader.Error(Reader::Child(h, tag), std::string("heightfield ") + tag +
+        reader.Error(xml::Child(h, tag), std::string("heightfield ") + tag +
                                                 " must be positive, got " + FormatNumber(*v, 10));
       return v.value_or(0.0);
     };
@@ -1247,7 +1092,7 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     for (const char* tag : {"width", "depth"}) {
       const double extent = std::string(tag) == "width" ? field.width : field.depth;
       if (extent > limits::kMaxCoordinate)
-        reader.Error(Reader::Child(h, tag), std::string("heightfield ") + tag + " " +
+        reader.Error(xml::Child(h, tag), std::string("heightfield ") + tag + " " +
                                                 FormatNumber(extent, 10) + " m is out of range (0, " +
                                                 FormatNumber(limits::kMaxCoordinate, 10) + "] m");
     }
@@ -1256,13 +1101,13 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     field.offset = reader.NumberOr(h, "offset", 0.0, "heightfield", &ok);
     field.thickness = reader.NumberOr(h, "thickness", 1.0, "heightfield", &ok);
     if (field.thickness <= 0.0)
-      reader.Error(Reader::Child(h, "thickness"), "heightfield thickness must be positive, got " +
+      reader.Error(xml::Child(h, "thickness"), "heightfield thickness must be positive, got " +
                                                       FormatNumber(field.thickness, 10));
     else if (field.thickness > limits::kMaxCoordinate)
-      reader.Error(Reader::Child(h, "thickness"),
+      reader.Error(xml::Child(h, "thickness"),
                    "heightfield thickness " + FormatNumber(field.thickness, 10) +
                        " m is out of range (0, " + FormatNumber(limits::kMaxCoordinate, 10) + "] m");
-    if (const xmlNode* p = Reader::Child(h, "position")) {
+    if (const xmlNode* p = xml::Child(h, "position")) {
       if (const auto position = reader.Vector(p, "heightfield position")) {
         field.position = *position;
         if (!CoordinatesInRange(*position))
@@ -1273,12 +1118,12 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     // Samples fill many lines (with comments between rows): a bad one is
     // reported at its own line, counted from <samples> through the text and
     // the comments, with its row and column.
-    const xmlNode* samples = Reader::Child(h, "samples");
+    const xmlNode* samples = xml::Child(h, "samples");
     int line = reader.Where(samples).line;
     bool bad_sample = false;
     for (const xmlNode* part = samples ? samples->children : nullptr; part && !bad_sample;
          part = part->next) {
-      const std::string text = Reader::RawText(part);
+      const std::string text = xml::RawText(part);
       if (part->type != XML_TEXT_NODE && part->type != XML_CDATA_SECTION_NODE) {
         line += static_cast<int>(std::count(text.begin(), text.end(), '\n'));
         continue;
@@ -1326,12 +1171,12 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
     if (reader.ErrorCount() == errors_before) world.heightfield = std::move(field);
   }
 
-  for (const xmlNode* n : Reader::Children(root, "object"))
+  for (const xmlNode* n : xml::Children(root, "object"))
     if (auto b = ReadBody(reader, n, "object")) world.objects.push_back(*b);
   std::set<std::string> object_names;
-  for (const xmlNode* n : Reader::Children(root, "object"))
-    object_names.insert(Reader::Attribute(n, "name").value_or(""));
-  for (const xmlNode* n : Reader::Children(root, "joint")) {
+  for (const xmlNode* n : xml::Children(root, "object"))
+    object_names.insert(xml::Attribute(n, "name").value_or(""));
+  for (const xmlNode* n : xml::Children(root, "joint")) {
     auto joint = ReadJoint(reader, n,
                            [&](const std::string& name) {
                              return name == kWorldBodyName || object_names.count(name) > 0;
@@ -1345,15 +1190,15 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
   // (pointing into the robot file), plus one line at the placing element.
   const std::filesystem::path base = std::filesystem::path(file_name).parent_path();
   std::map<int, std::string> ports;
-  for (const xmlNode* n : Reader::Children(root, "robot")) {
+  for (const xmlNode* n : xml::Children(root, "robot")) {
     RobotInstance instance;
-    instance.name = Reader::Attribute(n, "name").value_or("");
-    instance.file = Reader::Attribute(n, "file").value_or("");
+    instance.name = xml::Attribute(n, "name").value_or("");
+    instance.file = xml::Attribute(n, "file").value_or("");
     instance.where = reader.Where(n);
     const std::filesystem::path path(instance.file);
     instance.resolved_file =
         (path.is_relative() ? (base / path).lexically_normal() : path).string();
-    if (const xmlNode* t = Reader::Child(n, "transformation")) {
+    if (const xmlNode* t = xml::Child(n, "transformation")) {
       if (const auto placement =
               reader.Transformation(t, "robot '" + instance.name + "' transformation"))
         instance.placement = *placement;
@@ -1402,8 +1247,8 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
   }
   // A material whose values are wrong is reported as such, not as missing.
   std::set<std::string> declared_materials;
-  for (const xmlNode* n : Reader::Children(root, "material"))
-    declared_materials.insert(Reader::Attribute(n, "name").value_or(""));
+  for (const xmlNode* n : xml::Children(root, "material"))
+    declared_materials.insert(xml::Attribute(n, "name").value_or(""));
   auto material_exists = [&](const std::string& name) {
     return world.FindMaterial(name) != nullptr || declared_materials.count(name) > 0;
   };
@@ -1421,11 +1266,11 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
                        });
   }
   if (!world.plane_material.empty() && !material_exists(world.plane_material))
-    reader.Error(Reader::Child(root, "surface"),
+    reader.Error(xml::Child(root, "surface"),
                  "surface material '" + world.plane_material + "' is not defined");
   if (world.heightfield && !world.heightfield->material.empty() &&
       !material_exists(world.heightfield->material))
-    reader.Error(Reader::Child(root, "heightfield"),
+    reader.Error(xml::Child(root, "heightfield"),
                  "heightfield material '" + world.heightfield->material + "' is not defined");
 
   if (result.diagnostics.empty()) result.world = std::move(world);
