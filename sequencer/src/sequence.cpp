@@ -103,6 +103,25 @@ std::optional<xml::Document> ParseAndValidate(const std::string& xml, const std:
   return doc;
 }
 
+// The root's world attribute: a world file's name (a path may lead to it).
+void ReadWorldName(const xmlNode* root, Sequence* sequence, DiagnosticList* diagnostics) {
+  const std::optional<std::string> world = Attribute(root, "world");
+  if (!world) return;
+  sequence->world = Trim(*world);
+  const std::string& name = sequence->world;
+  const std::string extension = ".xml";
+  if (name.empty()) {
+    xml::AddAt(diagnostics, sequence->file, root,
+               "world is empty: give the world file the sequence is made for, e.g. "
+               "world=\"pole_task.xml\", or leave the attribute out");
+  } else if (name.size() <= extension.size() ||
+             name.compare(name.size() - extension.size(), extension.size(), extension) != 0 ||
+             name.back() == '/' || name[name.size() - extension.size() - 1] == '/') {
+    xml::AddAt(diagnostics, sequence->file, root,
+               "world '" + *world + "' is not a world file name (NAME.xml, e.g. pole_task.xml)");
+  }
+}
+
 // Walks a valid document into segments, keeping every problem it finds.
 class Builder {
  public:
@@ -546,6 +565,7 @@ SequenceParseResult ParseSequence(const std::string& xml, const std::string& fil
   sequence.name = Attribute(root, "name").value_or("");
   sequence.robot = Trim(Attribute(root, "robot").value_or(""));
   sequence.description = Attribute(root, "description").value_or("");
+  ReadWorldName(root, &sequence, &result.diagnostics);
   Builder builder(&sequence, &result.diagnostics, std::min(max_commands, kMaxCommands));
   builder.Block(root, 0.0);
   builder.Finish();
