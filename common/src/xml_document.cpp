@@ -106,6 +106,9 @@ std::optional<Document> Document::Parse(std::string_view text, const std::string
                                            SizeText(kMaxDocumentBytes));
     return std::nullopt;
   }
+  // libxml2's globals are set up once, before any thread parses (its
+  // rule); a function-local static runs exactly once.
+  [[maybe_unused]] static const bool initialized = (xmlInitParser(), true);
   xmlDoc* parsed = nullptr;
   {
     ScopedXmlErrors capture(file_name, diagnostics);
