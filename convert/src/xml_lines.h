@@ -1,6 +1,6 @@
-// Reads an XML file with libxml2 only to know where its elements are:
-// urdfdom's parser reports names but no lines, so messages find the line
-// of the element that carries the name here.
+// Where the elements of an XML file are (read with the common XML layer,
+// xml_document.h): urdfdom's parser reports names but no lines, so
+// messages find the line of the element that carries the name here.
 #pragma once
 
 #include <map>
@@ -19,8 +19,8 @@ struct UrdfLines {
   bool has_bodies = false;                         // any <body> under the root (ours)
 };
 
-// Parses text (no network, no entity expansion); throws ConvertError with
-// libxml2's line and message when it is not well-formed XML.
+// Parses text; throws ConvertError with the first problem's line and
+// message ("not well-formed XML: ..." for libxml2's) when it cannot.
 UrdfLines ReadXmlLines(const std::string& text, const std::string& file_name);
 
 }  // namespace simpartner::convert

@@ -1,10 +1,14 @@
 #include "simpartner/sequencer/check.h"
 
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 
 #include "simpartner/actuator_t.hpp"
 #include "simpartner/client/command.h"
 #include "simpartner/client/errors.h"
+#include "simpartner/data_paths.h"
+#include "simpartner/model/loader.h"
 #include "simpartner/model/model_message.h"
 #include "simpartner/sensor_t.hpp"
 
@@ -127,6 +131,46 @@ DiagnosticList CheckSequence(const Sequence& sequence, const model_t& model, Pla
       out.wheel_motors.push_back(t);
   if (diagnostics.empty() && plan != nullptr) *plan = std::move(out);
   return diagnostics;
+}
+
+std::string FindSequenceWorld(const Sequence& sequence) {
+  if (sequence.world.empty()) return "";
+  namespace fs = std::filesystem;
+  auto usable = [](const fs::path& p) {  // as FindDataFile: the loader says why a FIFO is not
+    std::error_code error;
+    return fs::exists(p, error) && !fs::is_directory(p, error);
+  };
+  std::vector<DataCandidate> tried;
+  if (fs::path(sequence.world).is_relative()) {
+    const fs::path beside =
+        (fs::path(sequence.file).parent_path() / sequence.world).lexically_normal();
+    if (usable(beside)) return beside.string();
+    tried.push_back({beside.string(), "next to the sequence"});
+  }
+  try {
+    return model::FindWorldFile(sequence.world);
+  } catch (const DataFileNotFound& e) {
+    tried.insert(tried.end(), e.tried().begin(), e.tried().end());
+  }
+  DiagnosticList diagnostics;
+  diagnostics.Add(sequence.file, sequence.line, "sequence",
+                  "world '" + sequence.world + "' is not found; tried:\n" +
+                      FormatCandidates(tried) + "(" + DescribeDataLookup() + ")");
+  throw ConfigError(diagnostics);
+}
+
+std::string WorldForSequence(const Sequence& sequence, const std::string& given) {
+  const std::string named = FindSequenceWorld(sequence);
+  if (named.empty()) return given;
+  if (given.empty()) return named;
+  std::error_code error;
+  if (std::filesystem::equivalent(given, named, error)) return given;
+  DiagnosticList diagnostics;
+  diagnostics.Add(sequence.file, sequence.line, "sequence",
+                  "the sequence is made for world '" + sequence.world + "' (" + named +
+                      "), not for '" + given +
+                      "'; leave the world out to use the sequence's, or give that one");
+  throw ConfigError(diagnostics);
 }
 
 model_t ModelFromWorld(const model::World& world) { return model::ModelMessageFromWorld(world); }

@@ -54,9 +54,11 @@ Options:
   --model-timeout S       wait S s for SIM_MODEL (default 3)
   --silence-timeout S     stop when the sim sends nothing for S s (default 2)
   --quiet                 no progress lines
-  --check FILE            validate only (no bus); with --environment WORLD.xml
-                          also against that world's robots (names, ports,
-                          value counts)
+  --check FILE            validate only (no bus); also against the robots
+                          (names, ports, value counts) of the world the
+                          sequence names (<sequence world="...">) or of
+                          --environment WORLD.xml, which must then be the
+                          same world
   --help                  this text
 
 Exit status: 0 played to the end (or --check found nothing); 1 stopped
@@ -159,6 +161,14 @@ int RunSequencer(const std::vector<std::string>& args, std::ostream& out, std::o
       err << parsed.diagnostics.Format() << "\n";
       return kInvalid;
     }
+    // Without --environment, the world the sequence names (if any).
+    const bool named_world = environment.empty() && !parsed.sequence->world.empty();
+    try {
+      environment = WorldForSequence(*parsed.sequence, environment);
+    } catch (const DiagnosticError& e) {
+      err << e.diagnostics().Format() << "\n";
+      return kInvalid;
+    }
     if (environment.empty()) {
       out << check_file << ": valid version " << parsed.sequence->version << " sequence, "
           << parsed.sequence->CommandCount() << " commands (names and ports not checked: "
@@ -178,7 +188,7 @@ int RunSequencer(const std::vector<std::string>& args, std::ostream& out, std::o
     }
     out << check_file << ": valid version " << parsed.sequence->version << " sequence, "
         << parsed.sequence->CommandCount() << " commands, every target in '" << environment
-        << "'\n";
+        << "'" << (named_world ? " (the world the sequence names)" : "") << "\n";
     return kDone;
   }
   if (!environment.empty()) return usage_error("--environment goes with --check");

@@ -1,104 +1,27 @@
 #include "simpartner/sequencer/sequence.h"
 
-#include <libxml/parser.h>
-#include <libxml/tree.h>
-#include <libxml/valid.h>
-#include <libxml/xmlerror.h>
-
 #include <algorithm>
 #include <cerrno>
-#include <climits>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <memory>
 #include <sstream>
 
 #include "sequence_dtds.h"
 #include "simpartner/command_shape.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/text.h"
+#include "simpartner/xml_document.h"
 
 namespace simpartner::sequencer {
 namespace {
 
-// libxml2's parse and validation errors go into the diagnostics while this
-// lives (the handler is per thread; the destructor restores it).
-class ScopedXmlErrors {
- public:
-  ScopedXmlErrors(const std::string& file_name, DiagnosticList* diagnostics)
-      : file_name_(file_name), diagnostics_(diagnostics) {
-    xmlSetStructuredErrorFunc(this, &ScopedXmlErrors::OnError);
-    xmlSetGenericErrorFunc(this, &ScopedXmlErrors::OnGenericError);
-  }
-  ~ScopedXmlErrors() {
-    xmlSetStructuredErrorFunc(nullptr, nullptr);
-    xmlSetGenericErrorFunc(nullptr, nullptr);
-  }
-  ScopedXmlErrors(const ScopedXmlErrors&) = delete;
-  ScopedXmlErrors& operator=(const ScopedXmlErrors&) = delete;
-
- private:
-  static void OnError(void* self_ptr, xmlErrorPtr error) {
-    auto* self = static_cast<ScopedXmlErrors*>(self_ptr);
-    if (error == nullptr || error->level == XML_ERR_WARNING) return;
-    // After a fatal error libxml2 guesses about a document it has misread:
-    // keep what it says about the first fatal error's line only.
-    if (self->first_fatal_line_ > 0 && error->line > self->first_fatal_line_) return;
-    if (error->level == XML_ERR_FATAL && self->first_fatal_line_ == 0 && error->line > 0)
-      self->first_fatal_line_ = error->line;
-    std::string message = Trim(error->message != nullptr ? error->message : "XML error");
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    std::string element;
-    if (error->node != nullptr) {
-      const auto* node = static_cast<const xmlNode*>(error->node);
-      if (node->type == XML_ELEMENT_NODE && node->name != nullptr)
-        element = reinterpret_cast<const char*>(node->name);
-    }
-    self->diagnostics_->Add(self->file_name_, error->line, element, message);
-  }
-  static void OnGenericError(void*, const char*, ...) {}
-
-  std::string file_name_;
-  DiagnosticList* diagnostics_;
-  int first_fatal_line_ = 0;
-};
-
-struct XmlDocFree {
-  void operator()(xmlDoc* doc) const { xmlFreeDoc(doc); }
-};
-struct XmlDtdFree {
-  void operator()(xmlDtd* dtd) const { xmlFreeDtd(dtd); }
-};
-struct XmlValidCtxtFree {
-  void operator()(xmlValidCtxt* ctxt) const { xmlFreeValidCtxt(ctxt); }
-};
-using XmlDocPtr = std::unique_ptr<xmlDoc, XmlDocFree>;
-
-std::string Name(const xmlNode* node) { return reinterpret_cast<const char*>(node->name); }
-int Line(const xmlNode* node) { return static_cast<int>(xmlGetLineNo(node)); }
-
-std::optional<std::string> Attribute(const xmlNode* node, const char* name) {
-  xmlChar* value = xmlGetProp(node, reinterpret_cast<const xmlChar*>(name));
-  if (value == nullptr) return std::nullopt;
-  std::string out(reinterpret_cast<const char*>(value));
-  xmlFree(value);
-  return out;
-}
-
-std::string Content(const xmlNode* node) {
-  xmlChar* content = xmlNodeGetContent(node);
-  std::string out = content != nullptr ? reinterpret_cast<const char*>(content) : "";
-  xmlFree(content);
-  return Trim(out);
-}
-
-const xmlNode* Child(const xmlNode* node, const char* name) {
-  for (const xmlNode* c = node->children; c != nullptr; c = c->next)
-    if (c->type == XML_ELEMENT_NODE && Name(c) == name) return c;
-  return nullptr;
-}
+using xml::Attribute;
+using xml::Child;
+using xml::Line;
+using xml::Name;
 
 // Where the first element starts, skipping the XML declaration, comments,
 // processing instructions and white space; npos if there is none.
@@ -124,85 +47,79 @@ size_t FirstElement(const std::string& xml) {
   return std::string::npos;
 }
 
-// The file's whole text, reads "version" from the root before choosing the
-// DTD; returns null with diagnostics when not well-formed or not valid.
-XmlDocPtr ParseAndValidate(const std::string& xml, const std::string& file_name,
-                           SequenceParseResult* result, int* version) {
-  DiagnosticList& diagnostics = result->diagnostics;
-  ScopedXmlErrors capture(file_name, &diagnostics);
-  if (xml.size() > static_cast<size_t>(INT_MAX) / 2) {
-    diagnostics.Add(file_name, 0, "", "file is too large");
-    return nullptr;
-  }
-  // The original's sequences may be a bare list of <command> elements:
-  // read them as version 1 inside the root they lack (inserted on the
-  // first command's line, so line numbers stay those of the file).
-  std::string text = xml;
+// The original's sequences may be a bare list of <command> elements: they
+// are read as version 1 inside the root they lack, inserted on the first
+// command's line so that line numbers stay those of the file. Returns the
+// text to parse (xml itself when it has a root).
+std::string WithRoot(const std::string& xml, const std::string& file_name,
+                     std::vector<std::string>* notes) {
   const size_t first = FirstElement(xml);
-  if (first != std::string::npos && xml.compare(first, 8, "<command") == 0 &&
-      (first + 8 == xml.size() || xml[first + 8] == '>' || std::isspace(static_cast<unsigned char>(xml[first + 8])))) {
-    text = xml.substr(0, first) + "<sequence version=\"1\">" + xml.substr(first) + "\n</sequence>\n";
-    result->notes.push_back(
-        file_name + ": no <sequence> root element: read as the original's version 1 list of "
-        "commands (add <sequence version=\"1\"> ... </sequence> around them to say so)");
-  }
-  XmlDocPtr doc(xmlReadMemory(text.data(), static_cast<int>(text.size()), file_name.c_str(),
-                              nullptr, XML_PARSE_NONET | XML_PARSE_BIG_LINES));
-  if (doc == nullptr) {
-    if (diagnostics.empty()) diagnostics.Add(file_name, 0, "", "not a well-formed XML file");
-    return nullptr;
-  }
-  const xmlNode* root = xmlDocGetRootElement(doc.get());
-  if (root == nullptr) {
-    diagnostics.Add(file_name, 0, "", "no root element");
-    return nullptr;
-  }
+  if (first == std::string::npos || xml.compare(first, 8, "<command") != 0) return xml;
+  if (first + 8 < xml.size() && xml[first + 8] != '>' &&
+      !std::isspace(static_cast<unsigned char>(xml[first + 8])))
+    return xml;
+  notes->push_back(file_name +
+                   ": no <sequence> root element: read as the original's version 1 list of "
+                   "commands (add <sequence version=\"1\"> ... </sequence> around them to say so)");
+  return xml.substr(0, first) + "<sequence version=\"1\">" + xml.substr(first) + "\n</sequence>\n";
+}
+
+// The version the root says, 1 or 2; 0 after a diagnostic.
+int RootVersion(const xmlNode* root, const std::string& file_name, DiagnosticList* diagnostics) {
   if (Name(root) != "sequence") {
-    diagnostics.Add(file_name, Line(root), Name(root),
-                    "the root element must be <sequence version=\"1\"> (the original's "
-                    "<command> list) or <sequence version=\"2\">");
-    return nullptr;
+    diagnostics->Add(file_name, Line(root), Name(root),
+                     "the root element must be <sequence version=\"1\"> (the original's "
+                     "<command> list) or <sequence version=\"2\">");
+    return 0;
   }
   const std::optional<std::string> version_text = Attribute(root, "version");
   if (!version_text) {
-    diagnostics.Add(file_name, Line(root), "sequence",
-                    "no version attribute: add version=\"1\" (the original's <command>/<port> "
-                    "format) or version=\"2\"");
-    return nullptr;
+    diagnostics->Add(file_name, Line(root), "sequence",
+                     "no version attribute: add version=\"1\" (the original's <command>/<port> "
+                     "format) or version=\"2\"");
+    return 0;
   }
   const std::string v = Trim(*version_text);
   if (v != "1" && v != "2") {
-    diagnostics.Add(file_name, Line(root), "sequence",
-                    "version '" + *version_text + "' is not known (1 or 2)");
-    return nullptr;
+    diagnostics->Add(file_name, Line(root), "sequence",
+                     "version '" + *version_text + "' is not known (1 or 2)");
+    return 0;
   }
-  *version = v == "1" ? 1 : 2;
-  if (doc->intSubset != nullptr) {
-    const size_t at = text.find("<!DOCTYPE");
-    const int line = at == std::string::npos
-                         ? 0
-                         : 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
-    diagnostics.Add(file_name, line, "DOCTYPE",
-                    "a DOCTYPE is not allowed; sequences are validated against the sequencer's "
-                    "own DTD for their version");
-    return nullptr;
-  }
-  const std::string& dtd_text = SequenceDtd(*version);
-  xmlParserInputBufferPtr buffer = xmlParserInputBufferCreateMem(
-      dtd_text.data(), static_cast<int>(dtd_text.size()), XML_CHAR_ENCODING_NONE);
-  std::unique_ptr<xmlDtd, XmlDtdFree> dtd(xmlIOParseDTD(nullptr, buffer, XML_CHAR_ENCODING_NONE));
-  if (dtd == nullptr) {
-    diagnostics.Add(file_name, 0, "", "internal error: the built-in DTD does not parse");
-    return nullptr;
-  }
-  std::unique_ptr<xmlValidCtxt, XmlValidCtxtFree> validation(xmlNewValidCtxt());
-  const size_t before = diagnostics.size();
-  if (!xmlValidateDtd(validation.get(), doc.get(), dtd.get())) {
-    if (diagnostics.size() == before)
-      diagnostics.Add(file_name, 0, "", "does not follow the version " + v + " DTD");
-    return nullptr;
-  }
+  return v == "1" ? 1 : 2;
+}
+
+// Parses the file's text and validates it against the DTD of the version
+// its root names; nothing, with diagnostics, when either fails.
+std::optional<xml::Document> ParseAndValidate(const std::string& xml, const std::string& file_name,
+                                              SequenceParseResult* result, int* version) {
+  DiagnosticList& diagnostics = result->diagnostics;
+  std::optional<xml::Document> doc =
+      xml::Document::Parse(WithRoot(xml, file_name, &result->notes), file_name, &diagnostics);
+  if (!doc) return std::nullopt;
+  *version = RootVersion(doc->root(), file_name, &diagnostics);
+  if (*version == 0) return std::nullopt;
+  const std::string dtd_name = "sequence_v" + std::to_string(*version) + ".dtd";
+  if (!doc->Validate(xml::Dtd{dtd_name, SequenceDtd(*version)}, &diagnostics)) return std::nullopt;
   return doc;
+}
+
+// The root's world attribute: a world file's name (a path may lead to it).
+void ReadWorldName(const xmlNode* root, Sequence* sequence, DiagnosticList* diagnostics) {
+  const std::optional<std::string> world = Attribute(root, "world");
+  if (!world) return;
+  sequence->world = Trim(*world);
+  const std::string& name = sequence->world;
+  const std::string extension = ".xml";
+  if (name.empty()) {
+    xml::AddAt(diagnostics, sequence->file, root,
+               "world is empty: give the world file the sequence is made for, e.g. "
+               "world=\"pole_task.xml\", or leave the attribute out");
+  } else if (name.size() <= extension.size() ||
+             name.compare(name.size() - extension.size(), extension.size(), extension) != 0 ||
+             name.back() == '/' || name[name.size() - extension.size() - 1] == '/') {
+    xml::AddAt(diagnostics, sequence->file, root,
+               "world '" + *world + "' is not a world file name (NAME.xml, e.g. pole_task.xml)");
+  }
 }
 
 // Walks a valid document into segments, keeping every problem it finds.
@@ -215,8 +132,8 @@ class Builder {
 
   void Block(const xmlNode* parent, double block_start) {
     block_start_ = block_start;
-    for (const xmlNode* node = parent->children; node != nullptr && !stopped_; node = node->next) {
-      if (node->type != XML_ELEMENT_NODE) continue;
+    for (const xmlNode* node : xml::Children(parent)) {
+      if (stopped_) break;
       Item(node);
     }
   }
@@ -233,7 +150,7 @@ class Builder {
 
  private:
   void Error(const xmlNode* node, const std::string& message) {
-    diagnostics_->Add(sequence_->file, Line(node), Name(node), message);
+    xml::AddAt(diagnostics_, sequence_->file, node, message);
   }
 
   // A number attribute; nullopt (with a diagnostic) when absent but
@@ -354,7 +271,7 @@ class Builder {
       }
       if (!Time(node, &c)) return;
       // Numbers or an Echo's text: decided against the model.
-      c.text = Content(node);
+      c.text = xml::Text(node);
       if (!Room(node, 1)) return;
       Add(std::move(c));
     } else if (name == "ramp") {
@@ -367,7 +284,7 @@ class Builder {
     } else if (name == "repeat") {
       Repeat(node);
     } else if (name == "comment") {
-      Current().notes.push_back(Note{Line(node), cursor_, Content(node)});
+      Current().notes.push_back(Note{Line(node), cursor_, xml::Text(node)});
     } else {
       Error(node, "unknown element");  // the DTD stops this; kept for safety
     }
@@ -381,8 +298,8 @@ class Builder {
     const xmlNode* port = Child(node, "port");
     const xmlNode* text = Child(node, "commandString");
     if (port == nullptr || text == nullptr) return;  // the DTD requires both
-    if (!Port(port, Content(port), &c)) return;
-    c.text = Content(text);
+    if (!Port(port, xml::Text(port), &c)) return;
+    c.text = xml::Text(text);
     if (c.port == 0) {
       // The sequencer's own port: the command string is a pause [s].
       const std::optional<double> seconds = NumberText(text, "pause", c.text, false);
@@ -637,17 +554,18 @@ SequenceParseResult ParseSequence(const std::string& xml, const std::string& fil
                                   size_t max_commands) {
   SequenceParseResult result;
   int version = 0;
-  XmlDocPtr doc = ParseAndValidate(xml, file_name, &result, &version);
-  if (doc == nullptr) return result;
+  const std::optional<xml::Document> doc = ParseAndValidate(xml, file_name, &result, &version);
+  if (!doc) return result;
   Sequence sequence;
   sequence.file = file_name;
   sequence.version = version;
   sequence.rootless = !result.notes.empty();
-  const xmlNode* root = xmlDocGetRootElement(doc.get());
+  const xmlNode* root = doc->root();
   sequence.line = Line(root);
   sequence.name = Attribute(root, "name").value_or("");
   sequence.robot = Trim(Attribute(root, "robot").value_or(""));
   sequence.description = Attribute(root, "description").value_or("");
+  ReadWorldName(root, &sequence, &result.diagnostics);
   Builder builder(&sequence, &result.diagnostics, std::min(max_commands, kMaxCommands));
   builder.Block(root, 0.0);
   builder.Finish();

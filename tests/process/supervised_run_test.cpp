@@ -203,6 +203,36 @@ TEST_F(SupervisedRunTest, WrongWorldFailsBeforeServerOrLoggerStart) {
   EXPECT_FALSE(fs::exists(dir_ / "state/runs")) << out;
 }
 
+// A sequence that names its world (<sequence world="...">) runs in it when
+// no world is given (here --check: the checks only); another world given
+// is refused, naming both, before anything starts.
+TEST_F(SupervisedRunTest, SequenceRunsInTheWorldItNamesAndRefusesAnother) {
+  const std::string sequence = kSource + "/sequences/gen3_pole_task.xml";
+  ChildProcess check({"/bin/bash", kSource + "/scripts/run", "--bin", kBinary, "--state",
+                      (dir_ / "state").string(), "--check", "--sequence", sequence},
+                     (dir_ / "check.log").string());
+  EXPECT_EQ(check.Wait(std::chrono::seconds(60)).value_or(-1), 0);
+  const std::string checked = ReadText(dir_ / "check.log");
+  EXPECT_NE(checked.find("world 'PoleTask' (" + kSource + "/models/worlds/pole_task.xml)"),
+            std::string::npos)
+      << checked;
+
+  const std::string flat = kSource + "/models/worlds/gen1_flat.xml";
+  ChildProcess other({"/bin/bash", kSource + "/scripts/run", "--bin", kBinary, "--state",
+                      (dir_ / "state").string(), "--no-viewer", "--lcm-url", url_, "--sequence",
+                      sequence, "--environment=" + flat},
+                     (dir_ / "other.log").string());
+  EXPECT_EQ(other.Wait(std::chrono::seconds(60)).value_or(-1), 2);
+  const std::string refused = ReadText(dir_ / "other.log");
+  EXPECT_NE(refused.find(sequence + ":3: sequence: the sequence is made for world 'pole_task.xml' (" +
+                         kSource + "/models/worlds/pole_task.xml), not for '" + flat + "'"),
+            std::string::npos)
+      << refused;
+  EXPECT_NE(refused.find("nothing started"), std::string::npos) << refused;
+  EXPECT_FALSE(fs::exists(dir_ / "state/mariadb")) << refused;
+  EXPECT_FALSE(fs::exists(dir_ / "state/runs")) << refused;
+}
+
 // A process that dies young (within 3 s of its start) is a start-up
 // failure: the launcher backs off 0.5, 1, 2, 4 s rather than spin, and a
 // crash after a healthy run is restarted at once (the next test). The

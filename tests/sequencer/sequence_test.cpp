@@ -2,6 +2,7 @@
 // sends, the malformed corpus refused with file:line: messages, the shipped
 // sequences valid against their worlds, and --check as a function.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -186,6 +187,39 @@ TEST(SequenceFormat, UnrollingIsBounded) {
       << ramp;
 }
 
+// The DOCTYPE policy every XML file has (common/.../xml_document.h): one
+// that names the sequence's own DTD, or nothing, is fine.
+TEST(SequenceFormat, DoctypeMayNameTheVersionsDtdOnly) {
+  for (const char* doctype : {"<!DOCTYPE sequence>", "<!DOCTYPE sequence SYSTEM \"sequence_v2.dtd\">"}) {
+    const Sequence s = Parse(std::string("<?xml version=\"1.0\"?>\n") + doctype +
+                             "\n<sequence version=\"2\"><pause seconds=\"1\"/></sequence>");
+    EXPECT_EQ(s.version, 2) << doctype;
+  }
+  EXPECT_NE(FirstProblem("<?xml version=\"1.0\"?>\n<!DOCTYPE sequence SYSTEM \"sequence_v1.dtd\">\n"
+                         "<sequence version=\"2\"/>")
+                .find("test.xml:2: DOCTYPE: the DOCTYPE names 'sequence_v1.dtd'; the file is "
+                      "validated against the built-in sequence_v2.dtd"),
+            std::string::npos);
+}
+
+TEST(SequenceFormat, RootMayNameItsWorld) {
+  const Sequence s = Parse(R"(<sequence version="2" world=" pole_task.xml "><pause seconds="1"/></sequence>)");
+  EXPECT_EQ(s.world, "pole_task.xml");
+  EXPECT_EQ(Parse(R"(<sequence version="2"/>)").world, "");
+  EXPECT_EQ(FirstProblem("<sequence version=\"2\" world=\"  \"/>"),
+            "test.xml:1: sequence: world is empty: give the world file the sequence is made for, "
+            "e.g. world=\"pole_task.xml\", or leave the attribute out");
+  for (const char* bad : {"pole_task", "worlds/", ".xml", "worlds/.xml"}) {
+    EXPECT_EQ(FirstProblem(std::string("<sequence version=\"2\" world=\"") + bad + "\"/>"),
+              std::string("test.xml:1: sequence: world '") + bad +
+                  "' is not a world file name (NAME.xml, e.g. pole_task.xml)");
+  }
+  // Version 1 is the original's format: it has no world.
+  EXPECT_NE(FirstProblem(R"(<sequence version="1" world="pole_task.xml"/>)")
+                .find("No declaration for attribute world"),
+            std::string::npos);
+}
+
 TEST(SequenceFormat, DtdsAreBuiltIn) {
   EXPECT_NE(SequenceDtd(1).find("<!ELEMENT commandString"), std::string::npos);
   EXPECT_EQ(SequenceDtd(1).find("<!ELEMENT wait"), std::string::npos);
@@ -196,7 +230,7 @@ TEST(SequenceFormat, DtdsAreBuiltIn) {
 // give (checked against gen3 on flat ground).
 const std::map<std::string, std::string>& Expected() {
   static const std::map<std::string, std::string> expected = {
-      {"doctype.xml", "doctype.xml:2: DOCTYPE: a DOCTYPE is not allowed"},
+      {"doctype.xml", "doctype.xml:2: DOCTYPE: declarations inside the file are not allowed"},
       {"no_version.xml",
        "no_version.xml:2: sequence: no version attribute: add version=\"1\" (the original's "
        "<command>/<port> format) or version=\"2\""},
@@ -307,6 +341,17 @@ TEST(SequenceShipped, EveryFileChecksAgainstItsWorld) {
     const std::string name = entry.path().filename().string();
     const auto it = worlds.find(name);
     ASSERT_NE(it, worlds.end()) << name << ": which world is it for?";
+    // The file names it, and --check alone uses it.
+    const SequenceParseResult parsed = LoadSequenceFile(entry.path().string());
+    ASSERT_TRUE(parsed.sequence) << parsed.diagnostics.Format();
+    EXPECT_EQ(parsed.sequence->world, it->second) << name;
+    std::ostringstream named_out, named_err;
+    EXPECT_EQ(RunSequencer({"--check", entry.path().string()}, named_out, named_err), 0)
+        << name << "\n" << named_err.str();
+    EXPECT_NE(named_out.str().find("models/worlds/" + it->second +
+                                   "' (the world the sequence names)"),
+              std::string::npos)
+        << named_out.str();
     std::ostringstream out, err;
     const int status = RunSequencer({"--check", entry.path().string(), "--environment",
                                      kSource + "/models/worlds/" + it->second},
@@ -350,6 +395,57 @@ TEST(SequenceOfflineCheck, WithoutAWorldOnlyTheFormIsChecked) {
             0)
       << err.str();
   EXPECT_NE(out.str().find("names and ports not checked"), std::string::npos) << out.str();
+}
+
+TEST(SequenceOfflineCheck, AnotherWorldThanTheNamedOneIsRefused) {
+  const std::string sequence = kSource + "/sequences/gen3_pole_task.xml";
+  const std::string pole_task = kSource + "/models/worlds/pole_task.xml";
+  std::ostringstream out, err;
+  EXPECT_EQ(RunSequencer({"--check", sequence, "--environment", kGen3World}, out, err), 2);
+  EXPECT_NE(err.str().find(sequence + ":3: sequence: the sequence is made for world "
+                                      "'pole_task.xml' ("),
+            std::string::npos)
+      << err.str();
+  EXPECT_NE(err.str().find("pole_task.xml), not for '" + kGen3World + "'"), std::string::npos)
+      << err.str();
+  // The same world, however it is spelled, is fine.
+  std::ostringstream same_out, same_err;
+  EXPECT_EQ(RunSequencer({"--check", sequence, "--environment",
+                          kSource + "/models/../models/worlds/pole_task.xml"},
+                         same_out, same_err),
+            0)
+      << same_err.str();
+  EXPECT_EQ(same_out.str().find("(the world the sequence names)"), std::string::npos);
+}
+
+TEST(SequenceOfflineCheck, NamedWorldIsLookedForNextToTheSequenceFirst) {
+  const fs::path dir = fs::temp_directory_path() / ("sp_seq_world_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "pole_task.xml") << "<world/>\n";
+  Sequence s;
+  s.file = (dir / "task.xml").string();
+  s.line = 2;
+  s.world = "pole_task.xml";
+  EXPECT_EQ(FindSequenceWorld(s), (dir / "pole_task.xml").string());
+  fs::remove(dir / "pole_task.xml");
+  // Then as simpartner-sim finds a world: the shipped one.
+  EXPECT_EQ(fs::canonical(FindSequenceWorld(s)), fs::canonical(kSource + "/models/worlds/pole_task.xml"));
+  s.world = "no_such_world.xml";
+  try {
+    FindSequenceWorld(s);
+    ADD_FAILURE() << "no error for a world that is nowhere";
+  } catch (const ConfigError& e) {
+    const std::string text = e.diagnostics().Format();
+    EXPECT_EQ(text.rfind(s.file + ":2: sequence: world 'no_such_world.xml' is not found; tried:", 0), 0u)
+        << text;
+    EXPECT_NE(text.find("  " + (dir / "no_such_world.xml").string() + " (next to the sequence)"),
+              std::string::npos)
+        << text;
+  }
+  s.world.clear();
+  EXPECT_EQ(FindSequenceWorld(s), "");
+  EXPECT_EQ(WorldForSequence(s, kGen3World), kGen3World);
+  fs::remove_all(dir);
 }
 
 TEST(SequenceOfflineCheck, ModelFromWorldHasTheRobotsTargets) {

@@ -46,6 +46,19 @@ struct Plan {
 // diagnostics. Every problem is `file:line: element: message`.
 DiagnosticList CheckSequence(const Sequence& sequence, const model_t& model, Plan* plan);
 
+// The world file a sequence names (Sequence::world): a relative name is
+// looked for next to the sequence first, then as simpartner-sim finds
+// --environment (model::FindWorldFile: as given, then among the shipped
+// models/worlds/). "" when the sequence names none. Throws ConfigError at
+// the sequence's root, listing every path tried, when it is not found.
+std::string FindSequenceWorld(const Sequence& sequence);
+
+// The world to check or play a sequence against: given (a world file
+// found already; "" for none) or else the one the sequence names, found
+// as above. Throws ConfigError naming both when the sequence names
+// another world than the given one.
+std::string WorldForSequence(const Sequence& sequence, const std::string& given);
+
 // The model the sim would announce for a world, built without the physics
 // (model::ModelMessageFromWorld, shared with teleop's --check).
 model_t ModelFromWorld(const model::World& world);

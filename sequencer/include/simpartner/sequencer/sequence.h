@@ -69,6 +69,10 @@ struct Sequence {
   std::string file;
   int version = 0;
   std::string name, robot, description;
+  // The world file the sequence is made for, as written (version 2's
+  // world attribute, a NAME.xml); "" when it names none. FindSequenceWorld
+  // (check.h) finds the file.
+  std::string world;
   int line = 0;                     // of the <sequence> element
   bool rootless = false;            // a bare list of <command>s, read as version 1
   std::vector<Segment> segments;    // at least one

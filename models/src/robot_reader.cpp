@@ -1,0 +1,271 @@
+// A robot file: its materials, bodies and joints, the sensors and
+// actuators on them, then the checks of the robot as a whole.
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <set>
+
+#include "parts.h"
+#include "simpartner/text.h"
+
+namespace simpartner::model {
+namespace {
+
+using detail::Reader;
+
+// Legacy port attribute: integer in (1024, 65535].
+std::optional<int> ReadPort(Reader& reader, const xmlNode* node, const std::string& what) {
+  const auto text = xml::Attribute(node, "port");
+  if (!text) return 0;
+  char* end = nullptr;
+  errno = 0;
+  const long value = std::strtol(text->c_str(), &end, 10);
+  if (text->empty() || *end != '\0' || errno == ERANGE) {
+    reader.Error(node, what + ": port '" + *text + "' is not an integer");
+    return std::nullopt;
+  }
+  if (value <= 1024 || value > 65535) {
+    reader.Error(node, what + ": port " + *text + " is out of range (1025 to 65535)");
+    return std::nullopt;
+  }
+  return static_cast<int>(value);
+}
+
+SensorKind ParseSensorKind(const std::string& type) {
+  if (type == "Position") return SensorKind::kPosition;
+  if (type == "Scanner") return SensorKind::kScanner;
+  if (type == "Velocity") return SensorKind::kVelocity;
+  if (type == "ForceTorque") return SensorKind::kForceTorque;
+  return SensorKind::kEcho;
+}
+
+ActuatorKind ParseActuatorKind(const std::string& type) {
+  if (type == "AngleController") return ActuatorKind::kAngle;
+  if (type == "LinearMotor") return ActuatorKind::kLinearMotor;
+  return ActuatorKind::kJointVelocity;
+}
+
+// Names the robot file declares (the DTD's ID attributes), whether or not
+// the element passed its own checks: a reference to a body or joint that is
+// there but wrong is not reported a second time as missing.
+struct DeclaredNames {
+  std::set<std::string> bodies;
+  std::set<std::string> joints;
+};
+
+// What a sensor measures: a joint (force/torque, at the joint's second
+// body) or a body (every other kind).
+void ReadSensorTarget(Reader& reader, const xmlNode* node, const Robot& robot,
+                      const DeclaredNames& declared, const std::string& what, Sensor* sensor) {
+  const xmlNode* body_ref = xml::Child(node, "bodyRef");
+  const xmlNode* joint_ref = xml::Child(node, "jointRef");
+  if (sensor->kind == SensorKind::kForceTorque) {
+    if (joint_ref == nullptr) {
+      reader.Error(node, what + ": a ForceTorque sensor measures a joint: it needs <jointRef>");
+      return;
+    }
+    sensor->joint = xml::Text(joint_ref);
+    const Joint* joint = robot.FindJoint(sensor->joint);
+    if (joint == nullptr && declared.joints.count(sensor->joint) == 0) {
+      reader.Error(joint_ref, what + ": '" + sensor->joint + "' is not a joint of robot '" +
+                                  robot.model_name + "'");
+    } else if (joint != nullptr) {
+      sensor->body = joint->body2;
+    }
+  } else if (body_ref == nullptr) {
+    reader.Error(node, what + ": a " + ToString(sensor->kind) + " sensor needs <bodyRef>");
+  } else {
+    sensor->body = xml::Text(body_ref);
+    if (robot.FindBody(sensor->body) == nullptr && declared.bodies.count(sensor->body) == 0)
+      reader.Error(body_ref, what + ": '" + sensor->body + "' is not a body of robot '" +
+                                 robot.model_name + "'");
+  }
+}
+
+void ReadSensorMountAndRate(Reader& reader, const xmlNode* node, const std::string& what,
+                            Sensor* sensor) {
+  if (const xmlNode* t = xml::Child(node, "transformation")) {
+    if (const auto mount = reader.Transformation(t, what + " transformation")) {
+      sensor->mount = *mount;
+      if (!detail::CoordinatesInRange(mount->translation()))
+        reader.Error(t, what + ": mount position " + detail::VectorText(mount->translation()) +
+                            " m is out of range: " + detail::CoordinateRangeText());
+    }
+  }
+  if (const xmlNode* rate = xml::Child(node, "rate")) {
+    if (const auto r = reader.Number(rate, what + " rate")) {
+      if (*r < 0.0 || *r > 10000.0)
+        reader.Error(rate, what + ": rate " + FormatNumber(*r, 10) + " Hz is out of range [0, 10000]");
+      sensor->rate = *r;
+    }
+  }
+}
+
+// One scanner <parameter>: rays, halfSpan or range.
+void SetScannerParameter(Reader& reader, const xmlNode* p, const std::string& name, double value,
+                         const std::string& what, Sensor* sensor) {
+  if (name == "rays") {
+    if (value < 1 || value > 10000 || value != std::floor(value))
+      reader.Error(p, what + ": rays must be a whole number from 1 to 10000, got " +
+                          FormatNumber(value, 10));
+    else
+      sensor->rays = static_cast<int>(value);
+  } else if (name == "halfSpan") {
+    if (value < 0.0 || value > M_PI)
+      reader.Error(p, what + ": halfSpan " + FormatNumber(value, 10) + " rad is out of range [0, pi]");
+    else
+      sensor->half_span = value;
+  } else if (name == "range") {
+    if (value <= 0.0 || value > 1e4)
+      reader.Error(p, what + ": range " + FormatNumber(value, 10) + " m is out of range (0, 10000]");
+    else
+      sensor->range = value;
+  }
+}
+
+void ReadSensorParameters(Reader& reader, const xmlNode* node, const std::string& what,
+                          Sensor* sensor) {
+  std::set<std::string> seen;
+  for (const xmlNode* p : xml::Children(node, "parameter")) {
+    const std::string name = xml::Attribute(p, "name").value_or("");
+    if (sensor->kind != SensorKind::kScanner) {
+      reader.Error(p, what + ": " + ToString(sensor->kind) + " sensors have no parameter '" +
+                          name + "'");
+      continue;
+    }
+    if (!seen.insert(name).second) {
+      reader.Error(p, what + ": parameter '" + name + "' is given twice");
+      continue;
+    }
+    if (const auto value = reader.Number(p, what + " parameter " + name))
+      SetScannerParameter(reader, p, name, *value, what, sensor);
+  }
+}
+
+std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robot& robot,
+                                 const DeclaredNames& declared) {
+  Sensor sensor;
+  sensor.name = xml::Attribute(node, "name").value_or("");
+  sensor.kind = ParseSensorKind(xml::Attribute(node, "type").value_or("Echo"));
+  sensor.where = reader.Where(node);
+  const std::string what = "sensor '" + sensor.name + "'";
+  const size_t errors_before = reader.ErrorCount();
+  if (const auto port = ReadPort(reader, node, what)) sensor.port = *port;
+  ReadSensorTarget(reader, node, robot, declared, what, &sensor);
+  ReadSensorMountAndRate(reader, node, what, &sensor);
+  ReadSensorParameters(reader, node, what, &sensor);
+  if (reader.ErrorCount() != errors_before) return std::nullopt;
+  return sensor;
+}
+
+// Whether an actuator of this kind can drive a joint of that kind.
+bool Drives(ActuatorKind actuator, JointKind joint) {
+  const bool rotational = joint == JointKind::kHinge || joint == JointKind::kUniversal ||
+                          joint == JointKind::kHinge2;
+  switch (actuator) {
+    case ActuatorKind::kLinearMotor: return joint == JointKind::kSlider;
+    case ActuatorKind::kAngle: return rotational;
+    default: return rotational || joint == JointKind::kSlider;
+  }
+}
+
+std::optional<Actuator> ReadActuator(Reader& reader, const xmlNode* node, const Robot& robot,
+                                     const DeclaredNames& declared) {
+  Actuator actuator;
+  actuator.name = xml::Attribute(node, "name").value_or("");
+  actuator.kind = ParseActuatorKind(xml::Attribute(node, "type").value_or(""));
+  actuator.where = reader.Where(node);
+  const std::string what = "actuator '" + actuator.name + "'";
+  const size_t errors_before = reader.ErrorCount();
+  if (const auto port = ReadPort(reader, node, what)) actuator.port = *port;
+  const xmlNode* joint_ref = xml::Child(node, "jointRef");
+  actuator.joint = xml::Text(joint_ref);
+  const Joint* joint = robot.FindJoint(actuator.joint);
+  if (joint == nullptr) {
+    if (declared.joints.count(actuator.joint) == 0)
+      reader.Error(joint_ref, what + ": '" + actuator.joint + "' is not a joint of robot '" +
+                                  robot.model_name + "'");
+  } else if (!Drives(actuator.kind, joint->kind)) {
+    reader.Error(joint_ref, what + ": a " + ToString(actuator.kind) + " cannot drive " +
+                                ToString(joint->kind) + " joint '" + actuator.joint + "'");
+  }
+  if (reader.ErrorCount() != errors_before) return std::nullopt;
+  return actuator;
+}
+
+// Materials, bodies and the joints between them. Body names come from the
+// DTD-validated ID attributes, so a joint that names a body which failed
+// its own checks is judged against all names.
+void ReadRobotStructure(Reader& reader, const xmlNode* root, const DeclaredNames& declared,
+                        Robot* robot) {
+  for (const xmlNode* n : xml::Children(root, "material"))
+    if (auto m = detail::ReadMaterial(reader, n)) robot->materials.push_back(*m);
+  for (const xmlNode* n : xml::Children(root, "body"))
+    if (auto b = detail::ReadBody(reader, n, "body")) robot->bodies.push_back(*b);
+  const std::string owner = "robot '" + robot->model_name + "'";
+  auto body_exists = [&](const std::string& name) { return declared.bodies.count(name) > 0; };
+  for (const xmlNode* n : xml::Children(root, "joint"))
+    if (auto joint = detail::ReadJoint(reader, n, body_exists, owner))
+      robot->joints.push_back(*joint);
+}
+
+DeclaredNames NamesDeclared(const xmlNode* root) {
+  DeclaredNames declared;
+  for (const xmlNode* n : xml::Children(root, "body"))
+    declared.bodies.insert(xml::Attribute(n, "name").value_or(""));
+  for (const xmlNode* n : xml::Children(root, "joint"))
+    declared.joints.insert(xml::Attribute(n, "name").value_or(""));
+  return declared;
+}
+
+// The robot as a whole: connected, rolling bodies with an axis, mass
+// ratios (only when all else is right), unique ports.
+void CheckRobot(Reader& reader, const xmlNode* root, const Robot& robot,
+                const DiagnosticList& diagnostics) {
+  detail::CheckConnected(reader, root);
+  // Bodies of the robot's own materials; a world's material of the same
+  // name is checked by the world.
+  detail::CheckRollingBodies(reader, robot.bodies, robot.joints, "body",
+                             [&](const std::string& name) {
+                               for (const Material& m : robot.materials)
+                                 if (m.name == name) return &m;
+                               return static_cast<const Material*>(nullptr);
+                             });
+  if (diagnostics.empty()) detail::CheckMassRatios(reader, robot.bodies, robot.joints, true);
+  std::map<int, std::string> ports;
+  detail::CheckUniquePorts(reader, robot, &ports, nullptr, "");
+}
+
+}  // namespace
+
+RobotLoadResult ParseRobot(const std::string& xml, const std::string& file_name) {
+  RobotLoadResult result;
+  const std::optional<xml::Document> doc = xml::Document::Read(
+      xml, file_name, "robot", xml::Dtd{"robot.dtd", RobotDtd()}, &result.diagnostics);
+  if (!doc) return result;
+  Reader reader(file_name, &result.diagnostics);
+  const xmlNode* root = doc->root();
+  Robot robot;
+  robot.file = file_name;
+  robot.model_name = xml::Attribute(root, "name").value_or("");
+  robot.description = xml::Text(xml::Child(root, "description"));
+  const DeclaredNames declared = NamesDeclared(root);
+  ReadRobotStructure(reader, root, declared, &robot);
+  for (const xmlNode* n : xml::Children(root, "sensor"))
+    if (auto s = ReadSensor(reader, n, robot, declared)) robot.sensors.push_back(*s);
+  for (const xmlNode* n : xml::Children(root, "actuator"))
+    if (auto a = ReadActuator(reader, n, robot, declared)) robot.actuators.push_back(*a);
+  CheckRobot(reader, root, robot, result.diagnostics);
+  if (result.diagnostics.empty()) result.robot = std::move(robot);
+  return result;
+}
+
+RobotLoadResult LoadRobotFile(const std::string& path, const FileReader& read) {
+  std::string xml;
+  RobotLoadResult result;
+  if (!detail::ReadModelFile(path, read, "robot", &xml, &result.diagnostics)) return result;
+  return ParseRobot(xml, path);
+}
+
+}  // namespace simpartner::model
