@@ -14,6 +14,8 @@
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/state_request_t.hpp"
+#include "simpartner/sync_t.hpp"
+#include "simpartner/text.h"
 
 namespace simpartner::sim {
 namespace {
@@ -86,6 +88,7 @@ SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd)
   lcm_->subscribe(channels::kControl, &SimNode::OnControl, this)->setQueueCapacity(100);
   lcm_->subscribe(channels::kModelRequest, &SimNode::OnModelRequest, this)->setQueueCapacity(100);
   lcm_->subscribe(channels::kStateRequest, &SimNode::OnStateRequest, this)->setQueueCapacity(100);
+  lcm_->subscribe(channels::kSync, &SimNode::OnSync, this)->setQueueCapacity(1000);
   last_status_time_ = Clock::now();
 }
 
@@ -128,6 +131,26 @@ bool SimNode::DecodeInput(const lcm::ReceiveBuffer* buffer, const std::string& c
 void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   command_t command;
   if (!DecodeInput(buffer, channel, &command)) return;
+  SubmitCommand(command);
+}
+
+bool SimNode::MayAnswerRefusal() {
+  // A flood of bad messages must not double itself into a flood of replies
+  // (which every process on the bus, the sim included, would have to read).
+  const auto now = Clock::now();
+  if (now - refusal_window_start_ >= std::chrono::seconds(1)) {
+    refusal_window_start_ = now;
+    refusal_replies_in_window_ = 0;
+  }
+  if (refusal_replies_in_window_ >= kRefusalRepliesPerSecond) {
+    ++refusal_replies_withheld_;
+    return false;
+  }
+  ++refusal_replies_in_window_;
+  return true;
+}
+
+void SimNode::SubmitCommand(const command_t& command) {
   if (auto rejection = sim_->Submit(command)) {
     ++commands_rejected_;
     // Every sender gets its reply; the terminal gets the first refusals
@@ -143,20 +166,8 @@ void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& cha
                               std::to_string(BadMessageCounter::kPrintEvery) + " is printed)"
                         : std::string())
                 << "\n";
-    // Refusals are answered at up to kRefusalRepliesPerSecond: a flood of
-    // bad commands must not double itself into a flood of replies (which
-    // every process on the bus, the sim included, would have to read).
-    const auto now = Clock::now();
-    if (now - refusal_window_start_ >= std::chrono::seconds(1)) {
-      refusal_window_start_ = now;
-      refusal_replies_in_window_ = 0;
-    }
-    if (refusal_replies_in_window_ < kRefusalRepliesPerSecond) {
-      ++refusal_replies_in_window_;
-      Publish(channels::kCommandReply, *rejection);
-    } else {
-      ++refusal_replies_withheld_;
-    }
+    // Refusals are answered at up to kRefusalRepliesPerSecond.
+    if (MayAnswerRefusal()) Publish(channels::kCommandReply, *rejection);
   }
 }
 
@@ -202,6 +213,7 @@ void SimNode::OnControl(const lcm::ReceiveBuffer* buffer, const std::string& cha
       break;
     case control_t::ACTION_RESET:
       sim_->Reset(NowMicros());
+      lock_step_.Clear();  // they were synchronous with the old simulation
       peers_.AddOwnId(sim_->simulation_id());
       steps_to_run_ = 0;
       schedule_anchored_ = false;
@@ -253,6 +265,34 @@ void SimNode::OnStateRequest(const lcm::ReceiveBuffer* buffer, const std::string
     return;
   }
   state_requested_ = true;
+}
+
+void SimNode::OnSync(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  sync_t message;
+  if (!DecodeInput(buffer, channel, &message)) return;
+  if (message.simulation_id != 0 && message.simulation_id != sim_->simulation_id()) {
+    ReportBadMessage(channel, "action " + std::to_string(message.action) + " of controller '" +
+                                  message.controller + "' is for simulation_id " +
+                                  std::to_string(message.simulation_id) + "; this is " +
+                                  std::to_string(sim_->simulation_id()));
+    return;
+  }
+  const int64_t step = sim_->step();
+  LockStep::Outcome outcome = lock_step_.Handle(message, step);
+  if (outcome.refused) ReportBadMessage(channel, outcome.reply->reason);
+  if (outcome.reply && (!outcome.refused || MayAnswerRefusal())) {
+    outcome.reply->simulation_id = sim_->simulation_id();
+    Publish(channels::kSyncReply, *outcome.reply);
+  }
+  if (outcome.refused) return;
+  if (message.action != sync_t::ACTION_DONE) status_changed_ = true;
+  // A controller whose first tick is this very step needs its state, which
+  // went out before it joined (or never: a paused sim at step 0).
+  if (outcome.reply && outcome.reply->event == sync_reply_t::EVENT_JOINED &&
+      outcome.reply->tick == step)
+    state_requested_ = true;
+  // The last answer awaited: stop waiting for input, step.
+  if (message.action == sync_t::ACTION_DONE && lock_step_.WaitingOn(step).empty()) wake_ = true;
 }
 
 void SimNode::ReplyState() {
@@ -366,11 +406,50 @@ void SimNode::CollectWarnings() {
   }
 }
 
-void SimNode::PublishPending() {
+bool SimNode::WaitingForControllers() {
+  const int64_t step = sim_->step();
+  const std::vector<std::string> waiting = lock_step_.WaitingOn(step);
+  if (waiting.empty()) {
+    wait_tick_ = -1;
+    for (const command_t& command : lock_step_.TakeAnswers(step)) SubmitCommand(command);
+    return false;
+  }
+  const auto now = Clock::now();
+  if (wait_tick_ != step) {
+    wait_tick_ = step;
+    wait_start_ = now;
+  }
+  const auto timeout = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(sim_->params().lockStepTimeout));
+  if (now - wait_start_ < timeout) {
+    HandleIncoming(std::min<Clock::duration>(timeout - (now - wait_start_),
+                                             std::chrono::milliseconds(10)));
+    return true;
+  }
+  // Never a silent hang: a controller that died, stalls or was cut off is
+  // named and released, and the run goes on without it.
+  const std::string reason = "no answer for tick " + std::to_string(step) + " within " +
+                             FormatNumber(sim_->params().lockStepTimeout) +
+                             " s (lockStepTimeout); from this tick on it is not synchronous";
+  for (sync_reply_t& reply : lock_step_.ReleaseWaiting(step, reason)) {
+    Warn(warning_t::SEVERITY_ERROR, "lockstep",
+         "released controller '" + reply.controller + "' (" + reply.sender + ", period " +
+             std::to_string(reply.period) + "): " + reason + "; the run goes on");
+    reply.simulation_id = sim_->simulation_id();
+    Publish(channels::kSyncReply, reply);
+  }
+  return WaitingForControllers();
+}
+
+void SimNode::PublishReplies() {
   for (const command_reply_t& reply : sim_->TakeReplies()) {
     ++commands_accepted_;
     Publish(channels::kCommandReply, reply);
   }
+}
+
+void SimNode::PublishPending() {
+  PublishReplies();
   for (const sensor_reading_t& reading : sim_->TakeSensorReadings())
     Publish(channels::kSensor, reading);
   CollectWarnings();
@@ -385,7 +464,10 @@ void SimNode::StepAndPublish() {
   ++compute_steps_;
   ++steps_taken_;
   if (ok) {
-    if (sim_->step() % sim_->params().stateEvery == 0) {
+    // The replies to what this step applied go before its state, so that a
+    // lock-step controller has them when its next tick's state comes.
+    PublishReplies();
+    if (sim_->step() % sim_->params().stateEvery == 0 || lock_step_.IsTick(sim_->step())) {
       state_t state;
       sim_->FillState(&state);
       Publish(channels::kState, state);
@@ -438,6 +520,8 @@ void SimNode::PublishStatus() {
   status.bad_messages = bad_messages_;
   status.warnings.assign(recent_warnings_.begin(), recent_warnings_.end());
   status.num_warnings = static_cast<int16_t>(status.warnings.size());
+  status.sync_controllers = lock_step_.Describe(sim_->step());
+  status.num_sync_controllers = static_cast<int16_t>(status.sync_controllers.size());
   Publish(channels::kStatus, status);
   status_changed_ = false;
   if (progress_ != nullptr && now - last_progress_ >= kProgressEvery) {
@@ -452,6 +536,22 @@ void SimNode::PublishStatus() {
       *progress_ << ", " << commands_rejected_ << " commands refused, " << bad_messages_
                  << " bad messages";
     *progress_ << std::endl;
+  }
+}
+
+void SimNode::PublishDue(Clock::time_point* next_model, Clock::time_point* next_status,
+                         Clock::duration model_period, Clock::duration status_period) {
+  ReplyState();
+  const auto now = Clock::now();
+  if (model_requested_ || now >= *next_model) {
+    PublishModel();
+    model_requested_ = false;
+    *next_model = now + model_period;
+  }
+  if (status_changed_ || now >= *next_status) {
+    if (now >= *next_status) ReportInputDeferrals();
+    PublishStatus();
+    *next_status = now + status_period;
   }
 }
 
@@ -474,6 +574,31 @@ std::string SimNode::Summary() const {
   return text;
 }
 
+bool SimNode::WaitForDeadline() {
+  // Real-time (or N x) pacing against absolute deadlines: the n-th step is
+  // due at anchor + n * stepsize / speed, so waiting never drifts.
+  const auto step_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(sim_->params().stepsize / speed_));
+  const auto now = Clock::now();
+  if (!schedule_anchored_ || now - next_deadline_ > kMaxLag) {
+    if (schedule_anchored_) {
+      // Sim time now lags wall time for good by this much: say so, since
+      // anyone comparing the two (a logger, a real-robot log) must know.
+      const double behind_ms = std::chrono::duration<double, std::milli>(now - next_deadline_).count();
+      Warn(warning_t::SEVERITY_WARNING, "realtime",
+           "fell " + FormatMs(behind_ms) +
+               " ms behind real time (machine too slow, stalled or waiting for a lock-step "
+               "controller); re-anchored, sim time now lags wall time by that much more");
+    }
+    next_deadline_ = now;
+    schedule_anchored_ = true;
+  }
+  HandleIncoming(next_deadline_ > now ? next_deadline_ - now : Clock::duration::zero());
+  if (wake_ && !quit_) return false;
+  next_deadline_ += step_period;
+  return true;
+}
+
 int SimNode::Run() {
   const Parameters& params = sim_->params();
   const int64_t last_step =
@@ -490,36 +615,19 @@ int SimNode::Run() {
 
   while (!quit_) {
     const bool stepping = !sim_->faulted() && (!paused_ || steps_to_run_ > 0);
+    if (!stepping) wait_tick_ = -1;  // the lock-step timeout counts while stepping only
+    if (stepping && WaitingForControllers()) {
+      PublishDue(&next_model, &next_status, model_period, status_period);
+      continue;
+    }
     if (stepping && speed_ > 0 && !paused_) {
-      // Real-time (or N x) pacing against absolute deadlines: the n-th step
-      // is due at anchor + n * stepsize / speed, so waiting never drifts.
-      const auto step_period = std::chrono::duration_cast<Clock::duration>(
-          std::chrono::duration<double>(params.stepsize / speed_));
-      auto now = Clock::now();
-      if (!schedule_anchored_ || now - next_deadline_ > kMaxLag) {
-        if (schedule_anchored_) {
-          // Sim time now lags wall time for good by this much: say so, since
-          // anyone comparing the two (a logger, a real-robot log) must know.
-          const double behind_ms =
-              std::chrono::duration<double, std::milli>(now - next_deadline_).count();
-          Warn(warning_t::SEVERITY_WARNING, "realtime",
-               "fell " + FormatMs(behind_ms) +
-                   " ms behind real time (machine too slow or stalled); re-anchored, sim "
-                   "time now lags wall time by that much more");
-        }
-        next_deadline_ = now;
-        schedule_anchored_ = true;
-      }
-      if (next_deadline_ > now) HandleIncoming(next_deadline_ - now);
-      else HandleIncoming(Clock::duration::zero());
-      if (wake_ && !quit_) {
+      if (!WaitForDeadline()) {
         // A control changed the schedule before this step was due: decide
         // again under the new one, publishing what changed.
         PublishPending();
         if (status_changed_) PublishStatus();
         continue;
       }
-      next_deadline_ += step_period;
     } else if (stepping) {
       HandleIncoming(Clock::duration::zero());
     } else {
@@ -528,6 +636,11 @@ int SimNode::Run() {
     ReportOtherSimulations();
     if (quit_) break;
     const bool still_stepping = !sim_->faulted() && (!paused_ || steps_to_run_ > 0);
+    if (still_stepping && !lock_step_.WaitingOn(sim_->step()).empty()) {
+      // A controller joined while this step was due: it answers first.
+      PublishDue(&next_model, &next_status, model_period, status_period);
+      continue;
+    }
     if (still_stepping) {
       StepAndPublish();
       if (steps_to_run_ > 0 && --steps_to_run_ == 0) status_changed_ = true;
@@ -535,18 +648,7 @@ int SimNode::Run() {
     } else {
       PublishPending();
     }
-    ReplyState();
-    const auto now = Clock::now();
-    if (model_requested_ || now >= next_model) {
-      PublishModel();
-      model_requested_ = false;
-      next_model = now + model_period;
-    }
-    if (status_changed_ || now >= next_status) {
-      if (now >= next_status) ReportInputDeferrals();
-      PublishStatus();
-      next_status = now + status_period;
-    }
+    PublishDue(&next_model, &next_status, model_period, status_period);
   }
   PublishStatus();  // RUN_STOPPED
   return 0;

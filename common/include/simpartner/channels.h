@@ -13,5 +13,7 @@ inline constexpr const char* kCommandReply = "SIM_COMMAND_REPLY";   // command_r
 inline constexpr const char* kSensor = "SIM_SENSOR";                // sensor_reading_t
 inline constexpr const char* kControl = "SIM_CONTROL";              // control_t
 inline constexpr const char* kStatus = "SIM_STATUS";                // status_t
+inline constexpr const char* kSync = "SIM_SYNC";                    // sync_t
+inline constexpr const char* kSyncReply = "SIM_SYNC_REPLY";         // sync_reply_t
 
 }  // namespace simpartner::channels

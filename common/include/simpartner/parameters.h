@@ -69,6 +69,7 @@ struct Parameters {
   double statusPeriod = 1.0;
   double maxLinearVelocity = 1000.0;
   double maxAngularVelocity = 10000.0;
+  double lockStepTimeout = 5.0;
 
   // Transport.
   std::string lcmUrl = kDefaultLcmUrl;
@@ -147,6 +148,9 @@ struct Parameters {
              "[m/s] a body faster than this is an explosion: the sim pauses");
     v.Double("maxAngularVelocity", maxAngularVelocity, 0.0, kInf,
              "[rad/s] likewise for rotation");
+    v.Double("lockStepTimeout", lockStepTimeout, 0.01, 3600.0,
+             "[s] wall time the sim waits for a synchronous (lock-step) controller's "
+             "answer to a tick before it releases it and runs on without it");
 
     v.Section(parameter_sections::kTransport);
     v.String("lcmUrl", lcmUrl,

@@ -2,7 +2,9 @@
 // deadlines (or as fast as possible), publishes SIM_STATE, SIM_SENSOR,
 // SIM_COMMAND_REPLY, SIM_MODEL (at start, every modelPeriod and on request),
 // SIM_STATE_REPLY (on request, running or paused) and SIM_STATUS (every
-// statusPeriod and on every change), and obeys SIM_COMMAND and SIM_CONTROL. Undecodable messages are counted and
+// statusPeriod and on every change), and obeys SIM_COMMAND and SIM_CONTROL.
+// Synchronous controllers join over SIM_SYNC (lock_step.h): at each of
+// their ticks the node waits for their answers before the next step. Undecodable messages are counted and
 // reported, never acted on.
 #pragma once
 
@@ -15,6 +17,7 @@
 #include <string>
 
 #include "simpartner/bus_decode.h"
+#include "simpartner/sim/lock_step.h"
 #include "simpartner/sim/peer_watch.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/status_t.hpp"
@@ -74,6 +77,25 @@ class SimNode {
   void OnControl(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnModelRequest(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnStateRequest(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnSync(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  // Checks a command with the simulation; a refusal is reported and
+  // answered (rate-limited).
+  void SubmitCommand(const command_t& command);
+  // Lock-step: true while a synchronous controller due at the current
+  // step has not answered (input is handled meanwhile); releases the ones
+  // silent past lockStepTimeout. Once all answered, submits their
+  // commands for the next step and returns false.
+  bool WaitingForControllers();
+  // Waits for the next step's deadline at speed_ (> 0), handling input;
+  // false when a control or a lock-step answer woke it first.
+  bool WaitForDeadline();
+  void PublishReplies();
+  // What is due besides the steps: state replies, the model (on request
+  // and every modelPeriod), the status (on change and every statusPeriod).
+  void PublishDue(Clock::time_point* next_model, Clock::time_point* next_status,
+                  Clock::duration model_period, Clock::duration status_period);
+  // Refusal replies (commands, sync marks) share kRefusalRepliesPerSecond.
+  bool MayAnswerRefusal();
   // Answers pending state requests, at most kStateRepliesPerSecond.
   void ReplyState();
   // Decodes through the shared total decoder; a refusal is counted and
@@ -103,6 +125,9 @@ class SimNode {
   PeerWatch peers_;
   bool quit_ = false;
   bool paused_ = false;
+  LockStep lock_step_;
+  int64_t wait_tick_ = -1;                 // the tick being waited at, -1: none
+  Clock::time_point wait_start_{};
   bool model_requested_ = false;
   bool state_requested_ = false;
   Clock::time_point last_state_reply_{};
