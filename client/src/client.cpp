@@ -37,6 +37,7 @@ std::vector<uint8_t> Encode(const T& message) {
 }
 
 constexpr size_t kMaxKeptReplies = 4096;
+constexpr size_t kMaxKeptSyncReplies = 64;
 
 }  // namespace
 
@@ -54,7 +55,8 @@ Client::Client(ClientOptions options)
     throw ClientError("cannot open the LCM bus '" + options_.url +
                       "' (expected e.g. udpm://239.255.76.67:7667?ttl=0)");
   for (const char* channel : {channels::kModel, channels::kState, channels::kStateReply,
-                              channels::kStatus, channels::kCommandReply, channels::kSensor}) {
+                              channels::kStatus, channels::kCommandReply, channels::kSensor,
+                              channels::kSyncReply}) {
     lcm::Subscription* subscription = lcm_->subscribe(
         channel, &Client::OnMessageBuffer, this);
     subscription->setQueueCapacity(1000);
@@ -148,6 +150,14 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     if (reply.sender != sender_) return;  // every client sees every reply
     replies_[reply.request_id] = reply;
     while (replies_.size() > kMaxKeptReplies) replies_.erase(replies_.begin());
+    changed_.notify_all();
+  } else if (channel == channels::kSyncReply) {
+    sync_reply_t reply;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (refused(DecodeFromBus(channel, data, size, &reply, &bad_messages_, &print))) return;
+    if (reply.sender != sender_) return;  // every client sees every reply
+    sync_replies_.push_back(std::move(reply));
+    while (sync_replies_.size() > kMaxKeptSyncReplies) sync_replies_.pop_front();
     changed_.notify_all();
   } else if (channel == channels::kSensor) {
     sensor_reading_t reading;
@@ -289,6 +299,67 @@ void Client::RequestModel() {
   Publish(channels::kModelRequest, bytes.data(), static_cast<int>(bytes.size()));
 }
 
+int64_t Client::LockStepTick() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return lock_step_controller_.empty() ? -1 : lock_step_tick_;
+}
+
+void Client::PublishSync(sync_t message) {
+  message.utime = WallMicros();
+  message.sender = sender_;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    message.simulation_id = options_.any_simulation || !catalog_ ? 0 : catalog_->simulation_id();
+  }
+  message.num_commands = static_cast<int32_t>(message.commands.size());
+  const std::vector<uint8_t> bytes = Encode(message);
+  Publish(channels::kSync, bytes.data(), static_cast<int>(bytes.size()));
+}
+
+std::optional<sync_reply_t> Client::TakeSyncReply(const std::string& controller) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (auto it = sync_replies_.begin(); it != sync_replies_.end(); ++it) {
+    if (it->controller != controller) continue;
+    sync_reply_t reply = std::move(*it);
+    sync_replies_.erase(it);
+    return reply;
+  }
+  return std::nullopt;
+}
+
+std::optional<state_t> Client::WaitForStepOrSyncReply(int64_t step, Clock::duration wait) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const size_t replies = sync_replies_.size();
+  changed_.wait_for(lock, wait, [&] {
+    return restart_ || (state_ && state_->step >= step) || sync_replies_.size() != replies;
+  });
+  ThrowIfRestarted();
+  if (state_ && state_->step >= step) return state_;
+  return std::nullopt;
+}
+
+void Client::EnterLockStep(const std::string& controller, int64_t tick) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  lock_step_controller_ = controller;
+  lock_step_tick_ = tick;
+  lock_step_queue_.clear();
+}
+
+std::vector<command_t> Client::TakeLockStepCommands(int64_t next_tick) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<command_t> commands;
+  commands.swap(lock_step_queue_);
+  lock_step_tick_ = next_tick;
+  return commands;
+}
+
+void Client::LeaveLockStep() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  lock_step_controller_.clear();
+  lock_step_tick_ = -1;
+  lock_step_queue_.clear();
+}
+
 void Client::PublishStateRequest() {
   state_request_t request{};
   request.utime = WallMicros();
@@ -325,16 +396,20 @@ state_t Client::RequestState(double timeout) {
 }
 
 int64_t Client::Send(command_t command) {
+  command.utime = WallMicros();
+  command.sender = sender_;
+  command.num_values = static_cast<int32_t>(command.values.size());
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ThrowIfRestarted();
     command.request_id = next_request_id_++;
     command.simulation_id =
         options_.any_simulation || !catalog_ ? 0 : catalog_->simulation_id();
+    if (!lock_step_controller_.empty()) {
+      lock_step_queue_.push_back(command);
+      return command.request_id;
+    }
   }
-  command.utime = WallMicros();
-  command.sender = sender_;
-  command.num_values = static_cast<int32_t>(command.values.size());
   const std::vector<uint8_t> bytes = Encode(command);
   Publish(channels::kCommand, bytes.data(), static_cast<int>(bytes.size()));
   return command.request_id;
@@ -346,6 +421,10 @@ int64_t Client::Send(const std::string& target, int action, const std::string& t
 }
 
 command_reply_t Client::Command(command_t command, double timeout) {
+  if (LockStepTick() >= 0)
+    throw ClientError("a command cannot wait for its reply in lock-step: the sim replies when "
+                      "it steps, and it waits for this controller's answer; Send it, and "
+                      "LockStep::Next reports a refusal");
   if (timeout < 0) timeout = options_.reply_timeout;
   const std::string target = command.target.empty() ? "port " + std::to_string(command.port)
                                                      : command.target;

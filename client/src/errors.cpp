@@ -70,4 +70,9 @@ BadValues::BadValues(std::string target, std::string field, std::string value,
       value_(std::move(value)),
       expected_(std::move(expected)) {}
 
+LockStepError::LockStepError(std::string controller, std::string what, int64_t tick)
+    : ClientError("lock-step controller '" + controller + "': " + what),
+      controller_(std::move(controller)),
+      tick_(tick) {}
+
 }  // namespace simpartner::client

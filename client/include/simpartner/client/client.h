@@ -26,6 +26,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -45,6 +46,8 @@
 #include "simpartner/sensor_reading_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "simpartner/sync_reply_t.hpp"
+#include "simpartner/sync_t.hpp"
 
 namespace lcm {
 class LCM;
@@ -53,8 +56,11 @@ class ReceiveBuffer;
 
 namespace simpartner::client {
 
+class LockStep;
+
 // The message types, so that `using namespace simpartner::client;` is all
 // a controller needs.
+using simpartner::body_state_t;
 using simpartner::command_reply_t;
 using simpartner::command_t;
 using simpartner::model_t;
@@ -104,6 +110,9 @@ class Client {
   // learned model's, or 0 with any_simulation), publishes, returns
   // the request id (its reply can be looked up with TakeReply). Throws
   // SimRestarted when the sim restarted since the model was learned.
+  // In lock-step (a LockStep on this client) the command is not published
+  // but goes with the answer to the current tick: it applies in the step
+  // after it, and LockStep::Next throws Refused if the sim refused it.
   int64_t Send(command_t command);
   // Builds (BuildCommandFromText) and sends.
   int64_t Send(const std::string& target, int action, const std::string& text,
@@ -112,7 +121,9 @@ class Client {
   // previous_text hold the setting it replaced); throws Refused, Timeout
   // (timeout < 0: options.reply_timeout), SimRestarted. An accepted
   // command is answered when it is applied, so one with apply_at_step
-  // ahead of the sim waits until that step.
+  // ahead of the sim waits until that step. In lock-step it throws
+  // ClientError: the reply comes only after the sim steps, which waits
+  // for this controller; use Send.
   command_reply_t Command(command_t command, double timeout = -1);
   command_reply_t Command(const std::string& target, int action, const std::string& text,
                           int64_t apply_at_step = -1, double timeout = -1);
@@ -171,6 +182,10 @@ class Client {
   // Bad messages received, "SIM_STATE 2, ..." or "".
   std::string BadMessageSummary() const;
 
+  // The lock-step tick whose answer Send adds to, or -1 when not in
+  // lock-step.
+  int64_t LockStepTick() const;
+
  private:
   using Clock = std::chrono::steady_clock;
   void ReceiveLoop();
@@ -183,6 +198,19 @@ class Client {
   void SendControl(int action, int64_t steps, double speed);
   void ThrowIfRestarted() const;  // requires mutex_ held
   void RequestModel();
+  // For LockStep: the bus side of the lock-step protocol.
+  friend class LockStep;
+  void PublishSync(sync_t message);
+  // The oldest SIM_SYNC_REPLY for this sender and `controller`, taken.
+  std::optional<sync_reply_t> TakeSyncReply(const std::string& controller);
+  // Waits up to `wait` for a state (SIM_STATE or SIM_STATE_REPLY) of step
+  // >= step, or a reply on SIM_SYNC_REPLY; the state when there is one.
+  // Throws SimRestarted.
+  std::optional<state_t> WaitForStepOrSyncReply(int64_t step, Clock::duration wait);
+  void EnterLockStep(const std::string& controller, int64_t tick);
+  // The commands Send queued for the current tick, taken; then the tick.
+  std::vector<command_t> TakeLockStepCommands(int64_t next_tick);
+  void LeaveLockStep();
   void PublishStateRequest();
   // Takes a decoded SIM_STATE or SIM_STATE_REPLY; false when it is not a
   // state of the learned simulation. Requires mutex_ held.
@@ -219,6 +247,12 @@ class Client {
   std::atomic<bool> catalog_known_{false};
   BadMessageCounter bad_messages_;
   int64_t next_request_id_ = 1;
+  // Lock-step (LockStep): the controller ("" when not in lock-step), its
+  // current tick and the commands queued for its answer.
+  std::string lock_step_controller_;
+  int64_t lock_step_tick_ = -1;
+  std::vector<command_t> lock_step_queue_;
+  std::deque<sync_reply_t> sync_replies_;  // for this sender, oldest first (bounded)
   std::atomic<bool> stop_{false};
   std::thread receiver_;
 };

@@ -79,6 +79,20 @@ class SimRestarted : public ClientError {
   int64_t old_id_, new_id_;
 };
 
+// Lock-step (lock_step.h): the sim refused a JOIN, LEAVE or done mark, or
+// released this controller (it did not answer a tick within the sim's
+// lockStepTimeout). tick: the tick concerned, -1 when none.
+class LockStepError : public ClientError {
+ public:
+  LockStepError(std::string controller, std::string what, int64_t tick);
+  const std::string& controller() const { return controller_; }
+  int64_t tick() const { return tick_; }
+
+ private:
+  std::string controller_;
+  int64_t tick_;
+};
+
 // Values that do not fit the target before anything is sent.
 class BadValues : public ClientError {
  public:
