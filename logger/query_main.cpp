@@ -8,66 +8,63 @@
 #include <fstream>
 #include <iostream>
 
+#include "simpartner/command_line.h"
 #include "simpartner/logger/query.h"
 
 namespace {
 
-const std::vector<simpartner::FlagSpec> kFlags = {
-    {"db-options", true,
-     "MariaDB client option file (default, when dbserver is empty: reader.cnf of the private "
-     "server of simpartner-mariadb, in $SIMPARTNER_STATE/mariadb, ./state/mariadb, then "
-     "~/.local/state/simpartner/mariadb when installed or the source tree's state/mariadb; "
-     "delete, prune, storage and compress: admin.cnf there)"},
-    {"body", true, "poses, forces, plot: only this body (e.g. Wheel1)"},
-    {"joint", true, "joints, plot: only this joint (e.g. Axle1)"},
-    {"out", true, "write the CSV (or the plot's PNG) to this file; -o is the same"},
-    {"from", true, "export, plot: only from this simulation time [s]"},
-    {"to", true, "export, plot: only up to this simulation time [s]"},
-    {"every", true, "export: every Nth logged step of the range"},
-    {"velocities", false, "poses: add vx, vy, vz [m/s] (central differences of x, y, z)"},
-    {"unwrap", false, "joints: continuous rotational angles (no jump at +-pi)"},
-    {"keep", true, "prune: how many of the newest simulations to keep"},
-    {"force", false, "delete: even a simulation that is still open"},
-};
-
-const char* kSummary =
-    "Commands:\n"
-    "  list                  the logged simulations\n"
-    "  names SIM             its bodies and joints\n"
-    "  poses SIM             position (m) and axis-angle (rad) of every body per step, CSV\n"
-    "  forces SIM            contact force (N) and torque (N m) on every body per step, CSV\n"
-    "  joints SIM            joint anchors, angles, rates and constraint force on body1, CSV\n"
-    "  plot WHAT SIM         a PNG (-o FILE.png) or, with DISPLAY and no -o, a window\n"
-    "                        (the command ends when the window is closed); WHAT:\n"
-    "                        position, velocity (--body B), angle, rate, force (--joint J),\n"
-    "                        wheel-forces, track (x-z from above; --body, default the chassis)\n"
-    "  delete SIM            remove one simulation (administrator; not while open without --force)\n"
-    "  prune --keep N        remove all but the newest N simulations (administrator)\n"
-    "  storage               size of the per-step tables: rows, bytes, on disk (administrator)\n"
-    "  compress on|off       InnoDB page compression of the per-step tables; rebuilds them\n"
-    "                        (administrator; same columns, so every query runs unchanged)\n"
-    "SIM is a simulationID from 'list', 'last' (the newest) or 'running' (the newest still open).";
-
-double NumberFlag(const simpartner::CommandLine& command_line, const std::string& flag,
-                  double fallback) {
-  if (!command_line.Has(flag)) return fallback;
-  const std::string text = command_line.Value(flag, "");
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(value))
-    throw simpartner::Error("--" + flag + " '" + text + "' is not a number");
-  return value;
-}
-
-int64_t CountFlag(const simpartner::CommandLine& command_line, const std::string& flag,
-                  int64_t fallback) {
-  if (!command_line.Has(flag)) return fallback;
-  const std::string text = command_line.Value(flag, "");
-  char* end = nullptr;
-  const long long value = std::strtoll(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0')
-    throw simpartner::Error("--" + flag + " '" + text + "' is not a whole number");
-  return value;
+simpartner::CommandLineSpec QueryCommandLine() {
+  using namespace simpartner;
+  CommandLineSpec spec;
+  spec.program = "simpartner-query";
+  spec.summary =
+      "Lists the logged simulations, exports one's poses, contact forces or joint states to CSV, "
+      "plots them with gnuplot, and (as the administrator) deletes simulations.";
+  spec.options = {
+      Text("db-options", "FILE",
+           "MariaDB client option file (default, when dbserver is empty: reader.cnf of the "
+           "private server of simpartner-mariadb, in $SIMPARTNER_STATE/mariadb, ./state/mariadb, "
+           "then ~/.local/state/simpartner/mariadb when installed or the source tree's "
+           "state/mariadb; delete, prune, storage and compress: admin.cnf there)"),
+      Text("body", "NAME", "only this body (e.g. Wheel1)"),
+      Text("joint", "NAME", "only this joint (e.g. Axle1)"),
+      Text("out", "FILE", "write the CSV (or the plot's PNG) to this file").Short('o'),
+      Number("from", "S", "only from this simulation time [s]"),
+      Number("to", "S", "only up to this simulation time [s]"),
+      Integer("every", "N", "every Nth logged step of the range"),
+      Switch("velocities", "add vx, vy, vz [m/s] (central differences of x, y, z)"),
+      Switch("unwrap", "continuous rotational angles (no jump at +-pi)"),
+      Integer("keep", "N", "how many of the newest simulations to keep"),
+      Switch("force", "even a simulation that is still open"),
+  };
+  const Positional sim{"SIM"};
+  spec.commands = {
+      {"list", {}, "the logged simulations"},
+      {"names", {sim}, "its bodies and joints"},
+      {"poses", {sim}, "position (m) and axis-angle (rad) of every body per step, CSV",
+       {"body", "out", "from", "to", "every", "velocities"}},
+      {"forces", {sim}, "contact force (N) and torque (N m) on every body per step, CSV",
+       {"body", "out", "from", "to", "every"}},
+      {"joints", {sim}, "joint anchors, angles, rates and constraint force on body1, CSV",
+       {"joint", "out", "from", "to", "every", "unwrap"}},
+      {"plot", {Positional{"WHAT"}, sim},
+       "a PNG (-o FILE.png) or, with DISPLAY and no -o, a window (the command ends when the "
+       "window is closed); WHAT: position, velocity (--body B), angle, rate, force (--joint J), "
+       "wheel-forces, track (x-z from above; --body, default the chassis)",
+       {"body", "joint", "out", "from", "to"}},
+      {"delete", {sim}, "remove one simulation (administrator; not while open without --force)",
+       {"force"}},
+      {"prune", {}, "remove all but the newest N simulations (administrator)", {"keep"}, {"keep"}},
+      {"storage", {}, "size of the per-step tables: rows, bytes, on disk (administrator)"},
+      {"compress", {Positional{"on|off", 1, 1, {"on", "off"}}},
+       "InnoDB page compression of the per-step tables; rebuilds them (administrator; same "
+       "columns, so every query runs unchanged)"},
+  };
+  spec.parameters = ParameterUse{{parameter_sections::kDatabase}};
+  spec.epilogue =
+      "SIM is a simulationID from 'list', 'last' (the newest) or 'running' (the newest still "
+      "open).";
+  return spec;
 }
 
 void PrintNames(simpartner::logger::DbConnection* db, const std::string& simulation) {
@@ -95,53 +92,19 @@ void PrintNames(simpartner::logger::DbConnection* db, const std::string& simulat
 
 int main(int argc, char** argv) {
   using namespace simpartner;
-  // -o FILE is --out FILE (the usual spelling for a plot's output).
-  std::vector<const char*> args(argv, argv + argc);
-  for (const char*& a : args)
-    if (std::string(a) == "-o") a = "--out";
+  CommandLine command_line;
+  if (const auto done = ReadCommandLine(QueryCommandLine(), {argv + 1, argv + argc}, std::cout,
+                                        std::cerr, &command_line))
+    return *done;
   try {
-    const CommandLine command_line =
-        ParseCommandLine(static_cast<int>(args.size()), args.data(), kFlags);
-    if (command_line.Has("help") ||
-        (command_line.positional.empty() && !command_line.Has("print-parameters"))) {
-      std::cout << FormatUsage("simpartner-query", kSummary, kFlags, {parameter_sections::kDatabase});
-      return command_line.Has("help") ? 0 : 2;
-    }
-    const Parameters params = LoadParameters(command_line);
+    const Parameters params = LoadParameters(command_line.parameter_sources());
     if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
-    const std::string& command = command_line.positional[0];
-    const std::vector<std::string> commands = {"list",  "names",  "poses",  "forces",  "joints",
-                                               "plot",  "delete", "prune",  "storage", "compress"};
-    if (std::find(commands.begin(), commands.end(), command) == commands.end()) {
-      std::cerr << "simpartner-query: unknown command '" << command
-                << "' (list, names, poses, forces, joints, plot, delete, prune, storage, compress)\n";
-      return 2;
-    }
-    const size_t wanted =
-        command == "list" || command == "prune" || command == "storage" ? 1 : command == "plot" ? 3 : 2;
-    if (command_line.positional.size() != wanted) {
-      std::cerr << "simpartner-query: " << command
-                << (command == "plot"   ? " needs WHAT and SIM (e.g. plot angle last --joint Axle1)"
-                    : command == "compress" ? " needs on or off"
-                    : wanted == 1        ? " takes no SIM"
-                                         : " needs one SIM (a simulationID, 'last' or 'running')")
-                << "\n";
-      return 2;
-    }
-    if (command == "prune" && !command_line.Has("keep")) {
-      std::cerr << "simpartner-query: prune needs --keep N\n";
-      return 2;
-    }
-    if (command == "compress" && command_line.positional[1] != "on" &&
-        command_line.positional[1] != "off") {
-      std::cerr << "simpartner-query: compress '" << command_line.positional[1] << "': on or off\n";
-      return 2;
-    }
+    const std::string& command = command_line.command();
     const bool admin =
         command == "delete" || command == "prune" || command == "storage" || command == "compress";
     std::vector<std::string> warnings;
     const logger::DbTarget target = logger::ResolveDbTarget(
-        params, command_line.Value("db-options", ""),
+        params, command_line.Text("db-options"),
         admin ? logger::kPrivateAdminOptions : logger::kPrivateReaderOptions, &warnings);
     for (const std::string& w : warnings) std::cerr << "simpartner-query: warning: " << w << "\n";
     std::unique_ptr<logger::DbConnection> db = logger::DbConnection::Open(target, false);
@@ -151,12 +114,12 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (command == "names") {
-      PrintNames(db.get(), command_line.positional[1]);
+      PrintNames(db.get(), command_line.positional()[0]);
       return 0;
     }
     if (command == "compress") {
-      logger::SetPageCompression(db.get(), command_line.positional[1] == "on");
-      std::cout << "page compression " << command_line.positional[1] << " for";
+      logger::SetPageCompression(db.get(), command_line.positional()[0] == "on");
+      std::cout << "page compression " << command_line.positional()[0] << " for";
       for (const std::string& t : logger::PerStepTables()) std::cout << " " << t;
       std::cout << "\n";
       return 0;
@@ -173,22 +136,22 @@ int main(int argc, char** argv) {
     if (admin) {
       const logger::DeleteSummary done =
           command == "delete"
-              ? logger::DeleteSimulation(db.get(), command_line.positional[1], command_line.Has("force"))
-              : logger::PruneSimulations(db.get(), CountFlag(command_line, "keep", 0));
+              ? logger::DeleteSimulation(db.get(), command_line.positional()[0], command_line.Has("force"))
+              : logger::PruneSimulations(db.get(), command_line.Integer("keep", 0));
       std::cout << "deleted " << done.simulations.size() << " simulation(s)";
       for (size_t i = 0; i < done.simulations.size(); ++i)
         std::cout << (i ? ", " : " (") << done.simulations[i] << (i + 1 == done.simulations.size() ? ")" : "");
       std::cout << " with " << done.steps << " logged steps\n";
       return 0;
     }
-    const std::string out_path = command_line.Value("out", "");
+    const std::string out_path = command_line.Text("out");
     if (command == "plot") {
       logger::PlotRequest request;
-      request.kind = logger::ParsePlotKind(command_line.positional[1]);
-      request.simulation = command_line.positional[2];
-      request.name = command_line.Value("joint", command_line.Value("body", ""));
-      request.from = NumberFlag(command_line, "from", request.from);
-      request.to = NumberFlag(command_line, "to", request.to);
+      request.kind = logger::ParsePlotKind(command_line.positional()[0]);
+      request.simulation = command_line.positional()[1];
+      request.name = command_line.Text("joint", command_line.Text("body"));
+      request.from = command_line.Number("from", request.from);
+      request.to = command_line.Number("to", request.to);
       const Plot plot = logger::MakePlot(db.get(), request);
       if (!out_path.empty()) {
         DrawPlotPng(plot, out_path);
@@ -210,12 +173,11 @@ int main(int argc, char** argv) {
     request.kind = command == "poses"    ? logger::ExportKind::kPoses
                    : command == "forces" ? logger::ExportKind::kForces
                                          : logger::ExportKind::kJoints;
-    request.simulation = command_line.positional[1];
-    request.name =
-        command_line.Value(request.kind == logger::ExportKind::kJoints ? "joint" : "body", "");
-    request.from = NumberFlag(command_line, "from", request.from);
-    request.to = NumberFlag(command_line, "to", request.to);
-    request.every = CountFlag(command_line, "every", 1);
+    request.simulation = command_line.positional()[0];
+    request.name = command_line.Text(request.kind == logger::ExportKind::kJoints ? "joint" : "body");
+    request.from = command_line.Number("from", request.from);
+    request.to = command_line.Number("to", request.to);
+    request.every = command_line.Integer("every", 1);
     request.velocities = command_line.Has("velocities");
     request.unwrap = command_line.Has("unwrap");
     std::ofstream file;

@@ -16,16 +16,12 @@
 
 int main(int argc, char** argv) {
   using namespace simpartner;
+  CommandLine command_line;
+  if (const auto done = ReadCommandLine(sim::SimCommandLine(), {argv + 1, argv + argc}, std::cout,
+                                        std::cerr, &command_line))
+    return *done;
   try {
-    const CommandLine command_line = ParseCommandLine(argc, argv, sim::SimFlags());
-    if (command_line.Has("help")) {
-      std::cout << FormatUsage("simpartner-sim", sim::SimSummary(), sim::SimFlags(),
-                               {parameter_sections::kWorld, parameter_sections::kStepping,
-                                parameter_sections::kContact, parameter_sections::kRunning,
-                                parameter_sections::kTransport});
-      return 0;
-    }
-    const Parameters params = LoadParameters(command_line);
+    const Parameters params = LoadParameters(command_line.parameter_sources());
     if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
     model::World world = sim::LoadSimWorld(command_line, params);
     std::cout << model::DescribeWorld(world) << std::flush;
