@@ -21,10 +21,10 @@
 
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
+#include "simpartner/command_line.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
-#include "bench_args.h"
 
 namespace {
 
@@ -73,21 +73,27 @@ struct Receiver {
 
 int main(int argc, char** argv) {
   using namespace simpartner;
-  const bench::BenchArgs args = bench::ParseBenchArgsOrExit(
-      argc, argv,
-      {"drift_bench", "[world.xml]", 1,
-       "Runs simpartner-sim in real time on the world (default models/worlds/flat_ground.xml)\n"
-       "and prints, every 60 s and at the end, how far sim time drifted from wall time and\n"
-       "how many states were lost.",
-       {{"--seconds", bench::ValueKind::kNumber, "S", "how long to run (default 600)"},
-        {"--lcm-url", bench::ValueKind::kText, "URL",
-         "LCM URL (default udpm://239.255.76.67:7683?ttl=0&recv_buf_size=4194304)"}}});
-  double seconds = args.Number("--seconds", 600);  // then the time it ran
+  simpartner::CommandLineSpec spec;
+  spec.program = "drift_bench";
+  spec.summary =
+      "Runs simpartner-sim in real time on the world (default models/worlds/flat_ground.xml)\n"
+      "and prints, every 60 s and at the end, how far sim time drifted from wall time and\n"
+      "how many states were lost.";
+  spec.options = {
+      simpartner::Number("seconds", "S", "how long to run (default 600)"),
+      simpartner::Text("lcm-url", "URL", "LCM URL (default udpm://239.255.76.67:7683?ttl=0&recv_buf_size=4194304)"),
+  };
+  spec.positionals = {simpartner::Positional{"world.xml", 0, 1}};
+  simpartner::CommandLine args;
+  if (const auto done =
+          simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
+  double seconds = args.Number("seconds", 600);  // then the time it ran
   const std::string url =
-      args.Text("--lcm-url", "udpm://239.255.76.67:7683?ttl=0&recv_buf_size=4194304");
-  const std::string world = args.positional.empty()
+      args.Text("lcm-url", "udpm://239.255.76.67:7683?ttl=0&recv_buf_size=4194304");
+  const std::string world = args.positional().empty()
                                 ? std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml"
-                                : args.positional[0];
+                                : args.positional()[0];
   lcm::LCM bus(url);
   if (!bus.good()) {
     std::cerr << "drift_bench: cannot open LCM at " << url << "\n";

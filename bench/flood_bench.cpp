@@ -14,6 +14,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <iostream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -21,11 +22,11 @@
 #include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
+#include "simpartner/command_line.h"
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
 #include "simpartner/status_t.hpp"
-#include "bench_args.h"
 
 namespace {
 
@@ -69,29 +70,32 @@ void Pump(lcm::LCM* bus, double seconds) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bench::BenchArgs args = bench::ParseBenchArgsOrExit(
-      argc, argv,
-      {"flood_bench", "[world.xml]", 1,
-       "Runs simpartner-sim on the world (default models/worlds/flat_ground.xml), then floods\n"
-       "SIM_COMMAND with bad commands from another thread and prints the sim's real-time factor\n"
-       "and the good commands' replies before and during the flood.",
-       {{"--rate", bench::ValueKind::kNumber, "N", "bad commands per second (default 100000)"},
-        {"--seconds", bench::ValueKind::kNumber, "S", "length of each period (default 10)"},
-        {"--kind", bench::ValueKind::kText, "refused|garbage",
-         "valid commands the sim refuses, or undecodable bytes (default refused)"},
-        {"--lcm-url", bench::ValueKind::kText, "URL",
-         "LCM URL (default udpm://239.255.76.67:7683?ttl=0)"}}});
-  const double rate = args.Number("--rate", 100000);
-  const double seconds = args.Number("--seconds", 10);
-  const std::string kind = args.Text("--kind", "refused");
-  if (kind != "refused" && kind != "garbage") {
-    std::cerr << "flood_bench: --kind '" << kind << "': refused or garbage\n";
-    return 2;
-  }
-  const std::string url = args.Text("--lcm-url", "udpm://239.255.76.67:7683?ttl=0");
-  const std::string world = args.positional.empty()
+  simpartner::CommandLineSpec spec;
+  spec.program = "flood_bench";
+  spec.summary =
+      "Runs simpartner-sim on the world (default models/worlds/flat_ground.xml), then floods\n"
+      "SIM_COMMAND with bad commands from another thread and prints the sim's real-time factor\n"
+      "and the good commands' replies before and during the flood.";
+  spec.options = {
+      simpartner::Number("rate", "N", "bad commands per second (default 100000)"),
+      simpartner::Number("seconds", "S", "length of each period (default 10)"),
+      simpartner::Text("kind", "refused|garbage",
+                       "valid commands the sim refuses, or undecodable bytes (default refused)")
+          .Choices({"refused", "garbage"}),
+      simpartner::Text("lcm-url", "URL", "LCM URL (default udpm://239.255.76.67:7683?ttl=0)"),
+  };
+  spec.positionals = {simpartner::Positional{"world.xml", 0, 1}};
+  simpartner::CommandLine args;
+  if (const auto done =
+          simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
+  const double rate = args.Number("rate", 100000);
+  const double seconds = args.Number("seconds", 10);
+  const std::string kind = args.Text("kind", "refused");
+  const std::string url = args.Text("lcm-url", "udpm://239.255.76.67:7683?ttl=0");
+  const std::string world = args.positional().empty()
                                 ? std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml"
-                                : args.positional[0];
+                                : args.positional()[0];
   const double step = 0.001;
   ChildProcess sim({std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim", "--params", "/dev/null",
                     "--environment=" + world, "--lcm-url", url, "--statusPeriod=0.5",

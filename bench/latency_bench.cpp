@@ -18,29 +18,35 @@
 
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
+#include "simpartner/command_line.h"
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_t.hpp"
 #include "simpartner/sim/sim_node.h"
-#include "bench_args.h"
 
 int main(int argc, char** argv) {
   using namespace simpartner;
-  const bench::BenchArgs args = bench::ParseBenchArgsOrExit(
-      argc, argv,
-      {"latency_bench", "[world.xml]", 1,
-       "Starts simpartner-sim in real time on the world (default models/worlds/flat_ground.xml),\n"
-       "sends commands at irregular times to its first actuator and prints the one-way latency\n"
-       "from command to the step that applies it: p50, p99, max against one step + 1 ms.",
-       {{"--count", bench::ValueKind::kInteger, "N", "commands to send (default 2000)"},
-        {"--lcm-url", bench::ValueKind::kText, "URL",
-         "LCM URL (default udpm://239.255.76.67:7681?ttl=0)"}}});
-  const int count = static_cast<int>(args.Integer("--count", 2000));
-  const std::string url = args.Text("--lcm-url", "udpm://239.255.76.67:7681?ttl=0");
-  const std::string world = args.positional.empty()
+  simpartner::CommandLineSpec spec;
+  spec.program = "latency_bench";
+  spec.summary =
+      "Starts simpartner-sim in real time on the world (default models/worlds/flat_ground.xml),\n"
+      "sends commands at irregular times to its first actuator and prints the one-way latency\n"
+      "from command to the step that applies it: p50, p99, max against one step + 1 ms.";
+  spec.options = {
+      simpartner::Integer("count", "N", "commands to send (default 2000)"),
+      simpartner::Text("lcm-url", "URL", "LCM URL (default udpm://239.255.76.67:7681?ttl=0)"),
+  };
+  spec.positionals = {simpartner::Positional{"world.xml", 0, 1}};
+  simpartner::CommandLine args;
+  if (const auto done =
+          simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
+  const int count = static_cast<int>(args.Integer("count", 2000));
+  const std::string url = args.Text("lcm-url", "udpm://239.255.76.67:7681?ttl=0");
+  const std::string world = args.positional().empty()
                                 ? std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml"
-                                : args.positional[0];
+                                : args.positional()[0];
   std::string binary = std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim";
   ChildProcess sim({binary, "--params", "/dev/null", "--environment=" + world, "--lcm-url", url},
                    "/dev/null");

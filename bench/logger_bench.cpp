@@ -41,6 +41,7 @@
 
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
+#include "simpartner/command_line.h"
 #include "simpartner/logger/logger.h"
 #include "simpartner/logger/private_server.h"
 #include "simpartner/logger/query.h"
@@ -49,7 +50,6 @@
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/status_t.hpp"
-#include "bench_args.h"
 
 namespace {
 
@@ -475,26 +475,31 @@ void StoragePerStep(const PrivateServer& server, double seconds) {
 }
 
 int main(int argc, char** argv) {
-  const bench::BenchArgs args = bench::ParseBenchArgsOrExit(
-      argc, argv,
-      {"logger_bench", "", 0,
-       "Figures of the database logger on a private MariaDB server in a temporary directory:\n"
-       "  1. insert methods (row by row, multi-row, LOAD DATA): rows/s\n"
-       "  2. the writer alone on real gen3 states: steps/s per batch size and method\n"
-       "  3. end to end beside a running simpartner-sim at real time: loss, lag, sim cost\n"
-       "  4. the highest multiple of real time the logger keeps up with\n"
-       "  5. bytes per logged step per table, plain and page-compressed, and the writer's cost",
-       {{"--seconds", bench::ValueKind::kNumber, "S",
-         "sim time of parts 3, 4 and 5 (default 20)"},
-        {"--skip", bench::ValueKind::kText, "LIST", "parts to leave out, e.g. 1,2"},
-        {"--server-sql", bench::ValueKind::kText, "STATEMENT",
-         "run as the server's administrator first (repeatable), e.g.\n"
-         "                          'SET GLOBAL innodb_adaptive_hash_index = 0'"}}});
-  const double seconds = args.Number("--seconds", 20);
-  const std::vector<std::string> server_sql = args.All("--server-sql");
+  simpartner::CommandLineSpec spec;
+  spec.program = "logger_bench";
+  spec.summary =
+      "Figures of the database logger on a private MariaDB server in a temporary directory:\n"
+      "  1. insert methods (row by row, multi-row, LOAD DATA): rows/s\n"
+      "  2. the writer alone on real gen3 states: steps/s per batch size and method\n"
+      "  3. end to end beside a running simpartner-sim at real time: loss, lag, sim cost\n"
+      "  4. the highest multiple of real time the logger keeps up with\n"
+      "  5. bytes per logged step per table, plain and page-compressed, and the writer's cost";
+  spec.options = {
+      simpartner::Number("seconds", "S", "sim time of parts 3, 4 and 5 (default 20)"),
+      simpartner::Text("skip", "LIST", "parts to leave out, e.g. 1,2"),
+      simpartner::Text("server-sql", "STATEMENT",
+                       "run as the server's administrator first (repeatable), e.g.\n"
+                       "'SET GLOBAL innodb_adaptive_hash_index = 0'"),
+  };
+  simpartner::CommandLine args;
+  if (const auto done =
+          simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
+  const double seconds = args.Number("seconds", 20);
+  const std::vector<std::string> server_sql = args.All("server-sql");
   std::set<int> skip;
   {
-    std::stringstream list(args.Text("--skip", ""));
+    std::stringstream list(args.Text("skip", ""));
     std::string item;
     while (std::getline(list, item, ',')) {
       if (item.size() != 1 || item[0] < '1' || item[0] > '5') {

@@ -13,14 +13,15 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <iostream>
 #include <cstdlib>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "../tests/support/netns.h"
-#include "bench_args.h"
 #include "simpartner/channels.h"
+#include "simpartner/command_line.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/state_t.hpp"
@@ -155,24 +156,29 @@ void Print(const char* what, const Figures& f) {
 }
 
 int Run(int argc, char** argv) {
-  const bench::BenchArgs args = bench::ParseBenchArgsOrExit(
-      argc, argv,
-      {"multi_host_bench", "", 0,
-       "Publishes SIM_STATE messages of the world's robot (default gen3, models/worlds/flat_ground.xml)\n"
-       "at HZ for S seconds from one network namespace to another over a bridge (LCM udpm ttl=1,\n"
-       "port N, inside the namespaces only), then within one namespace, and prints the states lost\n"
-       "and the one-way latency p50/p99. The receiver uses recv_buf_size=4194304 and a\n"
-       "100000-message queue, as simpartner-logger does. Needs root.",
-       {{"--seconds", bench::ValueKind::kNumber, "S", "how long each path is measured (default 60)"},
-        {"--rate", bench::ValueKind::kNumber, "HZ", "states per second (default 1000)"},
-        {"--port", bench::ValueKind::kInteger, "N", "the LCM port inside the namespaces (default 7667)"},
-        {"--world", bench::ValueKind::kText, "WORLD.xml",
-         "the world whose robot's state is sent (default models/worlds/flat_ground.xml)"}}});
+  simpartner::CommandLineSpec spec;
+  spec.program = "multi_host_bench";
+  spec.summary =
+      "Publishes SIM_STATE messages of the world's robot (default gen3, models/worlds/flat_ground.xml)\n"
+      "at HZ for S seconds from one network namespace to another over a bridge (LCM udpm ttl=1,\n"
+      "port N, inside the namespaces only), then within one namespace, and prints the states lost\n"
+      "and the one-way latency p50/p99. The receiver uses recv_buf_size=4194304 and a\n"
+      "100000-message queue, as simpartner-logger does. Needs root.";
+  spec.options = {
+      simpartner::Number("seconds", "S", "how long each path is measured (default 60)"),
+      simpartner::Number("rate", "HZ", "states per second (default 1000)"),
+      simpartner::Integer("port", "N", "the LCM port inside the namespaces (default 7667)"),
+      simpartner::Text("world", "WORLD.xml", "the world whose robot's state is sent (default models/worlds/flat_ground.xml)"),
+  };
+  simpartner::CommandLine args;
+  if (const auto done =
+          simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
   Options options;
-  options.seconds = args.Number("--seconds", options.seconds);
-  options.rate = args.Number("--rate", options.rate);
-  options.port = static_cast<int>(args.Integer("--port", options.port));
-  options.world = args.Text("--world", options.world);
+  options.seconds = args.Number("seconds", options.seconds);
+  options.rate = args.Number("rate", options.rate);
+  options.port = static_cast<int>(args.Integer("port", options.port));
+  options.world = args.Text("world", options.world);
   for (const auto& [name, value] : {std::pair<const char*, double>{"--seconds", options.seconds},
                                     {"--rate", options.rate},
                                     {"--port", static_cast<double>(options.port)}}) {

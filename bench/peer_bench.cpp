@@ -37,12 +37,12 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/command_line.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/convert/mjcf_export.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/sim_node.h"
 #include "simpartner/sim/simulation.h"
-#include "bench_args.h"
 
 namespace {
 
@@ -280,21 +280,26 @@ void Print(const std::string& world, const char* setting, const Figures& f, doub
 }  // namespace
 
 int main(int argc, char** argv) {
-  const simpartner::bench::BenchArgs args = simpartner::bench::ParseBenchArgsOrExit(
-      argc, argv,
-      {"peer_bench", "", 0,
-       "WorkPartner gen3 and gen4 on flat ground, 1 ms steps: stand still, then drive straight\n"
-       "with the wheels at 1.5 rad/s, in our sim (bare Simulation::Step; SimNode publishing on\n"
-       "LCM) and in MuJoCo 2.2 on the exported MJCF (default settings; accurate settings).\n"
-       "Prints us/step, the ratio to ours, wheel load / weight, standing drift [mm], speed [m/s].",
-       {{"--stand", simpartner::bench::ValueKind::kNumber, "SECONDS", "standing time, at least 2 (default 20)"},
-        {"--drive", simpartner::bench::ValueKind::kNumber, "SECONDS", "driving time (default 5)"},
-        {"--only", simpartner::bench::ValueKind::kText, "ours|bare|mujoco", "run only these rows"},
-        {"--lcm-url", simpartner::bench::ValueKind::kText, "URL",
-         "LCM URL of ours+pub (default udpm://239.255.76.67:7667?ttl=0)"}}});
-  const double stand = args.Number("--stand", 20), drive = args.Number("--drive", 5);
-  const std::string only = args.Text("--only", "");
-  const std::string url = args.Text("--lcm-url", "udpm://239.255.76.67:7667?ttl=0");
+  simpartner::CommandLineSpec spec;
+  spec.program = "peer_bench";
+  spec.summary =
+      "WorkPartner gen3 and gen4 on flat ground, 1 ms steps: stand still, then drive straight\n"
+      "with the wheels at 1.5 rad/s, in our sim (bare Simulation::Step; SimNode publishing on\n"
+      "LCM) and in MuJoCo 2.2 on the exported MJCF (default settings; accurate settings).\n"
+      "Prints us/step, the ratio to ours, wheel load / weight, standing drift [mm], speed [m/s].";
+  spec.options = {
+      simpartner::Number("stand", "SECONDS", "standing time, at least 2 (default 20)"),
+      simpartner::Number("drive", "SECONDS", "driving time (default 5)"),
+      simpartner::Text("only", "ours|bare|mujoco", "run only these rows"),
+      simpartner::Text("lcm-url", "URL", "LCM URL of ours+pub (default udpm://239.255.76.67:7667?ttl=0)"),
+  };
+  simpartner::CommandLine args;
+  if (const auto done =
+          simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
+  const double stand = args.Number("stand", 20), drive = args.Number("drive", 5);
+  const std::string only = args.Text("only", "");
+  const std::string url = args.Text("lcm-url", "udpm://239.255.76.67:7667?ttl=0");
   if (!(stand >= 2.0) || !(drive >= 0.0) ||
       (!only.empty() && only != "ours" && only != "bare" && only != "mujoco")) {
     std::cerr << "peer_bench: --stand needs >= 2 s, --drive >= 0, --only ours, bare or mujoco\n";

@@ -19,9 +19,9 @@
 #include <vector>
 
 #include "simpartner/channels.h"
+#include "simpartner/command_line.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/simulation.h"
-#include "bench_args.h"
 
 namespace {
 
@@ -69,18 +69,24 @@ double MicrosPerStep(Clock::duration d, int steps) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const simpartner::bench::BenchArgs args = simpartner::bench::ParseBenchArgsOrExit(
-      argc, argv,
-      {"sim_bench", "[world.xml ...]", -1,
-       "Microseconds per step of bare ODE, Simulation::Step, + SIM_STATE encoded, + published\n"
-       "on LCM, per world (default: the WorkPartner worlds gen1..gen4 on flat ground) and\n"
-       "stepper setting, as fast as possible; also peak resident memory.",
-       {{"--steps", simpartner::bench::ValueKind::kInteger, "N", "steps per measurement (default 5000)"},
-        {"--lcm-url", simpartner::bench::ValueKind::kText, "URL",
-         "LCM URL for sim+pub (default udpm://239.255.76.67:7667?ttl=0)"}}});
-  const int steps = static_cast<int>(args.Integer("--steps", 5000));
-  const std::string url = args.Text("--lcm-url", "udpm://239.255.76.67:7667?ttl=0");
-  std::vector<std::string> worlds = args.positional;
+  simpartner::CommandLineSpec spec;
+  spec.program = "sim_bench";
+  spec.summary =
+      "Microseconds per step of bare ODE, Simulation::Step, + SIM_STATE encoded, + published\n"
+      "on LCM, per world (default: the WorkPartner worlds gen1..gen4 on flat ground) and\n"
+      "stepper setting, as fast as possible; also peak resident memory.";
+  spec.options = {
+      simpartner::Integer("steps", "N", "steps per measurement (default 5000)"),
+      simpartner::Text("lcm-url", "URL", "LCM URL for sim+pub (default udpm://239.255.76.67:7667?ttl=0)"),
+  };
+  spec.positionals = {simpartner::Positional{"world.xml", 0, simpartner::kAnyCount}};
+  simpartner::CommandLine args;
+  if (const auto done =
+          simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
+  const int steps = static_cast<int>(args.Integer("steps", 5000));
+  const std::string url = args.Text("lcm-url", "udpm://239.255.76.67:7667?ttl=0");
+  std::vector<std::string> worlds = args.positional();
   if (worlds.empty()) {
     for (const char* w : {"gen1_flat.xml", "flat_ground_gen2.xml", "flat_ground.xml", "gen4_flat.xml"})
       worlds.push_back(std::string(SP_SOURCE_DIR) + "/models/worlds/" + w);

@@ -31,10 +31,10 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/command_line.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/simulation.h"
-#include "bench_args.h"
 
 namespace {
 
@@ -173,17 +173,23 @@ Outcome Run(const model::World& world, const Parameters& params, const Scenario&
 }  // namespace
 
 int main(int argc, char** argv) {
-  const simpartner::bench::BenchArgs args = simpartner::bench::ParseBenchArgsOrExit(
-      argc, argv,
-      {"stepper_survey", "[world.xml ...]", -1,
-       "Which stepper keeps WorkPartner stable: for every world (default: each generation on\n"
-       "flat ground, the slippery ground, the test track) and stepper setting, runs hold,\n"
-       "stretch, drive and stretch+drive and prints STABLE/UNSTABLE with the joint error,\n"
-       "still and vertical speeds, distance and wall time.",
-       {{"--seconds-scale", simpartner::bench::ValueKind::kNumber, "S",
-         "multiplies every scenario's length (default 1)"}}});
-  const double scale = args.Number("--seconds-scale", 1.0);
-  std::vector<std::string> worlds = args.positional;
+  simpartner::CommandLineSpec spec;
+  spec.program = "stepper_survey";
+  spec.summary =
+      "Which stepper keeps WorkPartner stable: for every world (default: each generation on\n"
+      "flat ground, the slippery ground, the test track) and stepper setting, runs hold,\n"
+      "stretch, drive and stretch+drive and prints STABLE/UNSTABLE with the joint error,\n"
+      "still and vertical speeds, distance and wall time.";
+  spec.options = {
+      simpartner::Number("seconds-scale", "S", "multiplies every scenario's length (default 1)"),
+  };
+  spec.positionals = {simpartner::Positional{"world.xml", 0, simpartner::kAnyCount}};
+  simpartner::CommandLine args;
+  if (const auto done =
+          simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
+  const double scale = args.Number("seconds-scale", 1.0);
+  std::vector<std::string> worlds = args.positional();
   if (worlds.empty()) {
     for (const char* w : {"gen1_flat.xml", "flat_ground_gen2.xml", "flat_ground.xml",
                           "gen4_flat.xml", "slippery_ground.xml", "test_track.xml"})

@@ -27,10 +27,10 @@
 
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
+#include "simpartner/command_line.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/viewer/xvfb.h"
-#include "bench_args.h"
 
 namespace {
 
@@ -161,19 +161,26 @@ RunFigures RunViewer(const std::string& url, const std::filesystem::path& dir, i
 }  // namespace
 
 int main(int argc, char** argv) {
-  const simpartner::bench::BenchArgs args = simpartner::bench::ParseBenchArgsOrExit(
-      argc, argv,
-      {"viewer_bench", "[world.xml]", 1,
-       "How fast simpartner-viewer draws under a private Xvfb (Mesa llvmpipe) beside a sim at\n"
-       "real time (default world: the test track with gen3): frames per second, the viewer's\n"
-       "and the X server's CPU, and the sim's real-time factor, uncapped and at 60 and 30 fps.",
-       {{"--seconds", simpartner::bench::ValueKind::kNumber, "S", "per run, at least 4 (default 12)"},
-        {"--width", simpartner::bench::ValueKind::kInteger, "W", "window width (default 1280)"},
-        {"--height", simpartner::bench::ValueKind::kInteger, "H", "window height (default 720)"}}});
-  const double seconds = std::max(4.0, args.Number("--seconds", 12));
-  const int width = static_cast<int>(args.Integer("--width", 1280));
-  const int height = static_cast<int>(args.Integer("--height", 720));
-  std::string world = args.positional.empty() ? "" : args.positional[0];
+  simpartner::CommandLineSpec spec;
+  spec.program = "viewer_bench";
+  spec.summary =
+      "How fast simpartner-viewer draws under a private Xvfb (Mesa llvmpipe) beside a sim at\n"
+      "real time (default world: the test track with gen3): frames per second, the viewer's\n"
+      "and the X server's CPU, and the sim's real-time factor, uncapped and at 60 and 30 fps.";
+  spec.options = {
+      simpartner::Number("seconds", "S", "per run, at least 4 (default 12)"),
+      simpartner::Integer("width", "W", "window width (default 1280)"),
+      simpartner::Integer("height", "H", "window height (default 720)"),
+  };
+  spec.positionals = {simpartner::Positional{"world.xml", 0, 1}};
+  simpartner::CommandLine args;
+  if (const auto done =
+          simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
+  const double seconds = std::max(4.0, args.Number("seconds", 12));
+  const int width = static_cast<int>(args.Integer("width", 1280));
+  const int height = static_cast<int>(args.Integer("height", 720));
+  std::string world = args.positional().empty() ? "" : args.positional()[0];
   const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                     ("sp_viewer_bench_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);

@@ -9,14 +9,12 @@
 
 int main(int argc, char** argv) {
   using namespace simpartner;
+  CommandLine command_line;
+  if (const auto done = ReadCommandLine(logger::LoggerCommandLine(), {argv + 1, argv + argc},
+                                        std::cout, std::cerr, &command_line))
+    return *done;
   try {
-    const CommandLine command_line = ParseCommandLine(argc, argv, logger::LoggerFlags());
-    if (command_line.Has("help")) {
-      std::cout << FormatUsage("simpartner-logger", logger::LoggerSummary(), logger::LoggerFlags(),
-                               {parameter_sections::kDatabase, parameter_sections::kTransport});
-      return 0;
-    }
-    const Parameters params = LoadParameters(command_line);
+    const Parameters params = LoadParameters(command_line.parameter_sources());
     if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
     if (!params.log) {
       std::cout << "simpartner-logger: log=0 in the parameters: nothing to log" << std::endl;

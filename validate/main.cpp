@@ -5,5 +5,5 @@
 #include "simpartner/validate/cli.h"
 
 int main(int argc, char** argv) {
-  return simpartner::validate::RunValidate(argc, argv, std::cout, std::cerr);
+  return simpartner::validate::RunValidate({argv + 1, argv + argc}, std::cout, std::cerr);
 }

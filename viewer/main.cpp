@@ -5,14 +5,12 @@
 
 int main(int argc, char** argv) {
   using namespace simpartner;
+  CommandLine command_line;
+  if (const auto done = ReadCommandLine(viewer::ViewerCommandLine(), {argv + 1, argv + argc},
+                                        std::cout, std::cerr, &command_line))
+    return *done;
   try {
-    const CommandLine command_line = ParseCommandLine(argc, argv, viewer::ViewerFlags());
-    if (command_line.Has("help")) {
-      std::cout << FormatUsage("simpartner-viewer", viewer::ViewerSummary(), viewer::ViewerFlags(),
-                               {parameter_sections::kTransport});
-      return 0;
-    }
-    const Parameters params = LoadParameters(command_line);
+    const Parameters params = LoadParameters(command_line.parameter_sources());
     if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
     const viewer::ViewerOptions options = viewer::MakeViewerOptions(command_line, params);
     return viewer::RunViewer(options, std::cout, std::cerr);

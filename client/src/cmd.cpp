@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "simpartner/client/client.h"
+#include "simpartner/command_line.h"
 #include "simpartner/diagnostic.h"
-#include "simpartner/parameters.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/sensor_t.hpp"
 #include "simpartner/status_t.hpp"
@@ -118,8 +118,7 @@ std::optional<status_t> AwaitStatus(Client& client, double timeout,
 }
 
 struct Options {
-  std::string url;                 // --lcm-url, else lcmUrl of the parameters file
-  std::string params_file;         // --params FILE ("" = parameters.txt if present)
+  std::string url;                 // --lcm-url, else lcmUrl of the parameters
   double timeout = 2.0;
   std::vector<std::string> words;  // command and its arguments
   std::string body;
@@ -135,59 +134,18 @@ double ParseNumber(const std::string& what, const std::string& text) {
   return v;
 }
 
-Options ParseArgs(const std::vector<std::string>& args) {
+// The command line, checked by ParseCommandLine, and the bus of the
+// parameters the other programs read (--lcm-url is --lcmUrl=URL).
+Options MakeOptions(const CommandLine& command_line, const Parameters& params) {
   Options o;
-  for (size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    auto value = [&](const std::string& name) -> std::string {
-      if (a.size() > name.size() && a.compare(0, name.size() + 1, name + "=") == 0)
-        return a.substr(name.size() + 1);
-      if (k + 1 >= args.size()) throw UsageError(name + " needs a value");
-      return args[++k];
-    };
-    auto is = [&](const std::string& name) {
-      return a == name || a.compare(0, name.size() + 1, name + "=") == 0;
-    };
-    if (is("--lcm-url")) {
-      o.url = value("--lcm-url");
-    } else if (is("--params")) {
-      o.params_file = value("--params");
-    } else if (is("--timeout")) {
-      o.timeout = ParseNumber("--timeout", value("--timeout"));
-      if (o.timeout <= 0 || o.timeout > 3600) throw UsageError("--timeout must be in (0, 3600] s");
-    } else if (is("--body")) {
-      o.body = value("--body");
-    } else if (a == "--follow") {
-      o.follow = true;
-    } else if (is("--count")) {
-      o.count = static_cast<long>(ParseNumber("--count", value("--count")));
-    } else if (a.size() > 1 && a[0] == '-' && !std::isdigit(static_cast<unsigned char>(a[1])) &&
-               a[1] != '.') {
-      throw UsageError("unknown option '" + a + "'");
-    } else {
-      o.words.push_back(a);
-    }
-  }
-  if (o.url.empty()) {
-    // The bus the other programs use: lcmUrl of the parameters file
-    // (./parameters.txt when present, or --params FILE), else the default.
-    CommandLine command_line;
-    command_line.program = "simpartner-cmd";
-    if (!o.params_file.empty()) {
-      command_line.params_file = o.params_file;
-      command_line.params_file_given = true;
-    }
-    o.url = LoadParameters(command_line).lcmUrl;
-  }
+  o.url = params.lcmUrl;
+  o.timeout = command_line.Number("timeout", o.timeout);
+  o.words = command_line.positional();
+  o.words.insert(o.words.begin(), command_line.command());
+  o.body = command_line.Text("body");
+  o.follow = command_line.Has("follow");
+  o.count = static_cast<long>(command_line.Integer("count", o.count));
   return o;
-}
-
-void ExpectWords(const Options& o, size_t low, size_t high) {
-  if (o.words.size() < low || o.words.size() > high)
-    throw UsageError("'" + o.words[0] + "' takes " +
-                     (low == high ? std::to_string(low - 1)
-                                  : std::to_string(low - 1) + " to " + std::to_string(high - 1)) +
-                     " argument(s), got " + std::to_string(o.words.size() - 1));
 }
 
 ClientOptions MakeClientOptions(const Options& o, bool learn_model) {
@@ -224,8 +182,6 @@ command_reply_t SendAndWait(Client& client, const command_t& command, double tim
 
 int RunActuatorCommand(const Options& o, std::ostream& out) {
   const std::string& verb = o.words[0];
-  if (verb == "hold") ExpectWords(o, 2, 3);
-  else ExpectWords(o, 3, 3);
   Client client(MakeClientOptions(o, true));
   const Target target = client.Find(o.words[1]);
   command_t command;
@@ -255,7 +211,6 @@ int RunActuatorCommand(const Options& o, std::ostream& out) {
 }
 
 int RunRead(const Options& o, std::ostream& out) {
-  ExpectWords(o, 2, 2);
   Client client(MakeClientOptions(o, true));
   const Target target = client.Find(o.words[1]);
   if (!target.is_sensor())
@@ -281,15 +236,12 @@ int RunControl(const Options& o, std::ostream& out) {
   std::function<bool(const status_t&)> done;
   std::string what;
   if (verb == "pause") {
-    ExpectWords(o, 1, 1);
     client.Pause();
     done = [](const status_t& s) { return s.run_state == status_t::RUN_PAUSED; };
   } else if (verb == "resume") {
-    ExpectWords(o, 1, 1);
     client.Resume();
     done = [](const status_t& s) { return s.run_state == status_t::RUN_RUNNING; };
   } else if (verb == "step") {
-    ExpectWords(o, 2, 2);
     const double n = ParseNumber("step count", o.words[1]);
     if (n < 1 || n > 1e8 || n != std::floor(n))
       throw UsageError("step count '" + o.words[1] + "' must be a whole number from 1 to 100000000");
@@ -300,14 +252,12 @@ int RunControl(const Options& o, std::ostream& out) {
       return s.run_state == status_t::RUN_PAUSED && s.step >= target_step;
     };
   } else if (verb == "speed") {
-    ExpectWords(o, 2, 2);
     const double speed = ParseNumber("speed", o.words[1]);
     client.SetSpeed(speed);
     done = [speed](const status_t& s) {
       return speed <= 0 ? s.target_speed <= 0 : std::abs(s.target_speed - speed) < 1e-9;
     };
   } else {  // quit
-    ExpectWords(o, 1, 1);
     client.Quit();
     done = [](const status_t& s) { return s.run_state == status_t::RUN_STOPPED; };
   }
@@ -319,7 +269,6 @@ int RunControl(const Options& o, std::ostream& out) {
 }
 
 int RunReset(const Options& o, std::ostream& out) {
-  ExpectWords(o, 1, 1);
   Client client(MakeClientOptions(o, true));
   const auto catalog = client.Reset(o.timeout);
   out << "sim reset: simulation " << catalog->simulation_id() << "\n";
@@ -327,14 +276,12 @@ int RunReset(const Options& o, std::ostream& out) {
 }
 
 int RunModel(const Options& o, std::ostream& out) {
-  ExpectWords(o, 1, 1);
   Client client(MakeClientOptions(o, true));
   out << client.catalog()->Describe();
   return kCmdOk;
 }
 
 int RunState(const Options& o, std::ostream& out) {
-  ExpectWords(o, 1, 1);
   Client client(MakeClientOptions(o, true));
   auto catalog = client.catalog();
   int body = o.body.empty() ? -1 : catalog->BodyIndex(o.body);
@@ -375,7 +322,6 @@ int RunState(const Options& o, std::ostream& out) {
 }
 
 int RunStatus(const Options& o, std::ostream& out) {
-  ExpectWords(o, 1, 1);
   Client client(MakeClientOptions(o, false));
   long printed = 0;
   std::optional<status_t> previous;  // following: each warning once
@@ -391,64 +337,63 @@ int RunStatus(const Options& o, std::ostream& out) {
 
 }  // namespace
 
-std::string CmdUsage() {
-  return R"(usage: simpartner-cmd [--lcm-url URL | --params FILE] [--timeout S] COMMAND [ARGS]
-Talks to a running simpartner-sim on the LCM bus.
-  set NAME VALUES          set an actuator, e.g. set Axle1Motor 1000,1000,100,0,0,0.2
-                           or per axis: set Axle1Motor 300,1.0 (fmax, velocity);
-                           a sensor: its parameters (rate, or rate,rays,halfSpan,range)
-  hold NAME [FMAX]         hold the joint where it is (force limit per axis, default 1000)
-  stops NAME LO1,HI1,...   joint stops (per slot x,y,z or per axis)
-  read SENSOR              ask a sensor for a reading and print it
-  pause | resume | reset | quit
-  step N                   take N steps, then stay paused
-  speed X                  real-time factor; 0 = as fast as possible
-  model                    robots, actuators (kind, port, value forms), sensors
-  state [--body NAME] [--follow]   newest SIM_STATE (or every one)
-  status [--follow]        newest SIM_STATUS (or every one)
-NAME is a name from 'model', robot/name, or a legacy port (1028).
-Options: --lcm-url URL (default: lcmUrl of ./parameters.txt or --params FILE, else
-         udpm://239.255.76.67:7667?ttl=0), --timeout S (default 2),
-         --count N (with --follow: stop after N)
-Exit status: 0 accepted, 1 refused by the sim, 2 usage error, 3 no answer,
-             4 unknown name, 5 the sim restarted.
-)";
+CommandLineSpec CmdCommandLine() {
+  CommandLineSpec spec;
+  spec.program = "simpartner-cmd";
+  spec.summary = "Talks to a running simpartner-sim on the LCM bus.";
+  spec.options = {
+      Number("timeout", "S", "seconds to wait for the sim's answer (default 2)").Above(0, 3600),
+      Text("body", "NAME", "only this body"),
+      Switch("follow", "every one until interrupted, not only the newest"),
+      Integer("count", "N", "with --follow: stop after N"),
+  };
+  const Positional name{"NAME"};
+  spec.commands = {
+      {"set", {name, Positional{"VALUES"}},
+       "set an actuator, e.g. set Axle1Motor 1000,1000,100,0,0,0.2\n"
+       "or per axis: set Axle1Motor 300,1.0 (fmax, velocity);\n"
+       "a sensor: its parameters (rate, or rate,rays,halfSpan,range)"},
+      {"hold", {name, Positional{"FMAX", 0, 1}},
+       "hold the joint where it is (force limit per axis, default 1000)"},
+      {"stops", {name, Positional{"LO1,HI1,..."}}, "joint stops (per slot x,y,z or per axis)"},
+      {"read", {Positional{"SENSOR"}}, "ask a sensor for a reading and print it"},
+      {"pause", {}, "pause the sim"},
+      {"resume", {}, "resume a paused sim"},
+      {"step", {Positional{"N"}}, "take N steps, then stay paused"},
+      {"speed", {Positional{"X"}}, "real-time factor; 0 = as fast as possible"},
+      {"reset", {}, "start the simulation again from the world's initial state"},
+      {"quit", {}, "end the sim"},
+      {"model", {}, "robots, actuators (kind, port, value forms), sensors"},
+      {"state", {}, "newest SIM_STATE (or every one)", {"body", "follow", "count"}},
+      {"status", {}, "newest SIM_STATUS (or every one)", {"follow", "count"}},
+  };
+  spec.parameters = ParameterUse{{parameter_sections::kTransport}};
+  spec.epilogue =
+      "NAME is a name from 'model', robot/name, or a legacy port (1028).\n"
+      "Exit status: 0 accepted, 1 refused by the sim, 2 usage error, 3 no answer,\n"
+      "             4 unknown name, 5 the sim restarted.";
+  return spec;
 }
 
 int RunCmd(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   const char* prefix = "simpartner-cmd: ";
+  const CommandLineSpec spec = CmdCommandLine();
+  CommandLine command_line;
+  if (const auto done = ReadCommandLine(spec, args, out, err, &command_line)) return *done;
   try {
-    for (const std::string& a : args) {
-      if (a == "--help" || a == "-h") {
-        out << CmdUsage();
-        return kCmdOk;
-      }
-    }
-    const Options o = ParseArgs(args);
-    if (o.words.empty()) throw UsageError("no command given");
+    const Parameters params = LoadParameters(command_line.parameter_sources());
+    if (PrintParametersIfAsked(command_line, params, out)) return kCmdOk;
+    const Options o = MakeOptions(command_line, params);
     const std::string& verb = o.words[0];
-    if ((o.follow || o.count >= 0) && verb != "state" && verb != "status")
-      throw UsageError("--follow and --count go with 'state' and 'status' only");
-    if (!o.body.empty() && verb != "state") throw UsageError("--body goes with 'state' only");
-    if (verb == "set" || verb == "hold" || verb == "stops") {
-      if (o.words.size() < 2) throw UsageError("'" + verb + "' needs an actuator name");
-      return RunActuatorCommand(o, out);
-    }
-    if (verb == "read") {
-      if (o.words.size() < 2) throw UsageError("'read' needs a sensor name");
-      return RunRead(o, out);
-    }
-    if (verb == "pause" || verb == "resume" || verb == "step" || verb == "speed" ||
-        verb == "quit")
-      return RunControl(o, out);
+    if (verb == "set" || verb == "hold" || verb == "stops") return RunActuatorCommand(o, out);
+    if (verb == "read") return RunRead(o, out);
     if (verb == "reset") return RunReset(o, out);
     if (verb == "model") return RunModel(o, out);
     if (verb == "state") return RunState(o, out);
     if (verb == "status") return RunStatus(o, out);
-    throw UsageError("unknown command '" + verb + "' (see --help)");
+    return RunControl(o, out);  // pause, resume, step, speed, quit
   } catch (const UsageError& e) {
-    err << prefix << e.what() << "\n" << "run simpartner-cmd --help for usage\n";
-    return kCmdUsage;
+    return ReportUsageError(spec, e.what(), err);
   } catch (const BadValues& e) {
     err << prefix << e.what() << "\n";
     return kCmdUsage;

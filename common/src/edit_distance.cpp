@@ -25,3 +25,25 @@ size_t EditDistance(const std::string& a, const std::string& b) {
 }
 
 }  // namespace simpartner
+
+namespace simpartner {
+
+std::string NearestName(const std::string& word, const std::vector<std::string>& candidates) {
+  const size_t limit = std::max<size_t>(1, std::min<size_t>(3, word.size() / 2));
+  std::string nearest;
+  size_t best = 2 * limit + 2;  // score: twice the distance, one less for a name word begins
+  for (const std::string& candidate : candidates) {
+    const size_t d = EditDistance(word, candidate);
+    if (d > limit) continue;
+    const bool extends =
+        candidate.size() > word.size() && EditDistance(word, candidate.substr(0, word.size())) == 0;
+    const size_t score = 2 * d - (extends ? 1 : 0);
+    if (score < best) {
+      best = score;
+      nearest = candidate;
+    }
+  }
+  return nearest;
+}
+
+}  // namespace simpartner

@@ -157,28 +157,15 @@ const Entry* FindEntry(const std::vector<Entry>& entries, const std::string& key
   return nullptr;
 }
 
-// Closest known key, for "did you mean" hints on typos.
-std::string ClosestKey(const std::vector<Entry>& entries, const std::string& key) {
-  std::string best;
-  // Suggest only close matches: about one edit per three characters.
-  size_t best_distance = std::max<size_t>(2, key.size() / 3 + 1);
-  for (const Entry& e : entries) {
-    const size_t d = EditDistance(key, e.key);
-    if (d < best_distance) {
-      best_distance = d;
-      best = e.key;
-    }
-  }
-  return best;
-}
-
 void SetValue(const std::vector<Entry>& entries, const std::string& key,
               const std::string& value, const std::string& base_dir,
               const ParameterOrigin& origin, DiagnosticList* diagnostics) {
   const Entry* entry = FindEntry(entries, key);
   if (entry == nullptr) {
     std::string message = "unknown key '" + key + "'";
-    const std::string hint = ClosestKey(entries, key);
+    std::vector<std::string> keys;
+    for (const Entry& e : entries) keys.push_back(e.key);
+    const std::string hint = NearestName(key, keys);
     if (!hint.empty()) message += " (did you mean '" + hint + "'?)";
     diagnostics->Add(origin.file, origin.line, key, message);
     return;
@@ -196,94 +183,6 @@ std::string DirectoryOf(const std::string& file) {
 }
 
 }  // namespace
-
-bool CommandLine::Has(const std::string& flag) const {
-  for (const std::string& f : flags)
-    if (f == flag) return true;
-  for (const auto& fv : flag_values)
-    if (fv.first == flag) return true;
-  return false;
-}
-
-std::string CommandLine::Value(const std::string& flag,
-                               const std::string& fallback) const {
-  for (auto it = flag_values.rbegin(); it != flag_values.rend(); ++it)
-    if (it->first == flag) return it->second;
-  return fallback;
-}
-
-CommandLine ParseCommandLine(int argc, const char* const* argv,
-                             const std::vector<FlagSpec>& process_flags) {
-  CommandLine result;
-  result.program = argc > 0 ? argv[0] : "simpartner";
-  DiagnosticList diagnostics;
-  auto find_flag = [&](const std::string& name) -> const FlagSpec* {
-    for (const FlagSpec& f : process_flags)
-      if (f.name == name) return &f;
-    return nullptr;
-  };
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const std::string where = "argument " + std::to_string(i) + " '" + arg + "'";
-    if (arg.rfind("--", 0) != 0 || arg.size() == 2) {
-      result.positional.push_back(arg);
-      continue;
-    }
-    const size_t eq = arg.find('=');
-    const std::string name = arg.substr(2, eq == std::string::npos ? std::string::npos : eq - 2);
-    const bool has_inline_value = eq != std::string::npos;
-    const std::string inline_value = has_inline_value ? arg.substr(eq + 1) : "";
-
-    // "--params FILE" and "--lcm-url URL" are common to every program.
-    if (name == "params" || name == "lcm-url") {
-      std::string value = inline_value;
-      if (!has_inline_value) {
-        if (i + 1 >= argc) {
-          diagnostics.Add(kCommandLine, 0, "--" + name, where + ": needs a value");
-          continue;
-        }
-        value = argv[++i];
-      }
-      if (name == "params") {
-        result.params_file = value;
-        result.params_file_given = true;
-      } else {
-        result.overrides.emplace_back("lcmUrl", value);
-      }
-      continue;
-    }
-    if ((name == "help" || name == "print-parameters") && !has_inline_value) {
-      result.flags.push_back(name);
-      continue;
-    }
-    if (const FlagSpec* flag = find_flag(name)) {
-      if (flag->takes_value) {
-        std::string value = inline_value;
-        if (!has_inline_value) {
-          if (i + 1 >= argc) {
-            diagnostics.Add(kCommandLine, 0, "--" + name, where + ": needs a value");
-            continue;
-          }
-          value = argv[++i];
-        }
-        result.flag_values.emplace_back(name, value);
-      } else if (has_inline_value) {
-        diagnostics.Add(kCommandLine, 0, "--" + name, where + ": takes no value");
-      } else {
-        result.flags.push_back(name);
-      }
-      continue;
-    }
-    if (!has_inline_value) {
-      diagnostics.Add(kCommandLine, 0, "--" + name,
-                      where + ": unknown option (parameters are given as --key=value)");
-      continue;
-    }
-    result.overrides.emplace_back(name, inline_value);
-  }
-  if (!diagnostics.empty()) throw ConfigError(diagnostics);
-  return result;
-}
 
 void ParseParametersText(const std::string& text, const std::string& file_name,
                          Parameters* params, DiagnosticList* diagnostics) {
@@ -327,16 +226,15 @@ void ParseParametersText(const std::string& text, const std::string& file_name,
   }
 }
 
-Parameters LoadParameters(const CommandLine& command_line) {
+Parameters LoadParameters(const ParameterSources& sources) {
   Parameters params;
   DiagnosticList diagnostics;
-  std::string file = command_line.params_file;
-  if (!command_line.params_file_given) {
+  std::string file = sources.file_given ? sources.file : std::string();
+  if (!sources.file_given && sources.default_file) {
     // The default file: ./parameters.txt, else the shipped one; none is fine.
     try {
       file = FindDataFile(kDefaultParametersFile, "parameters");
     } catch (const DataFileNotFound&) {
-      file.clear();
     }
   }
   std::ifstream in;
@@ -345,13 +243,12 @@ Parameters LoadParameters(const CommandLine& command_line) {
     std::ostringstream text;
     text << in.rdbuf();
     ParseParametersText(text.str(), file, &params, &diagnostics);
-  } else if (command_line.params_file_given) {
+  } else if (sources.file_given) {
     diagnostics.Add(file, 0, "", "cannot open parameters file");
   }
   const std::vector<Entry> entries = BindEntries(&params);
-  for (const auto& [key, value] : command_line.overrides) {
-    SetValue(entries, key, value, "", ParameterOrigin{kCommandLine, 0},
-             &diagnostics);
+  for (const auto& [key, value] : sources.overrides) {
+    SetValue(entries, key, value, "", ParameterOrigin{kCommandLine, 0}, &diagnostics);
   }
   if (!diagnostics.empty()) throw ConfigError(diagnostics);
   return params;
@@ -362,13 +259,6 @@ std::string FormatParameters(const Parameters& params) {
   std::string out;
   for (const Entry& e : BindEntries(&copy)) out += e.key + "=" + e.get() + "\n";
   return out;
-}
-
-bool PrintParametersIfAsked(const CommandLine& command_line, const Parameters& params,
-                            std::ostream& out) {
-  if (!command_line.Has("print-parameters")) return false;
-  out << FormatParameters(params);
-  return true;
 }
 
 std::vector<std::string> ParameterKeys() {
@@ -398,32 +288,6 @@ std::string DescribeParameters(const std::vector<std::string>& sections) {
     }
     out += "    " + e.key + "=" + e.get() + "\n        " + e.doc + " [" + e.range + "]\n";
   }
-  return out;
-}
-
-std::string FormatUsage(const std::string& program, const std::string& summary,
-                        const std::vector<FlagSpec>& process_flags,
-                        const std::vector<std::string>& sections) {
-  std::string out = "Usage: " + program + " [options] [--key=value ...]\n\n" + summary +
-                    "\n\nOptions:\n";
-  auto line = [&out](const std::string& left, const std::string& help) {
-    std::string padded = "  " + left;
-    if (padded.size() < 28) padded.resize(28, ' ');
-    else padded += "  ";
-    out += padded + help + "\n";
-  };
-  line("--params FILE", "parameters file (default: ./parameters.txt, else the shipped one, "
-                        "found like any data file; see SIMPARTNER_DATA in docs/install.md)");
-  line("--lcm-url URL", std::string("LCM URL (default ") + kDefaultLcmUrl + ")");
-  for (const FlagSpec& f : process_flags)
-    line("--" + f.name + (f.takes_value ? " VALUE" : ""), f.help);
-  line("--print-parameters", "print the effective parameters (file + overrides) as key=value and exit");
-  line("--help", "show this text");
-  out += "\nParameters (key=default, in parameters.txt or as --key=value):\n";
-  out += DescribeParameters(sections);
-  if (!sections.empty())
-    out += "\n  (parameters.txt is shared by every program: its other keys are for the "
-           "other programs, accepted and checked here but not used)\n";
   return out;
 }
 

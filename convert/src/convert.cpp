@@ -18,21 +18,6 @@ ConvertError Located(const std::string& file, int line, const std::string& messa
   return ConvertError(diagnostics);
 }
 
-constexpr const char* kUsage =
-    "usage: simpartner-convert IN -o OUT [--mesh-as-box] [--params FILE] [--key=value ...]\n"
-    "\n"
-    "Converts a robot model; the direction comes from IN's kind:\n"
-    "  URDF (<robot> with <link>s)           -> our robot XML (y-up)\n"
-    "  our world XML (<world>)               -> MJCF for MuJoCo (z-up), with its robots\n"
-    "  our robot XML (<robot> with <body>s)  -> MJCF of the robot alone (no ground)\n"
-    "\n"
-    "  -o, --output OUT  file to write (required)\n"
-    "  --mesh-as-box     URDF meshes (STL, OBJ) become their bounding box\n"
-    "  --params FILE     parameters for MJCF (stepsize, contact defaults);\n"
-    "                    --key=value overrides one, e.g. --stepsize=0.002\n"
-    "  --help            this text\n"
-    "Frames and what MJCF cannot carry: docs/convert.md.\n";
-
 }  // namespace
 
 InputKind DetectInputKind(const std::string& text, const std::string& file_name) {
@@ -103,59 +88,37 @@ ConvertOutcome Convert(const ConvertRequest& request) {
   return outcome;
 }
 
+CommandLineSpec ConvertCommandLine() {
+  CommandLineSpec spec;
+  spec.program = "simpartner-convert";
+  spec.summary =
+      "Converts a robot model; the direction comes from IN's kind:\n"
+      "  URDF (<robot> with <link>s)           -> our robot XML (y-up)\n"
+      "  our world XML (<world>)               -> MJCF for MuJoCo (z-up), with its robots\n"
+      "  our robot XML (<robot> with <body>s)  -> MJCF of the robot alone (no ground)\n"
+      "An IN not found as given is looked for among the shipped models/worlds and models/robots.\n"
+      "Frames and what MJCF cannot carry: docs/convert.md.";
+  spec.options = {Text("output", "OUT", "file to write (required)").Short('o'),
+                  Switch("mesh-as-box", "URDF meshes (STL, OBJ) become their bounding box")};
+  spec.required = {"output"};
+  spec.positionals = {Positional{"IN"}};
+  // MJCF takes the step size and the contact defaults; the conversion does
+  // not depend on the directory it runs in, so no default parameters file.
+  spec.parameters = ParameterUse{{parameter_sections::kStepping, parameter_sections::kContact}, false};
+  return spec;
+}
+
 int RunConvert(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  ConvertRequest request;
   CommandLine command_line;
-  command_line.program = "simpartner-convert";
-  std::vector<std::string> inputs;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    auto value = [&](const char* what) -> const std::string* {
-      if (i + 1 >= args.size()) {
-        err << "simpartner-convert: " << arg << " needs " << what << "\n" << kUsage;
-        return nullptr;
-      }
-      return &args[++i];
-    };
-    if (arg == "--help" || arg == "-h") {
-      out << kUsage;
-      return 0;
-    } else if (arg == "-o" || arg == "--output") {
-      const std::string* v = value("the output file");
-      if (v == nullptr) return 2;
-      request.output = *v;
-    } else if (arg == "--mesh-as-box") {
-      request.mesh_as_box = true;
-    } else if (arg == "--params") {
-      const std::string* v = value("a parameters file");
-      if (v == nullptr) return 2;
-      command_line.params_file = *v;
-      command_line.params_file_given = true;
-    } else if (arg.rfind("--", 0) == 0 && arg.find('=') != std::string::npos) {
-      const size_t eq = arg.find('=');
-      command_line.overrides.emplace_back(arg.substr(2, eq - 2), arg.substr(eq + 1));
-    } else if (arg.rfind("-", 0) == 0 && arg.size() > 1) {
-      err << "simpartner-convert: unknown option '" << arg << "'\n" << kUsage;
-      return 2;
-    } else {
-      inputs.push_back(arg);
-    }
-  }
-  if (inputs.size() != 1 || request.output.empty()) {
-    err << "simpartner-convert: " << (inputs.empty() ? "no input file" :
-                                      inputs.size() > 1 ? "more than one input file" :
-                                                          "no output file (-o OUT)")
-        << "\n" << kUsage;
-    return 2;
-  }
-  request.input = inputs.front();
+  if (const auto done = ReadCommandLine(ConvertCommandLine(), args, out, err, &command_line))
+    return *done;
+  ConvertRequest request;
+  request.input = command_line.positional().front();
+  request.output = command_line.Text("output");
+  request.mesh_as_box = command_line.Has("mesh-as-box");
   try {
-    // The default parameters.txt only when the user names one: conversion
-    // must not depend on the directory it runs in.
-    if (command_line.params_file_given || !command_line.overrides.empty()) {
-      if (!command_line.params_file_given) command_line.params_file.clear();
-      request.params = LoadParameters(command_line);
-    }
+    request.params = LoadParameters(command_line.parameter_sources());
+    if (PrintParametersIfAsked(command_line, request.params, out)) return 0;
     const ConvertOutcome outcome = Convert(request);
     static const char* const kKinds[] = {"URDF -> robot XML", "robot XML -> MJCF",
                                          "world XML -> MJCF"};

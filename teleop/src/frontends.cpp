@@ -17,9 +17,9 @@
 #include <thread>
 
 #include "simpartner/client/errors.h"
-#include "simpartner/data_paths.h"
 #include "simpartner/teleop/keyboard_window.h"
 #include "simpartner/teleop/session.h"
+#include "simpartner/teleop/teleop_cli.h"
 
 namespace simpartner::teleop {
 
@@ -196,35 +196,6 @@ bool VirtualPad::Apply(const std::string& line) {
 
 namespace {
 
-// The shipped mappings: found like every data file (data_paths.h); a name
-// that is nowhere still goes into --help, and --check reports it missing.
-std::string DefaultMappingDir() {
-  try {
-    return FindDataDirectory("teleop/mappings", "mapping directory");
-  } catch (const DataFileNotFound&) {
-    return "teleop/mappings";
-  }
-}
-
-std::string Usage() {
-  return "usage: simpartner-teleop [options]\n"
-         "  Drives the robot of the sim on the bus from the first game controller\n"
-         "  (hot-plug), or with --keyboard from a small window. Hold the dead-man\n"
-         "  button (keyboard: space) to move.\n"
-         "  --lcm-url URL       the bus (default " + std::string(client::kDefaultUrl) + ")\n"
-         "  --mapping FILE      mapping file (default: the shipped one for the robot's model)\n"
-         "  --mapping-dir DIR   where the shipped mappings are (default: " + DefaultMappingDir() +
-         ")\n"
-         "  --max-speed R       wheel speed at full stick [rad/s] (overrides the mapping)\n"
-         "  --max-steer A       Turner angle at full stick [rad] (overrides the mapping)\n"
-         "  --keyboard          keyboard window instead of a game controller\n"
-         "  --list              name the connected game controllers and exit\n"
-         "  --check --environment WORLD [--mapping FILE]\n"
-         "                      check a mapping against a world's robot offline\n"
-         "  (simpartner-teleop-vpad, the test build: --script FILE, default stdin, with\n"
-         "  lines 'axis <name> <-1..1>', 'button <name> <0|1>', detach, attach, quit)\n";
-}
-
 // Reads what stdin has (non-blocking), returns the complete lines.
 std::vector<std::string> ReadAvailableLines(int input_fd, std::string* pending, bool* eof) {
   std::vector<std::string> lines;
@@ -249,79 +220,16 @@ std::vector<std::string> ReadAvailableLines(int input_fd, std::string* pending, 
 
 int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostream& out,
               std::ostream& err) {
-  SessionOptions options;
-  options.program = virtual_pad ? "teleop-vpad" : "teleop";
-  options.mapping_dir = DefaultMappingDir();
-  bool keyboard = false, list = false, check = false;
-  std::string environment, script;
-  double max_speed = NAN, max_steer = NAN;
-  for (size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    auto value = [&](std::string* v) {
-      if (k + 1 >= args.size()) throw std::invalid_argument(a + " needs a value");
-      *v = args[++k];
-    };
-    auto number = [&](double* v) {
-      std::string text;
-      value(&text);
-      char* end = nullptr;
-      *v = std::strtod(text.c_str(), &end);
-      if (text.empty() || *end != '\0' || !(*v > 0) || !std::isfinite(*v))
-        throw std::invalid_argument(a + ": '" + text + "' is not a positive number");
-    };
-    try {
-      if (a == "--lcm-url") value(&options.url);
-      else if (a == "--mapping") value(&options.mapping_file);
-      else if (a == "--mapping-dir") value(&options.mapping_dir);
-      else if (a == "--environment") value(&environment);
-      else if (a == "--script" && virtual_pad) value(&script);
-      else if (a == "--max-speed") number(&max_speed);
-      else if (a == "--max-steer") number(&max_steer);
-      else if (a == "--keyboard") keyboard = true;
-      else if (a == "--list") list = true;
-      else if (a == "--check") check = true;
-      else if (a == "--help" || a == "-h") {
-        out << Usage();
-        return 0;
-      }
-      else throw std::invalid_argument("unknown option '" + a + "'");
-    } catch (const std::invalid_argument& e) {
-      err << "simpartner-teleop: " << e.what() << "\n" << Usage();
-      return 2;
-    }
+  const CommandLineSpec spec = TeleopCommandLine(virtual_pad);
+  CommandLine command_line;
+  if (const auto done = ReadCommandLine(spec, args, out, err, &command_line)) return *done;
+  const TeleopOptions options = MakeTeleopOptions(command_line, virtual_pad);
+  if (options.check) {
+    if (options.environment.empty())
+      return ReportUsageError(spec, "--check needs --environment WORLD", err);
+    return CheckMapping(options, out, err);
   }
-  options.max_speed = max_speed;
-  options.max_steer = max_steer;
-
-  if (check) {
-    if (environment.empty()) {
-      err << "simpartner-teleop: --check needs --environment WORLD\n";
-      return 2;
-    }
-    try {
-      const model_t model = ModelFromWorldFile(environment);
-      if (model.robots.empty()) {
-        err << environment << ": the world has no robot\n";
-        return 1;
-      }
-      const std::string file = options.mapping_file.empty()
-                                   ? MappingFileFor(model.robots[0].model, options.mapping_dir)
-                                   : options.mapping_file;
-      const Plan plan = BuildPlan(LoadMapping(file), model);
-      out << file << ": fits robot " << plan.robot << " (" << model.robots[0].model << ") of "
-          << environment << ": " << plan.wheels.size() << " wheels (signs";
-      for (const Plan::Wheel& w : plan.wheels) out << " " << w.target.name << (w.sign > 0 ? " +" : " -");
-      out << ")" << (plan.steer ? ", steering " + plan.steer->target.name : std::string()) << ", "
-          << plan.levels.size() << " levels\n";
-      return 0;
-    } catch (const MappingError& e) {
-      err << e.what() << "\n";
-      return 1;
-    } catch (const std::exception& e) {
-      err << "simpartner-teleop: " << e.what() << "\n";
-      return 1;
-    }
-  }
+  const bool keyboard = options.input == TeleopInput::kKeyboard;
 
   // SIGINT and SIGTERM are taken synchronously (sigtimedwait in the loop):
   // blocked here, before any thread starts, so every thread inherits it.
@@ -342,7 +250,7 @@ int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostre
     ~SdlQuit() { SDL_Quit(); }
   } sdl_quit;
 
-  if (list) {
+  if (options.list) {
     const std::vector<std::string> names = ListControllers();
     if (names.empty()) out << "no game controller connected\n";
     for (const std::string& n : names) out << n << "\n";
@@ -351,7 +259,7 @@ int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostre
 
   std::unique_ptr<Session> session;
   try {
-    session = std::make_unique<Session>(options, out);
+    session = std::make_unique<Session>(options.session, out);
   } catch (const client::ClientError& e) {
     err << "simpartner-teleop: " << e.what() << "\n";
     return 1;
@@ -379,15 +287,15 @@ int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostre
     }
     gamepad.OpenFirst();
     if (gamepad.name().empty())
-      out << "teleop: no game controller yet; plug one in (or use --keyboard)" << std::endl;
+      out << "teleop: no game controller yet; plug one in (or use --input keyboard)" << std::endl;
   }
 
   // The test build's script: a file or FIFO (--script), else stdin.
   int script_fd = STDIN_FILENO;
-  if (virtual_pad && !script.empty()) {
-    script_fd = ::open(script.c_str(), O_RDONLY | O_CLOEXEC);
+  if (virtual_pad && !options.script.empty()) {
+    script_fd = ::open(options.script.c_str(), O_RDONLY | O_CLOEXEC);
     if (script_fd < 0) {
-      err << "simpartner-teleop-vpad: cannot open script " << script << ": " << std::strerror(errno)
+      err << "simpartner-teleop-vpad: cannot open script " << options.script << ": " << std::strerror(errno)
           << "\n";
       return 1;
     }

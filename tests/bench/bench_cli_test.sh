@@ -50,21 +50,21 @@ for source in "$source_dir"/bench/*.cpp; do
   [[ $listed == *" $bench "* ]] || fail "bench/$bench.cpp has no case in $0"
 done
 
-# The parser every bench shares (bench/bench_args.h).
+# The parser every program shares (common/include/simpartner/command_line.h).
 expect_refusal() {  # expected text, then the command line
   local want=$1; shift
   local out status
   out=$(timeout 20 "$binary_dir/bench/$1" "${@:2}" 2>&1 </dev/null); status=$?
   [[ $status -eq 2 && $out == *"$want"* ]] || fail "$*: exited $status, want 2 and '$want': $out"
 }
-expect_refusal "--steps 'many': not a whole number" sim_bench --steps many
-expect_refusal "--seconds 'x': not a number" logger_bench --seconds x
-expect_refusal "needs a value (--count N)" latency_bench --count
-expect_refusal "takes no arguments" logger_bench world.xml
-expect_refusal "one too many (it takes [world.xml])" latency_bench a.xml b.xml
-expect_refusal "--kind 'flood': refused or garbage" flood_bench --kind flood
+expect_refusal "--steps: value 'many' is not a whole number" sim_bench --steps many
+expect_refusal "--seconds: value 'x' is not a number" logger_bench --seconds x
+expect_refusal "--count needs a value (--count N)" latency_bench --count
+expect_refusal "unexpected argument 'world.xml' (it takes no arguments)" logger_bench world.xml
+expect_refusal "unexpected argument 'b.xml' (it takes [world.xml])" latency_bench a.xml b.xml
+expect_refusal "--kind: value 'flood' is not refused or garbage" flood_bench --kind flood
 # Far from anything: no guess, the list of what it takes.
-expect_refusal "unknown option; it takes: --count --lcm-url --help" latency_bench --zzzzzzzz
+expect_refusal "unknown option '--zzzzzzzz'; it takes: --count --lcm-url --help" latency_bench --zzzzzzzz
 
 if (( failures > 0 )); then
   echo "$failures failure(s)"

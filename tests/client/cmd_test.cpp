@@ -140,7 +140,7 @@ TEST_F(CmdTest, UsageErrorsAndNoSim) {
   const std::string url = UniqueUrl(12);
   CmdResult r = RunInProcess({"--help"});
   EXPECT_EQ(r.status, kCmdOk);
-  EXPECT_TRUE(Contains(r.out, "usage: simpartner-cmd")) << r.out;
+  EXPECT_TRUE(Contains(r.out, "Usage: simpartner-cmd [options] COMMAND [ARGS]")) << r.out;
   for (const std::vector<std::string>& args :
        std::vector<std::vector<std::string>>{{},
                                              {"fly"},

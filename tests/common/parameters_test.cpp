@@ -8,8 +8,17 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "simpartner/command_line.h"
+
 namespace simpartner {
 namespace {
+
+ParameterSources FromFile(const std::string& file) {
+  ParameterSources sources;
+  sources.file = file;
+  sources.file_given = true;
+  return sources;
+}
 
 // Parses text and returns the diagnostics.
 DiagnosticList Parse(const std::string& text, Parameters* params) {
@@ -119,11 +128,14 @@ class ParametersFiles : public ::testing::Test {
 
 TEST_F(ParametersFiles, CommandLineOverridesFile) {
   const std::string file = Write("conf/run.txt", "stepsize=0.002\nenvironment=../worlds/w.xml\n");
-  const char* argv[] = {"sim", "--params", file.c_str(), "--stepsize=0.004", "--check",
-                        "--lcm-url", "memq://"};
-  const CommandLine cl = ParseCommandLine(7, argv, {{"check", false, "check only"}});
+  CommandLineSpec sim;
+  sim.program = "sim";
+  sim.options = {Switch("check", "check only")};
+  sim.parameters = ParameterUse{};
+  const CommandLine cl = ParseCommandLine(
+      sim, {"--params", file, "--stepsize=0.004", "--check", "--lcm-url", "memq://"});
   EXPECT_TRUE(cl.Has("check"));
-  const Parameters params = LoadParameters(cl);
+  const Parameters params = LoadParameters(cl.parameter_sources());
   EXPECT_DOUBLE_EQ(params.stepsize, 0.004);
   EXPECT_EQ(params.lcmUrl, "memq://");
   // Resolved against the directory of the file that set it.
@@ -134,8 +146,7 @@ TEST_F(ParametersFiles, CommandLineOverridesFile) {
 TEST_F(ParametersFiles, Utf8ByteOrderMarkAtStartIsAccepted) {
   const std::string file =
       Write("conf/bom.txt", "\xEF\xBB\xBF" "environment=../worlds/w.xml\nstepsize=0.002\n");
-  const char* argv[] = {"sim", "--params", file.c_str()};
-  const Parameters params = LoadParameters(ParseCommandLine(3, argv, {}));
+  const Parameters params = LoadParameters(FromFile(file));
   EXPECT_EQ(params.environment, (dir_ / "worlds/w.xml").lexically_normal().string());
   EXPECT_DOUBLE_EQ(params.stepsize, 0.002);
   // Only a mark at the very start is one; elsewhere the bytes are part of a key.
@@ -146,10 +157,8 @@ TEST_F(ParametersFiles, Utf8ByteOrderMarkAtStartIsAccepted) {
 
 TEST_F(ParametersFiles, MissingGivenFileIsAnError) {
   const std::string missing = (dir_ / "nope.txt").string();
-  const char* argv[] = {"sim", "--params", missing.c_str()};
-  const CommandLine cl = ParseCommandLine(3, argv, {});
   try {
-    LoadParameters(cl);
+    LoadParameters(FromFile(missing));
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.diagnostics().items().at(0).file, missing);
@@ -159,10 +168,10 @@ TEST_F(ParametersFiles, MissingGivenFileIsAnError) {
 
 TEST_F(ParametersFiles, FileAndCommandLineErrorsAreAllReported) {
   const std::string file = Write("bad.txt", "\n\nglobalERP=2\n");
-  const char* argv[] = {"sim", "--params", file.c_str(), "--nokey=1", "--stepsize=x"};
-  const CommandLine cl = ParseCommandLine(5, argv, {});
+  ParameterSources sources = FromFile(file);
+  sources.overrides = {{"nokey", "1"}, {"stepsize", "x"}};
   try {
-    LoadParameters(cl);
+    LoadParameters(sources);
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
     const DiagnosticList& d = e.diagnostics();
@@ -175,15 +184,23 @@ TEST_F(ParametersFiles, FileAndCommandLineErrorsAreAllReported) {
   }
 }
 
-TEST(CommandLine, RejectsUnknownFlagsAndMissingValues) {
-  const char* unknown[] = {"sim", "--frobnicate"};
-  EXPECT_THROW(ParseCommandLine(2, unknown, {}), ConfigError);
-  const char* missing[] = {"sim", "--params"};
-  EXPECT_THROW(ParseCommandLine(2, missing, {}), ConfigError);
-  const char* value_on_switch[] = {"sim", "--check=1"};
-  EXPECT_THROW(ParseCommandLine(2, value_on_switch, {{"check", false, ""}}), ConfigError);
-  const char* help[] = {"sim", "--help"};
-  EXPECT_TRUE(ParseCommandLine(2, help, {}).Has("help"));
+// Without --params, a program that reads no default file (the converter)
+// gets the defaults and the overrides only.
+TEST_F(ParametersFiles, NoDefaultFileMeansDefaultsAndOverrides) {
+  Write("parameters.txt", "stepsize=0.002\n");
+  const std::filesystem::path before = std::filesystem::current_path();
+  std::filesystem::current_path(dir_);
+  ParameterSources sources;
+  sources.default_file = false;
+  sources.overrides = {{"contactMu", "0.5"}};
+  const Parameters without = LoadParameters(sources);
+  sources.default_file = true;
+  const Parameters with = LoadParameters(sources);
+  std::filesystem::current_path(before);
+  EXPECT_DOUBLE_EQ(without.stepsize, Parameters().stepsize);
+  EXPECT_DOUBLE_EQ(without.contactMu, 0.5);
+  EXPECT_DOUBLE_EQ(with.stepsize, 0.002);
+  EXPECT_DOUBLE_EQ(with.contactMu, 0.5);
 }
 
 TEST(Parameters, FormatRoundTrips) {
@@ -223,12 +240,16 @@ TEST(Parameters, ShippedFileDocumentsEveryKey) {
 // --help of a program lists the sections it reads: each key once, under its
 // own section, and none of another; a misspelled section is caught.
 TEST(Parameters, UsageListsOnlyTheGivenSections) {
-  const std::string viewer = FormatUsage("viewer", "summary", {}, {parameter_sections::kTransport});
+  CommandLineSpec spec;
+  spec.program = "viewer";
+  spec.parameters = ParameterUse{{parameter_sections::kTransport}};
+  const std::string viewer = FormatHelp(spec);
   EXPECT_NE(viewer.find("    lcmUrl="), std::string::npos) << viewer;
   EXPECT_EQ(viewer.find("stepsize="), std::string::npos) << viewer;
   EXPECT_EQ(viewer.find("dbname="), std::string::npos) << viewer;
   EXPECT_NE(viewer.find("other programs"), std::string::npos) << viewer;
-  const std::string all = FormatUsage("sim", "summary", {});
+  spec.parameters = ParameterUse{};
+  const std::string all = FormatHelp(spec);
   for (const std::string& key : ParameterKeys())
     EXPECT_NE(all.find("    " + key + "="), std::string::npos) << key;
   EXPECT_THROW(DescribeParameters({"Trnasport"}), std::invalid_argument);

@@ -183,7 +183,7 @@ TEST(UrdfImport, ProgramWritesTheRobotAndReportsErrors) {
   std::filesystem::remove(out);
   std::ostringstream help, none;
   EXPECT_EQ(RunConvert({"--help"}, help, none), 0);
-  EXPECT_NE(help.str().find("usage: simpartner-convert IN -o OUT"), std::string::npos);
+  EXPECT_NE(help.str().find("Usage: simpartner-convert [options] -o OUT IN"), std::string::npos);
   std::ostringstream bad_out, bad_err;
   EXPECT_EQ(RunConvert({kData + "malformed.urdf", "-o", out}, bad_out, bad_err), 1);
   EXPECT_EQ(bad_err.str().rfind(kData + "malformed.urdf:8:", 0), 0u) << bad_err.str();

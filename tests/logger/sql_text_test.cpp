@@ -119,27 +119,27 @@ TEST_F(DbTargetTest, OptionFileReadableByOthersIsAWarningAndThePasswordIsNeverSh
 }
 
 TEST(LoggerConfigTest, FlagsAndParameters) {
-  const char* argv[] = {"simpartner-logger", "--params", "/dev/null", "--logEveryStep=0",
-                        "--logInterval=25", "--insert", "loaddata", "--spool", "/tmp/s",
-                        "--db-options", "/dev/null", "--dbserver=/x.sock"};
-  const CommandLine cl = ParseCommandLine(12, argv, LoggerFlags());
-  const Parameters params = LoadParameters(cl);
+  const CommandLine cl = ParseCommandLine(
+      LoggerCommandLine(), {"--params", "/dev/null", "--logEveryStep=0", "--logInterval=25", "--insert",
+                            "loaddata", "--spool", "/tmp/s", "--db-options", "/dev/null",
+                            "--dbserver=/x.sock"});
+  const Parameters params = LoadParameters(cl.parameter_sources());
   try {
     MakeLoggerOptions(cl, params, nullptr);
     FAIL() << "/dev/null has no user";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("/dev/null: user: no user="), std::string::npos) << e.what();
   }
-  const char* bad[] = {"simpartner-logger", "--insert", "fast", "--queue-mb", "-3"};
-  const CommandLine cl2 = ParseCommandLine(5, bad, LoggerFlags());
-  try {
-    MakeLoggerOptions(cl2, Parameters(), nullptr);
-    FAIL();
-  } catch (const ConfigError& e) {
-    const std::string text = e.what();
-    EXPECT_NE(text.find("--insert: value 'fast' is not auto, multirow or loaddata"), std::string::npos) << text;
-    EXPECT_NE(text.find("--queue-mb: value '-3' is not a number above 0"), std::string::npos) << text;
-  }
+  auto refusal = [](const std::vector<std::string>& args) {
+    try {
+      ParseCommandLine(LoggerCommandLine(), args);
+    } catch (const CommandLineError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(refusal({"--insert", "fast"}), "--insert: value 'fast' is not auto, multirow or loaddata");
+  EXPECT_EQ(refusal({"--queue-mb", "-3"}), "--queue-mb: value '-3' is not a number above 0 and at most 65536");
 }
 
 }  // namespace

@@ -1,34 +1,48 @@
 #!/usr/bin/env bash
-# Each program's --help lists the parameters it reads and not the others
-# (parameters.txt is shared, but the viewer has no use for the stepper).
+# Every program answers --help in the one layout (docs/command_line.md),
+# lists the parameters it reads and not the others (parameters.txt is
+# shared, but the viewer has no use for the stepper), and refuses a
+# misspelled option with exit 2 and the nearest name.
 #   tests/scripts/program_help_test.sh BINARY_DIR
 set -uo pipefail
 bin=$1
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
-# program | keys its help must list | keys it must not list
+# program | keys its help must list | keys it must not list | a misspelling | its suggestion
 cases=(
-  "sim_core/simpartner-sim|stepsize= contactMu= speed= environment= lcmUrl=|dbname= logInterval="
-  "viewer/simpartner-viewer|lcmUrl=|stepsize= dbname= speed= environment="
-  "logger/simpartner-logger|dbname= logInterval= lcmUrl=|stepsize= contactMu= speed="
-  "logger/simpartner-query|dbname= dbserver=|stepsize= lcmUrl= speed="
-  "validate/simpartner-validate|stepsize= contactMu= environment=|dbname= lcmUrl= statusPeriod="
+  "sim_core/simpartner-sim|stepsize= contactMu= speed= environment= lcmUrl=|dbname= logInterval=|--chek|--check"
+  "viewer/simpartner-viewer|lcmUrl=|stepsize= dbname= speed= environment=|--widht=800|--width"
+  "logger/simpartner-logger|dbname= logInterval= lcmUrl=|stepsize= contactMu= speed=|--spol=x|--spool"
+  "logger/simpartner-query|dbname= dbserver=|stepsize= lcmUrl= speed=|--bdy=x|--body"
+  "validate/simpartner-validate|stepsize= contactMu= environment=|dbname= lcmUrl= statusPeriod=|--lst|--list"
+  "client/simpartner-cmd|lcmUrl=|stepsize= dbname=|--timout=1|--timeout"
+  "convert/simpartner-convert|stepsize= contactMu=|dbname= lcmUrl= speed=|--mesh-as-bx|--mesh-as-box"
+  "sequencer/simpartner-sequencer||lcmUrl= stepsize=|--quite|--quiet"
+  "teleop/simpartner-teleop||lcmUrl= stepsize=|--lst|--list"
+  "teleop/simpartner-teleop-vpad||lcmUrl= stepsize=|--scrpt=x|--script"
 )
 for c in "${cases[@]}"; do
-  IFS='|' read -r program wanted unwanted <<<"$c"
+  IFS='|' read -r program wanted unwanted wrong suggestion <<<"$c"
+  name=$(basename "$program")
   # --help ends before any window, socket or leak-prone library start-up.
   out=$(ASAN_OPTIONS=detect_leaks=0 timeout 20 "$bin/$program" --help 2>&1); status=$?
   [[ $status -eq 0 ]] || { fail "$program --help exited $status: $out"; continue; }
+  [[ $out == "Usage: $name [options]"* ]] || fail "$program --help does not start with the usage line: $out"
+  [[ $out == *$'\nOptions:\n'* && $out == *"  -h, --help "* ]] || fail "$program --help: not the common layout: $out"
   for key in $wanted; do
     [[ $out == *"    $key"* ]] || fail "$program --help does not list $key"
   done
   for key in $unwanted; do
     [[ $out != *"    $key"* ]] || fail "$program --help lists $key, which it does not read"
   done
+  out=$(ASAN_OPTIONS=detect_leaks=0 timeout 20 "$bin/$program" "$wrong" 2>&1 </dev/null); status=$?
+  [[ $status -eq 2 ]] || fail "$program $wrong exited $status (want 2): $out"
+  [[ $out == "$name: unknown option '$wrong' (did you mean '$suggestion'?)"* ]] ||
+    fail "$program $wrong: no did-you-mean '$suggestion': $out"
 done
 if (( failures > 0 )); then
   echo "$failures failure(s)"
   exit 1
 fi
-echo "all ${#cases[@]} programs list only their own parameters"
+echo "all ${#cases[@]} programs answer --help alike, list only their own parameters and refuse misspellings"

@@ -477,7 +477,7 @@ TEST(SequenceOfflineCheck, ModelFromWorldHasTheRobotsTargets) {
 TEST(SequencerCommandLine, BadOptionsAreUsageErrors) {
   std::ostringstream out, err;
   EXPECT_EQ(RunSequencer({"--speed", "fast", "x.xml"}, out, err), 2);
-  EXPECT_NE(err.str().find("--speed needs a number"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("--speed: value 'fast' is not a number"), std::string::npos) << err.str();
   EXPECT_EQ(RunSequencer({}, out, err), 2);
   EXPECT_EQ(RunSequencer({"--bogus"}, out, err), 2);
   EXPECT_NE(err.str().find("unknown option '--bogus'"), std::string::npos) << err.str();

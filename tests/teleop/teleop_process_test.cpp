@@ -458,7 +458,7 @@ TEST_F(TeleopProcessTest, CheckListAndUsageAsAProgram) {
   EXPECT_EQ(run({"--list"}, &out), 0);
   EXPECT_NE(out.find("no game controller connected"), std::string::npos) << out;
   EXPECT_EQ(run({"--max-speed", "-1"}, &out), 2);
-  EXPECT_NE(out.find("--max-speed: '-1' is not a positive number"), std::string::npos) << out;
+  EXPECT_NE(out.find("--max-speed: value '-1' is not a number above 0"), std::string::npos) << out;
 }
 
 // gen3's buttons: body up and down (hips and knees together), torso left,
@@ -526,8 +526,8 @@ TEST_F(TeleopProcessTest, KeyboardWindowDrivesWithRealKeyPresses) {
                                    "/tests/viewer/lsan.supp",
                                "LD_PRELOAD=" SP_KEEP_LOADED_LIB,
                                "ASAN_OPTIONS=" + test_support::AsanOptions(),
-                               kBinary + "/teleop/simpartner-teleop", "--keyboard", "--lcm-url",
-                               url},
+                               kBinary + "/teleop/simpartner-teleop", "--input", "keyboard",
+                               "--lcm-url", url},
       (dir_ / "teleop.log").string());
   ASSERT_TRUE(bus.Until([&] { return bus.HaveModelAndState(); }, 15)) << Log("sim.log");
   ASSERT_TRUE(LogHas("keyboard window open", 10)) << Log();

@@ -106,12 +106,9 @@ TEST(ValidateReport, AnUnwritableDirectoryIsAnError) {
   }
 }
 
-int RunCli(std::vector<std::string> args, std::string* out, std::string* err) {
-  args.insert(args.begin(), "simpartner-validate");
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
+int RunCli(const std::vector<std::string>& args, std::string* out, std::string* err) {
   std::ostringstream o, e;
-  const int status = RunValidate(static_cast<int>(argv.size()), argv.data(), o, e);
+  const int status = RunValidate(args, o, e);
   *out = o.str();
   *err = e.str();
   return status;

@@ -104,17 +104,17 @@ TEST(PngTest, ErrorsNameTheFile) {
   EXPECT_THROW(WritePng(TempPath("short.png").string(), image), PngError);
 }
 
-ViewerOptions Options(std::vector<const char*> args) {
-  args.insert(args.begin(), {"simpartner-viewer", "--params", "/dev/null"});
-  const CommandLine cl =
-      ParseCommandLine(static_cast<int>(args.size()), args.data(), ViewerFlags());
-  return MakeViewerOptions(cl, LoadParameters(cl));
+ViewerOptions Options(std::vector<std::string> args) {
+  args.insert(args.begin(), {"--params", "/dev/null"});
+  const CommandLine cl = ParseCommandLine(ViewerCommandLine(), args);
+  return MakeViewerOptions(cl, LoadParameters(cl.parameter_sources()));
 }
 
-std::string ErrorOf(std::vector<const char*> args) {
+// The command line's refusal or the options' ConfigError.
+std::string ErrorOf(std::vector<std::string> args) {
   try {
     Options(std::move(args));
-  } catch (const ConfigError& e) {
+  } catch (const Error& e) {
     return e.what();
   }
   return "";
@@ -191,7 +191,7 @@ TEST(KeysTest, EveryBindingIsListedAndKeysDoNotClash) {
 }
 
 TEST(OptionsTest, HelpListsFlagsAndKeys) {
-  const std::string usage = FormatUsage("simpartner-viewer", ViewerSummary(), ViewerFlags());
+  const std::string usage = FormatHelp(ViewerCommandLine());
   for (const char* text : {"--screenshot", "--after", "--camera", "--show", "--fps",
                            "SIM_MODEL_REQUEST", "pause / resume"})
     EXPECT_NE(usage.find(text), std::string::npos) << text;

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "simpartner/data_paths.h"
+#include "simpartner/edit_distance.h"
 #include "simpartner/validate/experiment.h"
 #include "simpartner/validate/report.h"
 
@@ -25,85 +26,20 @@ std::string Names() {
   return names;
 }
 
-}  // namespace
-
-const std::vector<FlagSpec>& ValidateFlags() {
-  static const std::vector<FlagSpec> kFlags = {
-      {"only", true, "run only this experiment (NAME or NAME,NAME; see --list)"},
-      {"fast", false, "skip the slow experiments (long gaits, test track)"},
-      {"list", false, "list the experiments and exit"},
-      {"report", true, "write DIR/README.md with a plot per experiment (gnuplot)"},
-      {"models", true,
-       "directory holding worlds/ and robots/ (default: the shipped models/, found like "
-       "every data file: ./, $SIMPARTNER_DATA, the source tree of a build, the install)"},
-  };
-  return kFlags;
-}
-
-const char* ValidateSummary() {
-  return "Reruns the original's validation experiments (SPEC 8) and two more "
-         "through the sim library, headless and as fast as possible, and "
-         "compares each with its analytic or real-robot target: one line per "
-         "check (experiment, what, measured, target, tolerance, PASS/FAIL); "
-         "exit status 1 if any check fails.";
-}
-
-int RunValidate(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
-  Context context;
-  CommandLine command_line;
-  try {
-    command_line = ParseCommandLine(argc, argv, ValidateFlags());
-    if (command_line.Has("help")) {
-      out << FormatUsage("simpartner-validate", ValidateSummary(), ValidateFlags(),
-                         {parameter_sections::kWorld, parameter_sections::kStepping,
-                          parameter_sections::kContact});
-      return 0;
-    }
-    if (!command_line.positional.empty()) {
-      err << "simpartner-validate: unexpected argument '" << command_line.positional.front()
-          << "'\n";
-      return 2;
-    }
-    context.params = LoadParameters(command_line);
-    if (PrintParametersIfAsked(command_line, context.params, out)) return 0;
-  } catch (const DiagnosticError& e) {
-    err << e.diagnostics().Format() << "\n";
-    return 2;
-  }
-  if (command_line.Has("list")) {
-    for (const Experiment& e : Experiments())
-      out << e.name << (e.slow ? " (slow)" : "") << ": " << e.title << "\n";
-    return 0;
-  }
-  if (command_line.Has("models")) {
-    context.models_dir = command_line.Value("models", "");
-  } else {
-    try {
-      // models/worlds, not models: a build tree has a models/ of its own.
-      context.models_dir =
-          std::filesystem::path(FindDataDirectory("models/worlds", "worlds directory"))
-              .parent_path()
-              .string();
-    } catch (const DataFileNotFound& e) {
-      err << e.diagnostics().Format() << "\n";
-      return 2;
-    }
-  }
-  if (!std::filesystem::is_directory(std::filesystem::path(context.models_dir) / "worlds")) {
-    err << "simpartner-validate: --models " << context.models_dir
-        << ": no worlds/ directory there\n";
-    return 2;
-  }
-
+// The experiments --only names (each NAME or NAME,NAME), else all (without
+// the slow ones with --fast). Throws CommandLineError for an unknown name.
+std::vector<const Experiment*> SelectExperiments(const CommandLine& command_line) {
   std::vector<const Experiment*> selected;
-  for (const auto& [flag, value] : command_line.flag_values) {
-    if (flag != "only") continue;
+  for (const std::string& value : command_line.All("only")) {
     for (const std::string& name : SplitCommas(value)) {
       const Experiment* e = FindExperiment(name);
       if (e == nullptr) {
-        err << "simpartner-validate: --only " << name << ": no such experiment (one of: "
-            << Names() << ")\n";
-        return 2;
+        std::vector<std::string> names;
+        for (const Experiment& known : Experiments()) names.push_back(known.name);
+        const std::string nearest = NearestName(name, names);
+        throw CommandLineError("--only " + name + ": no such experiment" +
+                               (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)") +
+                               "; one of: " + Names());
       }
       selected.push_back(e);
     }
@@ -111,6 +47,70 @@ int RunValidate(int argc, const char* const* argv, std::ostream& out, std::ostre
   if (selected.empty()) {
     for (const Experiment& e : Experiments())
       if (!(e.slow && command_line.Has("fast"))) selected.push_back(&e);
+  }
+  return selected;
+}
+
+// The directory holding worlds/ and robots/: --models, else the shipped
+// models/ found as data. Throws CommandLineError or DataFileNotFound.
+std::string ModelsDirectory(const CommandLine& command_line) {
+  // models/worlds, not models: a build tree has a models/ of its own.
+  const std::string dir =
+      command_line.Has("models")
+          ? command_line.Text("models")
+          : std::filesystem::path(FindDataDirectory("models/worlds", "worlds directory"))
+                .parent_path()
+                .string();
+  if (!std::filesystem::is_directory(std::filesystem::path(dir) / "worlds"))
+    throw CommandLineError("--models " + dir + ": no worlds/ directory there");
+  return dir;
+}
+
+}  // namespace
+
+CommandLineSpec ValidateCommandLine() {
+  CommandLineSpec spec;
+  spec.program = "simpartner-validate";
+  spec.summary =
+      "Reruns the original's validation experiments (SPEC 8) and two more through the sim "
+      "library, headless and as fast as possible, and compares each with its analytic or "
+      "real-robot target: one line per check (experiment, what, measured, target, tolerance, "
+      "PASS/FAIL); exit status 1 if any check fails.";
+  spec.options = {
+      Text("only", "NAME[,NAME]", "run only these experiments (see --list); may be repeated"),
+      Switch("fast", "skip the slow experiments (long gaits, test track)"),
+      Switch("list", "list the experiments and exit"),
+      Text("report", "DIR", "write DIR/README.md with a plot per experiment (gnuplot)"),
+      Text("models", "DIR",
+           "directory holding worlds/ and robots/ (default: the shipped models/, found like "
+           "every data file: ./, $SIMPARTNER_DATA, the source tree of a build, the install)"),
+  };
+  spec.parameters = ParameterUse{
+      {parameter_sections::kWorld, parameter_sections::kStepping, parameter_sections::kContact}};
+  return spec;
+}
+
+int RunValidate(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  const CommandLineSpec spec = ValidateCommandLine();
+  CommandLine command_line;
+  if (const auto done = ReadCommandLine(spec, args, out, err, &command_line)) return *done;
+  Context context;
+  std::vector<const Experiment*> selected;
+  try {
+    context.params = LoadParameters(command_line.parameter_sources());
+    if (PrintParametersIfAsked(command_line, context.params, out)) return 0;
+    if (command_line.Has("list")) {
+      for (const Experiment& e : Experiments())
+        out << e.name << (e.slow ? " (slow)" : "") << ": " << e.title << "\n";
+      return 0;
+    }
+    context.models_dir = ModelsDirectory(command_line);
+    selected = SelectExperiments(command_line);
+  } catch (const CommandLineError& e) {
+    return ReportUsageError(spec, e.what(), err);
+  } catch (const DiagnosticError& e) {
+    err << e.diagnostics().Format() << "\n";
+    return kUsageExitStatus;
   }
   context.progress = [&err](const std::string& line) { err << "  ... " << line << std::endl; };
 
@@ -125,15 +125,15 @@ int RunValidate(int argc, const char* const* argv, std::ostream& out, std::ostre
   }
   out << (selected.size() - failed) << " of " << selected.size() << " experiments passed\n";
 
-  const std::string report = command_line.Value("report", "");
+  const std::string report = command_line.Text("report");
   if (!report.empty()) {
-    std::string command = "simpartner-validate";
-    for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+    std::string command = spec.program;
+    for (const std::string& a : args) command += " " + a;
     try {
       WriteReport(report, results, command, context.params);
       out << "report: " << (std::filesystem::path(report) / "README.md").string() << "\n";
     } catch (const Error& e) {
-      err << "simpartner-validate: " << e.what() << "\n";
+      err << spec.program << ": " << e.what() << "\n";
       return 2;
     }
   }

@@ -13,7 +13,7 @@ constexpr const char* kCommandLine = "command line";
 
 // Parses a number of flag `flag` within [lo, hi]; adds a diagnostic naming
 // the flag and value otherwise.
-std::optional<double> Number(const std::string& flag, const std::string& text, double lo, double hi,
+std::optional<double> NumberInRange(const std::string& flag, const std::string& text, double lo, double hi,
                              DiagnosticList* diagnostics) {
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
@@ -50,31 +50,7 @@ bool* ToggleByName(Toggles* t, const std::string& name) {
 }
 constexpr const char* kToggleNames = "wireframe, frames, contacts, joints, rays, grid, hud, keys, follow";
 
-}  // namespace
-
-std::vector<FlagSpec> ViewerFlags() {
-  return {
-      {"width", true, "window width in pixels (default 1280)"},
-      {"height", true, "window height in pixels (default 720)"},
-      {"fps", true, "most frames per second (default 60; 0 = as fast as it can draw)"},
-      {"screenshot", true, "write the window as this PNG file, then exit"},
-      {"after", true, "seconds after start to take the screenshot (default 2)"},
-      {"frames", true, "take the screenshot after this many frames instead"},
-      {"quit-after", true, "exit after this many seconds and print frame figures"},
-      {"camera", true,
-       "fixed start camera 'x,y,z,yaw,pitch,distance': target [m], yaw and pitch [deg], "
-       "distance [m]; turns follow off"},
-      {"show", true, std::string("turn these on at start (comma-separated): ") + kToggleNames},
-      {"hide", true, "turn these off at start (same names)"},
-      {"nice", true,
-       "lower the viewer's CPU priority by this much, 0 to 19 (default 5): on a machine "
-       "without a GPU drawing takes about a core, and the sim keeping real time matters more"},
-      {"scanner-poll", true,
-       "ask every scanner for a reading this many times per second (default 0: only draw "
-       "readings the sim publishes at the sensor's rate)"},
-  };
-}
-
+// The --help text before the options: what it shows, and its keys.
 std::string ViewerSummary() {
   std::string keys;
   for (const std::string& line : KeyHelpLines()) keys += "  " + line + "\n";
@@ -85,31 +61,59 @@ std::string ViewerSummary() {
          keys;
 }
 
+}  // namespace
+
+CommandLineSpec ViewerCommandLine() {
+  CommandLineSpec spec;
+  spec.program = "simpartner-viewer";
+  spec.summary = ViewerSummary();
+  spec.options = {
+      Number("width", "PIXELS", "window width in pixels (default 1280)").Range(64, 16384),
+      Number("height", "PIXELS", "window height in pixels (default 720)").Range(64, 16384),
+      Number("fps", "N", "most frames per second (default 60; 0 = as fast as it can draw)")
+          .Range(0, 10000),
+      Text("screenshot", "FILE", "write the window as this PNG file, then exit"),
+      Number("after", "S", "seconds after start to take the screenshot (default 2)").Range(0, 1e6),
+      Number("frames", "N", "take the screenshot after this many frames instead").Range(1, 1e9),
+      Number("quit-after", "S", "exit after this many seconds and print frame figures")
+          .Range(0, 1e9),
+      Text("camera", "X,Y,Z,YAW,PITCH,DISTANCE",
+           "fixed start camera: target [m], yaw and pitch [deg], distance [m]; turns follow off"),
+      Text("show", "NAMES", std::string("turn these on at start (comma-separated): ") + kToggleNames),
+      Text("hide", "NAMES", "turn these off at start (same names)"),
+      Number("nice", "N",
+             "lower the viewer's CPU priority by this much, 0 to 19 (default 5): on a machine "
+             "without a GPU drawing takes about a core, and the sim keeping real time matters more")
+          .Range(0, 19),
+      Number("scanner-poll", "HZ",
+             "ask every scanner for a reading this many times per second (default 0: only draw "
+             "readings the sim publishes at the sensor's rate)")
+          .Range(0, 1000),
+  };
+  spec.parameters = ParameterUse{{parameter_sections::kTransport}};
+  return spec;
+}
+
 ViewerOptions MakeViewerOptions(const CommandLine& command_line, const Parameters& params) {
   DiagnosticList diagnostics;
   ViewerOptions o;
   o.lcm_url = params.lcmUrl;
-  auto number = [&](const std::string& flag, double lo, double hi) -> std::optional<double> {
-    for (const auto& given : command_line.flag_values)
-      if (given.first == flag) return Number(flag, command_line.Value(flag, ""), lo, hi, &diagnostics);
-    return std::nullopt;
-  };
-  if (auto v = number("width", 64, 16384)) o.width = static_cast<int>(*v);
-  if (auto v = number("height", 64, 16384)) o.height = static_cast<int>(*v);
-  if (auto v = number("fps", 0, 10000)) o.max_fps = *v;
-  if (auto v = number("after", 0, 1e6)) o.after_seconds = *v;
-  if (auto v = number("frames", 1, 1e9)) o.after_frames = static_cast<int64_t>(*v);
-  if (auto v = number("quit-after", 0, 1e9)) o.quit_after = *v;
-  if (auto v = number("scanner-poll", 0, 1000)) o.scanner_poll_hz = *v;
-  if (auto v = number("nice", 0, 19)) o.nice = static_cast<int>(*v);
-  o.screenshot = command_line.Value("screenshot", "");
+  o.width = static_cast<int>(command_line.Number("width", o.width));
+  o.height = static_cast<int>(command_line.Number("height", o.height));
+  o.max_fps = command_line.Number("fps", o.max_fps);
+  o.after_seconds = command_line.Number("after", o.after_seconds);
+  o.after_frames = static_cast<int64_t>(command_line.Number("frames", 0));
+  o.quit_after = command_line.Number("quit-after", o.quit_after);
+  o.scanner_poll_hz = command_line.Number("scanner-poll", o.scanner_poll_hz);
+  o.nice = static_cast<int>(command_line.Number("nice", o.nice));
+  o.screenshot = command_line.Text("screenshot");
   const bool timed = o.after_seconds > 0 || o.after_frames > 0;
   if (o.screenshot.empty() && timed)
     diagnostics.Add(kCommandLine, 0, o.after_frames > 0 ? "--frames" : "--after",
                     "only applies with --screenshot FILE");
   if (!o.screenshot.empty() && !timed) o.after_seconds = 2.0;
 
-  const std::string camera = command_line.Value("camera", "");
+  const std::string camera = command_line.Text("camera");
   if (!camera.empty()) {
     const std::vector<std::string> parts = Split(camera, ',');
     if (parts.size() != 6) {
@@ -119,13 +123,13 @@ ViewerOptions MakeViewerOptions(const CommandLine& command_line, const Parameter
       CameraSpec spec;
       bool ok = true;
       for (int k = 0; k < 3; ++k) {
-        const auto v = Number("camera", parts[static_cast<size_t>(k)], -1e6, 1e6, &diagnostics);
+        const auto v = NumberInRange("camera", parts[static_cast<size_t>(k)], -1e6, 1e6, &diagnostics);
         ok &= v.has_value();
         if (v) spec.target[k] = *v;
       }
-      const auto yaw = Number("camera", parts[3], -360, 360, &diagnostics);
-      const auto pitch = Number("camera", parts[4], -89, 89, &diagnostics);
-      const auto distance = Number("camera", parts[5], 0.05, 1000, &diagnostics);
+      const auto yaw = NumberInRange("camera", parts[3], -360, 360, &diagnostics);
+      const auto pitch = NumberInRange("camera", parts[4], -89, 89, &diagnostics);
+      const auto distance = NumberInRange("camera", parts[5], 0.05, 1000, &diagnostics);
       if (ok && yaw && pitch && distance) {
         spec.yaw_deg = *yaw;
         spec.pitch_deg = *pitch;
@@ -136,7 +140,7 @@ ViewerOptions MakeViewerOptions(const CommandLine& command_line, const Parameter
     }
   }
   for (const char* flag : {"show", "hide"}) {
-    const std::string list = command_line.Value(flag, "");
+    const std::string list = command_line.Text(flag);
     if (list.empty()) continue;
     for (const std::string& name : Split(list, ',')) {
       bool* toggle = ToggleByName(&o.toggles, name);
@@ -148,8 +152,6 @@ ViewerOptions MakeViewerOptions(const CommandLine& command_line, const Parameter
       *toggle = std::string(flag) == "show";
     }
   }
-  if (!command_line.positional.empty())
-    diagnostics.Add(kCommandLine, 0, "", "unexpected argument '" + command_line.positional[0] + "'");
   if (!diagnostics.empty()) throw ConfigError(diagnostics);
   return o;
 }

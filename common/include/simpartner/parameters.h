@@ -5,7 +5,6 @@
 #pragma once
 
 #include <limits>
-#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -164,33 +163,16 @@ struct ParameterOrigin {
   int line = 0;
 };
 
-// The parsed command line of a SimPartner program: its own flags and the
-// parameter overrides.
-struct CommandLine {
-  std::string program;
-  std::string params_file = kDefaultParametersFile;
-  bool params_file_given = false;
-  std::vector<std::string> flags;  // process flags seen, without "--"
-  std::vector<std::pair<std::string, std::string>> flag_values;  // --flag VALUE
-  std::vector<std::pair<std::string, std::string>> overrides;  // --key=value
-  std::vector<std::string> positional;
-
-  bool Has(const std::string& flag) const;
-  // Value of a process flag that takes one, or fallback.
-  std::string Value(const std::string& flag, const std::string& fallback) const;
+// Where the parameters of a run come from besides the defaults: a file and
+// --key=value overrides (command_line.h reads them from a command line).
+struct ParameterSources {
+  std::string file = kDefaultParametersFile;  // --params FILE
+  bool file_given = false;
+  // Without --params: ./parameters.txt, else the shipped one (true), or no
+  // file at all (false).
+  bool default_file = true;
+  std::vector<std::pair<std::string, std::string>> overrides;  // key, value; in order
 };
-
-// Describes the process flags a program accepts besides parameters.
-struct FlagSpec {
-  std::string name;   // without "--"
-  bool takes_value;   // "--name VALUE" or "--name=VALUE"
-  std::string help;
-};
-
-// Splits argv into process flags, --params FILE and --key=value overrides.
-// Throws ConfigError for a flag it cannot read ("command line: argument N").
-CommandLine ParseCommandLine(int argc, const char* const* argv,
-                             const std::vector<FlagSpec>& process_flags);
 
 // Parses `key=value` text into params. Problems go to diagnostics with file
 // and line; the fields named by bad lines keep their previous values.
@@ -199,16 +181,11 @@ void ParseParametersText(const std::string& text, const std::string& file_name,
 
 // Loads defaults, then the parameters file (the default one only if it
 // exists), then the command-line overrides. Throws ConfigError listing every
-// problem.
-Parameters LoadParameters(const CommandLine& command_line);
+// problem (file and line; "command line" for an override).
+Parameters LoadParameters(const ParameterSources& sources);
 
 // Effective parameters as `key=value` lines, in the documented order.
 std::string FormatParameters(const Parameters& params);
-
-// --print-parameters (common to every program): writes params to out and
-// returns true, for the program to exit 0; false when not asked.
-bool PrintParametersIfAsked(const CommandLine& command_line, const Parameters& params,
-                            std::ostream& out);
 
 // Documentation of every key (type, range, default, meaning) for --help and
 // for checking that parameters.txt documents every key; with sections (of
@@ -216,11 +193,5 @@ bool PrintParametersIfAsked(const CommandLine& command_line, const Parameters& p
 // error (std::invalid_argument).
 std::string DescribeParameters(const std::vector<std::string>& sections = {});
 std::vector<std::string> ParameterKeys();
-
-// Usage text of a program: its flags, then the parameter keys of the
-// sections it reads (all when empty).
-std::string FormatUsage(const std::string& program, const std::string& summary,
-                        const std::vector<FlagSpec>& process_flags,
-                        const std::vector<std::string>& sections = {});
 
 }  // namespace simpartner

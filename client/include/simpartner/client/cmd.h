@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/command_line.h"
+
 namespace simpartner::client {
 
 // Exit statuses of simpartner-cmd; each names one outcome.
@@ -21,6 +23,8 @@ enum CmdExit : int {
 // args without the program name, e.g. {"set", "Axle1Motor", "300,1.0"}.
 int RunCmd(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
-std::string CmdUsage();
+// What simpartner-cmd takes on its command line: a command and its
+// arguments, --timeout, and the bus as the other programs read it.
+CommandLineSpec CmdCommandLine();
 
 }  // namespace simpartner::client

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/command_line.h"
 #include "simpartner/parameters.h"
 
 namespace simpartner::convert {
@@ -33,6 +34,9 @@ struct ConvertOutcome {
 
 // Reads, converts and writes; throws ConvertError, ModelError or Error.
 ConvertOutcome Convert(const ConvertRequest& request);
+
+// What simpartner-convert takes on its command line.
+CommandLineSpec ConvertCommandLine();
 
 // The program: arguments without argv[0]. Returns the exit status (0 done,
 // 1 bad input, 2 bad usage).

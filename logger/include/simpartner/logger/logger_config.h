@@ -1,4 +1,4 @@
-// simpartner-logger's command line: its flags besides the parameters, and
+// simpartner-logger's command line: its options besides the parameters, and
 // the options built from both.
 #pragma once
 
@@ -6,13 +6,13 @@
 #include <vector>
 
 #include "simpartner/logger/logger.h"
-#include "simpartner/parameters.h"
+#include "simpartner/command_line.h"
 
 namespace simpartner::logger {
 
-std::vector<FlagSpec> LoggerFlags();
-std::string LoggerSummary();
-// Throws ConfigError naming the flag or key. Warnings go to *warnings.
+// What simpartner-logger takes on its command line.
+CommandLineSpec LoggerCommandLine();
+// Throws ConfigError naming the option file or key. Warnings go to *warnings.
 LoggerOptions MakeLoggerOptions(const CommandLine& command_line, const Parameters& params,
                                 std::vector<std::string>* warnings);
 

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/command_line.h"
+
 namespace simpartner::sequencer {
 
 // Runs the program with `args` (without the program name); returns the
@@ -12,7 +14,7 @@ namespace simpartner::sequencer {
 int RunSequencer(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
                  int stop_fd = -1);
 
-// The usage text of --help.
-std::string Usage();
+// What simpartner-sequencer takes on its command line.
+CommandLineSpec SequencerCommandLine();
 
 }  // namespace simpartner::sequencer

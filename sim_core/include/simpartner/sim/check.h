@@ -3,16 +3,14 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/command_line.h"
 #include "simpartner/model/model.h"
-#include "simpartner/parameters.h"
 
 namespace simpartner::sim {
 
-// Flags of simpartner-sim besides the parameters.
-const std::vector<FlagSpec>& SimFlags();
-
-// One-paragraph description for --help.
-const char* SimSummary();
+// What simpartner-sim takes on its command line (its options and the
+// parameter sections it reads).
+CommandLineSpec SimCommandLine();
 
 // The world the sim runs: parameter 'environment' (found as data), with
 // --robot / --robot-pose / --robot-add applied. Throws ConfigError or

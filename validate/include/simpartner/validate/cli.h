@@ -3,18 +3,20 @@
 #pragma once
 
 #include <ostream>
+#include <string>
 #include <vector>
 
-#include "simpartner/parameters.h"
+#include "simpartner/command_line.h"
 
 namespace simpartner::validate {
 
-const std::vector<FlagSpec>& ValidateFlags();
-const char* ValidateSummary();
+// What simpartner-validate takes on its command line.
+CommandLineSpec ValidateCommandLine();
 
 // Runs the selected experiments, printing one line per check to `out` and
 // progress to `err`. Returns 0 when every check passed, 1 when any failed,
 // 2 for a bad command line, parameters file or report directory.
-int RunValidate(int argc, const char* const* argv, std::ostream& out, std::ostream& err);
+// args: without the program name.
+int RunValidate(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 }  // namespace simpartner::validate

@@ -1,5 +1,5 @@
-// simpartner-viewer's command line: its flags besides the parameters (of
-// which it reads lcmUrl), and the options built from both.
+// simpartner-viewer's command line: its options besides the parameters (of
+// which it reads lcmUrl), and the viewer options built from both.
 #pragma once
 
 #include <cstdint>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "simpartner/parameters.h"
+#include "simpartner/command_line.h"
 #include "simpartner/viewer/camera.h"
 
 namespace simpartner::viewer {
@@ -48,8 +48,8 @@ struct ViewerOptions {
   int nice = 5;                // lower the viewer's CPU priority by this much (0..19)
 };
 
-std::vector<FlagSpec> ViewerFlags();
-std::string ViewerSummary();
+// What simpartner-viewer takes on its command line.
+CommandLineSpec ViewerCommandLine();
 // Throws ConfigError naming the flag and value.
 ViewerOptions MakeViewerOptions(const CommandLine& command_line, const Parameters& params);
 // Camera for a spec in a world with `up`.
