@@ -5,7 +5,8 @@
 //   1. by the query library's arrays (what Python's read_logged uses):
 //      the whole run, a time range, one body;
 //   2. by Python's simpartner.read_logged (when the module is built);
-//   3. by the row-by-row export (simpartner-query poses and joints);
+//   3. by the row-by-row export (simpartner-query poses, joints, forces:
+//      what read_logged and the wheel-forces plot read before);
 //   4. as plots: wheel-forces and track (MakePlot, then gnuplot's PNG).
 // Each figure is the wall time (the best of three for 1 and 2), the
 // multiple of real time (sim seconds read per second), and the CPU time of
@@ -181,20 +182,27 @@ void Arrays(const PrivateServer& server, double sim_seconds) {
   }
 }
 
-// 3. The row-by-row export of poses and joints (what read_logged did
-// before it read arrays).
+// 3. The row-by-row export: poses and joints (what read_logged did before
+// it read arrays), and the forces of every body (what the wheel-forces
+// plot read before it read the wheels' arrays).
 void RowByRow(const PrivateServer& server, double sim_seconds) {
   std::unique_ptr<DbConnection> db = Reader(server);
-  size_t rows = 0;
-  const Timer timer(server);
-  ExportRequest poses;
-  ReadExport(db.get(), poses, [&](const ExportStep& step) { rows += step.rows.size(); });
-  ExportRequest joints;
+  ExportRequest poses, joints, forces;
   joints.kind = ExportKind::kJoints;
   joints.unwrap = true;
-  ReadExport(db.get(), joints, [&](const ExportStep& step) { rows += step.rows.size(); });
-  Report("row-by-row export, poses + joints", timer.Wall(), sim_seconds,
-         std::to_string(rows) + " rows; " + timer.Cpu());
+  forces.kind = ExportKind::kForces;
+  struct Case {
+    const char* what;
+    std::vector<ExportRequest> requests;
+  };
+  for (const Case& c : {Case{"row-by-row export, poses + joints", {poses, joints}},
+                        Case{"row-by-row export, forces of every body", {forces}}}) {
+    size_t rows = 0;
+    const Timer timer(server);
+    for (const ExportRequest& request : c.requests)
+      ReadExport(db.get(), request, [&](const ExportStep& step) { rows += step.rows.size(); });
+    Report(c.what, timer.Wall(), sim_seconds, std::to_string(rows) + " rows; " + timer.Cpu());
+  }
 }
 
 // 2. Python's read_logged in a python3 of its own, timed inside it: the
