@@ -50,40 +50,19 @@
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/status_t.hpp"
+#include "cpu_time.h"
 
 namespace {
 
 using namespace simpartner;
 using namespace simpartner::logger;
 using Clock = std::chrono::steady_clock;
+using bench::CpuSeconds;
+using bench::ServerCpuSeconds;
 
 double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
-// CPU time of this process so far [s].
-double CpuSeconds() {
-  rusage usage{};
-  ::getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
-}
-
 std::string Gen3World() { return std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml"; }
-
-// CPU time the private server has used so far [s] (from /proc).
-double ServerCpuSeconds(const PrivateServer& server) {
-  std::ifstream pid_file(server.dir() + "/mariadbd.pid");
-  std::string pid;
-  pid_file >> pid;
-  std::ifstream stat("/proc/" + pid + "/stat");
-  std::string text;
-  std::getline(stat, text);
-  std::stringstream fields(text.substr(text.rfind(')') + 2));
-  std::string f;
-  double ticks = 0;
-  for (int i = 3; i <= 15 && fields >> f; ++i)
-    if (i == 14 || i == 15) ticks += std::stod(f);
-  return ticks / static_cast<double>(::sysconf(_SC_CLK_TCK));
-}
 
 // ---- 1. insert methods -------------------------------------------------
 

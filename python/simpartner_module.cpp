@@ -11,12 +11,14 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "simpartner/client/client.h"
 #include "simpartner/client/command.h"
-#include "simpartner/logger/query.h"
+#include "simpartner/logger/export.h"
+#include "simpartner/logger/logged_run.h"
 #include "simpartner/parameters.h"
 
 namespace py = pybind11;
@@ -146,70 +148,97 @@ class Sim {
   std::unique_ptr<Client> client_;
 };
 
-// The logged simulation `simulation` of the database: per body and joint
-// arrays over the logged steps.
-py::dict ReadLogged(const std::string& simulation, const std::string& db_options,
-                    const std::string& dbname, const std::string& dbserver, bool velocities) {
+// An array of `shape` (row-major) that owns `values`: no copy.
+template <class T>
+py::array_t<T> OwningArray(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+  auto* owner = new std::vector<T>(std::move(values));
+  py::capsule release(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(std::move(shape), owner->data(), release);
+}
+
+// read_logged's `simulation`: an id (int, or a NumPy integer), "last",
+// "running", or the id as text.
+std::string SimulationArgument(const py::object& simulation) {
+  if (py::isinstance<py::str>(simulation)) return simulation.cast<std::string>();
+  if (!py::isinstance<py::bool_>(simulation) && PyIndex_Check(simulation.ptr())) {
+    const auto id = py::reinterpret_steal<py::int_>(PyNumber_Index(simulation.ptr()));
+    if (!id) throw py::error_already_set();
+    return std::to_string(id.cast<long long>());
+  }
+  throw py::type_error(
+      "read_logged: simulation must be a simulation id (int), 'last' or 'running', not " +
+      std::string(py::str(py::type::handle_of(simulation).attr("__name__"))));
+}
+
+// read_logged's `bodies` or `joints`: None (all), a name or a list of names.
+simpartner::logger::PartSelection SelectionArgument(const py::object& names, const char* what) {
+  if (names.is_none()) return {};
+  if (py::isinstance<py::str>(names)) return {false, {names.cast<std::string>()}};
+  try {
+    return {false, names.cast<std::vector<std::string>>()};
+  } catch (const py::cast_error&) {
+    throw py::type_error(std::string("read_logged: ") + what +
+                         " must be None, a name or a list of names");
+  }
+}
+
+py::dict PartDict(std::vector<simpartner::logger::PartArray>* parts, size_t steps) {
+  py::dict out;
+  for (auto& part : *parts) {
+    const size_t columns = steps ? part.values.size() / steps : 0;
+    out[py::str(part.name)] = OwningArray(std::move(part.values), {static_cast<py::ssize_t>(steps),
+                                                                   static_cast<py::ssize_t>(columns)});
+  }
+  return out;
+}
+
+std::vector<std::string> ColumnNames(simpartner::logger::ExportKind kind, bool velocities) {
+  simpartner::logger::ExportRequest request;
+  request.kind = kind;
+  request.velocities = velocities;
+  return simpartner::logger::ExportColumns(request);
+}
+
+// A logged simulation of the database: per body and joint arrays over the
+// logged steps (logged_run.h reads them).
+py::dict ReadLogged(const py::object& simulation, const std::string& db_options,
+                    const std::string& dbname, const std::string& dbserver, bool velocities,
+                    std::optional<double> start, std::optional<double> end, const py::object& bodies,
+                    const py::object& joints, bool forces) {
   using namespace simpartner::logger;
+  LoggedRunRequest request;
+  request.simulation = SimulationArgument(simulation);
+  if (start) request.from = *start;
+  if (end) request.to = *end;
+  request.bodies = SelectionArgument(bodies, "bodies");
+  request.joints = SelectionArgument(joints, "joints");
+  request.velocities = velocities;
+  request.forces = forces;
   simpartner::Parameters params;
   std::vector<std::string> warnings;
   params.dbname = dbname;
   params.dbserver = dbserver;
   const DbTarget target = ResolveDbTarget(params, db_options, kPrivateReaderOptions, &warnings);
-  std::unique_ptr<DbConnection> db = DbConnection::Open(target, false);
-  db->UseDatabase(false);
-
-  py::dict result;
-  std::vector<double> times;
-  // name -> flat values per step
-  std::map<std::string, std::vector<double>> pose, joint;
-  std::vector<std::string> body_order, joint_order;
-  ExportRequest poses;
-  poses.simulation = simulation;
-  poses.velocities = velocities;
-  uint32_t id = 0;
+  LoggedRun run;
   {
     py::gil_scoped_release release;
-    id = ReadExport(db.get(), poses, [&](const ExportStep& step) {
-      times.push_back(step.time);
-      for (const ExportRow& row : step.rows) {
-        auto [it, fresh] = pose.try_emplace(row.name);
-        if (fresh) body_order.push_back(row.name);
-        it->second.insert(it->second.end(), row.values.begin(), row.values.end());
-      }
-    });
-    ExportRequest joints;
-    joints.kind = ExportKind::kJoints;
-    joints.simulation = std::to_string(id);
-    joints.unwrap = true;
-    ReadExport(db.get(), joints, [&](const ExportStep& step) {
-      for (const ExportRow& row : step.rows) {
-        auto [it, fresh] = joint.try_emplace(row.name);
-        if (fresh) joint_order.push_back(row.name);
-        it->second.insert(it->second.end(), row.values.begin(), row.values.end());
-      }
-    });
+    std::unique_ptr<DbConnection> db = DbConnection::Open(target, false);
+    db->UseDatabase(false);
+    run = ReadLoggedRun(db.get(), request);
+    db.reset();
+    DbThreadEnd();
   }
-  DbThreadEnd();
-  const size_t steps = times.size();
-  const size_t pose_columns = velocities ? 10 : 7;
-  auto as_matrix = [](const std::vector<double>& flat, size_t columns) {
-    const size_t rows = columns ? flat.size() / columns : 0;
-    auto m = Matrix(rows, columns);
-    std::copy(flat.begin(), flat.begin() + static_cast<std::ptrdiff_t>(rows * columns), m.mutable_data());
-    return m;
-  };
-  result["simulation"] = id;
-  result["time"] = py::array_t<double>(static_cast<py::ssize_t>(steps), times.data());
-  py::dict bodies, joints_out;
-  for (const std::string& name : body_order) bodies[py::str(name)] = as_matrix(pose[name], pose_columns);
-  for (const std::string& name : joint_order) joints_out[py::str(name)] = as_matrix(joint[name], 15);
-  result["bodies"] = bodies;
-  result["joints"] = joints_out;
-  result["body_columns"] = ExportColumns(poses);
-  ExportRequest j;
-  j.kind = ExportKind::kJoints;
-  result["joint_columns"] = ExportColumns(j);
+  const size_t steps = run.time.size();
+  py::dict result;
+  result["simulation"] = run.simulation;
+  result["time"] = OwningArray(std::move(run.time), {static_cast<py::ssize_t>(steps)});
+  result["step"] = OwningArray(std::move(run.step), {static_cast<py::ssize_t>(steps)});
+  result["bodies"] = PartDict(&run.poses, steps);
+  result["joints"] = PartDict(&run.joints, steps);
+  result["forces"] = PartDict(&run.forces, steps);
+  result["body_columns"] = ColumnNames(ExportKind::kPoses, velocities);
+  result["joint_columns"] = ColumnNames(ExportKind::kJoints, false);
+  result["force_columns"] = ColumnNames(ExportKind::kForces, false);
   return result;
 }
 
@@ -293,9 +322,15 @@ PYBIND11_MODULE(simpartner, m) {
 
   m.def("read_logged", &ReadLogged, py::arg("simulation") = "last", py::arg("db_options") = "",
         py::arg("dbname") = "simpartner", py::arg("dbserver") = "", py::arg("velocities") = false,
-        "A logged simulation from the database: dict with time (n,), bodies {name: (n, 7 or 10)}, "
-        "joints {name: (n, 15), angles unwrapped}, body_columns, joint_columns. simulation: an id, "
-        "'last' or 'running'. db_options: client option file (default: reader.cnf of the "
-        "private server of simpartner-mariadb, in $SIMPARTNER_STATE/mariadb, ./state/mariadb or "
+        py::arg("start") = py::none(), py::arg("end") = py::none(), py::arg("bodies") = py::none(),
+        py::arg("joints") = py::none(), py::arg("forces") = false,
+        "A logged simulation from the database: dict with time (n,), step (n,), bodies "
+        "{name: (n, 7 or 10)}, joints {name: (n, 15), angles continuous}, forces {name: (n, 6)} "
+        "(with forces=True), body_columns, joint_columns, force_columns, simulation (its id). "
+        "simulation: an id (int), 'last' or 'running'. start, end: only the steps from start to "
+        "end [s of sim time] (None: from the first, to the last). bodies, joints: None (all), a "
+        "name or a list of names ([] for none). velocities: add vx, vy, vz (central differences). "
+        "db_options: client option file (default: reader.cnf of the private server of "
+        "simpartner-mariadb, in $SIMPARTNER_STATE/mariadb, ./state/mariadb or "
         "~/.local/state/simpartner/mariadb).");
 }

@@ -5,6 +5,7 @@
 #include <cppconn/driver.h>
 #include <cppconn/exception.h>
 #include <cppconn/statement.h>
+#include <cppconn/prepared_statement.h>
 #include <sys/stat.h>
 
 #include "simpartner/data_paths.h"
@@ -273,6 +274,19 @@ std::unique_ptr<sql::ResultSet> DbConnection::QueryStreaming(const std::string& 
     std::unique_ptr<sql::Statement> statement(connection_->createStatement());
     statement->setResultSetType(sql::ResultSet::TYPE_FORWARD_ONLY);
     std::unique_ptr<sql::ResultSet> rows(statement->executeQuery(sql));
+    // The result set keeps a pointer to its statement: keep it alive.
+    streaming_statements_.push_back(std::move(statement));
+    return rows;
+  } catch (const sql::SQLException&) {
+    Rethrow(what);
+  }
+}
+
+std::unique_ptr<sql::ResultSet> DbConnection::QueryBinary(const std::string& sql,
+                                                          const std::string& what) {
+  try {
+    std::unique_ptr<sql::PreparedStatement> statement(connection_->prepareStatement(sql));
+    std::unique_ptr<sql::ResultSet> rows(statement->executeQuery());
     // The result set keeps a pointer to its statement: keep it alive.
     streaming_statements_.push_back(std::move(statement));
     return rows;

@@ -18,6 +18,7 @@ cases=(
   "stepper_survey|Which stepper keeps WorkPartner stable|--seconds-scal 1|--seconds-scale"
   "drift_bench|drifted from wall time|--secnds 5|--seconds"
   "logger_bench|Figures of the database logger|--skp 1|--skip"
+  "logged_read_bench|is read back from a|--datdir x|--datadir"
   "viewer_bench|How fast simpartner-viewer draws|--widht 640|--width"
   "flood_bench|floods|--rat 5|--rate"
   "peer_bench|MuJoCo 2.2|--stnad 3|--stand"

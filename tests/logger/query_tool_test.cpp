@@ -32,6 +32,18 @@ SimRun SpinRun(int steps, int64_t simulation_id, double rate = kSpinRate) {
   return testing::MakeRun(sim.get(), steps);
 }
 
+// WorkPartner gen3 on flat ground driven straight ahead, every wheel at 4.4 rad/s.
+SimRun DrivenGen3Run(int steps, int64_t simulation_id) {
+  model::WorldLoadResult loaded =
+      model::LoadWorldFile(std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml");
+  EXPECT_TRUE(loaded.world) << loaded.diagnostics.Format();
+  sim::Simulation sim(*loaded.world, Parameters(), simulation_id);
+  for (int w = 1; w <= 4; ++w)
+    EXPECT_FALSE(sim.Submit(sim::testing::Command("Axle" + std::to_string(w) + "Motor",
+                                                  command_t::ACTION_SET, {1000, 4.4})));
+  return testing::MakeRun(&sim, steps);
+}
+
 // The shipped free-fall world: a particle dropped from rest, no ground.
 SimRun FreeFallRun(int steps, int64_t simulation_id) {
   model::WorldLoadResult loaded =
@@ -268,13 +280,14 @@ TEST_F(QueryToolTest, PlotsArePngsOfWhatTheySay) {
                         Case{PlotKind::kPosition, "Arm", "position.png", 3},
                         Case{PlotKind::kVelocity, "Wheel", "velocity.png", 4},
                         Case{PlotKind::kWheelForces, "", "wheels.png", 1},
-                        Case{PlotKind::kTrack, "", "track.png", 1}}) {
+                        Case{PlotKind::kTrack, "", "track.png", 3}}) {
     PlotRequest request;
     request.kind = c.kind;
     request.name = c.name;
     const Plot plot = MakePlot(db.get(), request);
     EXPECT_EQ(plot.series.size(), c.series) << c.file;
-    for (const Series& s : plot.series) EXPECT_EQ(s.x.size(), 2000u) << c.file << " " << s.title;
+    for (const Series& s : plot.series)
+      EXPECT_EQ(s.x.size(), s.style == "mark" ? 1u : 2000u) << c.file << " " << s.title;
     DrawPlotPng(plot, (out / c.file).string());
     uintmax_t size = 0;
     EXPECT_TRUE(IsPng(out / c.file, &size)) << c.file;
@@ -288,8 +301,182 @@ TEST_F(QueryToolTest, PlotsArePngsOfWhatTheySay) {
   EXPECT_NEAR(std::fabs(plot.series[0].y.back()), kSpinRate * 2.0, 0.02);
   // The wheel-forces plot found the body named Wheel; the track is the robot's first body.
   EXPECT_EQ(MakePlot(db.get(), PlotRequest{PlotKind::kWheelForces, "last", ""}).series[0].title, "Wheel");
-  EXPECT_NE(MakePlot(db.get(), PlotRequest{PlotKind::kTrack, "last", ""}).title.find("track of Base"),
-            std::string::npos);
+  const Plot track = MakePlot(db.get(), PlotRequest{PlotKind::kTrack, "last", ""});
+  EXPECT_NE(track.title.find("track of Base"), std::string::npos);
+  // The base stands still: a dot marked start and end in a window of a metre.
+  ASSERT_EQ(track.series.size(), 3u);
+  EXPECT_EQ(track.series[1].title, "start");
+  EXPECT_EQ(track.series[2].title, "end");
+  EXPECT_EQ(track.series[1].x[0], track.series[0].x.front());
+  EXPECT_EQ(track.series[2].y[0], track.series[0].y.back());
+  const AxisRanges window = EqualAxesRanges(track);
+  EXPECT_NEAR(window.x_max - window.x_min, kTrackMinExtent, 1e-9);
+  EXPECT_NEAR(window.y_max - window.y_min, kTrackMinExtent, 1e-9);
+}
+
+// The four wheels of gen3 each in a panel of its own, in a style of its
+// own (two wheels carry the same load and drew over the other two, issue
+// 23), and their loads carry the robot.
+TEST_F(QueryToolTest, WheelForcesShowEveryWheelAndCarryTheRobot) {
+  const SimRun driven = DrivenGen3Run(1500, 61);
+  Log(driven);
+  const Plot plot = MakePlot(Reader().get(), PlotRequest{PlotKind::kWheelForces, "last", ""});
+  ASSERT_EQ(plot.series.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) EXPECT_EQ(plot.series[i].title, "Wheel" + std::to_string(i + 1));
+  EXPECT_TRUE(plot.panels);
+  const std::string script = GnuplotScript(plot, "data.txt");
+  EXPECT_NE(script.find("set multiplot layout 2,2"), std::string::npos) << script;
+  std::set<std::string> styles;
+  for (size_t at = script.find(" with "); at != std::string::npos; at = script.find(" with ", at + 1))
+    styles.insert(script.substr(at, script.find(" notitle", at) - at));
+  EXPECT_EQ(styles.size(), 4u) << script;
+  // Rolling on at constant speed, the wheels carry the robot's weight
+  // (the mean of the last half second).
+  double mass = 0;
+  for (const robot_t& r : driven.model.robots) mass += r.total_mass;
+  double load = 0;
+  for (const Series& wheel : plot.series)
+    for (size_t i = wheel.y.size() - 500; i < wheel.y.size(); ++i) load += wheel.y[i] / 500;
+  EXPECT_NEAR(load, mass * 9.81, 0.02 * mass * 9.81);
+}
+
+// Driven straight ahead, the chassis' track is a line: seen from above in
+// a window at most three times as long as wide (not a strip), equal scale,
+// with every point inside.
+TEST_F(QueryToolTest, TrackOfAStraightRunIsAWindowNotAStrip) {
+  Log(DrivenGen3Run(1500, 62));
+  const Plot plot = MakePlot(Reader().get(), PlotRequest{PlotKind::kTrack, "last", ""});
+  ASSERT_EQ(plot.series.size(), 3u);
+  const Series& track = plot.series[0];
+  EXPECT_TRUE(plot.equal_axes);
+  const AxisRanges window = EqualAxesRanges(plot);
+  const double dx = window.x_max - window.x_min, dy = window.y_max - window.y_min;
+  EXPECT_LE(std::max(dx, dy) / std::min(dx, dy), kMaxEqualAxesAspect + 1e-9);
+  EXPECT_GE(std::min(dx, dy), kTrackMinExtent);
+  double x_lo = 1e9, x_hi = -1e9, y_lo = 1e9, y_hi = -1e9;
+  for (size_t i = 0; i < track.x.size(); ++i) {
+    x_lo = std::min(x_lo, track.x[i]);
+    x_hi = std::max(x_hi, track.x[i]);
+    y_lo = std::min(y_lo, track.y[i]);
+    y_hi = std::max(y_hi, track.y[i]);
+  }
+  EXPECT_GE(x_lo, window.x_min);
+  EXPECT_LE(x_hi, window.x_max);
+  EXPECT_GE(y_lo, window.y_min);
+  EXPECT_LE(y_hi, window.y_max);
+  // It drove: over a metre one way, a straight line (sideways a hundredth of that).
+  const double along = std::max(x_hi - x_lo, y_hi - y_lo), across = std::min(x_hi - x_lo, y_hi - y_lo);
+  EXPECT_GT(along, 1.0);
+  EXPECT_LT(across, 0.01 * along);
+  const std::string script = GnuplotScript(plot, "data.txt");
+  EXPECT_NE(script.find("set size ratio -1"), std::string::npos) << script;
+}
+
+// The arrays that Python's read_logged and the plots read hold the numbers
+// of the row-by-row export, step for step: poses with velocities, contact
+// forces, joints with continuous angles.
+TEST_F(QueryToolTest, ArraysHoldTheNumbersOfTheExport) {
+  Log(SpinRun(600, 51));
+  auto db = Reader();
+  LoggedRunRequest all;
+  all.velocities = true;
+  all.forces = true;
+  const LoggedRun run = ReadLoggedRun(db.get(), all);
+  ASSERT_EQ(run.time.size(), 600u);
+  EXPECT_EQ(run.step.front(), 1);
+  EXPECT_EQ(run.step.back(), 600);
+  auto compare = [&](ExportRequest request, const std::vector<PartArray>& arrays) {
+    size_t i = 0;
+    ReadExport(db.get(), request, [&](const ExportStep& step) {
+      ASSERT_LT(i, run.time.size());
+      EXPECT_EQ(step.step, run.step[i]);
+      ASSERT_EQ(step.rows.size(), arrays.size());
+      for (size_t p = 0; p < arrays.size(); ++p) {
+        EXPECT_EQ(step.rows[p].name, arrays[p].name);
+        const std::vector<double>& values = step.rows[p].values;
+        for (size_t k = 0; k < values.size(); ++k)
+          EXPECT_NEAR(arrays[p].values[i * values.size() + k], values[k], 1e-9 * (1 + std::fabs(values[k])))
+              << arrays[p].name << " step " << step.step << " column " << k;
+      }
+      ++i;
+    });
+    EXPECT_EQ(i, run.time.size());
+  };
+  ExportRequest poses;
+  poses.velocities = true;
+  compare(poses, run.poses);
+  ExportRequest forces;
+  forces.kind = ExportKind::kForces;
+  compare(forces, run.forces);
+  ExportRequest joints;
+  joints.kind = ExportKind::kJoints;
+  joints.unwrap = true;
+  compare(joints, run.joints);
+  // The wheel turned at kSpinRate from the first step: angle = rate * t.
+  ASSERT_EQ(run.joints[1].name, "Axle");
+  EXPECT_NEAR(std::fabs(run.joints[1].values[599 * 15 + 3]), kSpinRate * 0.6, 0.02);
+}
+
+// A time range is the whole run's steps in it, velocities central at its
+// ends too; a body filter is that body's array; bad names and ranges are errors.
+TEST_F(QueryToolTest, ArraysOfATimeRangeAndOfOneBody) {
+  Log(SpinRun(600, 52));
+  auto db = Reader();
+  LoggedRunRequest all;
+  all.velocities = true;
+  const LoggedRun run = ReadLoggedRun(db.get(), all);
+  LoggedRunRequest part = all;
+  part.from = 0.2005;
+  part.to = 0.3005;
+  const LoggedRun slice = ReadLoggedRun(db.get(), part);
+  ASSERT_EQ(slice.time.size(), 100u);  // steps 201 to 300
+  EXPECT_EQ(slice.step.front(), 201);
+  EXPECT_EQ(slice.step.back(), 300);
+  for (size_t p = 0; p < run.poses.size(); ++p)
+    EXPECT_EQ(slice.poses[p].values, std::vector<double>(run.poses[p].values.begin() + 200 * 10,
+                                                         run.poses[p].values.begin() + 300 * 10))
+        << run.poses[p].name;
+  for (size_t j = 0; j < run.joints.size(); ++j)
+    EXPECT_EQ(slice.joints[j].values, std::vector<double>(run.joints[j].values.begin() + 200 * 15,
+                                                          run.joints[j].values.begin() + 300 * 15));
+  LoggedRunRequest wheel = all;
+  wheel.bodies = {false, {"Wheel"}};
+  wheel.joints = {false, {}};
+  const LoggedRun one = ReadLoggedRun(db.get(), wheel);
+  ASSERT_EQ(one.poses.size(), 1u);
+  EXPECT_TRUE(one.joints.empty());
+  EXPECT_EQ(one.poses[0].name, "Wheel");
+  EXPECT_EQ(one.poses[0].values, run.poses[2].values);
+  wheel.bodies.names = {"Wheell"};
+  try {
+    ReadLoggedRun(db.get(), wheel);
+    ADD_FAILURE() << "read an unknown body";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "simulation 1 has no body named 'Wheell' (did you mean 'Wheel'?)");
+  }
+  part.from = 0.5;
+  part.to = 0.25;
+  EXPECT_THROW(ReadLoggedRun(db.get(), part), Error);
+}
+
+// Simulations logged before the sim counted turns have no continuous
+// angle: the arrays unwrap the logged angles from the first step, also
+// for a range that starts late.
+TEST_F(QueryToolTest, ArraysUnwrapAnglesLoggedWithoutTheirTurns) {
+  Log(SpinRun(3000, 53));
+  Admin()->Execute("UPDATE JointPose SET continuousAngle = NULL, continuousAngle2 = NULL, "
+                   "continuousAngle3 = NULL",
+                   "forget the continuous angles");
+  LoggedRunRequest late;
+  late.from = 2.0;
+  late.joints = {false, {"Axle"}};
+  late.poses = false;
+  const LoggedRun run = ReadLoggedRun(Reader().get(), late);
+  ASSERT_EQ(run.joints.size(), 1u);
+  ASSERT_EQ(run.time.size(), 1001u);  // steps 2000 to 3000
+  for (size_t i = 0; i < run.time.size(); i += 100)
+    EXPECT_NEAR(std::fabs(run.joints[0].values[i * 15 + 3]), kSpinRate * run.time[i], 0.02)
+        << "t = " << run.time[i];
 }
 
 TEST_F(QueryToolTest, UnknownNamesAndSimulationsAreNamed) {

@@ -221,6 +221,7 @@ class DatabaseTest(unittest.TestCase):
             with self.assertRaises(simpartner.DatabaseError) as caught:
                 simpartner.read_logged("99", db_options=server + "/reader.cnf")
             self.assertIn("no simulation 99", str(caught.exception))
+            self.check_selections(run, server + "/reader.cnf")
         finally:
             for p in (sim_process, logger):
                 if p is not None:
@@ -230,6 +231,45 @@ class DatabaseTest(unittest.TestCase):
             subprocess.run([script, "stop", "--datadir", server], env=child_env(),
                            stdout=subprocess.DEVNULL)
             shutil.rmtree(work, ignore_errors=True)
+
+    def check_selections(self, run, options):
+        """The id as a number, a time range, bodies and joints by name, forces."""
+        steps = len(run["time"])
+        self.assertEqual(run["step"].shape, (steps,))
+        by_id = simpartner.read_logged(run["simulation"], db_options=options)
+        self.assertTrue(np.array_equal(by_id["time"], run["time"]))
+        by_numpy_id = simpartner.read_logged(np.int64(run["simulation"]), db_options=options)
+        self.assertTrue(np.array_equal(by_numpy_id["step"], run["step"]))
+        for wrong in (1.5, True, None):
+            with self.assertRaises(TypeError):
+                simpartner.read_logged(wrong, db_options=options)
+        with self.assertRaises(simpartner.DatabaseError) as caught:
+            simpartner.read_logged(0, db_options=options)
+        self.assertIn("is not a simulationID", str(caught.exception))
+        # The steps from 0.5 s to 1 s, with the whole run's numbers.
+        part = simpartner.read_logged(run["simulation"], db_options=options, start=0.5, end=1.0)
+        inside = (run["time"] >= 0.5) & (run["time"] <= 1.0)
+        self.assertGreater(np.count_nonzero(inside), 100)
+        self.assertTrue(np.array_equal(part["time"], run["time"][inside]))
+        self.assertTrue(np.array_equal(part["bodies"]["Wheel1"], run["bodies"]["Wheel1"][inside]))
+        self.assertTrue(np.array_equal(part["joints"]["Axle1"], run["joints"]["Axle1"][inside]))
+        # Only the bodies and joints named; contact forces on request.
+        wheels = simpartner.read_logged(run["simulation"], db_options=options,
+                                        bodies=["Wheel1", "Wheel2"], joints="Axle1", forces=True)
+        self.assertEqual(sorted(wheels["bodies"]), ["Wheel1", "Wheel2"])
+        self.assertEqual(list(wheels["joints"]), ["Axle1"])
+        self.assertEqual(wheels["forces"]["Wheel1"].shape, (steps, 6))
+        self.assertEqual(wheels["force_columns"][:3], ["Fx_N", "Fy_N", "Fz_N"])
+        # The wheel stands on the ground (y up): pushed up at the end.
+        self.assertGreater(wheels["forces"]["Wheel1"][-1, 1], 100.0)
+        self.assertTrue(np.array_equal(wheels["bodies"]["Wheel2"], run["bodies"]["Wheel2"]))
+        self.assertEqual(simpartner.read_logged(run["simulation"], db_options=options, bodies=[],
+                                                joints=[])["bodies"], {})
+        with self.assertRaises(simpartner.DatabaseError) as caught:
+            simpartner.read_logged(run["simulation"], db_options=options, bodies="Wheel7")
+        self.assertIn("no body named 'Wheel7'", str(caught.exception))
+        with self.assertRaises(TypeError):
+            simpartner.read_logged(run["simulation"], db_options=options, joints=3)
 
 
 if __name__ == "__main__":

@@ -12,7 +12,10 @@ struct Series {
   std::string title;
   std::vector<double> x, y;
   // gnuplot style: "lines", "points", "linespoints", "boxes", "dashed"
-  // (a dashed line, for analytic curves and targets).
+  // (a dashed line, for analytic curves and targets), "mark" (a big point,
+  // e.g. where a track starts). Each series of a
+  // plot gets a colour and a dash pattern of its own, so that a line drawn
+  // over another of the same values still shows.
   std::string style = "lines";
 };
 
@@ -21,11 +24,31 @@ struct Plot {
   std::string title;
   std::string xlabel, ylabel;
   std::vector<Series> series;
-  bool equal_axes = false;     // same scale on x and y (trajectories)
+  // Same scale on x and y (trajectories), in a window shaped to the data:
+  // its sides at most kMaxEqualAxesAspect to one, each at least min_extent.
+  bool equal_axes = false;
+  double min_extent = 0;
   bool log_y = false;
   std::vector<std::string> xtics;  // labels for a bar chart (x = 0, 1, ...)
   bool y_from_zero = false;    // bars: the y axis starts at 0
+  // One panel per series (same y range in each), for series that would
+  // hide one another: two rows of panels side by side.
+  bool panels = false;
 };
+
+inline constexpr double kMaxEqualAxesAspect = 3.0;
+
+// The ranges of an equal_axes plot: around the data's middle, each side
+// at least plot.min_extent (and a margin of 5 %), the shorter side widened
+// to at least 1 / kMaxEqualAxesAspect of the longer.
+struct AxisRanges {
+  double x_min = 0, x_max = 0, y_min = 0, y_max = 0;
+};
+AxisRanges EqualAxesRanges(const Plot& plot);
+
+// The gnuplot commands that draw `plot` from `data_file` (the series in
+// its blocks, as DrawPlot writes them), without terminal and output.
+std::string GnuplotScript(const Plot& plot, const std::string& data_file);
 
 // Keeps at most max_points evenly spaced points of a series (always the
 // first and the last) so that plot data stays small.

@@ -58,6 +58,8 @@ struct WriteResult {
   std::vector<int64_t> lags_us; // commit time minus publish time, per state written
 };
 
+struct RunItem;  // a state or gap record of a run (step_rows.h)
+
 class DbWriter {
  public:
   using Notice = std::function<void(const std::string&)>;
@@ -84,9 +86,12 @@ class DbWriter {
     int64_t last_step = -1;    // last step known in the database
     std::vector<int64_t> robot_ids, body_ids, joint_ids, sensor_ids;
   };
-  class RowSink;
+  struct RunRecords;  // a run's records sorted by what they become (writer.cpp)
 
   void WriteModel(const Record& record, WriteResult* result);
+  // Reopens a simulation the logger before this one closed as silent;
+  // whether it did.
+  bool ReopenSilent(uint32_t simulation);
   void CloseSimulation(const Record& record);
   // Undoes a close: the sim of a simulation closed as silent was heard again.
   void ReopenSimulation(const Record& record);
@@ -96,13 +101,19 @@ class DbWriter {
   // force_insert: no LOAD DATA (its scratch file could not be written).
   void WriteRun(const std::vector<const Record*>& run, bool check_present, bool force_insert,
                 WriteResult* result);
+  // A run's states and gaps by simulation and its other records; records
+  // of an unknown simulation are counted in result->unwritable.
+  RunRecords SortRun(const std::vector<const Record*>& run, WriteResult* result);
+  // One simulation's states and gaps of a run, counted into *pending,
+  // with the publish times of the states written added to *published;
+  // returns the last step known afterwards.
+  int64_t WriteSteps(const SimInfo& sim, const std::vector<RunItem>& items, bool check_present,
+                     bool force_insert, WriteResult* pending, std::vector<int64_t>* published);
   // WriteRun in one transaction, again after a rollback where that can
   // succeed (duplicate key, LOAD DATA refused or its file unwritable).
   void WriteRunAtomically(const std::vector<const Record*>& run, WriteResult* result);
   SimInfo* FindSimulation(int64_t bus_id);
   bool LoadSimulation(const std::string& where, SimInfo* info);
-  std::vector<int64_t> LoadIds(const char* table, const char* id_column, uint32_t simulation,
-                               size_t count);
   void CloseOthers(const SimInfo& keep, const std::string& host, const std::string& reason);
   // Method for the per-step tables of a batch of `steps` steps.
   InsertMethod MethodFor(size_t steps) const;

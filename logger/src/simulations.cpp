@@ -1,0 +1,144 @@
+#include "simpartner/logger/simulations.h"
+
+#include <cppconn/exception.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
+#include "simpartner/edit_distance.h"
+
+namespace simpartner::logger {
+
+void ListSimulations(DbConnection* db, std::ostream& out) {
+  std::unique_ptr<sql::ResultSet> rows = db->Query(
+      "SELECT s.simulationID, s.busSimulationID, s.host, s.worldName, s.startTime, s.endTime, "
+      "(SELECT COUNT(*) FROM SimulationRow r WHERE r.simulationID = s.simulationID), "
+      "(SELECT MAX(step) FROM SimulationRow r WHERE r.simulationID = s.simulationID), "
+      "(SELECT COALESCE(SUM(missing), 0) FROM LogGap g WHERE g.simulationID = s.simulationID), "
+      "COALESCE(s.endReason, 'open') "
+      "FROM Simulation s ORDER BY s.simulationID",
+      "list simulations");
+  char line[512];
+  std::snprintf(line, sizeof line, "%-6s %-18s %-16s %-20s %-26s %-26s %10s %10s %8s  %s\n", "id",
+                "bus id", "host", "world", "start (UTC)", "end (UTC)", "steps", "last step",
+                "missing", "state");
+  out << line;
+  try {
+    while (rows->next()) {
+      std::snprintf(
+          line, sizeof line, "%-6u %-18lld %-16s %-20s %-26s %-26s %10lld %10s %8lld  %s\n",
+          rows->getUInt(1), static_cast<long long>(rows->getInt64(2)),
+          std::string(rows->getString(3)).c_str(), std::string(rows->getString(4)).c_str(),
+          std::string(rows->getString(5)).c_str(),
+          rows->isNull(6) ? "-" : std::string(rows->getString(6)).c_str(),
+          static_cast<long long>(rows->getInt64(7)),
+          rows->isNull(8) ? "-" : std::string(rows->getString(8)).c_str(),
+          static_cast<long long>(rows->getInt64(9)), std::string(rows->getString(10)).c_str());
+      out << line;
+    }
+  } catch (const sql::SQLException&) {
+    db->Rethrow("read the list of simulations");
+  }
+}
+
+uint32_t ResolveSimulation(DbConnection* db, const std::string& which) {
+  if (which == "last") {
+    const int64_t id = db->QueryInt("SELECT MAX(simulationID) FROM Simulation",
+                                    "SELECT MAX(simulationID) FROM Simulation", -1);
+    if (id < 0) throw Error("the database '" + db->target().database + "' has no simulations yet");
+    return static_cast<uint32_t>(id);
+  }
+  if (which == "running") {
+    const int64_t id =
+        db->QueryInt("SELECT MAX(simulationID) FROM Simulation WHERE endTime IS NULL",
+                     "SELECT MAX(simulationID) FROM Simulation (open)", -1);
+    if (id < 0)
+      throw Error("no simulation is running (every simulation in database '" +
+                  db->target().database + "' has ended; 'last' is the newest)");
+    return static_cast<uint32_t>(id);
+  }
+  char* end = nullptr;
+  const unsigned long id = std::strtoul(which.c_str(), &end, 10);
+  if (which.empty() || *end != '\0' || id == 0 || id > 0xFFFFFFFFul)
+    throw Error("simulation '" + which +
+                "' is not a simulationID (a positive number), 'last' or 'running'");
+  if (db->QueryInt("SELECT COUNT(*) FROM Simulation WHERE simulationID = " + std::to_string(id),
+                   "SELECT FROM Simulation", 0) == 0)
+    throw Error("no simulation " + which + " in database '" + db->target().database +
+                "' (simpartner-query list shows them)");
+  return static_cast<uint32_t>(id);
+}
+
+std::vector<std::string> PartNames(DbConnection* db, uint32_t simulation, PartKind kind) {
+  const std::string table = kind == PartKind::kJoint ? "`Joint`" : "Body";
+  std::unique_ptr<sql::ResultSet> rows =
+      db->Query("SELECT name FROM " + table +
+                    " WHERE simulationID = " + std::to_string(simulation) + " ORDER BY busIndex",
+                "SELECT name FROM " + table);
+  std::vector<std::string> names;
+  try {
+    while (rows->next()) names.push_back(rows->getString(1));
+  } catch (const sql::SQLException&) {
+    db->Rethrow("read the names of " + table);
+  }
+  return names;
+}
+
+void RequirePartName(const std::vector<std::string>& names, uint32_t simulation, PartKind kind,
+                     const std::string& name) {
+  if (std::find(names.begin(), names.end(), name) != names.end()) return;
+  const bool joint = kind == PartKind::kJoint;
+  std::string message = "simulation " + std::to_string(simulation) + " has no " +
+                        (joint ? "joint" : "body") + " named '" + name + "'";
+  size_t best = std::string::npos;
+  std::string nearest;
+  for (const std::string& n : names) {
+    const size_t d = EditDistance(n, name);
+    if (d < best) {
+      best = d;
+      nearest = n;
+    }
+  }
+  if (!nearest.empty() && best <= std::max<size_t>(2, name.size() / 3))
+    message += " (did you mean '" + nearest + "'?)";
+  else if (!names.empty()) {
+    message += "; its " + std::string(joint ? "joints" : "bodies") + ":";
+    for (size_t i = 0; i < names.size() && i < 40; ++i) message += (i ? ", " : " ") + names[i];
+  }
+  throw Error(message);
+}
+
+void RequirePartName(DbConnection* db, uint32_t simulation, PartKind kind,
+                     const std::string& name) {
+  RequirePartName(PartNames(db, simulation, kind), simulation, kind, name);
+}
+
+double LoggedStepTime(DbConnection* db, uint32_t simulation) {
+  std::unique_ptr<sql::ResultSet> r =
+      db->Query("SELECT stepSize * stateEvery * logInterval FROM Simulation WHERE simulationID = " +
+                    std::to_string(simulation),
+                "SELECT stepSize FROM Simulation");
+  try {
+    if (r->next()) return static_cast<double>(r->getDouble(1));
+  } catch (const sql::SQLException&) {
+    db->Rethrow("read the step size");
+  }
+  return 0;
+}
+
+bool HasStoredContinuousAngle(DbConnection* db, uint32_t simulation) {
+  return db->QueryInt(
+             "SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = "
+             "DATABASE() AND LOWER(TABLE_NAME) = 'jointpose' AND COLUMN_NAME = "
+             "'continuousAngle'",
+             "look for JointPose.continuousAngle", 0) > 0 &&
+         db->QueryInt(
+             "SELECT p.continuousAngle IS NOT NULL FROM SimulationRow r JOIN JointPose p "
+             "ON p.simulationRowID = r.simulationRowID WHERE r.simulationID = " +
+                 std::to_string(simulation) + " ORDER BY r.step LIMIT 1",
+             "SELECT continuousAngle FROM JointPose", 0) == 1;
+}
+
+}  // namespace simpartner::logger
