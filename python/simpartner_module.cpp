@@ -17,6 +17,8 @@
 
 #include "simpartner/client/client.h"
 #include "simpartner/client/command.h"
+#include "simpartner/client/lock_step.h"
+#include "simpartner/command_shape.h"
 #include "simpartner/logger/export.h"
 #include "simpartner/logger/logged_run.h"
 #include "simpartner/parameters.h"
@@ -122,12 +124,6 @@ class Sim {
     return d;
   }
 
-  py::object State() const {
-    const std::optional<simpartner::state_t> s = client_->LatestState();
-    if (!s) return py::none();
-    return StateDict(*s);
-  }
-
   py::dict WaitUntil(double sim_time, double timeout) {
     simpartner::state_t s;
     {
@@ -137,15 +133,91 @@ class Sim {
     return StateDict(s);
   }
 
+  // The step the command applies in: at once (waiting for the sim's
+  // reply), or in lock-step the tick it answers (its reply comes with the
+  // next tick, which raises Refused if the sim refused it).
   int64_t Send(const simpartner::command_t& command, double timeout) {
-    simpartner::command_reply_t reply;
     py::gil_scoped_release release;
-    reply = client_->Command(command, timeout);
-    return reply.applied_at_step;
+    const int64_t tick = client_->LockStepTick();
+    if (tick >= 0) {
+      client_->Send(command);
+      return tick;
+    }
+    return client_->Command(command, timeout).applied_at_step;
+  }
+
+  // The newest state, or (none yet: a paused sim sends none) the state the
+  // sim answers a request with.
+  py::dict State(double timeout) const {
+    std::optional<simpartner::state_t> s = client_->LatestState();
+    if (!s) {
+      py::gil_scoped_release release;
+      s = client_->RequestState(timeout);
+    }
+    return StateDict(*s);
   }
 
  private:
   std::unique_ptr<Client> client_;
+};
+
+// A sensor reading as a dict: values as a NumPy array (Scanner ranges,
+// Position x y z qw qx qy qz, Velocity, ForceTorque), the Echo's text.
+py::dict ReadingDict(const simpartner::sensor_reading_t& r) {
+  py::array_t<double> values(static_cast<py::ssize_t>(r.values.size()));
+  auto v = values.mutable_unchecked<1>();
+  for (size_t i = 0; i < r.values.size(); ++i) v(static_cast<py::ssize_t>(i)) = r.values[i];
+  py::dict d;
+  d["name"] = r.name;
+  d["step"] = r.step;
+  d["time"] = r.sim_time;
+  d["values"] = values;
+  d["text"] = r.text;
+  return d;
+}
+
+// for state in sim.lockstep(period, steps): the client library's LockStep
+// as a Python iterator (and context manager). It leaves lock-step when the
+// loop ends, breaks or raises (the iterator is dropped), or on close().
+class LockStepLoop {
+ public:
+  LockStepLoop(Sim& sim, int64_t period, std::optional<int64_t> steps, const std::string& name,
+               bool resume, double timeout)
+      : steps_(steps) {
+    simpartner::client::LockStepOptions options;
+    options.period = period;
+    options.name = name;
+    options.resume = resume;
+    options.timeout = timeout;
+    py::gil_scoped_release release;
+    loop_ = std::make_unique<simpartner::client::LockStep>(sim.client(), options);
+  }
+
+  py::dict Next() {
+    if (!loop_ || (steps_ && taken_ >= *steps_)) {
+      Close();
+      throw py::stop_iteration();
+    }
+    simpartner::state_t state;
+    {
+      py::gil_scoped_release release;
+      state = loop_->Next();
+    }
+    ++taken_;
+    return StateDict(state);
+  }
+
+  void Close() {
+    py::gil_scoped_release release;
+    loop_.reset();
+  }
+
+  int64_t tick() const { return loop_ ? loop_->tick() : -1; }
+
+ private:
+  std::optional<int64_t> steps_;  // ticks to take; none: until the loop is left
+  int64_t taken_ = 0;
+  std::unique_ptr<simpartner::client::LockStep> loop_;
 };
 
 // An array of `shape` (row-major) that owns `values`: no copy.
@@ -255,6 +327,7 @@ PYBIND11_MODULE(simpartner, m) {
   py::register_exception<client::NoSim>(m, "NoSim", client_error.ptr());
   py::register_exception<client::SimRestarted>(m, "SimRestarted", client_error.ptr());
   py::register_exception<client::BadValues>(m, "BadValues", client_error.ptr());
+  py::register_exception<client::LockStepError>(m, "LockStepError", client_error.ptr());
   py::register_exception<simpartner::Error>(m, "DatabaseError", PyExc_RuntimeError);
   m.attr("DEFAULT_URL") = client::kDefaultUrl;
 
@@ -265,7 +338,46 @@ PYBIND11_MODULE(simpartner, m) {
       .def_property_readonly("url", [](Sim& s) { return s.client().url(); })
       .def("model", &Sim::Model, "dict: simulation_id, world, step_size, robots, bodies, joints, "
                                  "targets (name, robot, kind, type, joint, axes)")
-      .def("state", &Sim::State, "The newest state (dict of NumPy arrays), or None before the first")
+      .def("state", &Sim::State, py::arg("timeout") = 2.0,
+           "The newest state (dict of NumPy arrays); before any (a paused sim sends none) the "
+           "state the sim answers a request with; Timeout")
+      .def(
+          "reading",
+          [](Sim& s, const std::string& name) -> py::object {
+            s.client().Find(name);  // UnknownTarget for a name the model lacks
+            const auto r = s.client().LatestReading(name);
+            if (!r) return py::none();
+            return ReadingDict(*r);
+          },
+          py::arg("name"),
+          "The latest reading of sensor `name` (dict: name, step, time, values as a NumPy "
+          "array, text), or None before the first")
+      .def(
+          "wait_reading",
+          [](Sim& s, const std::string& name, int64_t after_step, double timeout) {
+            simpartner::sensor_reading_t r;
+            {
+              py::gil_scoped_release release;
+              r = s.client().WaitForReading(name, after_step, timeout);
+            }
+            return ReadingDict(r);
+          },
+          py::arg("name"), py::arg("after_step") = -1, py::arg("timeout") = 2.0,
+          "Waits for a reading of sensor `name` from a step after after_step; Timeout")
+      .def(
+          "lockstep",
+          [](Sim& s, int64_t period, std::optional<int64_t> steps, const std::string& name,
+             bool resume, double timeout) {
+            return std::make_unique<LockStepLoop>(s, period, steps, name, resume, timeout);
+          },
+          py::arg("period") = 1, py::arg("steps") = py::none(), py::arg("name") = "",
+          py::arg("resume") = true, py::arg("timeout") = 10.0, py::keep_alive<0, 1>(),
+          "for state in sim.lockstep(period=1, steps=N): joins the sim as a synchronous "
+          "controller (resuming it if paused) and yields the state of every period-th step; the "
+          "commands given in the loop body (set_velocity, set_angle, hold) apply in the next "
+          "step, so a closed loop repeats bit for bit at any speed. Leaves when the loop ends. "
+          "LockStepError when the sim refuses or releases it, Refused at the tick after a refused "
+          "command.")
       .def("wait_until", &Sim::WaitUntil, py::arg("sim_time"), py::arg("timeout") = 10.0,
            "Waits for a state at sim_time or later and returns it; Timeout")
       .def(
@@ -294,6 +406,23 @@ PYBIND11_MODULE(simpartner, m) {
             return s.Send(client::Hold(t, max_force), timeout);
           },
           py::arg("name"), py::arg("max_force") = client::kDefaultMaxForce, py::arg("timeout") = -1.0)
+      .def(
+          "command",
+          [](Sim& s, const std::string& name, const std::string& values, const std::string& action,
+             double timeout) {
+            int code = -1;
+            for (const simpartner::ActionSpelling& a : simpartner::ActionSpellings())
+              if (action == a.word) code = a.action;
+            if (code < 0)
+              throw py::value_error("action '" + action +
+                                    "' is not one of set, hold, stops, params, read");
+            const client::Target t = s.client().Find(name);
+            return s.Send(client::BuildCommandFromText(t, code, values), timeout);
+          },
+          py::arg("name"), py::arg("values") = "", py::arg("action") = "set",
+          py::arg("timeout") = -1.0,
+          "Any command, as simpartner-cmd takes it: action set, hold, stops, params or read, "
+          "values as the original's text ('1000,0.5'); returns the step it applies in")
       .def("pause", [](Sim& s) { s.client().Pause(); })
       .def("resume", [](Sim& s) { s.client().Resume(); })
       .def("step", [](Sim& s, int64_t steps) { s.client().Step(steps); }, py::arg("steps") = 1)
@@ -319,6 +448,14 @@ PYBIND11_MODULE(simpartner, m) {
             d["real_time_factor"] = st->real_time_factor;
             return d;
           });
+
+  py::class_<LockStepLoop>(m, "LockStep", "The iterator sim.lockstep() returns.")
+      .def("__iter__", [](LockStepLoop& l) -> LockStepLoop& { return l; })
+      .def("__next__", &LockStepLoop::Next)
+      .def("__enter__", [](LockStepLoop& l) -> LockStepLoop& { return l; })
+      .def("__exit__", [](LockStepLoop& l, py::args) { l.Close(); })
+      .def("close", &LockStepLoop::Close, "Leaves lock-step (the sim stops waiting for it)")
+      .def_property_readonly("tick", &LockStepLoop::tick, "The tick of the last state, -1 before");
 
   m.def("read_logged", &ReadLogged, py::arg("simulation") = "last", py::arg("db_options") = "",
         py::arg("dbname") = "simpartner", py::arg("dbserver") = "", py::arg("velocities") = false,

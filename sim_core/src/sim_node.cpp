@@ -463,21 +463,21 @@ void SimNode::StepAndPublish() {
   total_compute_time_ += spent;
   ++compute_steps_;
   ++steps_taken_;
-  if (ok) {
-    // The replies to what this step applied go before its state, so that a
-    // lock-step controller has them when its next tick's state comes.
-    PublishReplies();
-    if (sim_->step() % sim_->params().stateEvery == 0 || lock_step_.IsTick(sim_->step())) {
-      state_t state;
-      sim_->FillState(&state);
-      Publish(channels::kState, state);
-    }
-  } else {
+  // What this step produced (replies, sensor readings, warnings) goes
+  // before its state: a lock-step controller has all of it, the same in
+  // every run, when its tick's state comes.
+  PublishPending();
+  if (!ok) {
     paused_ = true;
     steps_to_run_ = 0;
     status_changed_ = true;
+    return;
   }
-  PublishPending();
+  if (sim_->step() % sim_->params().stateEvery == 0 || lock_step_.IsTick(sim_->step())) {
+    state_t state;
+    sim_->FillState(&state);
+    Publish(channels::kState, state);
+  }
 }
 
 void SimNode::PublishModel() {
