@@ -124,6 +124,7 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     ++model_count_;
     NoteSimulation(model->simulation_id);
     changed_.notify_all();
+    step_changed_.notify_all();
   } else if (channel == channels::kState || channel == channels::kStateReply) {
     state_t state;
     {
@@ -159,6 +160,7 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     sync_replies_.push_back(std::move(reply));
     while (sync_replies_.size() > kMaxKeptSyncReplies) sync_replies_.pop_front();
     changed_.notify_all();
+    step_changed_.notify_all();
   } else if (channel == channels::kSensor) {
     sensor_reading_t reading;
     {
@@ -211,6 +213,7 @@ bool Client::AcceptState(const state_t& state, const std::string& channel) {
       state.step >= state_->step)
     state_ = state;
   changed_.notify_all();
+  step_changed_.notify_all();
   return true;
 }
 
@@ -330,7 +333,7 @@ std::optional<sync_reply_t> Client::TakeSyncReply(const std::string& controller)
 std::optional<state_t> Client::WaitForStepOrSyncReply(int64_t step, Clock::duration wait) {
   std::unique_lock<std::mutex> lock(mutex_);
   const size_t replies = sync_replies_.size();
-  changed_.wait_for(lock, wait, [&] {
+  step_changed_.wait_for(lock, wait, [&] {
     return restart_ || (state_ && state_->step >= step) || sync_replies_.size() != replies;
   });
   ThrowIfRestarted();

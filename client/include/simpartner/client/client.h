@@ -224,6 +224,9 @@ class Client {
 
   mutable std::mutex mutex_;
   std::condition_variable changed_;
+  // States, sync replies and restarts only: a lock-step controller waiting
+  // for its tick is not woken by each command reply and status.
+  std::condition_variable step_changed_;
   std::shared_ptr<const Catalog> catalog_;
   std::shared_ptr<const model_t> model_;         // learned
   std::shared_ptr<const model_t> newest_model_;  // last seen on the bus
