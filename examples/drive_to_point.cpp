@@ -2,6 +2,9 @@
 // steering the Turner joint from the measured heading every tick. Started
 // on a paused sim (simpartner-sim --startPaused=1), the run repeats bit
 // for bit at any speed: the same commands land in the same steps.
+// PERIOD_STEPS 0 runs the same controller without lock-step, as control
+// code usually runs: it reads the newest state every 10 ms of sim time
+// and its commands land whenever they arrive (runs differ).
 // Usage: drive_to_point [LCM_URL] [X Z] [PERIOD_STEPS]
 #include <algorithm>
 #include <cmath>
@@ -22,40 +25,51 @@ double Heading(const body_state_t& body) {
   return std::atan2(-forward_z, forward_x);
 }
 
+// The commands for one state; true when the goal is reached (or given up).
+struct Goal {
+  double x, z;
+};
+
+bool Decide(Client& sim, const state_t& s, const Goal& goal) {
+  static const char* kWheels[] = {"Axle1Motor", "Axle2Motor", "Axle3Motor", "Axle4Motor"};
+  const body_state_t& body = s.bodies[static_cast<size_t>(sim.catalog()->BodyIndex("FrontChassis"))];
+  const double dx = goal.x - body.position[0], dz = goal.z - body.position[2];
+  const double distance = std::hypot(dx, dz);
+  if (distance < 0.2 || s.sim_time > 60) {
+    std::printf("tick %lld, t = %.3f s: front at (%.4f, %.4f), %.3f m from the goal\n",
+                static_cast<long long>(s.step), s.sim_time, body.position[0], body.position[2],
+                distance);
+    for (const command_t& stop : StopWheelsCommands(*sim.catalog())) sim.Send(stop);
+    return true;
+  }
+  // Steer towards the goal (the Turner joint turns left for + angles), and
+  // slow down on the last metre.
+  const double error = std::remainder(std::atan2(-dz, dx) - Heading(body), 2 * M_PI);
+  sim.Send(SetAngle(sim.Find("TurnerMotor"), {std::clamp(1.5 * error, -0.35, 0.35)}, 100, 100, 0));
+  const double speed = std::min(3.0, 1.0 + 2.0 * distance);  // wheel rate [rad/s]
+  for (const char* wheel : kWheels) sim.Send(SetVelocity(sim.Find(wheel), {speed}));
+  return false;
+}
+
 int main(int argc, char** argv) {
   ClientOptions options;
   options.program = "drive_to_point";
   if (argc > 1) options.url = argv[1];
-  const double goal_x = argc > 3 ? std::stod(argv[2]) : 4.0, goal_z = argc > 3 ? std::stod(argv[3]) : -3.0;
+  const Goal goal{argc > 3 ? std::stod(argv[2]) : 4.0, argc > 3 ? std::stod(argv[3]) : -3.0};
   LockStepOptions loop_options;
   loop_options.period = argc > 4 ? std::stol(argv[4]) : 10;  // 100 Hz at 1 ms steps
   try {
     Client sim(options);
-    const int front = sim.catalog()->BodyIndex("FrontChassis");
-    const Target turner = sim.Find("TurnerMotor");
-    std::vector<Target> wheels;
-    for (int w = 1; w <= 4; ++w) wheels.push_back(sim.Find("Axle" + std::to_string(w) + "Motor"));
-    LockStep loop(sim, loop_options);  // joins; resumes a paused sim
-    for (;;) {
-      const state_t& s = loop.Next();
-      const body_state_t& body = s.bodies[static_cast<size_t>(front)];
-      const double dx = goal_x - body.position[0], dz = goal_z - body.position[2];
-      const double distance = std::hypot(dx, dz);
-      if (distance < 0.2 || s.sim_time > 60) {
-        std::printf("tick %lld, t = %.3f s: front at (%.4f, %.4f), %.3f m from the goal\n",
-                    static_cast<long long>(s.step), s.sim_time, body.position[0],
-                    body.position[2], distance);
-        for (const command_t& stop : StopWheelsCommands(*sim.catalog())) sim.Send(stop);
-        loop.Next();  // the stop applies in the next step
-        return distance < 0.2 ? 0 : 1;
-      }
-      // Steer towards the goal (the Turner joint turns left for + angles),
-      // and slow down on the last metre.
-      const double error = std::remainder(std::atan2(-dz, dx) - Heading(body), 2 * M_PI);
-      sim.Send(SetAngle(turner, {std::clamp(1.5 * error, -0.35, 0.35)}, 100, 100, 0));
-      const double speed = std::min(3.0, 1.0 + 2.0 * distance);  // wheel rate [rad/s]
-      for (const Target& wheel : wheels) sim.Send(SetVelocity(wheel, {speed}));
+    if (loop_options.period == 0) {  // without lock-step
+      sim.Resume();
+      for (double t = 0;; t += 0.01)
+        if (Decide(sim, sim.WaitUntilSimTime(t, 10), goal)) return 0;
     }
+    LockStep loop(sim, loop_options);  // joins; resumes a paused sim
+    while (!Decide(sim, loop.Next(), goal)) {
+    }
+    loop.Next();  // the stop applies in the step after the last tick
+    return 0;
   } catch (const ClientError& e) {
     std::fprintf(stderr, "drive_to_point: %s\n", e.what());
     return 1;
