@@ -119,10 +119,10 @@ void Overhead(int port, int64_t ticks) {
 }
 
 void OverheadAcrossNamespaces(int port, int64_t ticks) {
-  testing::NamespaceLan lan("splsb", {"sim", "ctl"});
+  test_support::NamespaceLan lan("splsb", {"sim", "ctl"});
   const std::string url = Url(port, 1);
   ChildProcess sim(lan.Exec("sim", SimArgv("free_fall.xml", url)), "/dev/null");
-  testing::ScopedNetns inside(lan.Namespace("ctl"));
+  test_support::ScopedNetns inside(lan.Namespace("ctl"));
   PrintTicks("free_fall, C++, period 1, two namespaces", Drive(url, 1, ticks, false));
 }
 

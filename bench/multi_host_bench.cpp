@@ -90,7 +90,7 @@ class Receiver {
   std::vector<bool> seen_;
 };
 
-Figures Measure(const testing::NamespaceLan& lan, const std::string& from, const std::string& to,
+Figures Measure(const test_support::NamespaceLan& lan, const std::string& from, const std::string& to,
                 const state_t& model_state, const Options& options) {
   const std::string url = "udpm://239.255.76.67:" + std::to_string(options.port) + "?ttl=1";
   const int64_t count = static_cast<int64_t>(options.seconds * options.rate);
@@ -98,7 +98,7 @@ Figures Measure(const testing::NamespaceLan& lan, const std::string& from, const
   std::atomic<bool> ready{false};
   std::atomic<bool> done_sending{false};
   std::thread listen([&] {
-    testing::ScopedNetns inside(lan.Namespace(to));
+    test_support::ScopedNetns inside(lan.Namespace(to));
     lcm::LCM lcm(url + "&recv_buf_size=4194304");
     lcm.subscribe(channels::kState, &Receiver::OnState, &receiver)->setQueueCapacity(100000);
     lcm.getFileno();  // the receiving socket is made now, inside `to`
@@ -111,7 +111,7 @@ Figures Measure(const testing::NamespaceLan& lan, const std::string& from, const
   while (!ready) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   Figures sent;
   std::thread send([&] {
-    testing::ScopedNetns inside(lan.Namespace(from));
+    test_support::ScopedNetns inside(lan.Namespace(from));
     lcm::LCM lcm(url);
     state_t state = model_state;
     const auto period = std::chrono::duration<double>(1.0 / options.rate);
@@ -192,14 +192,14 @@ int Run(int argc, char** argv) {
               options.world.c_str(), state.getEncodedSize(), state.num_bodies, state.num_joints,
               options.rate, options.seconds);
   try {
-    testing::NamespaceLan lan("sp_mhb", {"a", "b"});
+    test_support::NamespaceLan lan("sp_mhb", {"a", "b"});
     std::printf("namespaces %s (%s) and %s (%s), bridge in %s_sw\n", lan.Namespace("a").c_str(),
                 lan.Address("a").c_str(), lan.Namespace("b").c_str(), lan.Address("b").c_str(),
                 ("sp_mhb_" + std::to_string(::getpid())).c_str());
     std::fflush(stdout);
     Print("host to host (a -> b, bridge):", Measure(lan, "a", "b", state, options));
     Print("one host (a -> a):", Measure(lan, "a", "a", state, options));
-  } catch (const testing::NetnsError& e) {
+  } catch (const test_support::NetnsError& e) {
     std::fprintf(stderr, "multi_host_bench: cannot build the namespaces (root needed): %s\n", e.what());
     return 1;
   }

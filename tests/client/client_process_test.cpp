@@ -292,7 +292,7 @@ TEST_F(ClientProcessTest, HostileInputIsCountedAndIgnored) {
   lcm::LCM attacker(url);
   ASSERT_TRUE(attacker.good());
   int sent = 0;
-  for (const auto& message : simpartner::testing::HostileCorpus(catalog->simulation_id())) {
+  for (const auto& message : test_support::HostileCorpus(catalog->simulation_id())) {
     const std::string& c = message.channel;
     if (c != channels::kModel && c != channels::kState && c != channels::kStatus &&
         c != channels::kCommandReply && c != channels::kSensor)

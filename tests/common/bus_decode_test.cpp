@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/encode.h"
 #include "../support/hostile_corpus.h"
 #include "simpartner/bus_url.h"
 #include "simpartner/channels.h"
@@ -27,14 +28,7 @@ namespace simpartner {
 namespace {
 
 using Bytes = std::vector<uint8_t>;
-
-template <class T>
-Bytes Encode(const T& msg) {
-  Bytes bytes(static_cast<size_t>(msg.getEncodedSize()));
-  EXPECT_EQ(msg.encode(bytes.data(), 0, static_cast<int>(bytes.size())),
-            static_cast<int>(bytes.size()));
-  return bytes;
-}
+using test_support::Encode;
 
 // The decode each channel's subscribers do, by channel name.
 std::optional<DecodeFailure> DecodeForChannel(const std::string& channel, const Bytes& bytes) {
@@ -53,7 +47,7 @@ std::optional<DecodeFailure> DecodeForChannel(const std::string& channel, const 
 }
 
 TEST(HostileCorpus, CoversEveryChannelWithAtLeastThirtyMessages) {
-  const auto corpus = testing::HostileCorpus(1);
+  const auto corpus = test_support::HostileCorpus(1);
   EXPECT_GE(corpus.size(), 30u);
   std::map<std::string, int> per_channel;
   for (const auto& m : corpus) ++per_channel[m.channel];
@@ -64,7 +58,7 @@ TEST(HostileCorpus, CoversEveryChannelWithAtLeastThirtyMessages) {
 }
 
 TEST(BusDecode, RefusesEveryMalformedMessageOfTheCorpusAndDecodesTheRest) {
-  for (const auto& m : testing::HostileCorpus(1)) {
+  for (const auto& m : test_support::HostileCorpus(1)) {
     SCOPED_TRACE(m.name);
     const auto failure = DecodeForChannel(m.channel, m.bytes);
     EXPECT_EQ(failure.has_value(), m.undecodable) << (failure ? failure->reason : "decoded");
@@ -77,7 +71,7 @@ TEST(BusDecode, RefusesEveryMalformedMessageOfTheCorpusAndDecodesTheRest) {
 
 TEST(BusDecode, ReasonsNameTheFieldAndTheValue) {
   std::map<std::string, std::string> reason;
-  for (const auto& m : testing::HostileCorpus(1)) {
+  for (const auto& m : test_support::HostileCorpus(1)) {
     const auto failure = DecodeForChannel(m.channel, m.bytes);
     reason[m.name] = failure ? failure->reason : "";
   }
@@ -248,7 +242,7 @@ TEST(BadMessageCounter, CountsPerChannelAndPrintsTheFirstThenOneInAThousand) {
 
 TEST(DecodeFromBus, DescribesTheChannelTypeSizeAndReason) {
   BadMessageCounter counter;
-  const auto corpus = testing::HostileCorpus(1);
+  const auto corpus = test_support::HostileCorpus(1);
   const auto& killer = corpus.front();
   ASSERT_EQ(killer.name, "command_t sender length 0");
   ASSERT_EQ(killer.bytes.size(), 48u);

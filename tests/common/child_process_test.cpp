@@ -4,9 +4,9 @@
 #include <signal.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
+
+#include "../support/text_file.h"
 
 namespace simpartner {
 namespace {
@@ -21,10 +21,7 @@ TEST(ChildProcess, ReportsExitStatusAndOutput) {
     EXPECT_EQ(child.Wait(milliseconds(5000)), 3);
     EXPECT_FALSE(child.running());
   }
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_EQ(text.str(), "out\nerr\n");
+  EXPECT_EQ(test_support::ReadText(log), "out\nerr\n");
   std::filesystem::remove(log);
 }
 

@@ -17,18 +17,14 @@
 #include "simpartner/convert/urdf_import.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/simulation.h"
+#include "../support/text_file.h"
 
 namespace simpartner::convert {
 namespace {
 
 const std::string kData = std::string(SP_SOURCE_DIR) + "/tests/convert/data/";
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test_support::ReadText;
 
 // The error a conversion of path throws, as the user reads it.
 std::string ConversionError(const std::string& path, UrdfImportOptions options = {}) {

@@ -17,17 +17,12 @@
 #include "simpartner/sensor_reading_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "../support/encode.h"
 
 namespace simpartner {
 namespace {
 
-template <class T>
-std::vector<uint8_t> Encode(const T& msg) {
-  std::vector<uint8_t> bytes(msg.getEncodedSize());
-  EXPECT_EQ(msg.encode(bytes.data(), 0, static_cast<int>(bytes.size())),
-            static_cast<int>(bytes.size()));
-  return bytes;
-}
+using test_support::Encode;
 
 // Decodes, re-encodes and compares bytes; also checks that every truncation
 // of the buffer is refused rather than read past its end.

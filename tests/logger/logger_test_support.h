@@ -4,7 +4,6 @@
 #pragma once
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cppconn/resultset.h>
 #include <cppconn/resultset_metadata.h>
@@ -17,23 +16,14 @@
 #include <vector>
 
 #include "../sim_core/test_worlds.h"
+#include "../support/encode.h"
+#include "../support/test_dir.h"
 #include "simpartner/logger/db.h"
 #include "simpartner/logger/private_server.h"
 #include "simpartner/logger/record.h"
 #include "simpartner/model/loader.h"
 
 namespace simpartner::logger::testing {
-
-// A directory of the test's own: short (a socket path must fit in 108
-// bytes) and unique per process and test.
-inline std::filesystem::path TestDir(const std::string& prefix) {
-  const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    (prefix + std::to_string(::getpid()) + "_" + name.substr(0, 24));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
 
 template <class Message>
 Record MakeRecord(RecordKind kind, int64_t simulation_id, const Message& message,
@@ -42,8 +32,7 @@ Record MakeRecord(RecordKind kind, int64_t simulation_id, const Message& message
   r.kind = kind;
   r.simulation_id = simulation_id;
   r.received_us = received_us;
-  r.payload.resize(static_cast<size_t>(message.getEncodedSize()));
-  message.encode(r.payload.data(), 0, static_cast<int>(r.payload.size()));
+  r.payload = test_support::Encode(message);
   return r;
 }
 
@@ -99,7 +88,8 @@ inline SimRun Gen3Run(int steps, int64_t simulation_id) {
 class ServerTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = TestDir("sp_db_");
+    // Short: the server's socket lives under it (108 bytes at most).
+    dir_ = test_support::FreshTestDir("sp_db_", 24);
     server_ = std::make_unique<PrivateServer>(std::string(SP_SOURCE_DIR) + "/scripts/mariadb",
                                               (dir_ / "db").string(), false);
     server_->Start();

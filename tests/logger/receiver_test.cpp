@@ -19,10 +19,13 @@
 #include "simpartner/logger/receiver.h"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "../support/encode.h"
 #include "../support/hostile_corpus.h"
 
 namespace simpartner::logger {
 namespace {
+
+using test_support::Encode;
 
 model_t TwoBodyModel(int64_t simulation_id) {
   model_t m{};
@@ -192,8 +195,7 @@ TEST_F(ReceiverTest, MalformedMessagesAreCountedReportedAndNeverQueued) {
   status_t status{};
   Publish(channels::kState, status);  // a foreign type on SIM_STATE
   const state_t good = State(5, 1);
-  std::vector<uint8_t> bytes(static_cast<size_t>(good.getEncodedSize()));
-  good.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  const std::vector<uint8_t> bytes = Encode(good);
   PublishRaw(channels::kState, std::vector<uint8_t>(bytes.begin(), bytes.end() - 9));  // truncated
   std::vector<uint8_t> padded = bytes;
   padded.push_back(0);
@@ -280,13 +282,6 @@ TEST_F(ReceiverTest, StopStatusEndsTheSimulationAndCommandsFollowTheCurrentOne) 
   EXPECT_EQ(ReadEnded(q[4]).last_step, 42);
 }
 
-template <class M>
-std::vector<uint8_t> Encode(const M& message) {
-  std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
-  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
-}
-
 // Overwrites the big-endian int32 at `offset` (LCM's encoding).
 void PutInt32(std::vector<uint8_t>* bytes, size_t offset, int32_t value) {
   const uint32_t v = static_cast<uint32_t>(value);
@@ -366,7 +361,7 @@ TEST_F(ReceiverTest, TheHostileCorpusIsRefusedAndTheValidStatesAroundItAreKept) 
   std::map<std::string, uint64_t> undecodable;
   int64_t step = 0;
   Publish(channels::kState, State(5, ++step));
-  for (const simpartner::testing::HostileMessage& m : simpartner::testing::HostileCorpus(5)) {
+  for (const test_support::HostileMessage& m : test_support::HostileCorpus(5)) {
     if (subscribed.count(m.channel) == 0) continue;
     if (m.undecodable) ++undecodable[m.channel];
     PublishRaw(m.channel.c_str(), m.bytes);

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "simpartner/model/loader.h"
+#include "../support/text_file.h"
 
 namespace simpartner::model {
 namespace {
@@ -30,12 +31,7 @@ namespace fs = std::filesystem;
 
 const fs::path kBrokenDir = fs::path(SP_SOURCE_DIR) / "tests" / "models" / "broken";
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test_support::ReadText;
 
 // The test cases: the world files directly in broken/ (robots/ holds what
 // they place), sorted so that runs are reproducible.

@@ -146,9 +146,9 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
       {"simpartner-sim", sim.get(), "sim.log"},
       {"simpartner-logger", logger.get(), "logger.log"},
       {"simpartner-viewer", viewer.get(), "viewer.log"}};
-  const auto corpus = testing::HostileCorpus(bus.simulation_id);
+  const auto corpus = test_support::HostileCorpus(bus.simulation_id);
   int undecodable_for_sim = 0;
-  for (const testing::HostileMessage& m : corpus) {
+  for (const test_support::HostileMessage& m : corpus) {
     std::cout << "sending: " << m.name << " on " << m.channel << " (" << m.bytes.size() << " bytes)\n";
     for (int repeat = 0; repeat < 3; ++repeat) {
       bus.lcm().publish(m.channel, m.bytes.data(), static_cast<unsigned>(m.bytes.size()));

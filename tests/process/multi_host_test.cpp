@@ -140,10 +140,10 @@ class MultiHostTest : public ::testing::Test {
 };
 
 TEST_F(MultiHostTest, ThreeHostsWorkAndALinkDownIsReportedAndRecovered) {
-  std::unique_ptr<testing::NamespaceLan> lan;
+  std::unique_ptr<test_support::NamespaceLan> lan;
   try {
-    lan = std::make_unique<testing::NamespaceLan>("sp_mh", std::vector<std::string>{"sim", "logger", "viewer"});
-  } catch (const testing::NetnsError& e) {
+    lan = std::make_unique<test_support::NamespaceLan>("sp_mh", std::vector<std::string>{"sim", "logger", "viewer"});
+  } catch (const test_support::NetnsError& e) {
     FAIL() << "cannot create the network namespaces this test needs (it must run as root with "
               "`ip netns` working): "
            << e.what();
@@ -154,12 +154,12 @@ TEST_F(MultiHostTest, ThreeHostsWorkAndALinkDownIsReportedAndRecovered) {
   // MariaDB on the logger host (socket only, in the test's directory).
   server_ = std::make_unique<logger::PrivateServer>(kSource + "/scripts/mariadb", (dir_ / "db").string(), false);
   {
-    testing::ScopedNetns on_logger_host(lan->Namespace("logger"));
+    test_support::ScopedNetns on_logger_host(lan->Namespace("logger"));
     server_->Start();
   }
   std::unique_ptr<Observer> bus;
   {
-    testing::ScopedNetns on_sim_host(lan->Namespace("sim"));
+    test_support::ScopedNetns on_sim_host(lan->Namespace("sim"));
     bus = std::make_unique<Observer>(url);
   }
   viewer::XvfbServer xvfb(640, 360, (dir_ / "xvfb.log").string());

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "simpartner/command_t.hpp"
+#include "../support/encode.h"
 #include "test_worlds.h"
 
 namespace simpartner::sim {
@@ -21,9 +22,7 @@ std::vector<uint8_t> PhysicsBytes(const Simulation& sim) {
   sim.FillState(&state);
   state.utime = 0;
   state.simulation_id = 0;
-  std::vector<uint8_t> bytes(state.getEncodedSize());
-  state.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
+  return test_support::Encode(state);
 }
 
 struct BadCase {

@@ -10,16 +10,12 @@
 #include "simpartner/sim/peer_watch.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "../support/encode.h"
 
 namespace simpartner::sim {
 namespace {
 
-template <class T>
-std::vector<uint8_t> Encode(const T& message) {
-  std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
-  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
-}
+using test_support::Encode;
 
 TEST(PeekSimulationId, ReadsTheIdOfEachKindAsEncoded) {
   constexpr int64_t kId = 0x0123456789abcdefLL;

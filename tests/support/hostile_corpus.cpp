@@ -13,8 +13,9 @@
 #include "simpartner/sensor_reading_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "encode.h"
 
-namespace simpartner::testing {
+namespace simpartner::test_support {
 
 RawMessage& RawMessage::F64(double v) {
   uint64_t bits;
@@ -41,13 +42,6 @@ namespace {
 
 constexpr int32_t kHugeCount = std::numeric_limits<int32_t>::max();
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-template <class T>
-std::vector<uint8_t> Encode(const T& msg) {
-  std::vector<uint8_t> bytes(static_cast<size_t>(msg.getEncodedSize()));
-  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
-}
 
 // command_t up to (not including) num_values, with the given strings.
 RawMessage CommandHead() {
@@ -312,4 +306,4 @@ std::vector<HostileMessage> HostileCorpus(int64_t simulation_id) {
   return corpus;
 }
 
-}  // namespace simpartner::testing
+}  // namespace simpartner::test_support

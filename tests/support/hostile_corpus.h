@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace simpartner::testing {
+namespace simpartner::test_support {
 
 struct HostileMessage {
   std::string name;     // e.g. "command_t sender length 0"
@@ -51,4 +51,4 @@ class RawMessage {
   std::vector<uint8_t> bytes_;
 };
 
-}  // namespace simpartner::testing
+}  // namespace simpartner::test_support

@@ -15,7 +15,7 @@
 
 #include "simpartner/child_process.h"
 
-namespace simpartner::testing {
+namespace simpartner::test_support {
 namespace {
 
 constexpr const char* kIp = "/usr/sbin/ip";
@@ -152,4 +152,4 @@ ScopedNetns::~ScopedNetns() {
   ::close(original_);
 }
 
-}  // namespace simpartner::testing
+}  // namespace simpartner::test_support

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace simpartner::testing {
+namespace simpartner::test_support {
 
 // An `ip` command that failed, or a namespace that could not be entered:
 // the command line and what it printed.
@@ -70,4 +70,4 @@ class ScopedNetns {
 // command line and the output when it exits non-zero.
 std::string RunCommand(const std::vector<std::string>& argv);
 
-}  // namespace simpartner::testing
+}  // namespace simpartner::test_support

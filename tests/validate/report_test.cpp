@@ -10,6 +10,7 @@
 
 #include "simpartner/validate/cli.h"
 #include "simpartner/validate/report.h"
+#include "../support/text_file.h"
 
 namespace simpartner::validate {
 namespace {
@@ -50,12 +51,7 @@ ExperimentResult Sample() {
   return r;
 }
 
-std::string Read(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test_support::ReadText;
 
 TEST(ValidateReport, OneLinePerCheckWithTheVerdict) {
   std::ostringstream out;
@@ -83,14 +79,14 @@ TEST(ValidateReport, AFailedRunIsOneFailLineWithTheReason) {
 TEST(ValidateReport, WritesMarkdownAndAPngPerPlot) {
   TempDir dir;
   WriteReport(dir.path().string(), {Sample()}, "simpartner-validate --report x", Parameters());
-  const std::string page = Read(dir.path() / "README.md");
+  const std::string page = ReadText(dir.path() / "README.md");
   EXPECT_NE(page.find("| [free_fall](#free_fall) | error slope | 0.004905 m/s"), std::string::npos);
   EXPECT_NE(page.find("**FAIL**"), std::string::npos);
   EXPECT_NE(page.find("![error vs time](free_fall.png)"), std::string::npos);
   EXPECT_NE(page.find("Why it is so."), std::string::npos);
   EXPECT_NE(page.find("simpartner-validate --report x"), std::string::npos);
   // A real PNG: the signature and more than a header.
-  const std::string png = Read(dir.path() / "free_fall.png");
+  const std::string png = ReadText(dir.path() / "free_fall.png");
   ASSERT_GT(png.size(), 1000u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
 }

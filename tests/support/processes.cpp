@@ -1,0 +1,53 @@
+#include "processes.h"
+
+#include <cstdlib>
+
+#include "programs.h"
+#include "simpartner/child_process.h"
+#include "text_file.h"
+
+namespace simpartner::test_support {
+namespace {
+
+// The caller's ASAN_OPTIONS, and no complaint that the preloaded library
+// comes before ASan's runtime.
+std::string AsanOptions() {
+  const char* given = std::getenv("ASAN_OPTIONS");
+  return (given != nullptr && *given != '\0' ? std::string(given) + ":" : std::string()) +
+         "verify_asan_link_order=0";
+}
+
+}  // namespace
+
+ProgramRun RunToEnd(const std::vector<std::string>& argv, const std::string& log,
+                    std::chrono::milliseconds timeout) {
+  ProgramRun run;
+  {
+    ChildProcess child(argv, log);
+    run.status = child.Wait(timeout).value_or(-1);
+  }  // killed and reaped here if it did not end
+  run.output = ReadText(log);
+  return run;
+}
+
+ProgramRun InstallThisBuild(const std::string& prefix, const std::string& component, const std::string& log) {
+  return RunToEnd({SP_CMAKE, "--install", BinaryDir(), "--prefix", prefix, "--component", component}, log,
+                  std::chrono::minutes(5));
+}
+
+std::vector<std::string> OnDisplay(const std::string& display, const std::vector<std::string>& argv) {
+  std::vector<std::string> wrapped = {
+      "/usr/bin/env", "DISPLAY=" + display,
+      "LSAN_OPTIONS=suppressions=" + SourceDir() + "/tests/viewer/lsan.supp",
+      "LD_PRELOAD=" SP_KEEP_LOADED_LIB, "ASAN_OPTIONS=" + AsanOptions()};
+  wrapped.insert(wrapped.end(), argv.begin(), argv.end());
+  return wrapped;
+}
+
+std::vector<std::string> XdotoolCommand(const std::string& display, const std::vector<std::string>& args) {
+  std::vector<std::string> argv = {"/usr/bin/env", "DISPLAY=" + display, "/usr/bin/xdotool"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return argv;
+}
+
+}  // namespace simpartner::test_support
