@@ -11,8 +11,13 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "../support/bus_listener.h"
+#include "../support/bus_url.h"
 #include "../support/hostile_corpus.h"
-#include "client_test_support.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
+#include "../support/wait.h"
 #include "simpartner/channels.h"
 #include "simpartner/client/client.h"
 #include "simpartner/control_t.hpp"
@@ -20,9 +25,10 @@
 namespace simpartner::client {
 namespace {
 
-using testing::SimProcess;
-using testing::TestDir;
-using testing::UniqueUrl;
+using test_support::ShippedWorld;
+using test_support::SimProcess;
+using test_support::FreshTestDir;
+using test_support::BusUrl;
 using Clock = std::chrono::steady_clock;
 
 ClientOptions Options(const std::string& url, const std::string& program = "client_test") {
@@ -38,7 +44,7 @@ class ClientProcessTest : public ::testing::Test {
  protected:
   void SetUp() override {
     name_ = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    dir_ = TestDir(name_);
+    dir_ = FreshTestDir("sp_client_");
   }
   void TearDown() override {
     if (!HasFailure()) std::filesystem::remove_all(dir_);
@@ -50,8 +56,8 @@ class ClientProcessTest : public ::testing::Test {
 
 // gen2 facing a wall 5.335 m from its scanner (SPEC 8), in real time.
 TEST_F(ClientProcessTest, CommandsReadingsAndSimTime) {
-  const std::string url = UniqueUrl(1);
-  SimProcess sim("scanner_wall.xml", url, Log("sim.log"));
+  const std::string url = BusUrl(1);
+  SimProcess sim(ShippedWorld("scanner_wall.xml"), url, Log("sim.log"));
   Client client(Options(url));
   const auto catalog = client.catalog();
   EXPECT_EQ(catalog->world_name(), "ScannerWall");
@@ -113,8 +119,8 @@ TEST_F(ClientProcessTest, CommandsReadingsAndSimTime) {
 }
 
 TEST_F(ClientProcessTest, PausedSimAnswersWhenItStepsAndTimesOutMeanwhile) {
-  const std::string url = UniqueUrl(2);
-  SimProcess sim("gen1_flat.xml", url, Log("sim.log"));
+  const std::string url = BusUrl(2);
+  SimProcess sim(ShippedWorld("gen1_flat.xml"), url, Log("sim.log"));
   Client client(Options(url));
   client.WaitUntilSimTime(0.05, 10.0);
   client.Pause();
@@ -140,10 +146,9 @@ TEST_F(ClientProcessTest, PausedSimAnswersWhenItStepsAndTimesOutMeanwhile) {
   client.Step(10);
   const state_t after = client.WaitUntilSimTime((before + 10) * client.catalog()->step_size(), 5.0);
   EXPECT_EQ(after.step, before + 10);
-  const auto deadline = Clock::now() + std::chrono::seconds(5);
   std::optional<command_reply_t> reply;
-  while (!(reply = client.TakeReply(id)) && Clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  test_support::WaitFor([&] { return (reply = client.TakeReply(id)).has_value(); }, 5,
+                        std::chrono::milliseconds(5));
   ASSERT_TRUE(reply.has_value());
   EXPECT_TRUE(reply->accepted);
   // Resume; SetSpeed out of range is refused before sending.
@@ -154,7 +159,7 @@ TEST_F(ClientProcessTest, PausedSimAnswersWhenItStepsAndTimesOutMeanwhile) {
 }
 
 TEST_F(ClientProcessTest, NoSimOnTheBus) {
-  ClientOptions o = Options(UniqueUrl(3));
+  ClientOptions o = Options(BusUrl(3));
   o.model_timeout = 0.3;
   const auto start = Clock::now();
   try {
@@ -171,23 +176,20 @@ TEST_F(ClientProcessTest, NoSimOnTheBus) {
 }
 
 TEST_F(ClientProcessTest, FollowsASimThatRestartsAndNoticesSilence) {
-  const std::string url = UniqueUrl(4);
-  auto first = std::make_unique<SimProcess>("gen1_flat.xml", url, Log("sim1.log"));
+  const std::string url = BusUrl(4);
+  auto first = std::make_unique<SimProcess>(ShippedWorld("gen1_flat.xml"), url, Log("sim1.log"));
   Client client(Options(url));
   const int64_t first_id = client.catalog()->simulation_id();
   client.Command(SetVelocity(client.Find("Axle1Motor"), {1.0}));
-  first->child().Signal(SIGTERM);
-  ASSERT_TRUE(first->child().Wait(std::chrono::seconds(10)).has_value());
+  ASSERT_TRUE(first->Stop(std::chrono::seconds(10)).has_value());
   first.reset();
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   EXPECT_GT(client.SecondsSinceHeard(), 0.5);  // what teleop's dead-man check reads
   // No reply from nobody: a timeout, not a hang.
   EXPECT_THROW(client.Command(SetVelocity(client.Find("Axle1Motor"), {1.0}), 0.3), Timeout);
 
-  SimProcess second("gen1_flat.xml", url, Log("sim2.log"));
-  const auto deadline = Clock::now() + std::chrono::seconds(10);
-  while (!client.PendingRestart() && Clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  SimProcess second(ShippedWorld("gen1_flat.xml"), url, Log("sim2.log"));
+  test_support::WaitFor([&] { return client.PendingRestart().has_value(); }, 10, std::chrono::milliseconds(10));
   ASSERT_TRUE(client.PendingRestart().has_value());
   EXPECT_EQ(client.PendingRestart()->old_simulation_id(), first_id);
   try {
@@ -210,8 +212,8 @@ TEST_F(ClientProcessTest, FollowsASimThatRestartsAndNoticesSilence) {
 }
 
 TEST_F(ClientProcessTest, ResetLearnsTheNewModel) {
-  const std::string url = UniqueUrl(5);
-  SimProcess sim("gen1_flat.xml", url, Log("sim.log"), {"--speed=0"});
+  const std::string url = BusUrl(5);
+  SimProcess sim(ShippedWorld("gen1_flat.xml"), url, Log("sim.log"), {"--speed=0"});
   Client client(Options(url));
   const int64_t old_id = client.catalog()->simulation_id();
   client.WaitUntilSimTime(1.0, 20.0);
@@ -230,8 +232,8 @@ TEST_F(ClientProcessTest, ResetLearnsTheNewModel) {
 // thread waits for replies; a second client in the same process (same
 // sender prefix) never gets the first one's replies.
 TEST_F(ClientProcessTest, ConcurrentSendersAndClientsGetTheirOwnReplies) {
-  const std::string url = UniqueUrl(6);
-  SimProcess sim("gen1_flat.xml", url, Log("sim.log"), {"--speed=0"});
+  const std::string url = BusUrl(6);
+  SimProcess sim(ShippedWorld("gen1_flat.xml"), url, Log("sim.log"), {"--speed=0"});
   Client a(Options(url, "same"));
   Client b(Options(url, "same"));
   ASSERT_EQ(a.sender(), b.sender());
@@ -284,8 +286,8 @@ TEST_F(ClientProcessTest, ConcurrentSendersAndClientsGetTheirOwnReplies) {
 // the channels the client reads is counted and ignored, none fakes a
 // restart or replaces the state, and the client goes on working.
 TEST_F(ClientProcessTest, HostileInputIsCountedAndIgnored) {
-  const std::string url = UniqueUrl(7);
-  SimProcess sim("scanner_wall.xml", url, Log("sim.log"));
+  const std::string url = BusUrl(7);
+  SimProcess sim(ShippedWorld("scanner_wall.xml"), url, Log("sim.log"));
   Client client(Options(url));
   const auto catalog = client.catalog();
   const size_t bodies = client.model()->bodies.size();
@@ -319,8 +321,8 @@ TEST_F(ClientProcessTest, HostileInputIsCountedAndIgnored) {
 // any_simulation); the sim refuses one for another simulation and ignores
 // a quit for another simulation.
 TEST_F(ClientProcessTest, CommandsCarryTheSimulationIdAndTheSimChecksIt) {
-  const std::string url = UniqueUrl(8);
-  SimProcess sim("gen1_flat.xml", url, Log("sim.log"));
+  const std::string url = BusUrl(8);
+  SimProcess sim(ShippedWorld("gen1_flat.xml"), url, Log("sim.log"));
   Client client(Options(url));
   const int64_t id = client.catalog()->simulation_id();
   ASSERT_NE(id, 0);
@@ -328,36 +330,24 @@ TEST_F(ClientProcessTest, CommandsCarryTheSimulationIdAndTheSimChecksIt) {
   any.any_simulation = true;
   Client any_client(any);
 
-  struct Seen {
-    std::vector<command_t> commands;
-    std::vector<control_t> controls;
-    void OnCommand(const lcm::ReceiveBuffer*, const std::string&, const command_t* c) {
-      commands.push_back(*c);
-    }
-    void OnControl(const lcm::ReceiveBuffer*, const std::string&, const control_t* c) {
-      controls.push_back(*c);
-    }
-  } seen;
-  lcm::LCM listener(url);
-  ASSERT_TRUE(listener.good());
-  listener.subscribe(channels::kCommand, &Seen::OnCommand, &seen);
-  listener.subscribe(channels::kControl, &Seen::OnControl, &seen);
-  auto pump = [&](size_t commands, size_t controls) {
-    const auto deadline = Clock::now() + std::chrono::seconds(5);
-    while ((seen.commands.size() < commands || seen.controls.size() < controls) &&
-           Clock::now() < deadline)
-      listener.handleTimeout(50);
+  test_support::BusListener listener(url);
+  std::vector<command_t> commands;
+  std::vector<control_t> controls;
+  listener.Keep(channels::kCommand, &commands);
+  listener.Keep(channels::kControl, &controls);
+  auto pump = [&](size_t command_count, size_t control_count) {
+    listener.Until([&] { return commands.size() >= command_count && controls.size() >= control_count; }, 5);
   };
 
   EXPECT_TRUE(client.Command(SetVelocity(client.Find("Axle1Motor"), {1.0})).accepted);
   EXPECT_TRUE(any_client.Command(SetVelocity(any_client.Find("Axle1Motor"), {0.5})).accepted);
   client.Resume();  // the sim runs already: this changes nothing
   pump(2, 1);
-  ASSERT_EQ(seen.commands.size(), 2u);
-  EXPECT_EQ(seen.commands[0].simulation_id, id);
-  EXPECT_EQ(seen.commands[1].simulation_id, 0);
-  ASSERT_EQ(seen.controls.size(), 1u);
-  EXPECT_EQ(seen.controls[0].simulation_id, id);
+  ASSERT_EQ(commands.size(), 2u);
+  EXPECT_EQ(commands[0].simulation_id, id);
+  EXPECT_EQ(commands[1].simulation_id, 0);
+  ASSERT_EQ(controls.size(), 1u);
+  EXPECT_EQ(controls[0].simulation_id, id);
 
   // Built by hand for another simulation: refused, and the reply names both.
   command_t elsewhere = SetVelocity(client.Find("Axle1Motor"), {2.0});
@@ -366,16 +356,11 @@ TEST_F(ClientProcessTest, CommandsCarryTheSimulationIdAndTheSimChecksIt) {
   elsewhere.sender = "elsewhere@test:1";
   elsewhere.num_values = static_cast<int32_t>(elsewhere.values.size());
   std::optional<command_reply_t> refusal;
-  struct Replies {
-    std::optional<command_reply_t>* out;
-    void On(const lcm::ReceiveBuffer*, const std::string&, const command_reply_t* r) {
-      if (r->sender == "elsewhere@test:1") *out = *r;
-    }
-  } replies{&refusal};
-  listener.subscribe(channels::kCommandReply, &Replies::On, &replies);
-  listener.publish(channels::kCommand, &elsewhere);
-  const auto deadline = Clock::now() + std::chrono::seconds(5);
-  while (!refusal && Clock::now() < deadline) listener.handleTimeout(50);
+  listener.Subscribe<command_reply_t>(channels::kCommandReply, [&](const command_reply_t& r) {
+    if (r.sender == "elsewhere@test:1") refusal = r;
+  });
+  listener.lcm().publish(channels::kCommand, &elsewhere);
+  listener.Until([&] { return refusal.has_value(); }, 5);
   ASSERT_TRUE(refusal.has_value());
   EXPECT_FALSE(refusal->accepted);
   EXPECT_EQ(refusal->request_id, 4242);
@@ -388,16 +373,16 @@ TEST_F(ClientProcessTest, CommandsCarryTheSimulationIdAndTheSimChecksIt) {
   quit.sender = "elsewhere@test:1";
   quit.simulation_id = id + 1;
   quit.action = control_t::ACTION_QUIT;
-  listener.publish(channels::kControl, &quit);
+  listener.lcm().publish(channels::kControl, &quit);
   const double t = client.LatestState()->sim_time;
   client.WaitUntilSimTime(t + 0.5, 5.0);
-  EXPECT_TRUE(sim.child().running()) << sim.Log();
+  EXPECT_TRUE(sim.running()) << sim.Log();
   EXPECT_NE(sim.Log().find("is for simulation_id " + std::to_string(id + 1) + "; this is " +
                            std::to_string(id)),
             std::string::npos)
       << sim.Log();
   client.Quit();  // with its id: this one stops
-  EXPECT_EQ(sim.child().Wait(std::chrono::seconds(10)).value_or(-1), 0) << sim.Log();
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(10)).value_or(-1), 0) << sim.Log();
 }
 
 }  // namespace

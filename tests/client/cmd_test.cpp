@@ -7,17 +7,25 @@
 #include <fstream>
 #include <sstream>
 
-#include "client_test_support.h"
+#include "../support/bus_url.h"
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
+#include "../support/text_file.h"
 #include "simpartner/client/client.h"
 #include "simpartner/client/cmd.h"
 
 namespace simpartner::client {
 namespace {
 
-using testing::ReadFile;
-using testing::SimProcess;
-using testing::TestDir;
-using testing::UniqueUrl;
+using test_support::BuiltCommand;
+using test_support::ReadText;
+using test_support::RunToEnd;
+using test_support::ShippedWorld;
+using test_support::SimProcess;
+using test_support::FreshTestDir;
+using test_support::BusUrl;
 
 struct CmdResult {
   int status;
@@ -37,7 +45,7 @@ bool Contains(const std::string& text, const std::string& part) {
 class CmdTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = TestDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = FreshTestDir("sp_client_");
   }
   void TearDown() override {
     if (!HasFailure()) std::filesystem::remove_all(dir_);
@@ -46,8 +54,9 @@ class CmdTest : public ::testing::Test {
 };
 
 TEST_F(CmdTest, OutcomesAndExitStatuses) {
-  const std::string url = UniqueUrl(11);
-  SimProcess sim("scanner_wall.xml", url, (dir_ / "sim.log").string());
+  const std::string url = BusUrl(11);
+  SimProcess sim(ShippedWorld("scanner_wall.xml"), url, (dir_ / "sim.log").string());
+  ASSERT_TRUE(sim.WaitUntilRunning(30)) << sim.Log();
   auto cmd = [&](std::vector<std::string> args) {
     args.insert(args.begin(), {"--lcm-url", url});
     return RunInProcess(args);
@@ -133,11 +142,11 @@ TEST_F(CmdTest, OutcomesAndExitStatuses) {
   r = cmd({"quit"});
   EXPECT_EQ(r.status, kCmdOk) << r.err;
   EXPECT_TRUE(Contains(r.out, "sim stopped")) << r.out;
-  EXPECT_TRUE(sim.child().Wait(std::chrono::seconds(10)).has_value());
+  EXPECT_TRUE(sim.Wait(std::chrono::seconds(10)).has_value());
 }
 
 TEST_F(CmdTest, UsageErrorsAndNoSim) {
-  const std::string url = UniqueUrl(12);
+  const std::string url = BusUrl(12);
   CmdResult r = RunInProcess({"--help"});
   EXPECT_EQ(r.status, kCmdOk);
   EXPECT_TRUE(Contains(r.out, "Usage: simpartner-cmd [options] COMMAND [ARGS]")) << r.out;
@@ -179,18 +188,18 @@ TEST_F(CmdTest, UsageErrorsAndNoSim) {
 // The shell commands of docs/driving.md, as a user types them: the real
 // binary.
 TEST_F(CmdTest, TheProgramFromAShell) {
-  const std::string url = UniqueUrl(13);
-  SimProcess sim("gen1_flat.xml", url, (dir_ / "sim.log").string(), {"--speed=0"});
-  const std::string program = std::string(SP_BINARY_DIR) + "/client/simpartner-cmd";
+  const std::string url = BusUrl(13);
+  SimProcess sim(ShippedWorld("gen1_flat.xml"), url, (dir_ / "sim.log").string(), {"--speed=0"});
+  ASSERT_TRUE(sim.WaitUntilRunning(30)) << sim.Log();
   auto run = [&](std::vector<std::string> args, const std::string& log) {
-    args.insert(args.begin(), {program, "--lcm-url", url});
-    ChildProcess child(args, (dir_ / log).string());
-    return child.Wait(std::chrono::seconds(20)).value_or(-1);
+    args.insert(args.begin(), {"--lcm-url", url});
+    return RunToEnd(BuiltCommand("simpartner-cmd", args), (dir_ / log).string(), std::chrono::seconds(20))
+        .status;
   };
   EXPECT_EQ(run({"set", "Axle1Motor", "300,1.0"}, "set.log"), kCmdOk);
-  EXPECT_TRUE(Contains(ReadFile((dir_ / "set.log").string()), "Axle1Motor: accepted"));
+  EXPECT_TRUE(Contains(ReadText((dir_ / "set.log").string()), "Axle1Motor: accepted"));
   EXPECT_EQ(run({"set", "Axle1Motor", "300,1e9"}, "refused.log"), kCmdRefused);
-  EXPECT_TRUE(Contains(ReadFile((dir_ / "refused.log").string()), "refused by the sim"));
+  EXPECT_TRUE(Contains(ReadText((dir_ / "refused.log").string()), "refused by the sim"));
   EXPECT_EQ(run({"set", "Wheel1", "300,1"}, "unknown.log"), kCmdUnknownName);
   EXPECT_EQ(run({"sett", "Axle1Motor", "300,1"}, "usage.log"), kCmdUsage);
   // The wheel turns: its joint rate in SIM_STATE.
@@ -202,7 +211,7 @@ TEST_F(CmdTest, TheProgramFromAShell) {
   const state_t s = client.WaitUntilSimTime(now.sim_time + 0.5, 10.0);
   EXPECT_NEAR(s.joints[static_cast<size_t>(client.catalog()->JointIndex("Axle1"))].rate[0], 1.0,
               0.1);
-  EXPECT_EQ(run({"--timeout", "0.3", "--lcm-url", UniqueUrl(14), "status"}, "nosim.log"),
+  EXPECT_EQ(run({"--timeout", "0.3", "--lcm-url", BusUrl(14), "status"}, "nosim.log"),
             kCmdNoAnswer);
 }
 

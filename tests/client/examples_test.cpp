@@ -5,6 +5,11 @@
 #include <cmath>
 #include <optional>
 
+#include "../support/bus_url.h"
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
 #include "client_test_support.h"
 #include "simpartner/client/client.h"
 
@@ -12,27 +17,24 @@ namespace simpartner::client {
 namespace {
 
 using testing::NumberAfter;
-using testing::ReadFile;
-using testing::SimProcess;
-using testing::TestDir;
-using testing::UniqueUrl;
+using test_support::ShippedWorld;
+using test_support::SimProcess;
+using test_support::FreshTestDir;
+using test_support::BusUrl;
 
 class ExamplesTest : public ::testing::Test {
  public:
   const std::filesystem::path& dir() const { return dir_; }
   void SetUp() override {
-    dir_ = TestDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = FreshTestDir("sp_client_");
   }
   void TearDown() override {
     if (!HasFailure()) std::filesystem::remove_all(dir_);
   }
   // Runs examples/<name> with args; returns its exit status and output.
-  std::pair<int, std::string> RunExample(const std::string& name, std::vector<std::string> args) {
-    args.insert(args.begin(), std::string(SP_BINARY_DIR) + "/examples/" + name);
-    const std::string log = (dir_ / (name + ".log")).string();
-    ChildProcess child(args, log);
-    const int status = child.Wait(std::chrono::seconds(120)).value_or(-1);
-    return {status, ReadFile(log)};
+  test_support::ProgramRun RunExample(const std::string& name, const std::vector<std::string>& args) {
+    return test_support::RunToEnd(test_support::BuiltCommand(name, args), (dir_ / (name + ".log")).string(),
+                                  std::chrono::seconds(120));
   }
   Client Connect(const std::string& url) {
     ClientOptions o;
@@ -53,8 +55,8 @@ TEST_F(ExamplesTest, DriveCircleGen1) { ExpectCircle(this, "gen1_flat.xml", 21);
 TEST_F(ExamplesTest, DriveCircleGen3) { ExpectCircle(this, "flat_ground.xml", 23); }
 
 void ExpectCircle(ExamplesTest* test, const std::string& world, int port_offset) {
-  const std::string url = UniqueUrl(port_offset);
-  SimProcess sim(world, url, (test->dir() / "sim.log").string(), {"--speed=0"});
+  const std::string url = BusUrl(port_offset);
+  SimProcess sim(ShippedWorld(world), url, (test->dir() / "sim.log").string(), {"--speed=0"});
   const double alpha = 0.3;
   const auto [status, output] = test->RunExample("drive_circle", {url, "0.3"});
   ASSERT_EQ(status, 0) << output;
@@ -79,8 +81,8 @@ void ExpectCircle(ExamplesTest* test, const std::string& world, int port_offset)
 }
 
 TEST_F(ExamplesTest, StopAtWallStopsWithinAMetre) {
-  const std::string url = UniqueUrl(22);
-  SimProcess sim("scanner_wall.xml", url, (dir() / "sim.log").string(), {"--speed=0"});
+  const std::string url = BusUrl(22);
+  SimProcess sim(ShippedWorld("scanner_wall.xml"), url, (dir() / "sim.log").string(), {"--speed=0"});
   const auto [status, output] = RunExample("stop_at_wall", {url});
   ASSERT_EQ(status, 0) << output;
   EXPECT_NE(output.find("stopped: nearest "), std::string::npos) << output;

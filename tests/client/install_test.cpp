@@ -6,6 +6,12 @@
 #include <fstream>
 #include <optional>
 
+#include "../support/bus_url.h"
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
+#include "../support/text_file.h"
 #include "client_test_support.h"
 #include "simpartner/client/client.h"
 
@@ -13,26 +19,23 @@ namespace simpartner::client {
 namespace {
 
 using testing::NumberAfter;
-using testing::ReadFile;
-using testing::SimProcess;
-using testing::TestDir;
-using testing::UniqueUrl;
+using test_support::ReadText;
+using test_support::ShippedWorld;
+using test_support::SimProcess;
+using test_support::FreshTestDir;
+using test_support::BusUrl;
 
+// The exit status of args run to its end (-1 after `seconds`), its output in `log`.
 int RunLogged(const std::vector<std::string>& args, const std::string& log, int seconds = 300) {
-  ChildProcess child(args, log);
-  return child.Wait(std::chrono::seconds(seconds)).value_or(-1);
+  return test_support::RunToEnd(args, log, std::chrono::seconds(seconds)).status;
 }
 
 TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
-  const auto dir = TestDir("install");
+  const auto dir = FreshTestDir("sp_client_");
   const std::string prefix = (dir / "prefix").string();
   const std::string build = (dir / "build").string();
   const std::string log = (dir / "steps.log").string();
-  ASSERT_EQ(RunLogged({SP_CMAKE, "--install", SP_BINARY_DIR, "--prefix", prefix, "--component",
-                       "client"},
-                      log),
-            0)
-      << ReadFile(log);
+  ASSERT_EQ(test_support::InstallThisBuild(prefix, "client", log).status, 0) << ReadText(log);
   // What an outside project includes: the client, the generated messages.
   for (const char* file : {"include/simpartner/client/client.h", "include/simpartner/command_t.hpp",
                            "include/simpartner/lcm_schema.hpp", "include/simpartner/bus_decode.h",
@@ -42,13 +45,13 @@ TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
   // the prefix can move (or the build be deleted).
   for (const auto& entry :
        std::filesystem::directory_iterator(std::filesystem::path(prefix) / "lib/cmake/SimPartner")) {
-    const std::string text = ReadFile(entry.path().string());
+    const std::string text = ReadText(entry.path().string());
     EXPECT_EQ(text.find(SP_BINARY_DIR), std::string::npos) << entry.path();
     EXPECT_EQ(text.find(std::string(SP_SOURCE_DIR) + "/"), std::string::npos) << entry.path();
   }
   // The README's first controller, as printed, but on this test's bus.
-  const std::string url = UniqueUrl(31);
-  const std::string readme = ReadFile(std::string(SP_SOURCE_DIR) + "/README.md");
+  const std::string url = BusUrl(31);
+  const std::string readme = ReadText(std::string(SP_SOURCE_DIR) + "/README.md");
   std::string controller;
   for (size_t open = readme.find("```cpp\n"); open != std::string::npos && controller.empty();
        open = readme.find("```cpp\n", open + 1)) {
@@ -73,22 +76,19 @@ TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
                        std::string("-DCMAKE_EXE_LINKER_FLAGS=") + SP_OUTSIDE_FLAGS},
                       configure_log),
             0)
-      << ReadFile(configure_log);
+      << ReadText(configure_log);
   const std::string build_log = (dir / "build.log").string();
-  ASSERT_EQ(RunLogged({SP_CMAKE, "--build", build}, build_log), 0) << ReadFile(build_log);
+  ASSERT_EQ(RunLogged({SP_CMAKE, "--build", build}, build_log), 0) << ReadText(build_log);
 
-  SimProcess sim("gen1_flat.xml", url, (dir / "sim.log").string(), {"--speed=0"});
+  SimProcess sim(ShippedWorld("gen1_flat.xml"), url, (dir / "sim.log").string(), {"--speed=0"});
   const std::string run_log = (dir / "turn_wheel.log").string();
   ASSERT_EQ(RunLogged({build + "/turn_wheel", url, "Axle2Motor", "1.5"}, run_log, 30), 0)
-      << ReadFile(run_log);
-  EXPECT_NE(ReadFile(run_log).find("Axle2Motor accepted at step "), std::string::npos);
+      << ReadText(run_log);
+  EXPECT_NE(ReadText(run_log).find("Axle2Motor accepted at step "), std::string::npos);
   // The installed programs (component programs; those this build has).
   const std::string programs_log = (dir / "programs.log").string();
-  ASSERT_EQ(RunLogged({SP_CMAKE, "--install", SP_BINARY_DIR, "--prefix", prefix, "--component",
-                       "programs"},
-                      programs_log),
-            0)
-      << ReadFile(programs_log);
+  ASSERT_EQ(test_support::InstallThisBuild(prefix, "programs", programs_log).status, 0)
+      << ReadText(programs_log);
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(prefix) /
                                       "share/simpartner/models/worlds/gen1_flat.xml"));
   const std::string cmd_log = (dir / "cmd.log").string();
@@ -96,7 +96,7 @@ TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
                        "1000,-0.5"},
                       cmd_log, 30),
             0)
-      << ReadFile(cmd_log);
+      << ReadText(cmd_log);
   // The effect, seen on the bus: wheel 2's joint turns at 1.5 rad/s.
   ClientOptions o;
   o.url = url;
@@ -115,8 +115,8 @@ TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
                                                client.catalog()->BodyIndex("FrontChassis"))]
                         .initial_position[0];
   const std::string first_log = (dir / "first_controller.log").string();
-  ASSERT_EQ(RunLogged({build + "/first_controller"}, first_log, 60), 0) << ReadFile(first_log);
-  const std::string printed = ReadFile(first_log);
+  ASSERT_EQ(RunLogged({build + "/first_controller"}, first_log, 60), 0) << ReadText(first_log);
+  const std::string printed = ReadText(first_log);
   const std::optional<double> front_x = NumberAfter(printed, "front is at x = ");
   ASSERT_TRUE(front_x) << printed;
   EXPECT_NEAR(*front_x - x0, 3 * 2.0 * 0.235, 0.15) << printed;

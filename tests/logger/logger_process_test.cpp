@@ -21,6 +21,12 @@
 #include <sstream>
 #include <thread>
 
+#include "../support/bus_url.h"
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/text_file.h"
+#include "../support/wait.h"
 #include "logger_test_support.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
@@ -33,21 +39,16 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using testing::SimRun;
 
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::BuiltCommand;
+using test_support::ReadText;
+using test_support::SimProcess;
 
 class LoggerProcessTest : public testing::ServerTest {
  protected:
   void SetUp() override {
     ServerTest::SetUp();
-    const int port = 40000 + (static_cast<int>(::getpid()) * 13) % 20000;
-    url_ = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
-    std::ofstream(dir_ / "world.xml") << sim::testing::ArmWorld();
-    std::ofstream(dir_ / "arm.xml") << sim::testing::ArmRobot();
+    url_ = test_support::BusUrl(0);
+    world_ = sim::testing::WriteArmWorld(dir_);
   }
   void TearDown() override {
     loggers_.clear();
@@ -59,28 +60,22 @@ class LoggerProcessTest : public testing::ServerTest {
   // dir_/spool.
   ChildProcess& StartLogger(std::vector<std::string> extra = {}) {
     const std::string log = LoggerLog(loggers_.size());
-    std::vector<std::string> args = {std::string(SP_BINARY_DIR) + "/logger/simpartner-logger",
-                                     "--params", "/dev/null", "--lcm-url", url_,
+    std::vector<std::string> args = {"--params", "/dev/null", "--lcm-url", url_,
                                      "--db-options", server_->logger_options(),
                                      "--spool", (dir_ / "spool").string(),
                                      "--status-period", "1"};
     args.insert(args.end(), extra.begin(), extra.end());
-    loggers_.push_back(std::make_unique<ChildProcess>(args, log));
+    loggers_.push_back(std::make_unique<ChildProcess>(BuiltCommand("simpartner-logger", args), log));
     return *loggers_.back();
   }
   // The logger has subscribed (it says so once its bus is open).
   bool WaitForReady(size_t n) {
-    return WaitFor([&] { return ReadFile(LoggerLog(n)).find(": logging udpm://") != std::string::npos; }, 30);
+    return WaitFor([&] { return ReadText(LoggerLog(n)).find(": logging udpm://") != std::string::npos; }, 30);
   }
   std::string LoggerLog(size_t n) const { return (dir_ / ("logger" + std::to_string(n) + ".log")).string(); }
-  ChildProcess& StartSim(std::vector<std::string> extra) {
-    std::vector<std::string> args = {std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim",
-                                     "--params", "/dev/null",
-                                     "--environment=" + (dir_ / "world.xml").string(),
-                                     "--lcm-url", url_};
-    args.insert(args.end(), extra.begin(), extra.end());
-    sims_.push_back(std::make_unique<ChildProcess>(
-        args, (dir_ / ("sim" + std::to_string(sims_.size()) + ".log")).string()));
+  SimProcess& StartSim(const std::vector<std::string>& extra) {
+    const std::string log = (dir_ / ("sim" + std::to_string(sims_.size()) + ".log")).string();
+    sims_.push_back(std::make_unique<SimProcess>(world_, url_, log, extra));
     return *sims_.back();
   }
   // Stops a logger with SIGTERM and returns its exit status.
@@ -88,13 +83,16 @@ class LoggerProcessTest : public testing::ServerTest {
     logger.Signal(SIGTERM);
     return logger.Wait(std::chrono::seconds(seconds)).value_or(-1);
   }
+  // Most conditions here query the database: every 200 ms is enough.
   bool WaitFor(const std::function<bool()>& condition, double seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < end) {
-      if (condition()) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    }
-    return condition();
+    return test_support::WaitFor(condition, seconds, std::chrono::milliseconds(200));
+  }
+  // simpartner-query with the reader's option file, run to its end: its
+  // exit status (-1 after 30 s); what it printed is in `log`.
+  int RunQuery(const std::vector<std::string>& args, const std::string& log) {
+    std::vector<std::string> argv = {"--params", "/dev/null", "--db-options", server_->reader_options()};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return test_support::RunToEnd(BuiltCommand("simpartner-query", argv), log, std::chrono::seconds(30)).status;
   }
   int64_t Steps(int simulation = 1) {
     try {
@@ -108,7 +106,7 @@ class LoggerProcessTest : public testing::ServerTest {
   void ExpectEveryStepOnce(int simulation, int64_t first, int64_t last, int bodies, int joints) {
     const std::string sim = std::to_string(simulation);
     EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = " + sim), last - first + 1)
-        << "missing steps (first, last): " << MissingRanges(simulation) << "\n" << ReadFile(LoggerLog(0));
+        << "missing steps (first, last): " << MissingRanges(simulation) << "\n" << ReadText(LoggerLog(0));
     EXPECT_EQ(QueryInt("SELECT MIN(step) FROM SimulationRow WHERE simulationID = " + sim), first);
     EXPECT_EQ(QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = " + sim), last);
     ExpectRowsPerStep(simulation, bodies, joints);
@@ -170,7 +168,6 @@ class LoggerProcessTest : public testing::ServerTest {
       return false;
     }
   }
-  std::string TestUrl() const { return url_ + "&recv_buf_size=4194304"; }
   // After a clean stop the spool holds no records and no LOAD DATA scratch
   // files (its lock file stays).
   void ExpectSpoolEmpty() {
@@ -180,14 +177,15 @@ class LoggerProcessTest : public testing::ServerTest {
     EXPECT_TRUE(left.empty()) << "left in the spool: " << ::testing::PrintToString(left);
   }
   std::string ServerPid() {
-    std::string pid = ReadFile(server_->dir() + "/mariadbd.pid");
+    std::string pid = ReadText(server_->dir() + "/mariadbd.pid");
     while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
     return pid;
   }
 
   std::string url_;
+  std::string world_;  // the arm world
   std::vector<std::unique_ptr<ChildProcess>> loggers_;
-  std::vector<std::unique_ptr<ChildProcess>> sims_;
+  std::vector<std::unique_ptr<SimProcess>> sims_;
 };
 
 // The server stops 3 s into a 40 s run and comes back 30 s later: records
@@ -196,19 +194,19 @@ class LoggerProcessTest : public testing::ServerTest {
 TEST_F(LoggerProcessTest, ServerAwayFor30SecondsMidRunLosesNothing) {
   ChildProcess& logger = StartLogger({"--queue-mb", "2"});
   ASSERT_TRUE(WaitForReady(0));
-  ChildProcess& sim = StartSim({"--duration=40"});
-  ASSERT_TRUE(WaitFor([&] { return Steps() > 2000; }, 30)) << ReadFile(LoggerLog(0));
+  SimProcess& sim = StartSim({"--duration=40"});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 2000; }, 30)) << ReadText(LoggerLog(0));
   server_->Stop();
   const auto away = Clock::now();
   std::this_thread::sleep_for(std::chrono::seconds(30));
   server_->Start();
   EXPECT_GE(Clock::now() - away, std::chrono::seconds(30));
   ASSERT_EQ(sim.Wait(std::chrono::seconds(60)).value_or(-1), 0);
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 120)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 120)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
   ExpectEveryStepOnce(1, 1, 40000, 3, 2);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
-  const std::string log = ReadFile(LoggerLog(0));
+  const std::string log = ReadText(LoggerLog(0));
   EXPECT_NE(log.find("database server unix://" + server_->socket() + " is unreachable"),
             std::string::npos) << log;
   EXPECT_NE(log.find("takes writes again"), std::string::npos) << log;
@@ -223,20 +221,20 @@ TEST_F(LoggerProcessTest, ServerAwayFor30SecondsMidRunLosesNothing) {
 TEST_F(LoggerProcessTest, KilledLoggerResumesTheSameSimulationWithoutDuplicates) {
   ChildProcess& first = StartLogger({"--queue-mb", "0.01"});
   ASSERT_TRUE(WaitForReady(0));
-  ChildProcess& sim = StartSim({});
-  ASSERT_TRUE(WaitFor([&] { return Steps() > 1500; }, 30)) << ReadFile(LoggerLog(0));
+  SimProcess& sim = StartSim({});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 1500; }, 30)) << ReadText(LoggerLog(0));
   first.Signal(SIGKILL);
   ASSERT_EQ(first.Wait(std::chrono::seconds(10)).value_or(-1), 128 + SIGKILL);
   const int64_t before = Steps();
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   ChildProcess& second = StartLogger({"--queue-mb", "0.01"});
-  ASSERT_TRUE(WaitFor([&] { return Steps() > before + 1500; }, 30)) << ReadFile(LoggerLog(1));
-  lcm::LCM bus(TestUrl());
+  ASSERT_TRUE(WaitFor([&] { return Steps() > before + 1500; }, 30)) << ReadText(LoggerLog(1));
+  lcm::LCM bus(url_);
   control_t quit{};
   quit.action = control_t::ACTION_QUIT;
   Publish(&bus, channels::kControl, quit);
   ASSERT_EQ(sim.Wait(std::chrono::seconds(10)).value_or(-1), 0);
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(1));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadText(LoggerLog(1));
   EXPECT_EQ(StopLogger(second), 0);
 
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1);
@@ -248,7 +246,7 @@ TEST_F(LoggerProcessTest, KilledLoggerResumesTheSameSimulationWithoutDuplicates)
   EXPECT_EQ(logged + missing, last) << "every step is logged once or counted in LogGap";
   EXPECT_GT(missing, 0) << "the steps while no logger ran";
   EXPECT_LT(missing, 5000);
-  const std::string log = ReadFile(LoggerLog(1));
+  const std::string log = ReadText(LoggerLog(1));
   EXPECT_NE(log.find("resuming simulation 1"), std::string::npos) << log;
 }
 
@@ -257,16 +255,16 @@ TEST_F(LoggerProcessTest, KilledLoggerResumesTheSameSimulationWithoutDuplicates)
 // closed; a sim that quits closes its Simulation. simpartner-query lists
 // both and exports one to CSV.
 TEST_F(LoggerProcessTest, LateLoggerAndRestartedSim) {
-  ChildProcess& sim_a = StartSim({"--modelPeriod=3600"});  // the model only at start and on request
+  SimProcess& sim_a = StartSim({"--modelPeriod=3600"});  // the model only at start and on request
   std::this_thread::sleep_for(std::chrono::seconds(1));
   ChildProcess& logger = StartLogger();
-  ASSERT_TRUE(WaitFor([&] { return Steps(1) > 500; }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Steps(1) > 500; }, 30)) << ReadText(LoggerLog(0));
   EXPECT_GT(QueryInt("SELECT MIN(step) FROM SimulationRow WHERE simulationID = 1"), 1);
   sim_a.Signal(SIGKILL);
   sim_a.Wait(std::chrono::seconds(10));
-  ChildProcess& sim_b = StartSim({"--duration=2"});
+  SimProcess& sim_b = StartSim({"--duration=2"});
   ASSERT_EQ(sim_b.Wait(std::chrono::seconds(30)).value_or(-1), 0);
-  ASSERT_TRUE(WaitFor([&] { return Closed(2); }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(2); }, 30)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
 
   auto db = Admin();
@@ -277,19 +275,14 @@ TEST_F(LoggerProcessTest, LateLoggerAndRestartedSim) {
   ExpectRowsPerStep(1, 3, 2);
   ExpectEveryStepOnce(2, 1, 2000, 3, 2);
 
-  const std::string query = std::string(SP_BINARY_DIR) + "/logger/simpartner-query";
   const std::string list_log = (dir_ / "list.txt").string();
-  ChildProcess list({query, "--params", "/dev/null", "--db-options", server_->reader_options(), "list"},
-                    list_log);
-  ASSERT_EQ(list.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile(list_log);
-  const std::string listing = ReadFile(list_log);
+  ASSERT_EQ(RunQuery({"list"}, list_log), 0) << ReadText(list_log);
+  const std::string listing = ReadText(list_log);
   EXPECT_NE(listing.find("the sim stopped"), std::string::npos) << listing;
   EXPECT_NE(listing.find("ArmWorld"), std::string::npos) << listing;
   const std::string csv = (dir_ / "arm.csv").string();
-  ChildProcess export_poses({query, "--params", "/dev/null", "--db-options", server_->reader_options(),
-                             "poses", "2", "--body", "Arm", "--out", csv},
-                            (dir_ / "export.txt").string());
-  ASSERT_EQ(export_poses.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile((dir_ / "export.txt").string());
+  ASSERT_EQ(RunQuery({"poses", "2", "--body", "Arm", "--out", csv}, (dir_ / "export.txt").string()), 0)
+      << ReadText(dir_ / "export.txt");
   std::ifstream in(csv);
   std::string line;
   int lines = 0;
@@ -303,17 +296,16 @@ TEST_F(LoggerProcessTest, LateLoggerAndRestartedSim) {
 TEST_F(LoggerProcessTest, BadMessagesAreCountedReportedAndNeverWritten) {
   ChildProcess& logger = StartLogger();
   const SimRun run = testing::ArmRun(100, 4242);
-  lcm::LCM bus(TestUrl());
+  lcm::LCM bus(url_);
   ASSERT_TRUE(WaitForReady(0));
   Publish(&bus, channels::kModel, run.model);
   PublishStates(&bus, run, 1, 50);
   const uint8_t garbage[] = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
   bus.publish(channels::kState, garbage, sizeof garbage);
   Publish(&bus, channels::kState, run.model);  // a model on SIM_STATE
-  std::vector<uint8_t> bytes(static_cast<size_t>(run.states[0].getEncodedSize()));
   state_t fake = run.states[0];
   fake.step = 9000;
-  fake.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  std::vector<uint8_t> bytes = test_support::Encode(fake);
   bus.publish(channels::kState, bytes.data(), static_cast<unsigned>(bytes.size() - 10));  // truncated
   bytes.push_back(0);
   bus.publish(channels::kState, bytes.data(), static_cast<unsigned>(bytes.size()));  // padded
@@ -334,12 +326,12 @@ TEST_F(LoggerProcessTest, BadMessagesAreCountedReportedAndNeverWritten) {
   bus.publish(channels::kSensor, garbage, 3);
   PublishStates(&bus, run, 51, 100);
   PublishStopped(&bus, run, 100);
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
 
   ExpectEveryStepOnce(1, 1, 100, 3, 2);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1);
-  const std::string log = ReadFile(LoggerLog(0));
+  const std::string log = ReadText(LoggerLog(0));
   const size_t stopped = log.find("stopped: ");
   ASSERT_NE(stopped, std::string::npos) << log;
   const std::string summary = log.substr(stopped);
@@ -359,27 +351,27 @@ TEST_F(LoggerProcessTest, BadMessagesAreCountedReportedAndNeverWritten) {
 TEST_F(LoggerProcessTest, ServerRefusingWritesIsReportedAndTheSpoolKept) {
   ChildProcess& logger = StartLogger({"--queue-mb", "0.01"});
   const SimRun run = testing::ArmRun(400, 99);
-  lcm::LCM bus(TestUrl());
+  lcm::LCM bus(url_);
   ASSERT_TRUE(WaitForReady(0));
   Publish(&bus, channels::kModel, run.model);
   PublishStates(&bus, run, 1, 50);
-  ASSERT_TRUE(WaitFor([&] { return Steps() == 50; }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Steps() == 50; }, 30)) << ReadText(LoggerLog(0));
   Admin()->Execute("SET GLOBAL read_only = 1", "");
   PublishStates(&bus, run, 51, 400);
-  ASSERT_TRUE(WaitFor([&] { return ReadFile(LoggerLog(0)).find("refuses writes") != std::string::npos; }, 30));
+  ASSERT_TRUE(WaitFor([&] { return ReadText(LoggerLog(0)).find("refuses writes") != std::string::npos; }, 30));
   std::this_thread::sleep_for(std::chrono::seconds(1));
   uint64_t spooled = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir_ / "spool"))
     if (e.path().extension() == ".seg") spooled += std::filesystem::file_size(e.path());
   EXPECT_GT(spooled, 300u * 500) << "the records wait on disk";
   EXPECT_EQ(Steps(), 50);
-  const std::string log = ReadFile(LoggerLog(0));
+  const std::string log = ReadText(LoggerLog(0));
   EXPECT_NE(log.find("database server unix://" + server_->socket() + " refuses writes: "),
             std::string::npos) << log;
   EXPECT_NE(log.find("--read-only option"), std::string::npos) << log;
   EXPECT_NE(log.find("keeping every record"), std::string::npos) << log;
   Admin()->Execute("SET GLOBAL read_only = 0", "");
-  ASSERT_TRUE(WaitFor([&] { return Steps() == 400; }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Steps() == 400; }, 30)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
   ExpectEveryStepOnce(1, 1, 400, 3, 2);
 }
@@ -389,24 +381,24 @@ TEST_F(LoggerProcessTest, ServerRefusingWritesIsReportedAndTheSpoolKept) {
 TEST_F(LoggerProcessTest, StopWhileTheServerIsAwayKeepsEverythingForTheNextRun) {
   ChildProcess& first = StartLogger({"--drain-timeout", "1"});
   const SimRun run = testing::ArmRun(300, 5);
-  lcm::LCM bus(TestUrl());
+  lcm::LCM bus(url_);
   ASSERT_TRUE(WaitForReady(0));
   Publish(&bus, channels::kModel, run.model);
   PublishStates(&bus, run, 1, 100);
-  ASSERT_TRUE(WaitFor([&] { return Steps() == 100; }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Steps() == 100; }, 30)) << ReadText(LoggerLog(0));
   server_->Stop();
   PublishStates(&bus, run, 101, 300);
   PublishStopped(&bus, run, 300);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   EXPECT_EQ(StopLogger(first), 0);
-  const std::string log = ReadFile(LoggerLog(0));
+  const std::string log = ReadText(LoggerLog(0));
   EXPECT_NE(log.find("saved to the spool"), std::string::npos) << log;
   server_->Start();
   ChildProcess& second = StartLogger();
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(1));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadText(LoggerLog(1));
   EXPECT_EQ(StopLogger(second), 0);
   ExpectEveryStepOnce(1, 1, 300, 3, 2);
-  EXPECT_NE(ReadFile(LoggerLog(1)).find("from an earlier run; writing that first"), std::string::npos);
+  EXPECT_NE(ReadText(LoggerLog(1)).find("from an earlier run; writing that first"), std::string::npos);
 }
 
 // The spool on a 2 MB tmpfs, the memory queue 0.5 MB, the server away
@@ -431,27 +423,27 @@ TEST_F(LoggerProcessTest, SpoolDiskFullWhileTheServerIsAwayLosesNoStepSilently) 
   } unmount{spool, &loggers_};
   ChildProcess& logger = StartLogger({"--queue-mb", "0.5", "--sim-silence", "120"});
   const SimRun run = testing::ArmRun(9000, 31);
-  lcm::LCM bus(TestUrl());
+  lcm::LCM bus(url_);
   ASSERT_TRUE(WaitForReady(0));
   Publish(&bus, channels::kModel, run.model);
   PublishStates(&bus, run, 1, 100);
-  ASSERT_TRUE(WaitFor([&] { return Steps() == 100; }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Steps() == 100; }, 30)) << ReadText(LoggerLog(0));
   server_->Stop();
   PublishStates(&bus, run, 101, 8000);
-  ASSERT_TRUE(WaitFor([&] { return ReadFile(LoggerLog(0)).find("spool disk refuses it") != std::string::npos; }, 30))
-      << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return ReadText(LoggerLog(0)).find("spool disk refuses it") != std::string::npos; }, 30))
+      << ReadText(LoggerLog(0));
   server_->Start();
   // Caught up: memory and spool empty (status lines every second).
   ASSERT_TRUE(WaitFor([&] {
-    const std::string log = ReadFile(LoggerLog(0));
+    const std::string log = ReadText(LoggerLog(0));
     const size_t back = log.find("takes writes again");
     return back != std::string::npos && log.find("queue 0.0 MB, spool 0.0 MB", back) != std::string::npos;
-  }, 60)) << ReadFile(LoggerLog(0));
+  }, 60)) << ReadText(LoggerLog(0));
   PublishStates(&bus, run, 8001, 9000);
   PublishStopped(&bus, run, 9000);
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 60)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 60)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
-  const std::string log = ReadFile(LoggerLog(0));
+  const std::string log = ReadText(LoggerLog(0));
 
   // Every step in the database with all its rows, or in LogGap with a
   // reason; none in both.
@@ -489,7 +481,7 @@ TEST_F(LoggerProcessTest, SpoolDiskFullWhileTheServerIsAwayLosesNoStepSilently) 
 TEST_F(LoggerProcessTest, AForgedStepNumberIsRefusedAndLoggingGoesOn) {
   ChildProcess& logger = StartLogger();
   const SimRun run = testing::ArmRun(2000, 4343);
-  lcm::LCM bus(TestUrl());
+  lcm::LCM bus(url_);
   ASSERT_TRUE(WaitForReady(0));
   Publish(&bus, channels::kModel, run.model);
   PublishStates(&bus, run, 1, 1000);
@@ -499,12 +491,12 @@ TEST_F(LoggerProcessTest, AForgedStepNumberIsRefusedAndLoggingGoesOn) {
   Publish(&bus, channels::kState, forged);
   PublishStates(&bus, run, 1001, 2000);
   PublishStopped(&bus, run, 2000);
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
   ExpectEveryStepOnce(1, 1, 2000, 3, 2);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
   EXPECT_EQ(QueryInt("SELECT lastStep FROM Simulation WHERE simulationID = 1"), 2000);
-  const std::string log = ReadFile(LoggerLog(0));
+  const std::string log = ReadText(LoggerLog(0));
   EXPECT_NE(log.find("SIM_STATE: step = 500000000 is 499999000 steps after step 1000"),
             std::string::npos) << log;
   const size_t stopped = log.find("stopped: ");
@@ -519,8 +511,8 @@ TEST_F(LoggerProcessTest, AForgedStepNumberIsRefusedAndLoggingGoesOn) {
 TEST_F(LoggerProcessTest, AStoppedServerIsReportedAndNothingIsLost) {
   ChildProcess& logger = StartLogger();
   ASSERT_TRUE(WaitForReady(0));
-  ChildProcess& sim = StartSim({"--duration=20"});
-  ASSERT_TRUE(WaitFor([&] { return Steps() > 1000; }, 30)) << ReadFile(LoggerLog(0));
+  SimProcess& sim = StartSim({"--duration=20"});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 1000; }, 30)) << ReadText(LoggerLog(0));
   const std::string pid_text = ServerPid();
   ASSERT_FALSE(pid_text.empty());
   const pid_t pid = static_cast<pid_t>(std::stol(pid_text));
@@ -530,19 +522,19 @@ TEST_F(LoggerProcessTest, AStoppedServerIsReportedAndNothingIsLost) {
   } resume{pid};
   ASSERT_EQ(::kill(pid, SIGSTOP), 0);
   const auto stopped_at = Clock::now();
-  ASSERT_TRUE(WaitFor([&] { return ReadFile(LoggerLog(0)).find("has not answered for") != std::string::npos; }, 15))
-      << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return ReadText(LoggerLog(0)).find("has not answered for") != std::string::npos; }, 15))
+      << ReadText(LoggerLog(0));
   EXPECT_LT(Clock::now() - stopped_at, std::chrono::seconds(8)) << "reported after a few seconds";
   std::this_thread::sleep_for(std::chrono::seconds(10) - (Clock::now() - stopped_at));
-  const std::string during = ReadFile(LoggerLog(0));
+  const std::string during = ReadText(LoggerLog(0));
   EXPECT_NE(during.find("DATABASE NOT ANSWERING for"), std::string::npos) << during;
   ASSERT_EQ(::kill(pid, SIGCONT), 0);
   ASSERT_EQ(sim.Wait(std::chrono::seconds(60)).value_or(-1), 0);
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 60)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 60)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
   ExpectEveryStepOnce(1, 1, 20000, 3, 2);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
-  const std::string log = ReadFile(LoggerLog(0));
+  const std::string log = ReadText(LoggerLog(0));
   EXPECT_NE(log.find("database server unix://" + server_->socket() + " has not answered for "),
             std::string::npos) << log;
   EXPECT_NE(log.find("database server unix://" + server_->socket() + " answers again"),
@@ -556,8 +548,8 @@ TEST_F(LoggerProcessTest, AStoppedServerIsReportedAndNothingIsLost) {
 TEST_F(LoggerProcessTest, ServerKilledAndRestartedLosesAndRepeatsNothing) {
   ChildProcess& logger = StartLogger();
   ASSERT_TRUE(WaitForReady(0));
-  ChildProcess& sim = StartSim({"--duration=15"});
-  ASSERT_TRUE(WaitFor([&] { return Steps() > 3000; }, 30)) << ReadFile(LoggerLog(0));
+  SimProcess& sim = StartSim({"--duration=15"});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 3000; }, 30)) << ReadText(LoggerLog(0));
   const std::string pid_text = ServerPid();
   ASSERT_FALSE(pid_text.empty());
   const pid_t pid = static_cast<pid_t>(std::stol(pid_text));
@@ -568,12 +560,12 @@ TEST_F(LoggerProcessTest, ServerKilledAndRestartedLosesAndRepeatsNothing) {
   ASSERT_TRUE(sim.running()) << "the run must go on while the server is away";
   server_->Start();
   ASSERT_EQ(sim.Wait(std::chrono::seconds(60)).value_or(-1), 0);
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 60)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 60)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
   ExpectEveryStepOnce(1, 1, 15000, 3, 2);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
-  const std::string log = ReadFile(LoggerLog(0));
+  const std::string log = ReadText(LoggerLog(0));
   EXPECT_NE(log.find("takes writes again"), std::string::npos) << log;
   ExpectSpoolEmpty();
 }
@@ -586,27 +578,27 @@ TEST_F(LoggerProcessTest, ServerKilledAndRestartedLosesAndRepeatsNothing) {
 // docs/benchmarks.md for the speeds measured).
 TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
   const std::string recording = (dir_ / "run.lcmlog").string();
-  ChildProcess recorder({"/usr/bin/lcm-logger", "--quiet", "--force", "--lcm-url=" + TestUrl(),
+  ChildProcess recorder({"/usr/bin/lcm-logger", "--quiet", "--force", "--lcm-url=" + url_,
                          recording},
                         (dir_ / "lcm-logger.log").string());
   ChildProcess& live = StartLogger();
   ASSERT_TRUE(WaitForReady(0));
   ASSERT_TRUE(WaitFor([&] { return std::filesystem::exists(recording); }, 10));
-  ChildProcess& sim = StartSim({"--duration=6"});
+  SimProcess& sim = StartSim({"--duration=6"});
   // Swing the arm, so that poses change and Command/CommandReply get rows.
-  ASSERT_TRUE(WaitFor([&] { return Steps() > 500; }, 30)) << ReadFile(LoggerLog(0));
-  lcm::LCM bus(TestUrl());
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 500; }, 30)) << ReadText(LoggerLog(0));
+  lcm::LCM bus(url_);
   command_t swing = sim::testing::Command("ArmMotor", command_t::ACTION_SET,
                                           {1000, 1000, 1000, 0, 0, 3.0, 20.0, 0.0, 0.0});
   swing.sender = "replay-test";
   Publish(&bus, channels::kCommand, swing);
   ASSERT_EQ(sim.Wait(std::chrono::seconds(60)).value_or(-1), 0);
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(live), 0);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // it flushes every 100 ms
   recorder.Signal(SIGINT);
   ASSERT_EQ(recorder.Wait(std::chrono::seconds(10)).value_or(-1), 0)
-      << ReadFile((dir_ / "lcm-logger.log").string());
+      << ReadText((dir_ / "lcm-logger.log").string());
   ExpectEveryStepOnce(1, 1, 6000, 3, 2);
   // A short recording is lcm-logger's loss, not the replay's: say so.
   int recorded_states = 0;
@@ -624,14 +616,14 @@ TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
   ChildProcess player({"/usr/bin/lcm-logplayer", "--speed=5", "--lcm-url=" + url_, recording},
                       (dir_ / "lcm-logplayer.log").string());
   ASSERT_EQ(player.Wait(std::chrono::seconds(60)).value_or(-1), 0)
-      << ReadFile((dir_ / "lcm-logplayer.log").string());
+      << ReadText((dir_ / "lcm-logplayer.log").string());
   ASSERT_TRUE(WaitFor([&] {
     try {
       return QueryInt("SELECT COUNT(*) FROM Simulation WHERE endTime IS NOT NULL", replay_db) == 1;
     } catch (const DbError&) {
       return false;
     }
-  }, 30)) << ReadFile(LoggerLog(1));
+  }, 30)) << ReadText(LoggerLog(1));
   EXPECT_EQ(StopLogger(replayed), 0);
 
   for (const char* table :
@@ -670,12 +662,12 @@ TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
 TEST_F(LoggerProcessTest, AKilledSimsSimulationIsClosed) {
   ChildProcess& logger = StartLogger({"--sim-silence", "3"});
   ASSERT_TRUE(WaitForReady(0));
-  ChildProcess& sim = StartSim({});
-  ASSERT_TRUE(WaitFor([&] { return Steps() > 1000; }, 30)) << ReadFile(LoggerLog(0));
+  SimProcess& sim = StartSim({});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 1000; }, 30)) << ReadText(LoggerLog(0));
   sim.Signal(SIGKILL);
   sim.Wait(std::chrono::seconds(10));
   const auto killed = Clock::now();
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadText(LoggerLog(0));
   EXPECT_GE(Clock::now() - killed, std::chrono::milliseconds(2500));
   EXPECT_EQ(StopLogger(logger), 0);
   const int64_t logged = Steps();
@@ -688,11 +680,8 @@ TEST_F(LoggerProcessTest, AKilledSimsSimulationIsClosed) {
   EXPECT_EQ(row[0].substr(row[0].rfind('\t') + 1), std::to_string(logged)) << row[0];
   ExpectEveryStepOnce(1, 1, logged, 3, 2);
   const std::string list_log = (dir_ / "list.txt").string();
-  ChildProcess list({std::string(SP_BINARY_DIR) + "/logger/simpartner-query", "--params", "/dev/null",
-                     "--db-options", server_->reader_options(), "list"},
-                    list_log);
-  ASSERT_EQ(list.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile(list_log);
-  EXPECT_NE(ReadFile(list_log).find("the sim went silent"), std::string::npos) << ReadFile(list_log);
+  ASSERT_EQ(RunQuery({"list"}, list_log), 0) << ReadText(list_log);
+  EXPECT_NE(ReadText(list_log).find("the sim went silent"), std::string::npos) << ReadText(list_log);
 }
 
 // A sim stopped (SIGSTOP, as under a debugger) for longer than
@@ -703,11 +692,11 @@ TEST_F(LoggerProcessTest, AKilledSimsSimulationIsClosed) {
 TEST_F(LoggerProcessTest, ASimStoppedLongerThanTheSilenceIsReopenedWhenItGoesOn) {
   ChildProcess& logger = StartLogger({"--sim-silence", "2"});
   ASSERT_TRUE(WaitForReady(0));
-  ChildProcess& sim = StartSim({"--duration=8"});
-  ASSERT_TRUE(WaitFor([&] { return Steps() > 1000; }, 30)) << ReadFile(LoggerLog(0));
+  SimProcess& sim = StartSim({"--duration=8"});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 1000; }, 30)) << ReadText(LoggerLog(0));
   sim.Signal(SIGSTOP);
   const auto stopped = Clock::now();
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 10)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 10)) << ReadText(LoggerLog(0));
   // While it is silent, the database says so; every step it sent is in.
   const int64_t last_before = QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = 1");
   EXPECT_EQ(Steps(), last_before);
@@ -728,8 +717,8 @@ TEST_F(LoggerProcessTest, ASimStoppedLongerThanTheSilenceIsReopenedWhenItGoesOn)
       return false;
     }
   };
-  EXPECT_TRUE(WaitFor(open_again, 10)) << "still closed after the sim went on\n" << ReadFile(LoggerLog(0));
-  EXPECT_TRUE(WaitFor([&] { return Steps() > last_before + 500; }, 10)) << ReadFile(LoggerLog(0));
+  EXPECT_TRUE(WaitFor(open_again, 10)) << "still closed after the sim went on\n" << ReadText(LoggerLog(0));
+  EXPECT_TRUE(WaitFor([&] { return Steps() > last_before + 500; }, 10)) << ReadText(LoggerLog(0));
   ASSERT_EQ(sim.Wait(std::chrono::seconds(60)).value_or(-1), 0);
   ASSERT_TRUE(WaitFor([&] {
     try {
@@ -737,9 +726,9 @@ TEST_F(LoggerProcessTest, ASimStoppedLongerThanTheSilenceIsReopenedWhenItGoesOn)
     } catch (const DbError&) {
       return false;
     }
-  }, 30)) << "not closed as stopped\n" << ReadFile(LoggerLog(0));
+  }, 30)) << "not closed as stopped\n" << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
-  const std::string log = ReadFile(LoggerLog(0));
+  const std::string log = ReadText(LoggerLog(0));
   const size_t closed = log.find("closed simulation 1: the sim went silent");
   const size_t reopened = log.find("reopened simulation 1");
   EXPECT_NE(closed, std::string::npos) << log;
@@ -770,11 +759,11 @@ TEST_F(LoggerProcessTest, ASimStoppedLongerThanTheSilenceIsReopenedWhenItGoesOn)
 TEST_F(LoggerProcessTest, ALinkDownLongerThanTheSilenceIsOneGapInOneSimulation) {
   ChildProcess& logger = StartLogger({"--sim-silence", "1"});
   const SimRun run = testing::ArmRun(2000, 5151);
-  lcm::LCM bus(TestUrl());
+  lcm::LCM bus(url_);
   ASSERT_TRUE(WaitForReady(0));
   Publish(&bus, channels::kModel, run.model);
   PublishStates(&bus, run, 1, 1000);
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 10)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 10)) << ReadText(LoggerLog(0));
   PublishStates(&bus, run, 1500, 2000);
   PublishStopped(&bus, run, 2000);
   ASSERT_TRUE(WaitFor([&] {
@@ -783,7 +772,7 @@ TEST_F(LoggerProcessTest, ALinkDownLongerThanTheSilenceIsOneGapInOneSimulation) 
     } catch (const DbError&) {
       return false;
     }
-  }, 30)) << ReadFile(LoggerLog(0));
+  }, 30)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
   auto db = Admin();
   EXPECT_EQ(QueryRows(db.get(), "SELECT simulationID, lastStep FROM Simulation"),
@@ -792,16 +781,13 @@ TEST_F(LoggerProcessTest, ALinkDownLongerThanTheSilenceIsOneGapInOneSimulation) 
   const auto gaps = QueryRows(db.get(), "SELECT firstStep, lastStep, missing FROM LogGap");
   EXPECT_EQ(gaps, (std::vector<std::string>{"1000\t1500\t499"}));
   const std::string list_log = (dir_ / "list.txt").string();
-  ChildProcess list({std::string(SP_BINARY_DIR) + "/logger/simpartner-query", "--params", "/dev/null",
-                     "--db-options", server_->reader_options(), "list"},
-                    list_log);
-  ASSERT_EQ(list.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile(list_log);
+  ASSERT_EQ(RunQuery({"list"}, list_log), 0) << ReadText(list_log);
   // id, ..., steps, last step, missing, state
-  std::istringstream listing(ReadFile(list_log));
+  std::istringstream listing(ReadText(list_log));
   std::string header, row;
   std::getline(listing, header);
   std::getline(listing, row);
-  EXPECT_NE(row.find(" 1501       2000      499  the sim stopped"), std::string::npos) << ReadFile(list_log);
+  EXPECT_NE(row.find(" 1501       2000      499  the sim stopped"), std::string::npos) << ReadText(list_log);
 }
 
 // Commands say which simulation they were meant for (command_t.simulation_id,
@@ -810,23 +796,23 @@ TEST_F(LoggerProcessTest, ALinkDownLongerThanTheSilenceIsOneGapInOneSimulation) 
 TEST_F(LoggerProcessTest, CommandsAreLoggedWithTheSimulationTheyWereMeantFor) {
   ChildProcess& logger = StartLogger();
   ASSERT_TRUE(WaitForReady(0));
-  ChildProcess& sim = StartSim({"--duration=4"});
-  ASSERT_TRUE(WaitFor([&] { return Steps() > 300; }, 30)) << ReadFile(LoggerLog(0));
+  SimProcess& sim = StartSim({"--duration=4"});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 300; }, 30)) << ReadText(LoggerLog(0));
   // simpartner-cmd addresses the simulation it learned from SIM_MODEL.
   const std::string cmd_log = (dir_ / "cmd.log").string();
-  ChildProcess cmd({std::string(SP_BINARY_DIR) + "/client/simpartner-cmd", "--lcm-url", url_,
-                    "--timeout", "5", "set", "ArmMotor", "1000,1000,1000,0,0,0.5,20,0,0"},
+  ChildProcess cmd(BuiltCommand("simpartner-cmd", {"--lcm-url", url_, "--timeout", "5", "set", "ArmMotor",
+                                                  "1000,1000,1000,0,0,0.5,20,0,0"}),
                    cmd_log);
-  ASSERT_EQ(cmd.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadFile(cmd_log);
+  ASSERT_EQ(cmd.Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadText(cmd_log);
   // One meant for any simulation, as an old sender would send it.
-  lcm::LCM bus(TestUrl());
+  lcm::LCM bus(url_);
   command_t any = sim::testing::Command("ArmMotor", command_t::ACTION_SET,
                                         {1000, 1000, 1000, 0, 0, 0.0, 20.0, 0.0, 0.0});
   any.sender = "any-simulation";
   any.simulation_id = 0;
   Publish(&bus, channels::kCommand, any);
   ASSERT_EQ(sim.Wait(std::chrono::seconds(60)).value_or(-1), 0);
-  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadText(LoggerLog(0));
   EXPECT_EQ(StopLogger(logger), 0);
   const std::string bus_id = std::to_string(QueryInt("SELECT busSimulationID FROM Simulation"));
   ASSERT_NE(bus_id, "0");
@@ -840,16 +826,16 @@ TEST_F(LoggerProcessTest, CommandsAreLoggedWithTheSimulationTheyWereMeantFor) {
 // printed only when something in it changed.
 TEST_F(LoggerProcessTest, IdleLoggerDoesNotRepeatItsStatus) {
   ChildProcess& logger = StartLogger();  // --status-period 1
-  ASSERT_TRUE(WaitForReady(0)) << ReadFile(LoggerLog(0));
+  ASSERT_TRUE(WaitForReady(0)) << ReadText(LoggerLog(0));
   std::this_thread::sleep_for(std::chrono::milliseconds(4500));  // four periods and more
   EXPECT_EQ(StopLogger(logger), 0);
-  std::istringstream log(ReadFile(LoggerLog(0)));
+  std::istringstream log(ReadText(LoggerLog(0)));
   int status_lines = 0;
   for (std::string line; std::getline(log, line);)
     if (line.find(": no SIM_MODEL seen yet; written 0 steps") != std::string::npos &&
         line.find("stopped: ") == std::string::npos)
       ++status_lines;
-  EXPECT_EQ(status_lines, 1) << ReadFile(LoggerLog(0));
+  EXPECT_EQ(status_lines, 1) << ReadText(LoggerLog(0));
 }
 
 }  // namespace

@@ -9,6 +9,9 @@
 #include <sstream>
 #include <thread>
 
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/text_file.h"
 #include "logger_test_support.h"
 #include "simpartner/child_process.h"
 #include "simpartner/logger/query.h"
@@ -109,16 +112,11 @@ class QueryToolTest : public testing::ServerTest {
     return ParseCsv(out.str());
   }
   // Runs the installed-layout program with the reader's (or another) option file.
-  int RunQuery(std::vector<std::string> args, std::string* output) {
-    const std::string log = (dir_ / "query.log").string();
-    args.insert(args.begin(), std::string(SP_BINARY_DIR) + "/logger/simpartner-query");
-    ChildProcess query(args, log);
-    const int status = query.Wait(std::chrono::seconds(120)).value_or(-1);
-    std::ifstream in(log);
-    std::ostringstream text;
-    text << in.rdbuf();
-    *output = text.str();
-    return status;
+  int RunQuery(const std::vector<std::string>& args, std::string* output) {
+    test_support::ProgramRun query = test_support::RunToEnd(test_support::BuiltCommand("simpartner-query", args),
+                                                            (dir_ / "query.log").string(), std::chrono::seconds(120));
+    *output = std::move(query.output);
+    return query.status;
   }
 };
 
@@ -732,29 +730,21 @@ TEST_F(QueryToolTest, PlotWindowShowsThePlotAndTheCommandEndsWhenItIsClosed) {
   viewer::XvfbServer xvfb(1024, 768, (dir_ / "xvfb.log").string(), screen_dir.string());
   const std::string query_log = (dir_ / "window.log").string();
   ::setenv("DISPLAY", xvfb.display().c_str(), 1);
-  ChildProcess query({std::string(SP_BINARY_DIR) + "/logger/simpartner-query", "plot", "rate",
-                      "last", "--joint", "Axle", "--db-options", server_->reader_options()},
+  ChildProcess query(test_support::BuiltCommand("simpartner-query", {"plot", "rate", "last", "--joint", "Axle",
+                                                                     "--db-options",
+                                                                     server_->reader_options()}),
                      query_log);
   ::unsetenv("DISPLAY");
-  auto query_said = [&] {
-    std::ifstream in(query_log);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  };
+  auto query_said = [&] { return test_support::ReadText(query_log); };
   // `expected_status` < 0: any (a search that may find nothing yet).
-  auto xdotool = [&](std::vector<std::string> args, int expected_status = 0) {
-    args.insert(args.begin(), {"/usr/bin/env", "DISPLAY=" + xvfb.display(), "/usr/bin/xdotool"});
-    const std::string log = (dir_ / "xdotool.log").string();
-    ChildProcess run(args, log);
-    const int status = run.Wait(std::chrono::seconds(10)).value_or(-1);
+  auto xdotool = [&](const std::vector<std::string>& args, int expected_status = 0) {
+    const test_support::ProgramRun run = test_support::RunToEnd(test_support::XdotoolCommand(xvfb.display(), args),
+                                                                (dir_ / "xdotool.log").string(),
+                                                                std::chrono::seconds(10));
     if (expected_status >= 0) {
-      EXPECT_EQ(status, expected_status) << args[3];
+      EXPECT_EQ(run.status, expected_status) << args[0];
     }
-    std::ifstream in(log);
-    std::string first_line;
-    std::getline(in, first_line);
-    return first_line;
+    return run.output.substr(0, run.output.find('\n'));
   };
   // The command names the window it opens: "simpartner-query: TITLE in a window; ...".
   std::string title;

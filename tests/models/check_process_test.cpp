@@ -2,24 +2,20 @@
 // status, the summary on stdout and every problem on stderr as
 // "file:line: element: message".
 #include <gtest/gtest.h>
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <csignal>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
-extern char** environ;
+#include "simpartner/child_process.h"
+#include "../support/programs.h"
+#include "../support/text_file.h"
 
 namespace simpartner::model {
 namespace {
@@ -27,7 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kSource = SP_SOURCE_DIR;
-const fs::path kSim = fs::path(SP_BINARY_DIR) / "sim_core" / "simpartner-sim";
 
 struct SimRun {
   int status = -1;  // exit status; 128 + signal if killed
@@ -35,15 +30,11 @@ struct SimRun {
   std::string err;
 };
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test_support::ReadText;
 
 // Runs simpartner-sim with args, stdout and stderr to separate files of a
-// directory of its own; kills it if it takes longer than 30 s.
+// directory of its own (a shell that redirects stderr and then becomes the
+// sim); kills it if it takes longer than 30 s.
 SimRun RunSim(const std::vector<std::string>& args) {
   SimRun run;
   char dir_template[] = "/tmp/sp_check_test.XXXXXX";
@@ -53,36 +44,15 @@ SimRun RunSim(const std::vector<std::string>& args) {
     return run;
   }
   const fs::path out = fs::path(dir) / "stdout", err = fs::path(dir) / "stderr";
-  std::vector<std::string> argv_text = {kSim.string()};
-  argv_text.insert(argv_text.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : argv_text) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  pid_t pid = -1;
-  const int spawned = posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&files);
-  if (spawned != 0) {
-    ADD_FAILURE() << "cannot start " << kSim << ": " << std::strerror(spawned);
-    fs::remove_all(dir);
-    return run;
-  }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  int wait_status = 0;
-  while (waitpid(pid, &wait_status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      ADD_FAILURE() << kSim << " --check did not finish in 30 s";
-      kill(pid, SIGKILL);
-      waitpid(pid, &wait_status, 0);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  run.status = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : 128 + WTERMSIG(wait_status);
+  std::vector<std::string> argv = {"/bin/sh", "-c", "exec \"$@\" 2>'" + err.string() + "'", "sh",
+                                   test_support::BuiltProgram("simpartner-sim")};
+  argv.insert(argv.end(), args.begin(), args.end());
+  {
+    ChildProcess sim(argv, out.string());
+    const std::optional<int> status = sim.Wait(std::chrono::seconds(30));
+    if (!status) ADD_FAILURE() << "simpartner-sim --check did not finish in 30 s";
+    run.status = status.value_or(-1);
+  }  // killed and reaped here if it did not finish
   run.out = ReadText(out);
   run.err = ReadText(err);
   fs::remove_all(dir);

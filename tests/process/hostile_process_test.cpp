@@ -12,15 +12,16 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
-#include <functional>
-#include <sstream>
-#include <thread>
 
 #include "../logger/logger_test_support.h"
+#include "../support/bus_listener.h"
+#include "../support/bus_url.h"
 #include "../support/hostile_corpus.h"
-#include "../support/asan_env.h"
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
 #include "../support/text_file.h"
-#include "simpartner/bus_decode.h"
+#include "../support/wait.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
 #include "simpartner/command_reply_t.hpp"
@@ -32,32 +33,29 @@
 namespace simpartner {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-using test_support::AsanOptions;
+using test_support::BuiltCommand;
 using test_support::ReadText;
 
 // The test's side of the bus: newest step, the sim's newest status and the
-// replies to this test's commands.
-class Observer {
+// replies to this test's commands. Only what comes from the sim itself
+// counts (the corpus also sends forged states and statuses, which the test
+// must not believe).
+class Observer : public test_support::BusListener {
  public:
-  explicit Observer(const std::string& url) : lcm_(url) {
-    lcm_.subscribe(channels::kState, &Observer::OnState, this)->setQueueCapacity(100000);
-    lcm_.subscribe(channels::kStatus, &Observer::OnStatus, this)->setQueueCapacity(1000);
-    lcm_.subscribe(channels::kCommandReply, &Observer::OnReply, this)->setQueueCapacity(1000);
-  }
-  lcm::LCM& lcm() { return lcm_; }
-  void Pump(double seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < end) lcm_.handleTimeout(10);
-  }
-  bool Until(const std::function<bool()>& condition, double seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < end) {
-      if (condition()) return true;
-      lcm_.handleTimeout(20);
-    }
-    return condition();
+  explicit Observer(const std::string& url) : BusListener(url) {
+    Subscribe<state_t>(channels::kState, [this](const state_t& s) {
+      if (simulation_id < 0) simulation_id = s.simulation_id;
+      if (s.simulation_id == simulation_id && s.num_bodies > 1 && s.step < 10000000)
+        last_step = std::max(last_step, s.step);
+    });
+    Subscribe<status_t>(channels::kStatus, [this](const status_t& s) {
+      if (s.simulation_id != simulation_id || s.host == "elsewhere") return;
+      status = s;
+      has_status = true;
+    });
+    Subscribe<command_reply_t>(channels::kCommandReply, [this](const command_reply_t& r) {
+      if (r.sender == "hostile-test") replies.push_back(r);
+    });
   }
 
   int64_t simulation_id = -1;
@@ -65,75 +63,41 @@ class Observer {
   status_t status{};
   bool has_status = false;
   std::vector<command_reply_t> replies;
-
- private:
-  // Only what comes from the sim itself counts (the corpus also sends
-  // forged states and statuses, which the test must not believe).
-  void OnState(const lcm::ReceiveBuffer* b, const std::string& channel) {
-    state_t s;
-    if (DecodeFromBus(channel, b->data, b->data_size, &s, &bad_)) return;
-    if (simulation_id < 0) simulation_id = s.simulation_id;
-    if (s.simulation_id == simulation_id && s.num_bodies > 1 && s.step < 10000000)
-      last_step = std::max(last_step, s.step);
-  }
-  void OnStatus(const lcm::ReceiveBuffer* b, const std::string& channel) {
-    status_t s;
-    if (DecodeFromBus(channel, b->data, b->data_size, &s, &bad_)) return;
-    if (s.simulation_id != simulation_id || s.host == "elsewhere") return;
-    status = s;
-    has_status = true;
-  }
-  void OnReply(const lcm::ReceiveBuffer* b, const std::string& channel) {
-    command_reply_t r;
-    if (DecodeFromBus(channel, b->data, b->data_size, &r, &bad_)) return;
-    if (r.sender == "hostile-test") replies.push_back(r);
-  }
-
-  lcm::LCM lcm_;
-  BadMessageCounter bad_;
 };
 
 class HostileProcessTest : public logger::testing::ServerTest {
  protected:
   void SetUp() override {
     ServerTest::SetUp();
-    const int port = 20000 + (static_cast<int>(::getpid()) * 17 + 3) % 20000;
-    url_ = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
-    std::ofstream(dir_ / "world.xml") << sim::testing::ArmWorld();
-    std::ofstream(dir_ / "arm.xml") << sim::testing::ArmRobot();
+    url_ = test_support::BusUrl(0);
+    world_ = sim::testing::WriteArmWorld(dir_);
   }
   std::unique_ptr<ChildProcess> Start(std::vector<std::string> argv, const std::string& log) {
     return std::make_unique<ChildProcess>(argv, (dir_ / log).string());
   }
-  bool WaitForText(const std::string& log, const std::string& text, double seconds, Observer* bus) {
-    return bus->Until([&] { return ReadText(dir_ / log).find(text) != std::string::npos; }, seconds);
-  }
 
   std::string url_;
+  std::string world_;  // the arm world
 };
 
 TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   Observer bus(url_);
-  const std::string bin = SP_BINARY_DIR;
-  auto logger = Start({bin + "/logger/simpartner-logger", "--params", "/dev/null", "--lcm-url", url_,
-                       "--db-options", server_->logger_options(), "--spool",
-                       (dir_ / "spool").string(), "--status-period", "1"},
+  auto logger = Start(BuiltCommand("simpartner-logger",
+                                   {"--params", "/dev/null", "--lcm-url", url_, "--db-options",
+                                    server_->logger_options(), "--spool", (dir_ / "spool").string(),
+                                    "--status-period", "1"}),
                       "logger.log");
-  ASSERT_TRUE(WaitForText("logger.log", ": logging udpm://", 30, &bus)) << ReadText(dir_ / "logger.log");
-  auto sim = Start({bin + "/sim_core/simpartner-sim", "--params", "/dev/null",
-                    "--environment=" + (dir_ / "world.xml").string(), "--lcm-url", url_,
-                    "--statusPeriod=0.2"},
-                   "sim.log");
+  ASSERT_TRUE(bus.UntilFileHolds(dir_ / "logger.log", ": logging udpm://", 30)) << ReadText(dir_ / "logger.log");
+  auto sim = Start(test_support::SimCommand(world_, url_, {"--statusPeriod=0.2"}), "sim.log");
   ASSERT_TRUE(bus.Until([&] { return bus.last_step > 100; }, 20)) << ReadText(dir_ / "sim.log");
 
   viewer::XvfbServer xvfb(640, 360, (dir_ / "xvfb.log").string());
   const std::string shot = (dir_ / "after.png").string();
-  auto viewer = Start({"/usr/bin/env", "DISPLAY=" + xvfb.display(),
-                       "LSAN_OPTIONS=suppressions=" + std::string(SP_SOURCE_DIR) + "/tests/viewer/lsan.supp",
-                       "LD_PRELOAD=" SP_KEEP_LOADED_LIB, "ASAN_OPTIONS=" + AsanOptions(),
-                       bin + "/viewer/simpartner-viewer", "--params",
-                       "/dev/null", "--lcm-url", url_, "--width", "640", "--height", "360",
-                       "--screenshot", shot, "--after", "12"},
+  auto viewer = Start(test_support::OnDisplay(xvfb.display(),
+                                              BuiltCommand("simpartner-viewer",
+                                                           {"--params", "/dev/null", "--lcm-url", url_, "--width",
+                                                            "640", "--height", "360", "--screenshot", shot,
+                                                            "--after", "12"})),
                       "viewer.log");
   bus.Pump(2.0);  // the viewer learns the model
 
@@ -192,7 +156,8 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
 
   // The viewer: its screenshot, taken after the corpus, shows a state the
   // sim published after the corpus.
-  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << ReadText(dir_ / "viewer.log");
+  ASSERT_TRUE(bus.UntilFileHolds(dir_ / "viewer.log", "simpartner-viewer: screenshot", 30))
+      << ReadText(dir_ / "viewer.log");
   // Its exit (GL teardown, the sanitizers' leak check) took over 10 s once
   // with the whole system of another test beside it on 2 cores.
   ASSERT_EQ(viewer->Wait(std::chrono::seconds(60)).value_or(-1), 0) << ReadText(dir_ / "viewer.log");
@@ -211,13 +176,13 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   ASSERT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0) << ReadText(dir_ / "sim.log");
   bus.Pump(0.5);
   const int64_t last = bus.last_step;
-  const auto end = Clock::now() + std::chrono::seconds(60);
   int64_t rows = -1;
-  while (Clock::now() < end) {
-    rows = QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = 1");
-    if (rows >= last) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  }
+  test_support::WaitFor(
+      [&] {
+        rows = QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = 1");
+        return rows >= last;
+      },
+      60, std::chrono::milliseconds(300));
   EXPECT_EQ(rows, last) << ReadText(dir_ / "logger.log");
   EXPECT_EQ(QueryInt("SELECT MAX(step) FROM SimulationRow WHERE simulationID = 1"), last);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1) << "a forged model became a simulation";

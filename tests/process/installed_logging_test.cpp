@@ -15,14 +15,16 @@
 
 #include <chrono>
 #include <filesystem>
-#include <functional>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "simpartner/child_process.h"
+#include "../support/bus_url.h"
+#include "../support/processes.h"
+#include "../support/test_dir.h"
 #include "../support/text_file.h"
+#include "../support/wait.h"
 
 namespace simpartner {
 namespace {
@@ -34,12 +36,10 @@ class InstalledLoggingTest : public ::testing::Test {
  protected:
   void SetUp() override {
     // Short: the server's socket path must fit a unix socket (108 bytes).
-    root_ = fs::temp_directory_path() / ("sp_instlog_" + std::to_string(::getpid()));
-    fs::remove_all(root_);
+    root_ = test_support::FreshTestDir("sp_instlog_", 0);
     fs::create_directories(Home());
     fs::create_directories(Work());
-    const int port = 20000 + (static_cast<int>(::getpid()) * 31 + 9173) % 20000;
-    url_ = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
+    url_ = test_support::BusUrl(0);
   }
 
   void TearDown() override {
@@ -82,22 +82,12 @@ class InstalledLoggingTest : public ::testing::Test {
 
   // Runs a command to its end; its exit status (-1 after timeout seconds).
   int Run(const std::vector<std::string>& args, const std::string& log, int timeout) {
-    ChildProcess child(UserCommand(args), Log(log).string());
-    return child.Wait(std::chrono::seconds(timeout)).value_or(-1);
+    return test_support::RunToEnd(UserCommand(args), Log(log).string(), std::chrono::seconds(timeout)).status;
   }
 
   ChildProcess* Start(const std::vector<std::string>& args, const std::string& log) {
     children_.push_back(std::make_unique<ChildProcess>(UserCommand(args), Log(log).string()));
     return children_.back().get();
-  }
-
-  static bool WaitFor(const std::function<bool()>& condition, double seconds) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    while (std::chrono::steady_clock::now() < end) {
-      if (condition()) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-    return condition();
   }
 
   fs::path root_;
@@ -107,10 +97,9 @@ class InstalledLoggingTest : public ::testing::Test {
 
 TEST_F(InstalledLoggingTest, StartTheServerLogADrivenGen4RunAndPlotAWheelsForce) {
   {
-    ChildProcess install({SP_CMAKE, "--install", SP_BINARY_DIR, "--prefix", Prefix().string(),
-                          "--component", "programs"},
-                         Log("install.log").string());
-    ASSERT_EQ(install.Wait(std::chrono::seconds(120)).value_or(-1), 0) << ReadText(Log("install.log"));
+    const test_support::ProgramRun install =
+        test_support::InstallThisBuild(Prefix().string(), "programs", Log("install.log").string());
+    ASSERT_EQ(install.status, 0) << install.output;
   }
   ASSERT_TRUE(fs::is_regular_file(Prefix() / "bin/simpartner-mariadb"));
   ASSERT_TRUE(fs::is_regular_file(Prefix() / "share/simpartner/scripts/lib/cli.sh"));
@@ -141,9 +130,7 @@ TEST_F(InstalledLoggingTest, StartTheServerLogADrivenGen4RunAndPlotAWheelsForce)
   ASSERT_TRUE(fs::is_regular_file(StateDir() / "reader.cnf"));
 
   ChildProcess* logger = Start({"simpartner-logger", "--lcm-url", url_}, "logger.log");
-  ASSERT_TRUE(WaitFor([&] { return ReadText(Log("logger.log")).find(": logging udpm://") !=
-                                    std::string::npos; },
-                      30))
+  ASSERT_TRUE(test_support::WaitForText(Log("logger.log"), ": logging udpm://", 30))
       << ReadText(Log("logger.log"));
   // The logger found the private server without being told (and is no
   // program of the build tree: it never looks at the source tree's state/).

@@ -3,46 +3,31 @@
 // parameters, worlds and robots under <prefix>/share/simpartner (never in
 // this source tree), and a missing world names every path it looked at.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "simpartner/child_process.h"
+#include "../support/bus_url.h"
+#include "../support/processes.h"
+#include "../support/test_dir.h"
 
 namespace simpartner {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-struct SimRun {
-  int status = -1;
-  std::string output;
-};
+using test_support::ProgramRun;
 
 class InstalledSimTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    root_ = new fs::path(fs::temp_directory_path() /
-                         ("sp_installed_sim_" + std::to_string(::getpid())));
-    fs::remove_all(*root_);
+    root_ = new fs::path(test_support::FreshTestDir("sp_installed_sim_", 0));
     fs::create_directories(*root_ / "home");
-    const fs::path log = *root_ / "install.log";
-    ChildProcess install({SP_CMAKE, "--install", SP_BINARY_DIR, "--prefix",
-                          (*root_ / "prefix").string(), "--component", "programs"},
-                         log.string());
-    install_status_ = install.Wait(std::chrono::seconds(120)).value_or(-1);
-    install_log_ = new std::string(ReadText(log));
+    const ProgramRun install = test_support::InstallThisBuild((*root_ / "prefix").string(), "programs",
+                                                              (*root_ / "install.log").string());
+    install_status_ = install.status;
+    install_log_ = new std::string(install.output);
   }
   static void TearDownTestSuite() {
     fs::remove_all(*root_);
@@ -57,18 +42,14 @@ class InstalledSimTest : public ::testing::Test {
 
   // The installed sim, started in Home() as a user would from ~, without
   // SIMPARTNER_DATA unless data_env is given (env -C: chdir, -u: unset).
-  SimRun Sim(const std::vector<std::string>& args, const std::string& data_env = "") {
+  ProgramRun Sim(const std::vector<std::string>& args, const std::string& data_env = "") {
     std::vector<std::string> argv = {"/usr/bin/env", "-C", Home().string(), "-u",
                                      "SIMPARTNER_DATA"};
     if (!data_env.empty()) argv.push_back("SIMPARTNER_DATA=" + data_env);
     argv.push_back((Prefix() / "bin" / "simpartner-sim").string());
     argv.insert(argv.end(), args.begin(), args.end());
     const fs::path log = *root_ / ("sim_" + std::to_string(++runs_) + ".log");
-    ChildProcess sim(argv, log.string());
-    SimRun run;
-    run.status = sim.Wait(std::chrono::seconds(30)).value_or(-1);
-    run.output = ReadText(log);
-    return run;
+    return test_support::RunToEnd(argv, log.string(), std::chrono::seconds(30));
   }
 
   static fs::path* root_;
@@ -94,7 +75,7 @@ TEST_F(InstalledSimTest, InstallsTheDataInTheSourceTreesLayout) {
 }
 
 TEST_F(InstalledSimTest, CheckFromAnotherDirectoryUsesTheInstalledData) {
-  const SimRun run = Sim({"--check"});
+  const ProgramRun run = Sim({"--check"});
   EXPECT_EQ(run.status, 0) << run.output;
   // The default world of the installed parameters.txt, and its robot.
   EXPECT_NE(run.output.find("world 'FlatGround' (" + (Data() / "models/worlds/flat_ground.xml").string() +
@@ -109,7 +90,7 @@ TEST_F(InstalledSimTest, CheckFromAnotherDirectoryUsesTheInstalledData) {
 }
 
 TEST_F(InstalledSimTest, AShippedWorldIsFoundByItsFileName) {
-  const SimRun run = Sim({"--check", "--environment=gen1_flat.xml"});
+  const ProgramRun run = Sim({"--check", "--environment=gen1_flat.xml"});
   EXPECT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("(" + (Data() / "models/worlds/gen1_flat.xml").string() + ")"),
             std::string::npos)
@@ -117,16 +98,15 @@ TEST_F(InstalledSimTest, AShippedWorldIsFoundByItsFileName) {
 }
 
 TEST_F(InstalledSimTest, AShortRunOnAPrivateBusEndsWithItsDuration) {
-  const int port = 20000 + (static_cast<int>(::getpid()) * 17 + 4711) % 20000;
-  const std::string url = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
-  const SimRun run = Sim({"--lcm-url", url, "--duration=0.5", "--speed=0"});
+  const std::string url = test_support::BusUrl(0);
+  const ProgramRun run = Sim({"--lcm-url", url, "--duration=0.5", "--speed=0"});
   EXPECT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("simpartner-sim: running"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find(url), std::string::npos) << run.output;
 }
 
 TEST_F(InstalledSimTest, AMissingWorldListsEveryPathTried) {
-  const SimRun run = Sim({"--check", "--environment=no_such_world.xml"});
+  const ProgramRun run = Sim({"--check", "--environment=no_such_world.xml"});
   EXPECT_EQ(run.status, 2) << run.output;
   EXPECT_NE(run.output.find("no_such_world.xml: cannot read world file: not found; tried:"),
             std::string::npos)
@@ -145,7 +125,7 @@ TEST_F(InstalledSimTest, SimpartnerDataComesFirstAndRobotsFallBackToTheInstall) 
   fs::create_directories(mine / "models/worlds");
   fs::copy_file(Data() / "models/worlds/gen1_flat.xml", mine / "models/worlds/my_world.xml",
                 fs::copy_options::overwrite_existing);
-  const SimRun run = Sim({"--check", "--environment=my_world.xml"}, mine.string());
+  const ProgramRun run = Sim({"--check", "--environment=my_world.xml"}, mine.string());
   EXPECT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("(" + (mine / "models/worlds/my_world.xml").string() + ")"),
             std::string::npos)

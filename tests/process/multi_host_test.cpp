@@ -22,10 +22,13 @@
 #include <sstream>
 #include <thread>
 
+#include "../support/bus_listener.h"
 #include "../support/netns.h"
-#include "../support/asan_env.h"
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
 #include "../support/text_file.h"
-#include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
 #include "simpartner/logger/db.h"
@@ -40,31 +43,19 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-const std::string kSource = SP_SOURCE_DIR;
-const std::string kBinary = SP_BINARY_DIR;
-
-using test_support::AsanOptions;
+using test_support::BuiltCommand;
 using test_support::ReadText;
+using test_support::SourceDir;
 
 // What the sim host itself hears of its sim: the newest state (when it came,
 // where body 0 was) and every warning its statuses carried.
-class Observer {
+class Observer : public test_support::BusListener {
  public:
-  explicit Observer(const std::string& url) : lcm_(url) {
-    lcm_.subscribe(channels::kState, &Observer::OnState, this)->setQueueCapacity(100000);
-    lcm_.subscribe(channels::kStatus, &Observer::OnStatus, this)->setQueueCapacity(1000);
-    lcm_.getFileno();  // the receiving socket now, in the caller's namespace
-  }
-  void Pump(double seconds) {
-    Until([] { return false; }, seconds);
-  }
-  bool Until(const std::function<bool()>& condition, double seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < end) {
-      if (condition()) return true;
-      lcm_.handleTimeout(20);
-    }
-    return condition();
+  explicit Observer(const std::string& url) : BusListener(url) {
+    Subscribe<state_t>(channels::kState, [this](const state_t& s) { OnState(s); });
+    Subscribe<status_t>(channels::kStatus, [this](const status_t& s) {
+      warnings.insert(warnings.end(), s.warnings.begin(), s.warnings.end());
+    });
   }
   // Any warning seen with this severity whose message contains `text`.
   bool Warned(int8_t severity, const std::string& text) const {
@@ -80,23 +71,13 @@ class Observer {
   std::vector<warning_t> warnings;
 
  private:
-  void OnState(const lcm::ReceiveBuffer* b, const std::string& channel) {
-    state_t s;
-    if (DecodeFromBus(channel, b->data, b->data_size, &s, &bad_)) return;
+  void OnState(const state_t& s) {
     if (simulation_id < 0) simulation_id = s.simulation_id;
     if (s.simulation_id != simulation_id || s.num_bodies < 1) return;
     last = s;
     last_at = Clock::now();
     ++states;
   }
-  void OnStatus(const lcm::ReceiveBuffer* b, const std::string& channel) {
-    status_t s;
-    if (DecodeFromBus(channel, b->data, b->data_size, &s, &bad_)) return;
-    warnings.insert(warnings.end(), s.warnings.begin(), s.warnings.end());
-  }
-
-  lcm::LCM lcm_;
-  BadMessageCounter bad_;
 };
 
 double Horizontal(const state_t& a, const state_t& b) {  // y is up
@@ -107,9 +88,7 @@ double Horizontal(const state_t& a, const state_t& b) {  // y is up
 class MultiHostTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("sp_mh_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = test_support::FreshTestDir("sp_mh_", 0);
   }
   void TearDown() override {
     if (HasFailure()) {
@@ -152,7 +131,7 @@ TEST_F(MultiHostTest, ThreeHostsWorkAndALinkDownIsReportedAndRecovered) {
   const std::string url = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=1";
 
   // MariaDB on the logger host (socket only, in the test's directory).
-  server_ = std::make_unique<logger::PrivateServer>(kSource + "/scripts/mariadb", (dir_ / "db").string(), false);
+  server_ = std::make_unique<logger::PrivateServer>(SourceDir() + "/scripts/mariadb", (dir_ / "db").string(), false);
   {
     test_support::ScopedNetns on_logger_host(lan->Namespace("logger"));
     server_->Start();
@@ -164,30 +143,28 @@ TEST_F(MultiHostTest, ThreeHostsWorkAndALinkDownIsReportedAndRecovered) {
   }
   viewer::XvfbServer xvfb(640, 360, (dir_ / "xvfb.log").string());
 
-  auto logger = Start(lan->Exec("logger", {kBinary + "/logger/simpartner-logger", "--params", "/dev/null",
-                                           "--lcm-url", url, "--db-options", server_->logger_options(),
-                                           "--spool", (dir_ / "spool").string(), "--status-period", "1"}),
+  auto logger = Start(lan->Exec("logger", BuiltCommand("simpartner-logger",
+                                                       {"--params", "/dev/null", "--lcm-url", url, "--db-options",
+                                                        server_->logger_options(), "--spool",
+                                                        (dir_ / "spool").string(), "--status-period", "1"})),
                       "logger.log");
-  ASSERT_TRUE(bus->Until([&] { return Log("logger.log").find(": logging udpm://") != std::string::npos; }, 30))
-      << Log("logger.log");
+  ASSERT_TRUE(bus->UntilFileHolds(dir_ / "logger.log", ": logging udpm://", 30)) << Log("logger.log");
   // gen1: real time holds on 2 shared cores beside the others (0.2 ms of a
   // core per step here).
-  auto sim = Start(lan->Exec("sim", {kBinary + "/sim_core/simpartner-sim", "--params", "/dev/null",
-                                     "--environment=" + kSource + "/models/worlds/gen1_flat.xml",
-                                     "--lcm-url", url, "--statusPeriod=0.2"}),
+  auto sim = Start(lan->Exec("sim", test_support::SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
+                                                             {"--statusPeriod=0.2"})),
                    "sim.log");
   ASSERT_TRUE(bus->Until([&] { return bus->last.step > 1000; }, 30)) << Log("sim.log");
   const int64_t simulation = bus->simulation_id;
 
   // The viewer host: the viewer draws for 6 s, then screenshots and exits
   // with its frame count; the sequencer drives all four wheels at 2 rad/s.
-  auto viewer = Start(lan->Exec("viewer",
-                                {"/usr/bin/env", "DISPLAY=" + xvfb.display(),
-                                 "LSAN_OPTIONS=suppressions=" + kSource + "/tests/viewer/lsan.supp",
-                                 "LD_PRELOAD=" SP_KEEP_LOADED_LIB, "ASAN_OPTIONS=" + AsanOptions(),
-                                 kBinary + "/viewer/simpartner-viewer", "--params", "/dev/null", "--lcm-url",
-                                 url, "--width", "640", "--height", "360", "--screenshot",
-                                 (dir_ / "viewer.png").string(), "--after", "6"}),
+  auto viewer = Start(lan->Exec("viewer", test_support::OnDisplay(
+                                              xvfb.display(),
+                                              BuiltCommand("simpartner-viewer",
+                                                           {"--params", "/dev/null", "--lcm-url", url, "--width",
+                                                            "640", "--height", "360", "--screenshot",
+                                                            (dir_ / "viewer.png").string(), "--after", "6"}))),
                       "viewer.log");
   const fs::path sequence = dir_ / "drive.xml";
   std::ofstream(sequence) << "<?xml version=\"1.0\"?>\n"
@@ -200,11 +177,11 @@ TEST_F(MultiHostTest, ThreeHostsWorkAndALinkDownIsReportedAndRecovered) {
                              "</sequence>\n";
   const state_t before_sequence = bus->last;
   // The outage below is 5 s of silence the sequencer must sit through.
-  auto sequencer = Start(lan->Exec("viewer", {kBinary + "/sequencer/simpartner-sequencer", sequence.string(),
-                                              "--lcm-url", url, "--silence-timeout", "30"}),
+  auto sequencer = Start(lan->Exec("viewer", BuiltCommand("simpartner-sequencer",
+                                                          {sequence.string(), "--lcm-url", url,
+                                                           "--silence-timeout", "30"})),
                          "sequencer.log");
-  ASSERT_TRUE(bus->Until([&] { return Log("sequencer.log").find("segment(s); world") != std::string::npos; }, 30))
-      << Log("sequencer.log");
+  ASSERT_TRUE(bus->UntilFileHolds(dir_ / "sequencer.log", "segment(s); world", 30)) << Log("sequencer.log");
   bus->Pump(3.0);
   // Wheels of some 0.3 m at 2 rad/s roll the robot about 0.6 m/s; standing
   // still it stays within millimetres.

@@ -5,14 +5,11 @@
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 #include <signal.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <map>
-#include <sstream>
 #include <thread>
 
 #include "simpartner/channels.h"
@@ -25,54 +22,32 @@
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "../sim_core/test_worlds.h"
+#include "../support/bus_listener.h"
+#include "../support/bus_url.h"
+#include "../support/encode.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
 #include "../support/text_file.h"
 
 namespace simpartner {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// A port of its own for every test process, so ctest -j does not mix them.
-std::string UniqueUrl(int offset) {
-  const int port = 20000 + (static_cast<int>(::getpid()) * 7 + offset) % 20000;
-  return "udpm://239.255.76.67:" + std::to_string(port) +
-         "?ttl=0&recv_buf_size=4194304";
-}
-
-// simpartner-sim of this build, killed and reaped if a test ends early.
-class SimProcess {
- public:
-  SimProcess(std::vector<std::string> args, const std::string& log)
-      : child_(WithBinary(std::move(args)), log) {}
-  // Exit status, or -1 if still running after timeout.
-  int Wait(std::chrono::seconds timeout) { return child_.Wait(timeout).value_or(-1); }
-  void Signal(int signal) { child_.Signal(signal); }
-
- private:
-  static std::vector<std::string> WithBinary(std::vector<std::string> args) {
-    args.insert(args.begin(), std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim");
-    return args;
-  }
-  ChildProcess child_;
-};
+using test_support::BuiltCommand;
+using test_support::BusUrl;
+using test_support::ReadText;
+using test_support::SimCommand;
+using test_support::SimProcess;
 
 // Test-side bus: collects what the sim publishes.
-class Listener {
+class Listener : public test_support::BusListener {
  public:
-  explicit Listener(const std::string& url) : lcm_(url) {
-    EXPECT_TRUE(lcm_.good());
-    lcm_.subscribe(channels::kState, &Listener::OnState, this)->setQueueCapacity(100000);
-    lcm_.subscribe(channels::kModel, &Listener::OnModel, this);
-    lcm_.subscribe(channels::kStatus, &Listener::OnStatus, this)->setQueueCapacity(1000);
-    lcm_.subscribe(channels::kCommandReply, &Listener::OnReply, this)->setQueueCapacity(1000);
-  }
-  lcm::LCM& lcm() { return lcm_; }
-
-  // Handles messages until pred() or timeout; returns pred().
-  bool Until(const std::function<bool()>& pred, double seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (!pred() && Clock::now() < end) lcm_.handleTimeout(10);
-    return pred();
+  explicit Listener(const std::string& url) : BusListener(url) {
+    Subscribe<state_t>(channels::kState, [this](const state_t& s) { OnState(s); });
+    Keep(channels::kModel, &models);
+    Keep(channels::kStatus, &statuses);
+    Keep(channels::kCommandReply, &replies);
   }
 
   std::map<int64_t, std::vector<uint8_t>> states;  // step -> physics bytes
@@ -83,54 +58,27 @@ class Listener {
   std::vector<command_reply_t> replies;
 
  private:
-  void OnState(const lcm::ReceiveBuffer*, const std::string&, const state_t* s) {
-    state_t copy = *s;
-    last_step = s->step;
-    last_state_simulation = s->simulation_id;
+  void OnState(const state_t& s) {
+    last_step = s.step;
+    last_state_simulation = s.simulation_id;
+    state_t copy = s;
     copy.utime = 0;
     copy.simulation_id = 0;
-    std::vector<uint8_t> bytes(copy.getEncodedSize());
-    copy.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-    states[s->step] = std::move(bytes);
+    states[s.step] = test_support::Encode(copy);
   }
-  void OnModel(const lcm::ReceiveBuffer*, const std::string&, const model_t* m) {
-    models.push_back(*m);
-  }
-  void OnStatus(const lcm::ReceiveBuffer*, const std::string&, const status_t* s) {
-    statuses.push_back(*s);
-  }
-  void OnReply(const lcm::ReceiveBuffer*, const std::string&, const command_reply_t* r) {
-    replies.push_back(*r);
-  }
-  lcm::LCM lcm_;
 };
 
 class SimProcessTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("sp_sim_process_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-    std::ofstream(dir_ / "world.xml") << sim::testing::ArmWorld();
-    std::ofstream(dir_ / "arm.xml") << sim::testing::ArmRobot();
+    dir_ = test_support::FreshTestDir("sp_sim_process_");
+    world_ = sim::testing::WriteArmWorld(dir_);
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::vector<std::string> Args(const std::string& url, std::vector<std::string> extra) {
-    std::vector<std::string> args = {"--params", "/dev/null",
-                                     "--environment=" + (dir_ / "world.xml").string(),
-                                     "--lcm-url", url};
-    args.insert(args.end(), extra.begin(), extra.end());
-    return args;
-  }
   std::string Log() const { return (dir_ / "sim.log").string(); }
-  std::string LogText() const {
-    std::ifstream in(Log());
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
+  std::string LogText() const { return ReadText(Log()); }
   std::filesystem::path dir_;
+  std::string world_;  // the arm world
 };
 
 command_t MakeCommand(const std::string& target, int8_t action, std::vector<double> values,
@@ -150,8 +98,8 @@ void Control(lcm::LCM& lcm, int8_t action, int64_t steps = 0, double speed = 0) 
 }
 
 TEST_F(SimProcessTest, LateSubscriberRebuildsTheModel) {
-  const std::string url = UniqueUrl(1);
-  SimProcess sim(Args(url, {"--duration=20"}), Log());
+  const std::string url = BusUrl(1);
+  SimProcess sim(world_, url, Log(), {"--duration=20"});
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // started well before us
   Listener bus(url);
   // Ask instead of waiting for the periodic announcement.
@@ -182,8 +130,8 @@ TEST_F(SimProcessTest, LateSubscriberRebuildsTheModel) {
 // not race through the missed steps: it re-anchors its schedule, says on
 // SIM_STATUS how far it fell behind, and loses no step of the stream.
 TEST_F(SimProcessTest, StalledSimSaysItFellBehindAndKeepsEveryStep) {
-  const std::string url = UniqueUrl(6);
-  SimProcess sim(Args(url, {"--duration=30"}), Log());
+  const std::string url = BusUrl(6);
+  SimProcess sim(world_, url, Log(), {"--duration=30"});
   Listener bus(url);
   ASSERT_TRUE(bus.Until([&] { return bus.last_step > 200; }, 10.0)) << LogText();
   sim.Signal(SIGSTOP);
@@ -213,8 +161,8 @@ TEST_F(SimProcessTest, StalledSimSaysItFellBehindAndKeepsEveryStep) {
 }
 
 TEST_F(SimProcessTest, BadInputOnTheBusIsRefusedAndSteppingGoesOn) {
-  const std::string url = UniqueUrl(2);
-  SimProcess sim(Args(url, {"--duration=30"}), Log());
+  const std::string url = BusUrl(2);
+  SimProcess sim(world_, url, Log(), {"--duration=30"});
   Listener bus(url);
   ASSERT_TRUE(bus.Until([&] { return bus.last_step > 100; }, 5.0)) << LogText();
   // Garbage and a message of another type on SIM_COMMAND and SIM_CONTROL.
@@ -273,8 +221,8 @@ TEST_F(SimProcessTest, BadInputOnTheBusIsRefusedAndSteppingGoesOn) {
 // for it (SET_SPEED 1e-4 used to block every control but QUIT for 10 s),
 // and speeds outside the range are refused naming the value.
 TEST_F(SimProcessTest, ControlsTakeEffectAtOnceEvenAtTheSlowestSpeed) {
-  const std::string url = UniqueUrl(9);
-  SimProcess sim(Args(url, {"--duration=60", "--statusPeriod=0.2"}), Log());
+  const std::string url = BusUrl(9);
+  SimProcess sim(world_, url, Log(), {"--duration=60", "--statusPeriod=0.2"});
   Listener bus(url);
   ASSERT_TRUE(bus.Until([&] { return bus.last_step > 50; }, 5.0)) << LogText();
   Control(bus.lcm(), control_t::ACTION_SET_SPEED, 0, 1e-4);   // refused: below 0.001
@@ -307,8 +255,8 @@ TEST_F(SimProcessTest, ControlsTakeEffectAtOnceEvenAtTheSlowestSpeed) {
 }
 
 TEST_F(SimProcessTest, PauseStepResetQuit) {
-  const std::string url = UniqueUrl(3);
-  SimProcess sim(Args(url, {"--duration=60"}), Log());
+  const std::string url = BusUrl(3);
+  SimProcess sim(world_, url, Log(), {"--duration=60"});
   Listener bus(url);
   ASSERT_TRUE(bus.Until([&] { return bus.last_step > 50; }, 5.0)) << LogText();
   Control(bus.lcm(), control_t::ACTION_PAUSE);
@@ -341,8 +289,8 @@ TEST_F(SimProcessTest, PauseStepResetQuit) {
 // (a logger closes the simulation on it).
 TEST_F(SimProcessTest, SigintAndSigtermStopTheRunCleanly) {
   for (const int signal : {SIGINT, SIGTERM}) {
-    const std::string url = UniqueUrl(signal == SIGINT ? 11 : 12);
-    SimProcess sim(Args(url, {}), Log());
+    const std::string url = BusUrl(signal == SIGINT ? 11 : 12);
+    SimProcess sim(world_, url, Log());
     Listener bus(url);
     ASSERT_TRUE(bus.Until([&] { return bus.last_step > 50; }, 5.0)) << LogText();
     sim.Signal(signal);
@@ -360,11 +308,10 @@ TEST_F(SimProcessTest, SigintAndSigtermStopTheRunCleanly) {
 // as fast as possible.
 TEST_F(SimProcessTest, SameStreamAtAnySpeed) {
   auto record = [&](const std::string& speed, int offset) {
-    const std::string url = UniqueUrl(10 + offset);
+    const std::string url = BusUrl(10 + offset);
     Listener bus(url);
-    SimProcess sim(Args(url, {"--startPaused=1", "--speed=" + speed, "--duration=1.5",
-                              "--stateEvery=5"}),
-                   Log());
+    SimProcess sim(world_, url, Log(),
+                   {"--startPaused=1", "--speed=" + speed, "--duration=1.5", "--stateEvery=5"});
     EXPECT_TRUE(bus.Until([&] { return !bus.models.empty(); }, 5.0)) << LogText();
     command_t c = MakeCommand("Spin", command_t::ACTION_SET, {1000, 5.0}, 1, 100);
     bus.lcm().publish(channels::kCommand, &c);
@@ -392,12 +339,12 @@ TEST_F(SimProcessTest, SameStreamAtAnySpeed) {
 // SIM_STATE in the file decodes and none is missing, and lcm-logplayer
 // replays it to a subscriber that rebuilds the model and the states.
 TEST_F(SimProcessTest, StockLcmLoggerAndLogplayerCarryTheStream) {
-  const std::string url = UniqueUrl(20);
+  const std::string url = BusUrl(20);
   const std::string log_file = (dir_ / "run.lcmlog").string();
   ChildProcess logger({"/usr/bin/lcm-logger", "--lcm-url=" + url, "--force", log_file},
                       (dir_ / "logger.log").string());
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // subscribed before the sim
-  SimProcess sim(Args(url, {"--duration=1.2"}), Log());
+  SimProcess sim(world_, url, Log(), {"--duration=1.2"});
   ASSERT_EQ(sim.Wait(std::chrono::seconds(15)), 0) << LogText();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // flush interval 100 ms
   logger.Signal(SIGINT);
@@ -424,7 +371,7 @@ TEST_F(SimProcessTest, StockLcmLoggerAndLogplayerCarryTheStream) {
   ASSERT_EQ(steps.size(), 1200u);
   for (size_t i = 0; i < steps.size(); ++i) ASSERT_EQ(steps[i], static_cast<int64_t>(i + 1));
 
-  const std::string replay_url = UniqueUrl(21);
+  const std::string replay_url = BusUrl(21);
   Listener bus(replay_url);
   ChildProcess player({"/usr/bin/lcm-logplayer", "--lcm-url=" + replay_url, "--speed=4", log_file},
                       (dir_ / "player.log").string());
@@ -435,26 +382,26 @@ TEST_F(SimProcessTest, StockLcmLoggerAndLogplayerCarryTheStream) {
 }
 
 TEST_F(SimProcessTest, BadParametersStopBeforeAnything) {
-  SimProcess sim({"--params", "/dev/null", "--stepsize=7", "--environment=/nonexistent.xml"},
-                 Log());
+  ChildProcess sim(BuiltCommand("simpartner-sim",
+                                {"--params", "/dev/null", "--stepsize=7", "--environment=/nonexistent.xml"}),
+                   Log());
   EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 2);
   EXPECT_NE(LogText().find("command line: stepsize: value '7' is out of range"), std::string::npos)
       << LogText();
-  SimProcess missing({"--params", "/dev/null", "--environment=/nonexistent.xml"}, Log());
+  ChildProcess missing(
+      BuiltCommand("simpartner-sim", {"--params", "/dev/null", "--environment=/nonexistent.xml"}), Log());
   EXPECT_EQ(missing.Wait(std::chrono::seconds(5)), 2);
   EXPECT_NE(LogText().find("/nonexistent.xml: cannot read world file"), std::string::npos)
       << LogText();
 }
 
-using test_support::ReadText;
-
 // Two systems side by side on one host: a bus each (another port) and
 // neither hears the other.
 TEST_F(SimProcessTest, TwoSimsOnTwoPortsDoNotSeeEachOther) {
-  const std::string url_a = UniqueUrl(30), url_b = UniqueUrl(31);
+  const std::string url_a = BusUrl(30), url_b = BusUrl(31);
   ASSERT_NE(url_a, url_b);
-  SimProcess a(Args(url_a, {"--duration=3"}), (dir_ / "a.log").string());
-  SimProcess b(Args(url_b, {"--duration=3"}), (dir_ / "b.log").string());
+  SimProcess a(world_, url_a, (dir_ / "a.log").string(), {"--duration=3"});
+  SimProcess b(world_, url_b, (dir_ / "b.log").string(), {"--duration=3"});
   Listener bus_a(url_a);
   ASSERT_TRUE(bus_a.Until([&] { return bus_a.last_step > 500; }, 10.0)) << ReadText(dir_ / "a.log");
   EXPECT_EQ(a.Wait(std::chrono::seconds(10)), 0) << ReadText(dir_ / "a.log");
@@ -467,13 +414,13 @@ TEST_F(SimProcessTest, TwoSimsOnTwoPortsDoNotSeeEachOther) {
 // A second sim on a bus that has one refuses to start, naming the first,
 // and the first goes on undisturbed.
 TEST_F(SimProcessTest, SecondSimOnOneBusRefusesToStart) {
-  const std::string url = UniqueUrl(32);
-  SimProcess first(Args(url, {"--duration=20"}), (dir_ / "first.log").string());
+  const std::string url = BusUrl(32);
+  SimProcess first(world_, url, (dir_ / "first.log").string(), {"--duration=20"});
   Listener bus(url);
   ASSERT_TRUE(bus.Until([&] { return !bus.models.empty() && bus.last_step > 100; }, 10.0))
       << ReadText(dir_ / "first.log");
   const int64_t first_id = bus.models.front().simulation_id;
-  SimProcess second(Args(url, {}), (dir_ / "second.log").string());
+  SimProcess second(world_, url, (dir_ / "second.log").string());
   EXPECT_EQ(second.Wait(std::chrono::seconds(10)), 3) << ReadText(dir_ / "second.log");
   const std::string said = ReadText(dir_ / "second.log");
   EXPECT_NE(said.find("another simulation (id " + std::to_string(first_id) + ")"),
@@ -494,13 +441,13 @@ TEST_F(SimProcessTest, SecondSimOnOneBusRefusesToStart) {
 // Started anyway (--allow-other-sims), each sim says at once, on stderr
 // and in SIM_STATUS, that the other is there.
 TEST_F(SimProcessTest, SimsSharingABusSayItAtOnce) {
-  const std::string url = UniqueUrl(33);
-  SimProcess first(Args(url, {"--duration=20"}), (dir_ / "first.log").string());
+  const std::string url = BusUrl(33);
+  SimProcess first(world_, url, (dir_ / "first.log").string(), {"--duration=20"});
   Listener bus(url);
   ASSERT_TRUE(bus.Until([&] { return !bus.models.empty(); }, 10.0)) << ReadText(dir_ / "first.log");
   const int64_t first_id = bus.models.front().simulation_id;
-  SimProcess second(Args(url, {"--duration=20", "--allow-other-sims"}),
-                    (dir_ / "second.log").string());
+  SimProcess second(world_, url, (dir_ / "second.log").string(),
+                    {"--duration=20", "--allow-other-sims"});
   int64_t second_id = 0;
   ASSERT_TRUE(bus.Until(
       [&] {
@@ -543,16 +490,17 @@ TEST_F(SimProcessTest, SimsSharingABusSayItAtOnce) {
 // terminal sees a progress line every few seconds (script(1) gives the
 // sim a terminal here); a log gets no progress lines.
 TEST_F(SimProcessTest, ProgressOnATerminalAndASummaryAtTheEnd) {
-  const std::string url = UniqueUrl(34);
-  SimProcess logged(Args(url, {"--duration=1"}), Log());
+  const std::string url = BusUrl(34);
+  SimProcess logged(world_, url, Log(), {"--duration=1"});
   ASSERT_EQ(logged.Wait(std::chrono::seconds(15)), 0) << LogText();
   EXPECT_NE(LogText().find("ended at step 1000 (sim time 1.000 s); 1000 steps in "),
             std::string::npos)
       << LogText();
   EXPECT_EQ(LogText().find("real-time factor"), std::string::npos) << LogText();
 
-  std::string command = std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim";
-  for (const std::string& arg : Args(url, {"--duration=6.5"})) command += " '" + arg + "'";
+  std::string command;
+  for (const std::string& arg : SimCommand(world_, url, {"--duration=6.5"}))
+    command += (command.empty() ? "'" : " '") + arg + "'";
   const std::filesystem::path typescript = dir_ / "terminal.log";
   ChildProcess on_terminal({"/usr/bin/script", "-qec", command, typescript.string()},
                            (dir_ / "script.log").string());

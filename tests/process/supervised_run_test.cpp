@@ -24,12 +24,15 @@
 #include <string>
 #include <vector>
 
-#include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/viewer/xvfb.h"
-#include "../support/asan_env.h"
+#include "../support/bus_listener.h"
+#include "../support/bus_url.h"
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/test_dir.h"
 #include "../support/text_file.h"
 
 namespace simpartner {
@@ -38,10 +41,9 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-const std::string kSource = SP_SOURCE_DIR;
-const std::string kBinary = SP_BINARY_DIR;
-
+using test_support::BinaryDir;
 using test_support::ReadText;
+using test_support::SourceDir;
 
 int Count(const std::string& text, const std::string& what) {
   int n = 0;
@@ -79,18 +81,12 @@ pid_t AnnouncedPid(const std::string& run_log, const std::string& name) {
 bool Exists(pid_t pid) { return pid > 0 && ::kill(pid, 0) == 0; }
 
 // The sim's steps as this test received them: (wall time, simulation, step).
-class StepRecorder {
+class StepRecorder : public test_support::BusListener {
  public:
-  explicit StepRecorder(const std::string& url) : lcm_(url) {
-    EXPECT_TRUE(lcm_.good());
-    lcm_.subscribe(channels::kState, &StepRecorder::OnState, this)->setQueueCapacity(100000);
+  explicit StepRecorder(const std::string& url) : BusListener(url) {
+    Subscribe<state_t>(channels::kState,
+                       [this](const state_t& s) { seen_.push_back({s.utime, s.simulation_id, s.step}); });
   }
-  bool Until(const std::function<bool()>& condition, double seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (!condition() && Clock::now() < end) lcm_.handleTimeout(10);
-    return condition();
-  }
-  void Pump(double seconds) { Until([] { return false; }, seconds); }
   // Steps per wall second of `simulation` over [from, to), by the wall
   // time the sim stamped on each state when it published it (the time
   // this test read it would add the test's own scheduling delays).
@@ -120,13 +116,6 @@ class StepRecorder {
     int64_t simulation;
     int64_t step;
   };
-  void OnState(const lcm::ReceiveBuffer* b, const std::string& channel) {
-    state_t s;
-    if (DecodeFromBus(channel, b->data, b->data_size, &s, &bad_)) return;
-    seen_.push_back({s.utime, s.simulation_id, s.step});
-  }
-  lcm::LCM lcm_;
-  BadMessageCounter bad_;
   std::vector<Seen> seen_;
 };
 
@@ -138,13 +127,8 @@ class SupervisedRunTest : public ::testing::Test {
  protected:
   void SetUp() override {
     // Short: the server's socket lives under it (108 bytes at most).
-    dir_ = fs::temp_directory_path() / ("sp_sup_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name())
-                                           .substr(0, 24);
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    const int port = 20000 + (static_cast<int>(::getpid()) * 17 + 7001) % 20000;
-    url_ = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=8388608";
+    dir_ = test_support::FreshTestDir("sp_sup_", 10);
+    url_ = test_support::BusUrl(0);
   }
   void TearDown() override {
     // A failed test's launcher is killed (SIGKILL); its children, in
@@ -158,8 +142,8 @@ class SupervisedRunTest : public ::testing::Test {
     }
     launcher_.reset();
     // A server left by a failed test: stopped by its own data directory.
-    std::system(("bash " + kSource + "/scripts/mariadb stop --datadir " + (dir_ / "state/mariadb").string() +
-                 " >/dev/null 2>&1")
+    std::system(("bash " + SourceDir() + "/scripts/mariadb stop --datadir " +
+                 (dir_ / "state/mariadb").string() + " >/dev/null 2>&1")
                     .c_str());
     if (!HasFailure()) fs::remove_all(dir_);
     else std::cerr << "kept " << dir_ << "\n";
@@ -190,7 +174,7 @@ class SupervisedRunTest : public ::testing::Test {
 
 TEST_F(SupervisedRunTest, WrongWorldFailsBeforeServerOrLoggerStart) {
   const std::string world = (dir_ / "no_such_world.xml").string();
-  ChildProcess launcher({"/bin/bash", kSource + "/scripts/run", "--bin", kBinary, "--state",
+  ChildProcess launcher({"/bin/bash", SourceDir() + "/scripts/run", "--bin", BinaryDir(), "--state",
                          (dir_ / "state").string(), "--no-viewer", "--lcm-url", url_,
                          "--environment=" + world},
                         (dir_ / "launcher.log").string());
@@ -207,25 +191,25 @@ TEST_F(SupervisedRunTest, WrongWorldFailsBeforeServerOrLoggerStart) {
 // no world is given (here --check: the checks only); another world given
 // is refused, naming both, before anything starts.
 TEST_F(SupervisedRunTest, SequenceRunsInTheWorldItNamesAndRefusesAnother) {
-  const std::string sequence = kSource + "/sequences/gen3_pole_task.xml";
-  ChildProcess check({"/bin/bash", kSource + "/scripts/run", "--bin", kBinary, "--state",
+  const std::string sequence = SourceDir() + "/sequences/gen3_pole_task.xml";
+  ChildProcess check({"/bin/bash", SourceDir() + "/scripts/run", "--bin", BinaryDir(), "--state",
                       (dir_ / "state").string(), "--check", "--sequence", sequence},
                      (dir_ / "check.log").string());
   EXPECT_EQ(check.Wait(std::chrono::seconds(60)).value_or(-1), 0);
   const std::string checked = ReadText(dir_ / "check.log");
-  EXPECT_NE(checked.find("world 'PoleTask' (" + kSource + "/models/worlds/pole_task.xml)"),
+  EXPECT_NE(checked.find("world 'PoleTask' (" + test_support::ShippedWorld("pole_task.xml") + ")"),
             std::string::npos)
       << checked;
 
-  const std::string flat = kSource + "/models/worlds/gen1_flat.xml";
-  ChildProcess other({"/bin/bash", kSource + "/scripts/run", "--bin", kBinary, "--state",
+  const std::string flat = test_support::ShippedWorld("gen1_flat.xml");
+  ChildProcess other({"/bin/bash", SourceDir() + "/scripts/run", "--bin", BinaryDir(), "--state",
                       (dir_ / "state").string(), "--no-viewer", "--lcm-url", url_, "--sequence",
                       sequence, "--environment=" + flat},
                      (dir_ / "other.log").string());
   EXPECT_EQ(other.Wait(std::chrono::seconds(60)).value_or(-1), 2);
   const std::string refused = ReadText(dir_ / "other.log");
   EXPECT_NE(refused.find(sequence + ":3: sequence: the sequence is made for world 'pole_task.xml' (" +
-                         kSource + "/models/worlds/pole_task.xml), not for '" + flat + "'"),
+                         test_support::ShippedWorld("pole_task.xml") + "), not for '" + flat + "'"),
             std::string::npos)
       << refused;
   EXPECT_NE(refused.find("nothing started"), std::string::npos) << refused;
@@ -241,15 +225,15 @@ TEST_F(SupervisedRunTest, ProcessThatKeepsDyingYoungIsRestartedWithGrowingBackOf
   const fs::path bin = dir_ / "bin";
   fs::create_directories(bin / "teleop");
   for (const char* room : {"sim_core", "logger", "viewer", "sequencer"})
-    fs::create_directory_symlink(fs::path(kBinary) / room, bin / room);
+    fs::create_directory_symlink(fs::path(BinaryDir()) / room, bin / room);
   const fs::path teleop = bin / "teleop/simpartner-teleop";
   std::ofstream(teleop) << "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\nkill -SEGV $$\n";
   fs::permissions(teleop, fs::perms::owner_all);
   launcher_ = std::make_unique<ChildProcess>(
-      std::vector<std::string>{"/bin/bash", kSource + "/scripts/run", "--bin", bin.string(), "--state",
+      std::vector<std::string>{"/bin/bash", SourceDir() + "/scripts/run", "--bin", bin.string(), "--state",
                                (dir_ / "state").string(), "--no-viewer", "--no-logger", "--teleop",
                                "--lcm-url", url_, "--duration=9",
-                               "--environment=" + kSource + "/models/worlds/gen1_flat.xml"},
+                               "--environment=" + test_support::ShippedWorld("gen1_flat.xml")},
       (dir_ / "launcher.log").string());
   EXPECT_EQ(launcher_->Wait(std::chrono::seconds(120)).value_or(-1), 0) << ReadText(dir_ / "launcher.log");
   const std::string log = RunLog();
@@ -281,9 +265,9 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
           "/usr/bin/env", "DISPLAY=" + xvfb.display(),
           // The viewer's Mesa and D-Bus allocations,
           // as in their own process tests.
-          "LSAN_OPTIONS=suppressions=" + kSource + "/tests/viewer/lsan.supp",
+          "LSAN_OPTIONS=suppressions=" + SourceDir() + "/tests/viewer/lsan.supp",
           "ASAN_OPTIONS=" + test_support::AsanOptions(),
-          "/bin/bash", kSource + "/scripts/run", "--bin", kBinary, "--state", (dir_ / "state").string(),
+          "/bin/bash", SourceDir() + "/scripts/run", "--bin", BinaryDir(), "--state", (dir_ / "state").string(),
           // Teleop for a game controller (none is plugged in: it follows
           // the sim and waits for one). Its keyboard window was back 0.4 to
           // 7.7 s after the kill here: SDL's software renderer waits on
@@ -293,7 +277,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
           "--teleop", "--sequence", sequence.string(), "--restart-sim", "--lcm-url", url_,
           // gen1 (0.2 ms of a core per step here, gen3 0.7 ms): real time
           // holds on 2 shared cores beside the viewer, logger and server.
-          "--environment=" + kSource + "/models/worlds/gen1_flat.xml"},
+          "--environment=" + test_support::ShippedWorld("gen1_flat.xml")},
       (dir_ / "launcher.log").string());
 
   // Everything up: the sim steps, the logger writes rows, the viewer and

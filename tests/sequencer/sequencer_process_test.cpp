@@ -5,19 +5,14 @@
 // gen3 pole task ends with the pole on the second pair of cubes, in the
 // same final pose as an in-process run of the same commands.
 #include <gtest/gtest.h>
-#include <lcm/lcm-cpp.hpp>
 #include <signal.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <map>
 #include <set>
-#include <sstream>
-#include <thread>
 
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
@@ -27,7 +22,14 @@
 #include "simpartner/sequencer/sequence.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/state_t.hpp"
+#include "../support/bus_listener.h"
+#include "../support/bus_url.h"
+#include "../support/encode.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
 #include "../support/text_file.h"
+#include "../support/wait.h"
 
 namespace simpartner {
 namespace {
@@ -35,34 +37,22 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-const std::string kSource = SP_SOURCE_DIR;
-const std::string kBinary = SP_BINARY_DIR;
-
-std::string UniqueUrl(int offset) {
-  const int port = 20000 + (static_cast<int>(::getpid()) * 13 + 7919 + offset * 31) % 20000;
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=8388608";
-}
-
+using test_support::BuiltCommand;
+using test_support::BusUrl;
 using test_support::ReadText;
+using test_support::ShippedWorld;
+using test_support::SimProcess;
+using test_support::SourceDir;
 
 // What the test sees on the bus: states (bytes without utime and
 // simulation id, for comparing runs), the model, and the commands sent.
-class Listener {
+class Listener : public test_support::BusListener {
  public:
-  explicit Listener(const std::string& url, bool keep_all_states) : lcm_(url), keep_all_(keep_all_states) {
-    EXPECT_TRUE(lcm_.good());
-    lcm_.subscribe(channels::kState, &Listener::OnState, this)->setQueueCapacity(200000);
-    lcm_.subscribe(channels::kModel, &Listener::OnModel, this);
-    lcm_.subscribe(channels::kCommand, &Listener::OnCommand, this)->setQueueCapacity(100000);
-  }
-  bool Until(const std::function<bool()>& pred, double seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (!pred() && Clock::now() < end) lcm_.handleTimeout(10);
-    return pred();
-  }
-  void Drain(double seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < end) lcm_.handleTimeout(10);
+  explicit Listener(const std::string& url, bool keep_all_states)
+      : BusListener(url), keep_all_(keep_all_states) {
+    Subscribe<state_t>(channels::kState, [this](const state_t& s) { OnState(s); }, 200000);
+    Keep(channels::kModel, &models);
+    Keep(channels::kCommand, &commands);
   }
 
   std::map<int64_t, std::vector<uint8_t>> states;
@@ -72,53 +62,34 @@ class Listener {
   std::vector<command_t> commands;
 
  private:
-  void OnState(const lcm::ReceiveBuffer*, const std::string&, const state_t* s) {
-    last_state = *s;
-    last_step = s->step;
+  void OnState(const state_t& s) {
+    last_state = s;
+    last_step = s.step;
     if (!keep_all_) return;
-    state_t copy = *s;
+    state_t copy = s;
     copy.utime = 0;
     copy.simulation_id = 0;
-    std::vector<uint8_t> bytes(static_cast<size_t>(copy.getEncodedSize()));
-    copy.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-    states[s->step] = std::move(bytes);
+    states[s.step] = test_support::Encode(copy);
   }
-  void OnModel(const lcm::ReceiveBuffer*, const std::string&, const model_t* m) {
-    models.push_back(*m);
-  }
-  void OnCommand(const lcm::ReceiveBuffer*, const std::string&, const command_t* c) {
-    commands.push_back(*c);
-  }
-  lcm::LCM lcm_;
   bool keep_all_;
 };
 
 class SequencerProcessTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("sp_sequencer_process_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test_support::FreshTestDir("sp_sequencer_process_"); }
   void TearDown() override {
     if (!HasFailure()) fs::remove_all(dir_);
   }
-  std::unique_ptr<ChildProcess> StartSim(const std::string& url, const std::string& world,
-                                         std::vector<std::string> extra, const std::string& log) {
-    std::vector<std::string> args = {kBinary + "/sim_core/simpartner-sim", "--params", "/dev/null",
-                                     "--environment=" + kSource + "/models/worlds/" + world,
-                                     "--lcm-url", url};
-    args.insert(args.end(), extra.begin(), extra.end());
-    return std::make_unique<ChildProcess>(args, (dir_ / log).string());
+  std::unique_ptr<SimProcess> StartSim(const std::string& url, const std::string& world,
+                                       const std::vector<std::string>& extra, const std::string& log) {
+    return std::make_unique<SimProcess>(ShippedWorld(world), url, (dir_ / log).string(), extra);
   }
   std::unique_ptr<ChildProcess> StartSequencer(const std::string& url, const std::string& file,
                                                std::vector<std::string> extra,
                                                const std::string& log = "sequencer.log") {
-    std::vector<std::string> args = {kBinary + "/sequencer/simpartner-sequencer", file,
-                                     "--lcm-url", url};
+    std::vector<std::string> args = {file, "--lcm-url", url};
     args.insert(args.end(), extra.begin(), extra.end());
-    return std::make_unique<ChildProcess>(args, (dir_ / log).string());
+    return std::make_unique<ChildProcess>(BuiltCommand("simpartner-sequencer", args), (dir_ / log).string());
   }
   std::string Write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name) << text;
@@ -127,12 +98,7 @@ class SequencerProcessTest : public ::testing::Test {
   std::string Log(const std::string& name = "sequencer.log") { return ReadText(dir_ / name); }
   // Waits until the log holds `text`.
   bool LogHas(const std::string& text, double seconds, const std::string& name = "sequencer.log") {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < end) {
-      if (Log(name).find(text) != std::string::npos) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return false;
+    return test_support::WaitForText(dir_ / name, text, seconds);
   }
   fs::path dir_;
 };
@@ -167,7 +133,7 @@ void ExpectStoppedAtLineFourWithTheWheelsStopped(Listener& bus, const std::strin
                                                  const std::string& reason) {
   EXPECT_NE(log.find(file + ":4: stopped: " + reason), std::string::npos) << log;
   EXPECT_NE(log.find("sent zero velocity to 4 wheel motor(s)"), std::string::npos) << log;
-  bus.Drain(0.3);
+  bus.Pump(0.3);
   EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
 }
 
@@ -196,7 +162,7 @@ TEST_F(SequencerProcessTest, SameStateStreamAtSpeedOneAndAsFastAsPossible) {
   std::map<int64_t, std::vector<uint8_t>> runs[2];
   const char* speeds[2] = {"1", "0"};
   for (int run = 0; run < 2; ++run) {
-    const std::string url = UniqueUrl(1 + run);
+    const std::string url = BusUrl(1 + run);
     Listener bus(url, true);
     auto sim = StartSim(url, "gen1_flat.xml",
                         {"--startPaused=1", std::string("--speed=") + speeds[run], "--duration=1.2"},
@@ -206,7 +172,7 @@ TEST_F(SequencerProcessTest, SameStateStreamAtSpeedOneAndAsFastAsPossible) {
     const std::optional<int> status = sequencer->Wait(std::chrono::seconds(30));
     ASSERT_EQ(status, std::optional<int>(0)) << Log("sequencer" + std::to_string(run) + ".log");
     ASSERT_EQ(sim->Wait(std::chrono::seconds(30)), std::optional<int>(0));
-    bus.Drain(0.3);
+    bus.Pump(0.3);
     // Progress lines name the file line and the sim time of each command.
     const std::string log = Log("sequencer" + std::to_string(run) + ".log");
     EXPECT_NE(log.find("t=0.300 s  line 6: set Axle1Motor"), std::string::npos) << log;
@@ -235,7 +201,7 @@ TEST_F(SequencerProcessTest, SameStateStreamAtSpeedOneAndAsFastAsPossible) {
 }
 
 TEST_F(SequencerProcessTest, RefusalStopsTheSequenceAndTheWheels) {
-  const std::string url = UniqueUrl(3);
+  const std::string url = BusUrl(3);
   Listener bus(url, false);
   auto sim = StartSim(url, "gen1_flat.xml", {"--duration=30"}, "sim.log");
   const std::string file = Write("refused.xml", R"(<sequence version="2">
@@ -248,7 +214,7 @@ TEST_F(SequencerProcessTest, RefusalStopsTheSequenceAndTheWheels) {
   auto sequencer = StartSequencer(url, file, {});
   ASSERT_TRUE(bus.Until([&] { return sequencer->Wait(std::chrono::milliseconds(0)).has_value(); }, 20));
   EXPECT_EQ(sequencer->Wait(std::chrono::seconds(0)), std::optional<int>(1));
-  bus.Drain(0.3);
+  bus.Pump(0.3);
   const std::string log = Log();
   EXPECT_NE(log.find(file + ":4: stopped: set Axle2Motor '1000,5000' refused by the sim: "),
             std::string::npos)
@@ -260,7 +226,7 @@ TEST_F(SequencerProcessTest, RefusalStopsTheSequenceAndTheWheels) {
 }
 
 TEST_F(SequencerProcessTest, KilledSimStopsTheSequenceWithinTwoSecondsOfSilence) {
-  const std::string url = UniqueUrl(4);
+  const std::string url = BusUrl(4);
   Listener bus(url, false);
   auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");
   const std::string file = Write("long.xml", kLongDrive);
@@ -283,7 +249,7 @@ TEST_F(SequencerProcessTest, KilledSimStopsTheSequenceWithinTwoSecondsOfSilence)
 TEST_F(SequencerProcessTest, SigtermAndSigintStopTheSequenceAndTheWheels) {
   for (const int signal : {SIGTERM, SIGINT}) {
     SCOPED_TRACE(signal == SIGTERM ? "SIGTERM" : "SIGINT");
-    const std::string url = UniqueUrl(signal == SIGTERM ? 13 : 14);
+    const std::string url = BusUrl(signal == SIGTERM ? 13 : 14);
     Listener bus(url, false);
     auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");
     const std::string file = Write("long.xml", kLongDrive);
@@ -294,13 +260,12 @@ TEST_F(SequencerProcessTest, SigtermAndSigintStopTheSequenceAndTheWheels) {
     ASSERT_EQ(status, std::optional<int>(1)) << Log();
     ExpectStoppedAtLineFourWithTheWheelsStopped(bus, Log(), file,
                                                 "interrupted (SIGINT or SIGTERM)");
-    sim->Signal(SIGTERM);
-    sim->Wait(std::chrono::seconds(5));
+    sim->Stop(std::chrono::seconds(5));
   }
 }
 
 TEST_F(SequencerProcessTest, RestartedSimStopsTheSequence) {
-  const std::string url = UniqueUrl(5);
+  const std::string url = BusUrl(5);
   Listener bus(url, false);
   auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");
   const std::string file = Write("long.xml", kLongDrive);
@@ -317,7 +282,7 @@ TEST_F(SequencerProcessTest, RestartedSimStopsTheSequence) {
 }
 
 TEST_F(SequencerProcessTest, WrongFileAgainstTheBusModelSendsNothing) {
-  const std::string url = UniqueUrl(6);
+  const std::string url = BusUrl(6);
   Listener bus(url, false);
   auto sim = StartSim(url, "gen1_flat.xml", {"--duration=30"}, "sim.log");
   // gen1 has no scanner and no port 1041 (gen3's TorsoTurnMotor).
@@ -338,12 +303,12 @@ TEST_F(SequencerProcessTest, WrongFileAgainstTheBusModelSendsNothing) {
             std::string::npos)
       << log;
   EXPECT_NE(log.find("nothing was sent"), std::string::npos) << log;
-  bus.Drain(0.3);
+  bus.Pump(0.3);
   EXPECT_TRUE(bus.commands.empty()) << bus.commands.size() << " commands on the bus";
 }
 
 TEST_F(SequencerProcessTest, NoSimOnTheBus) {
-  const std::string url = UniqueUrl(7);
+  const std::string url = BusUrl(7);
   const std::string file = Write("one.xml", R"(<sequence version="2">
   <set target="Axle1Motor">1000,1</set>
 </sequence>
@@ -360,7 +325,7 @@ int JointIndex(const model_t& model, const std::string& name) {
 }
 
 TEST_F(SequencerProcessTest, WaitsForAJointAngleThenGoesOn) {
-  const std::string url = UniqueUrl(9);
+  const std::string url = BusUrl(9);
   Listener bus(url, true);
   auto sim = StartSim(url, "gen1_flat.xml", {"--duration=30"}, "sim.log");
   const std::string file = Write("wait.xml", R"(<sequence version="2">
@@ -397,7 +362,7 @@ TEST_F(SequencerProcessTest, WaitsForAJointAngleThenGoesOn) {
 }
 
 TEST_F(SequencerProcessTest, WaitThatTimesOutStopsTheSequence) {
-  const std::string url = UniqueUrl(10);
+  const std::string url = BusUrl(10);
   Listener bus(url, false);
   auto sim = StartSim(url, "gen1_flat.xml", {"--duration=30"}, "sim.log");
   const std::string file = Write("timeout.xml", R"(<sequence version="2">
@@ -414,14 +379,14 @@ TEST_F(SequencerProcessTest, WaitThatTimesOutStopsTheSequence) {
                             "0.500 s of sim time"),
             std::string::npos)
       << log;
-  bus.Drain(0.3);
+  bus.Pump(0.3);
   EXPECT_EQ(StoppedWheels(bus.commands), kGen1Wheels);
 }
 
 // gen2 stands 6 m from a wall (scanner_wall.xml): the scanner's middle
 // ray reads 5.335 m (SPEC 8).
 TEST_F(SequencerProcessTest, WaitsForAScannerReading) {
-  const std::string url = UniqueUrl(11);
+  const std::string url = BusUrl(11);
   Listener bus(url, false);
   auto sim = StartSim(url, "scanner_wall.xml", {"--duration=30"}, "sim.log");
   const std::string file = Write("scan.xml", R"(<sequence version="2">
@@ -447,12 +412,12 @@ TEST_F(SequencerProcessTest, WaitsForAScannerReading) {
 TEST_F(SequencerProcessTest, PoleTaskEndsWithThePoleOnTheSecondPairOfCubes) {
   constexpr double kDuration = 19.0;  // the sequence ends at 18.6 s
   const int64_t last_step = std::llround(kDuration / 0.001);
-  const std::string url = UniqueUrl(8);
+  const std::string url = BusUrl(8);
   Listener bus(url, false);
   auto sim = StartSim(url, "pole_task.xml",
                       {"--startPaused=1", "--speed=0", "--duration=" + std::to_string(kDuration)},
                       "sim.log");
-  auto sequencer = StartSequencer(url, kSource + "/sequences/gen3_pole_task.xml",
+  auto sequencer = StartSequencer(url, SourceDir() + "/sequences/gen3_pole_task.xml",
                                   {"--from-zero", "--resume", "--quiet"});
   ASSERT_TRUE(bus.Until([&] { return bus.last_step >= last_step; }, 240)) << Log();
   EXPECT_EQ(sequencer->Wait(std::chrono::seconds(10)), std::optional<int>(0)) << Log();
@@ -475,10 +440,10 @@ TEST_F(SequencerProcessTest, PoleTaskEndsWithThePoleOnTheSecondPairOfCubes) {
   // the step the file gives it (as simpartner-validate runs them): the
   // same final pose of every body.
   const sequencer::SequenceParseResult parsed =
-      sequencer::LoadSequenceFile(kSource + "/sequences/gen3_pole_task.xml");
+      sequencer::LoadSequenceFile(SourceDir() + "/sequences/gen3_pole_task.xml");
   ASSERT_TRUE(parsed.sequence);
   Parameters params;
-  params.environment = kSource + "/models/worlds/pole_task.xml";
+  params.environment = ShippedWorld("pole_task.xml");
   sim::Simulation local(model::LoadWorldOrThrow(params.environment), params, 1);
   int64_t id = 0;
   for (const sequencer::Command& c : parsed.sequence->segments.at(0).commands) {

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -77,6 +79,14 @@ inline std::string ArmWorld(double gravity = -9.81) {
          R"(<surface><a>0</a><b>1</b><c>0</c><d>0</d></surface>
   <robot name="Bot" file="arm.xml"/>
 </world>)";
+}
+
+// The arm world as files for a real simpartner-sim: dir/world.xml and the
+// robot it places, dir/arm.xml. Returns the world's path.
+inline std::string WriteArmWorld(const std::filesystem::path& dir) {
+  std::ofstream(dir / "arm.xml") << ArmRobot();
+  std::ofstream(dir / "world.xml") << ArmWorld();
+  return (dir / "world.xml").string();
 }
 
 inline std::unique_ptr<Simulation> MakeArmSim(double gravity = -9.81,

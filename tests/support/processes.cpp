@@ -7,17 +7,6 @@
 #include "text_file.h"
 
 namespace simpartner::test_support {
-namespace {
-
-// The caller's ASAN_OPTIONS, and no complaint that the preloaded library
-// comes before ASan's runtime.
-std::string AsanOptions() {
-  const char* given = std::getenv("ASAN_OPTIONS");
-  return (given != nullptr && *given != '\0' ? std::string(given) + ":" : std::string()) +
-         "verify_asan_link_order=0";
-}
-
-}  // namespace
 
 ProgramRun RunToEnd(const std::vector<std::string>& argv, const std::string& log,
                     std::chrono::milliseconds timeout) {
@@ -42,6 +31,12 @@ std::vector<std::string> OnDisplay(const std::string& display, const std::vector
       "LD_PRELOAD=" SP_KEEP_LOADED_LIB, "ASAN_OPTIONS=" + AsanOptions()};
   wrapped.insert(wrapped.end(), argv.begin(), argv.end());
   return wrapped;
+}
+
+std::string AsanOptions() {
+  const char* given = std::getenv("ASAN_OPTIONS");
+  return (given != nullptr && *given != '\0' ? std::string(given) + ":" : std::string()) +
+         "verify_asan_link_order=0";
 }
 
 std::vector<std::string> XdotoolCommand(const std::string& display, const std::vector<std::string>& args) {

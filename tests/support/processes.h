@@ -30,8 +30,12 @@ ProgramRun InstallThisBuild(const std::string& prefix, const std::string& compon
 // X (viewer, keyboard teleop). Under ASan those libraries keep allocations
 // for the life of the process: LeakSanitizer gets tests/viewer/lsan.supp,
 // and tests/viewer/keep_libraries_loaded.c is preloaded so that its
-// reports can name Mesa's driver (ASAN_OPTIONS then allows the preload).
+// reports can name Mesa's driver (AsanOptions() then allows the preload).
 std::vector<std::string> OnDisplay(const std::string& display, const std::vector<std::string>& argv);
+
+// The caller's ASAN_OPTIONS, and no complaint that a preloaded library comes
+// before ASan's runtime.
+std::string AsanOptions();
 
 // xdotool with `args` on display `display` (real key presses through XTEST).
 std::vector<std::string> XdotoolCommand(const std::string& display, const std::vector<std::string>& args);

@@ -15,12 +15,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <map>
-#include <sstream>
-#include <thread>
 
-#include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
 #include "simpartner/command_t.hpp"
@@ -29,8 +25,14 @@
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/viewer/xvfb.h"
-#include "../support/asan_env.h"
+#include "../support/bus_listener.h"
+#include "../support/bus_url.h"
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
 #include "../support/text_file.h"
+#include "../support/wait.h"
 
 namespace simpartner {
 namespace {
@@ -38,15 +40,13 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-const std::string kSource = SP_SOURCE_DIR;
-const std::string kBinary = SP_BINARY_DIR;
-
-std::string UniqueUrl(int offset) {
-  const int port = 20000 + (static_cast<int>(::getpid()) * 17 + 4001 + offset * 37) % 20000;
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=8388608";
-}
-
+using test_support::BuiltCommand;
+using test_support::BuiltProgram;
+using test_support::BusUrl;
 using test_support::ReadText;
+using test_support::ShippedWorld;
+using test_support::SimProcess;
+using test_support::SourceDir;
 
 void Control(const std::string& url, int8_t action) {
   lcm::LCM lcm(url);
@@ -61,23 +61,15 @@ struct SeenCommand {
   Clock::time_point when;
 };
 
-// What the test sees on the bus, decoded through DecodeLcm.
-class Bus {
+// What the test sees on the bus, decoded as the processes decode it.
+class Bus : public test_support::BusListener {
  public:
-  explicit Bus(const std::string& url) : lcm_(url) {
-    EXPECT_TRUE(lcm_.good());
-    lcm_.subscribe(channels::kState, &Bus::OnState, this)->setQueueCapacity(100000);
-    lcm_.subscribe(channels::kModel, &Bus::OnModel, this);
-    lcm_.subscribe(channels::kStatus, &Bus::OnStatus, this);
-    lcm_.subscribe(channels::kCommand, &Bus::OnCommand, this)->setQueueCapacity(100000);
-  }
-  bool Until(const std::function<bool()>& pred, double seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (!pred() && Clock::now() < end) lcm_.handleTimeout(10);
-    return pred();
-  }
-  void Drain(double seconds) {
-    Until([] { return false; }, seconds);
+  explicit Bus(const std::string& url) : BusListener(url) {
+    KeepLatest(channels::kState, &state);
+    KeepLatest(channels::kModel, &model);
+    KeepLatest(channels::kStatus, &status);
+    Subscribe<command_t>(channels::kCommand,
+                         [this](const command_t& c) { commands.push_back({c, Clock::now()}); });
   }
   bool HaveModelAndState() {
     return model.simulation_id != 0 && state.simulation_id == model.simulation_id;
@@ -117,45 +109,11 @@ class Bus {
   state_t state{};
   status_t status{};
   std::vector<SeenCommand> commands;
-  int refused = 0;
-
- private:
-  template <class T>
-  bool Decode(const lcm::ReceiveBuffer* b, const std::string& channel, T* out) {
-    if (DecodeFromBus(channel, b->data, b->data_size, out, &counter_)) {
-      ++refused;
-      return false;
-    }
-    return true;
-  }
-  void OnState(const lcm::ReceiveBuffer* b, const std::string& channel) {
-    state_t s;
-    if (Decode(b, channel, &s)) state = std::move(s);
-  }
-  void OnModel(const lcm::ReceiveBuffer* b, const std::string& channel) {
-    model_t m;
-    if (Decode(b, channel, &m)) model = std::move(m);
-  }
-  void OnStatus(const lcm::ReceiveBuffer* b, const std::string& channel) {
-    status_t s;
-    if (Decode(b, channel, &s)) status = std::move(s);
-  }
-  void OnCommand(const lcm::ReceiveBuffer* b, const std::string& channel) {
-    command_t c;
-    if (Decode(b, channel, &c)) commands.push_back({std::move(c), Clock::now()});
-  }
-  lcm::LCM lcm_;
-  BadMessageCounter counter_;
 };
 
 class TeleopProcessTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("sp_teleop_process_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test_support::FreshTestDir("sp_teleop_process_"); }
   void TearDown() override {
     if (pad_fd_ >= 0) ::close(pad_fd_);
     teleop_.reset();
@@ -164,11 +122,7 @@ class TeleopProcessTest : public ::testing::Test {
   }
   void StartSim(const std::string& url, const std::string& world,
                 const std::string& log = "sim.log") {
-    sim_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{kBinary + "/sim_core/simpartner-sim", "--params", "/dev/null",
-                                 "--environment=" + kSource + "/models/worlds/" + world,
-                                 "--lcm-url", url},
-        (dir_ / log).string());
+    sim_ = std::make_unique<SimProcess>(ShippedWorld(world), url, (dir_ / log).string());
   }
   // The test build with its virtual pad, reading the FIFO `pad`.
   void StartVirtualPad(const std::string& url) {
@@ -180,8 +134,7 @@ class TeleopProcessTest : public ::testing::Test {
     ASSERT_GE(pad_fd_, 0);
     teleop_ = std::make_unique<ChildProcess>(
         std::vector<std::string>{"/usr/bin/env", "SDL_VIDEODRIVER=dummy",
-                                 kBinary + "/teleop/simpartner-teleop-vpad", "--lcm-url", url,
-                                 "--script", fifo},
+                                 BuiltProgram("simpartner-teleop-vpad"), "--lcm-url", url, "--script", fifo},
         (dir_ / "teleop.log").string());
   }
   void Pad(const std::string& lines) {
@@ -189,12 +142,7 @@ class TeleopProcessTest : public ::testing::Test {
   }
   std::string Log(const std::string& name = "teleop.log") { return ReadText(dir_ / name); }
   bool LogHas(const std::string& text, double seconds, const std::string& name = "teleop.log") {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < end) {
-      if (Log(name).find(text) != std::string::npos) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return false;
+    return test_support::WaitForText(dir_ / name, text, seconds);
   }
   // Until teleop drives `model` with the pad connected.
   void WaitReady(Bus& bus, const std::string& model) {
@@ -213,7 +161,7 @@ class TeleopProcessTest : public ::testing::Test {
   }
 
   fs::path dir_;
-  std::unique_ptr<ChildProcess> sim_;
+  std::unique_ptr<SimProcess> sim_;
   std::unique_ptr<ChildProcess> teleop_;
   int pad_fd_ = -1;
 };
@@ -241,7 +189,7 @@ int MostCommandsOfATargetInASecond(const std::vector<SeenCommand>& commands, int
 }
 
 TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanReleaseStopsTheWheelsSignalExits) {
-  const std::string url = UniqueUrl(1);
+  const std::string url = BusUrl(1);
   Bus bus(url);
   StartSim(url, "gen1_flat.xml");
   StartVirtualPad(url);
@@ -250,7 +198,7 @@ TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanReleaseStopsTheWheelsSignal
   // Without the dead-man the stick does nothing.
   const double x_start = bus.X("RearChassis");
   Pad("axis lefty -1\n");
-  bus.Drain(1.5);
+  bus.Pump(1.5);
   EXPECT_LT(std::abs(bus.X("RearChassis") - x_start), 0.02);
   EXPECT_LT(bus.MaxWheelRate(), 0.05);
 
@@ -264,7 +212,7 @@ TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanReleaseStopsTheWheelsSignal
   Pad("axis leftx 1\n");
   ASSERT_TRUE(bus.Until([&] { return std::abs(bus.JointPosition("Turner") + 0.6) < 0.05; }, 5))
       << "Turner at " << bus.JointPosition("Turner");
-  bus.Drain(3);
+  bus.Pump(3);
   EXPECT_LT(bus.Heading("RearChassis") - heading0, -0.1) << "heading " << bus.Heading("RearChassis");
   const int64_t moving_to = WallMicros();
 
@@ -274,7 +222,7 @@ TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanReleaseStopsTheWheelsSignal
   const int most = MostCommandsOfATargetInASecond(bus.commands, moving_from, moving_to, &busiest);
   EXPECT_LE(most, 10) << busiest;
   EXPECT_GE(most, 8) << busiest;  // and repeated
-  EXPECT_EQ(bus.refused, 0);
+  EXPECT_EQ(bus.refused().total(), 0u);
 
   // Release: wheels stopped within 0.2 s of sim time, the Turner held.
   ASSERT_GT(bus.MaxWheelRate(), 1.0);
@@ -285,7 +233,7 @@ TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanReleaseStopsTheWheelsSignal
   EXPECT_LE(stopped_after, 0.2) << "wheels stopped " << stopped_after << " s (sim) after release";
   RecordProperty("deadman_stop_sim_seconds", std::to_string(stopped_after));
   const double turner_held = bus.JointPosition("Turner");
-  bus.Drain(1.0);
+  bus.Pump(1.0);
   EXPECT_LT(bus.MaxWheelRate(), 0.05);
   EXPECT_NEAR(bus.JointPosition("Turner"), turner_held, 0.02);
   bool held = false;
@@ -303,7 +251,7 @@ TEST_F(TeleopProcessTest, StickDrivesAndSteersDeadmanReleaseStopsTheWheelsSignal
 }
 
 TEST_F(TeleopProcessTest, UnpluggingTheControllerStopsTheRobot) {
-  const std::string url = UniqueUrl(2);
+  const std::string url = BusUrl(2);
   Bus bus(url);
   StartSim(url, "gen1_flat.xml");
   StartVirtualPad(url);
@@ -313,7 +261,7 @@ TEST_F(TeleopProcessTest, UnpluggingTheControllerStopsTheRobot) {
   ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() < 0.05; }, 2)) << Log();
   EXPECT_TRUE(LogHas("controller unplugged", 2));
   const double x = bus.X("RearChassis");
-  bus.Drain(1.5);
+  bus.Pump(1.5);
   EXPECT_NEAR(bus.X("RearChassis"), x, 0.02);
   // Plugged in again with the stick still forward: nothing moves until the
   // dead-man is pressed again (the new device starts released).
@@ -321,7 +269,7 @@ TEST_F(TeleopProcessTest, UnpluggingTheControllerStopsTheRobot) {
   ASSERT_TRUE(LogHas("controller connected: SimPartner virtual pad\nteleop", 3) ||
               LogHas("vpad: attached\nteleop: controller connected", 3))
       << Log();
-  bus.Drain(1.0);
+  bus.Pump(1.0);
   EXPECT_LT(bus.MaxWheelRate(), 0.05);
   DriveForward(bus, 0.3, 10);
   // SIGINT while moving: the wheels stop and teleop exits 0.
@@ -332,7 +280,7 @@ TEST_F(TeleopProcessTest, UnpluggingTheControllerStopsTheRobot) {
 }
 
 TEST_F(TeleopProcessTest, FollowsASimThatIsKilledAndStartedAgainAndAPausedOne) {
-  const std::string url = UniqueUrl(3);
+  const std::string url = BusUrl(3);
   Bus bus(url);
   StartSim(url, "gen1_flat.xml");
   StartVirtualPad(url);
@@ -344,7 +292,7 @@ TEST_F(TeleopProcessTest, FollowsASimThatIsKilledAndStartedAgainAndAPausedOne) {
   const size_t before_pause = Log().size();
   Control(url, control_t::ACTION_PAUSE);
   ASSERT_TRUE(bus.Until([&] { return bus.status.run_state == status_t::RUN_PAUSED; }, 3));
-  bus.Drain(3.5);
+  bus.Pump(3.5);
   const std::string during_pause = Log().substr(before_pause);
   EXPECT_NE(during_pause.find("sim paused"), std::string::npos) << during_pause;
   EXPECT_EQ(during_pause.find("not heard"), std::string::npos) << during_pause;
@@ -358,7 +306,7 @@ TEST_F(TeleopProcessTest, FollowsASimThatIsKilledAndStartedAgainAndAPausedOne) {
   ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() > 1.0; }, 5));
   const int64_t frozen_at = WallMicros();
   sim_->Signal(SIGSTOP);
-  bus.Drain(1.5);
+  bus.Pump(1.5);
   int64_t first_zero = -1;
   for (const SeenCommand& c : bus.commands) {
     if (c.command.target != "Axle1Motor" || c.command.values.size() != 2) continue;
@@ -402,7 +350,7 @@ TEST_F(TeleopProcessTest, EveryGenerationDrivesForwardOneMetre) {
   int offset = 10;
   for (const auto& [world, model] : generations) {
     SCOPED_TRACE(world);
-    const std::string url = UniqueUrl(offset++);
+    const std::string url = BusUrl(offset++);
     Bus bus(url);
     StartSim(url, world);
     if (pad_fd_ >= 0) ::close(pad_fd_), pad_fd_ = -1;
@@ -416,7 +364,7 @@ TEST_F(TeleopProcessTest, EveryGenerationDrivesForwardOneMetre) {
                    std::to_string(std::chrono::duration<double>(Clock::now() - start).count()));
     Pad("button rightshoulder 0\n");
     ASSERT_TRUE(bus.Until([&] { return bus.MaxWheelRate() < 0.05; }, 2));
-    EXPECT_EQ(bus.refused, 0);
+    EXPECT_EQ(bus.refused().total(), 0u);
     teleop_.reset();
     sim_.reset();
   }
@@ -425,20 +373,19 @@ TEST_F(TeleopProcessTest, EveryGenerationDrivesForwardOneMetre) {
 // The program's offline answers: --check against a world, --list, usage.
 TEST_F(TeleopProcessTest, CheckListAndUsageAsAProgram) {
   auto run = [&](std::vector<std::string> args, std::string* output) {
-    args.insert(args.begin(), {"/usr/bin/env", "SDL_VIDEODRIVER=dummy",
-                               kBinary + "/teleop/simpartner-teleop"});
-    ChildProcess program(args, (dir_ / "run.log").string());
-    const int status = program.Wait(std::chrono::seconds(20)).value_or(-1);
-    *output = Log("run.log");
-    return status;
+    args.insert(args.begin(), {"/usr/bin/env", "SDL_VIDEODRIVER=dummy", BuiltProgram("simpartner-teleop")});
+    test_support::ProgramRun program =
+        test_support::RunToEnd(args, (dir_ / "run.log").string(), std::chrono::seconds(20));
+    *output = std::move(program.output);
+    return program.status;
   };
   std::string out;
-  EXPECT_EQ(run({"--check", "--environment", kSource + "/models/worlds/gen4_flat.xml"}, &out), 0);
+  EXPECT_EQ(run({"--check", "--environment", ShippedWorld("gen4_flat.xml")}, &out), 0);
   EXPECT_NE(out.find("workpartner_gen4.map: fits robot WorkPartner (WorkPartner gen4)"),
             std::string::npos)
       << out;
-  EXPECT_EQ(run({"--check", "--environment", kSource + "/models/worlds/gen1_flat.xml", "--mapping",
-                 kSource + "/teleop/mappings/workpartner_gen3.map"},
+  EXPECT_EQ(run({"--check", "--environment", ShippedWorld("gen1_flat.xml"), "--mapping",
+                 SourceDir() + "/teleop/mappings/workpartner_gen3.map"},
                 &out),
             1);
   EXPECT_NE(out.find("workpartner_gen3.map:4: the mapping is for model 'WorkPartner gen3'; the "
@@ -447,7 +394,7 @@ TEST_F(TeleopProcessTest, CheckListAndUsageAsAProgram) {
       << out;
   std::ofstream(dir_ / "bad.map") << "model WorkPartner gen1\nforward RearChassis +x\n"
                                      "deadman rightshoulder\ndrive lefty -2\nwheel Axle9Motor\n";
-  EXPECT_EQ(run({"--check", "--environment", kSource + "/models/worlds/gen1_flat.xml", "--mapping",
+  EXPECT_EQ(run({"--check", "--environment", ShippedWorld("gen1_flat.xml"), "--mapping",
                  (dir_ / "bad.map").string()},
                 &out),
             1);
@@ -464,24 +411,24 @@ TEST_F(TeleopProcessTest, CheckListAndUsageAsAProgram) {
 // gen3's buttons: body up and down (hips and knees together), torso left,
 // claws open; each press one step of the shipped mapping.
 TEST_F(TeleopProcessTest, ButtonsRaiseTheBodyTurnTheTorsoAndOpenTheClaws) {
-  const std::string url = UniqueUrl(5);
+  const std::string url = BusUrl(5);
   Bus bus(url);
   StartSim(url, "flat_ground.xml");
   StartVirtualPad(url);
   WaitReady(bus, "WorkPartner gen3");
-  bus.Drain(1.0);  // settled on its wheels
+  bus.Pump(1.0);  // settled on its wheels
   const double height0 = bus.state.bodies[bus.Body("RearChassis")].position[1];
   auto press = [&](const std::string& button, int times) {
     for (int k = 0; k < times; ++k) {
       Pad("button " + button + " 1\n");
-      bus.Drain(0.25);  // more than a period: each press is seen
+      bus.Pump(0.25);  // more than a period: each press is seen
       Pad("button " + button + " 0\n");
-      bus.Drain(0.25);
+      bus.Pump(0.25);
     }
   };
   Pad("button rightshoulder 1\n");
   press("dpup", 3);  // body +0.3: hips +-0.3, knees -+0.6
-  bus.Drain(2.0);
+  bus.Pump(2.0);
   EXPECT_NEAR(bus.JointPosition("Hip1"), 0.3, 0.05);
   EXPECT_NEAR(bus.JointPosition("Knee1"), -0.6, 0.05);
   EXPECT_NEAR(bus.JointPosition("Hip3"), -0.3, 0.05);
@@ -492,11 +439,11 @@ TEST_F(TeleopProcessTest, ButtonsRaiseTheBodyTurnTheTorsoAndOpenTheClaws) {
   const double height1 = bus.state.bodies[bus.Body("RearChassis")].position[1];
   EXPECT_NEAR(height1 - height0, lift, 0.03) << "from " << height0 << " to " << height1;
   press("dpdown", 1);
-  bus.Drain(1.5);
+  bus.Pump(1.5);
   EXPECT_NEAR(bus.JointPosition("Hip1"), 0.2, 0.05);
   press("dpleft", 2);  // torso +0.4 rad (to the left)
   press("x", 2);       // claws +0.2: upper up, lower down (open)
-  bus.Drain(2.0);
+  bus.Pump(2.0);
   EXPECT_NEAR(bus.JointPosition("TorsoTurn"), 0.4, 0.05);
   EXPECT_NEAR(bus.JointPosition("RightGripUpper"), 0.2, 0.05);
   EXPECT_NEAR(bus.JointPosition("RightGripLower"), -0.2, 0.05);
@@ -504,48 +451,41 @@ TEST_F(TeleopProcessTest, ButtonsRaiseTheBodyTurnTheTorsoAndOpenTheClaws) {
   // Without the dead-man the buttons do nothing; the pose is held.
   Pad("button rightshoulder 0\n");
   press("dpleft", 2);
-  bus.Drain(1.0);
+  bus.Pump(1.0);
   EXPECT_NEAR(bus.JointPosition("TorsoTurn"), 0.4, 0.05);
   EXPECT_NEAR(bus.JointPosition("Hip1"), 0.2, 0.05);
-  EXPECT_EQ(bus.refused, 0);
+  EXPECT_EQ(bus.refused().total(), 0u);
 }
 
 // The keyboard window on a private X server, with real key presses: space
 // held is the dead-man, Up drives, Right steers right; letting go stops.
 TEST_F(TeleopProcessTest, KeyboardWindowDrivesWithRealKeyPresses) {
-  const std::string url = UniqueUrl(4);
+  const std::string url = BusUrl(4);
   Bus bus(url);
   StartSim(url, "gen1_flat.xml");
   viewer::XvfbServer xvfb(1280, 720, (dir_ / "xvfb.log").string());
   teleop_ = std::make_unique<ChildProcess>(
-      std::vector<std::string>{"/usr/bin/env", "DISPLAY=" + xvfb.display(),
-                               // Under ASan: X and D-Bus keep allocations for the
-                               // life of the process, as for the viewer (see
-                               // tests/viewer/lsan.supp, keep_libraries_loaded.c).
-                               "LSAN_OPTIONS=suppressions=" + std::string(SP_SOURCE_DIR) +
-                                   "/tests/viewer/lsan.supp",
-                               "LD_PRELOAD=" SP_KEEP_LOADED_LIB,
-                               "ASAN_OPTIONS=" + test_support::AsanOptions(),
-                               kBinary + "/teleop/simpartner-teleop", "--input", "keyboard",
-                               "--lcm-url", url},
+      test_support::OnDisplay(xvfb.display(),
+                              BuiltCommand("simpartner-teleop", {"--input", "keyboard", "--lcm-url", url})),
       (dir_ / "teleop.log").string());
   ASSERT_TRUE(bus.Until([&] { return bus.HaveModelAndState(); }, 15)) << Log("sim.log");
   ASSERT_TRUE(LogHas("keyboard window open", 10)) << Log();
   ASSERT_TRUE(LogHas("(WorkPartner gen1), mapping", 15)) << Log();
-  auto xdotool = [&](std::vector<std::string> args) {
-    args.insert(args.begin(), {"/usr/bin/env", "DISPLAY=" + xvfb.display(), "/usr/bin/xdotool"});
-    ChildProcess run(args, (dir_ / "xdotool.log").string());
-    EXPECT_EQ(run.Wait(std::chrono::seconds(10)).value_or(-1), 0) << Log("xdotool.log");
+  auto xdotool = [&](const std::vector<std::string>& args) {
+    const test_support::ProgramRun run = test_support::RunToEnd(test_support::XdotoolCommand(xvfb.display(), args),
+                                                                (dir_ / "xdotool.log").string(),
+                                                                std::chrono::seconds(10));
+    EXPECT_EQ(run.status, 0) << run.output;
   };
   // No window manager: keyboard focus follows the pointer onto the window,
   // which is centred on the screen.
   xdotool({"mousemove", "640", "360"});
-  bus.Drain(0.5);
+  bus.Pump(0.5);
 
   // Up without space: nothing moves.
   const double x0 = bus.X("RearChassis");
   xdotool({"keydown", "Up"});
-  bus.Drain(1.0);
+  bus.Pump(1.0);
   EXPECT_LT(std::abs(bus.X("RearChassis") - x0), 0.02);
   xdotool({"keydown", "space"});
   ASSERT_TRUE(bus.Until([&] { return bus.X("RearChassis") - x0 > 0.5; }, 10)) << Log();

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 #include <signal.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -18,7 +17,14 @@
 #include <sstream>
 #include <thread>
 
-#include "../support/asan_env.h"
+#include "../support/bus_listener.h"
+#include "../support/bus_url.h"
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
+#include "../support/text_file.h"
+#include "../support/wait.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
 #include "simpartner/control_t.hpp"
@@ -33,17 +39,10 @@
 namespace simpartner::viewer {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 constexpr int kWidth = 800;
 constexpr int kHeight = 450;
 // Looks along -x at (0, 1.2, 0) from 6 m, 8 degrees from above.
 constexpr const char* kCamera = "0,1.2,0,0,8,6";
-
-std::string UniqueUrl(int offset) {
-  const int port = 20000 + (static_cast<int>(::getpid()) * 11 + 7919 + offset) % 20000;
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
-}
 
 std::string Transform(double x, double y, double z, double yaw_deg = 0) {
   const double c = std::cos(yaw_deg * M_PI / 180), s = std::sin(yaw_deg * M_PI / 180);
@@ -96,22 +95,18 @@ struct Pose {
 };
 
 // Test side of the bus: the model and every body position by step.
-class Listener {
+class Listener : public test_support::BusListener {
  public:
-  explicit Listener(const std::string& url) : lcm_(url) {
-    EXPECT_TRUE(lcm_.good());
-    lcm_.subscribe(channels::kState, &Listener::OnState, this)->setQueueCapacity(100000);
-    lcm_.subscribe(channels::kModel, &Listener::OnModel, this);
-    lcm_.subscribe(channels::kStatus, &Listener::OnStatus, this)->setQueueCapacity(1000);
-  }
-  lcm::LCM& lcm() { return lcm_; }
-  bool Until(const std::function<bool()>& pred, double seconds) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (!pred() && Clock::now() < end) lcm_.handleTimeout(10);
-    return pred();
-  }
-  void Pump(double seconds) {
-    Until([] { return false; }, seconds);
+  explicit Listener(const std::string& url) : BusListener(url) {
+    Subscribe<state_t>(channels::kState, [this](const state_t& s) { OnState(s); });
+    Subscribe<model_t>(channels::kModel, [this](const model_t& m) {
+      model = m;
+      has_model = true;
+    });
+    Subscribe<status_t>(channels::kStatus, [this](const status_t& s) {
+      run_state = s.run_state;
+      status_step = s.step;
+    });
   }
   int BodyIndex(const std::string& name) const {
     for (const body_t& b : model.bodies)
@@ -129,26 +124,20 @@ class Listener {
   int64_t last_simulation = 0;
 
  private:
-  void OnState(const lcm::ReceiveBuffer*, const std::string&, const state_t* s) {
-    std::vector<Eigen::Vector3d>& p = positions[s->step];
+  void OnState(const state_t& s) {
+    std::vector<Eigen::Vector3d>& p = positions[s.step];
     p.clear();
-    for (const body_state_t& b : s->bodies)
-      p.emplace_back(b.position[0], b.position[1], b.position[2]);
-    last_simulation = s->simulation_id;
-    last_step = s->step;
+    for (const body_state_t& b : s.bodies) p.emplace_back(b.position[0], b.position[1], b.position[2]);
+    last_simulation = s.simulation_id;
+    last_step = s.step;
   }
-  void OnStatus(const lcm::ReceiveBuffer*, const std::string&, const status_t* s) {
-    run_state = s->run_state;
-    status_step = s->step;
-  }
-  void OnModel(const lcm::ReceiveBuffer*, const std::string&, const model_t* m) {
-    model = *m;
-    has_model = true;
-  }
-  lcm::LCM lcm_;
 };
 
-using test_support::AsanOptions;
+using test_support::BusUrl;
+using test_support::OnDisplay;
+using test_support::ReadText;
+using test_support::SimProcess;
+using test_support::XdotoolCommand;
 
 double ColorDistance(const RgbImage::Rgb& a, const RgbImage::Rgb& b) {
   return std::sqrt(static_cast<double>((a.r - b.r) * (a.r - b.r) + (a.g - b.g) * (a.g - b.g) +
@@ -158,11 +147,7 @@ double ColorDistance(const RgbImage::Rgb& a, const RgbImage::Rgb& b) {
 class ViewerProcessTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("sp_viewer_process_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
+    dir_ = test_support::FreshTestDir("sp_viewer_process_");
     std::ofstream(dir_ / "shapes.xml") << ShapesWorld();
     std::ofstream(dir_ / "terrain.xml") << TerrainWorld();
     xvfb_ = std::make_unique<XvfbServer>(1280, 720, (dir_ / "xvfb.log").string());
@@ -172,49 +157,29 @@ class ViewerProcessTest : public ::testing::Test {
     if (!HasFailure()) std::filesystem::remove_all(dir_);
   }
 
-  std::unique_ptr<ChildProcess> StartSim(const std::string& world, const std::string& url,
-                                         const std::string& log,
-                                         std::vector<std::string> extra = {}) {
-    std::vector<std::string> argv = {std::string(SP_BINARY_DIR) + "/sim_core/simpartner-sim",
-                                     "--params", "/dev/null",
-                                     "--environment=" + (dir_ / world).string(), "--lcm-url", url,
-                                     "--duration=60"};
-    argv.insert(argv.end(), extra.begin(), extra.end());
-    return std::make_unique<ChildProcess>(argv, (dir_ / log).string());
+  std::unique_ptr<SimProcess> StartSim(const std::string& world, const std::string& url,
+                                       const std::string& log, std::vector<std::string> extra = {}) {
+    extra.insert(extra.begin(), "--duration=60");
+    return std::make_unique<SimProcess>((dir_ / world).string(), url, (dir_ / log).string(), extra);
   }
 
   std::unique_ptr<ChildProcess> StartViewer(const std::string& url, const std::string& log,
                                             std::vector<std::string> extra) {
-    std::vector<std::string> argv = {
-        "/usr/bin/env", "DISPLAY=" + xvfb_->display(),
-        // Under ASan: Mesa, X and D-Bus keep allocations for the life of the
-        // process; see lsan.supp and keep_libraries_loaded.c.
-        "LSAN_OPTIONS=suppressions=" + std::string(SP_SOURCE_DIR) + "/tests/viewer/lsan.supp",
-        "LD_PRELOAD=" SP_KEEP_LOADED_LIB, "ASAN_OPTIONS=" + AsanOptions(),
-        std::string(SP_BINARY_DIR) + "/viewer/simpartner-viewer", "--params", "/dev/null",
-        "--lcm-url", url, "--width", std::to_string(kWidth), "--height", std::to_string(kHeight),
-        "--camera", kCamera};
-    argv.insert(argv.end(), extra.begin(), extra.end());
-    return std::make_unique<ChildProcess>(argv, (dir_ / log).string());
+    std::vector<std::string> args = {"--params", "/dev/null", "--lcm-url", url,
+                                     "--width", std::to_string(kWidth), "--height", std::to_string(kHeight),
+                                     "--camera", kCamera};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return std::make_unique<ChildProcess>(
+        OnDisplay(xvfb_->display(), test_support::BuiltCommand("simpartner-viewer", args)),
+        (dir_ / log).string());
   }
 
-  std::string Read(const std::string& log) const {
-    std::ifstream in(dir_ / log);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
+  std::string Read(const std::string& log) const { return ReadText(dir_ / log); }
+  // Until the log holds `text`, receiving on `bus` meanwhile when there is one.
   bool WaitForText(const std::string& log, const std::string& text, double seconds,
                    Listener* bus = nullptr) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < end) {
-      if (Read(log).find(text) != std::string::npos) return true;
-      if (bus != nullptr)
-        bus->Pump(0.05);
-      else
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return Read(log).find(text) != std::string::npos;
+    return bus != nullptr ? bus->UntilFileHolds(dir_ / log, text, seconds)
+                          : test_support::WaitForText(dir_ / log, text, seconds);
   }
   // Step of the state the screenshot shows, from the viewer's log line.
   int64_t ScreenshotStep(const std::string& log) const {
@@ -302,7 +267,7 @@ double CoveredFraction(const RgbImage& image, const Eigen::Vector3d& centre, dou
 }
 
 TEST_F(ViewerProcessTest, ScreenshotShowsEveryBodyWhereItsStateSaysAndWireframeDiffers) {
-  const std::string url = UniqueUrl(1);
+  const std::string url = BusUrl(1);
   Listener bus(url);
   auto sim = StartSim("shapes.xml", url, "sim.log");
   ASSERT_TRUE(bus.Until([&] { return bus.has_model && !bus.positions.empty(); }, 15)) << Read("sim.log");
@@ -351,7 +316,7 @@ TEST_F(ViewerProcessTest, ScreenshotShowsEveryBodyWhereItsStateSaysAndWireframeD
 }
 
 TEST_F(ViewerProcessTest, LateViewerAsksForTheModelAndDrawsAllOfIt) {
-  const std::string url = UniqueUrl(2);
+  const std::string url = BusUrl(2);
   Listener bus(url);
   // No periodic announcement: only a request brings the model.
   auto sim = StartSim("shapes.xml", url, "sim.log", {"--modelPeriod=3600"});
@@ -376,7 +341,7 @@ TEST_F(ViewerProcessTest, LateViewerAsksForTheModelAndDrawsAllOfIt) {
 }
 
 TEST_F(ViewerProcessTest, SimRestartedWithAnotherWorldShowsTheNewModel) {
-  const std::string url = UniqueUrl(3);
+  const std::string url = BusUrl(3);
   Listener bus(url);
   const std::string restarted = (dir_ / "restarted.png").string();
   auto viewer = StartViewer(url, "viewer.log", {"--hide", "hud,grid", "--screenshot", restarted,
@@ -421,7 +386,7 @@ TEST_F(ViewerProcessTest, SimRestartedWithAnotherWorldShowsTheNewModel) {
 }
 
 TEST_F(ViewerProcessTest, BadStatesAreCountedAndIgnoredWithoutACrash) {
-  const std::string url = UniqueUrl(4);
+  const std::string url = BusUrl(4);
   Listener bus(url);
   auto sim = StartSim("shapes.xml", url, "sim.log");
   ASSERT_TRUE(bus.Until([&] { return bus.has_model && !bus.positions.empty(); }, 15)) << Read("sim.log");
@@ -494,7 +459,7 @@ TEST_F(ViewerProcessTest, BadStatesAreCountedAndIgnoredWithoutACrash) {
 // SIGTERM (or SIGINT) closes the window and ends the viewer cleanly, even
 // while it waits on the bus, with its frame figures.
 TEST_F(ViewerProcessTest, SigtermEndsTheViewerCleanly) {
-  const std::string url = UniqueUrl(6);
+  const std::string url = BusUrl(6);
   auto viewer = StartViewer(url, "viewer.log", {});
   ASSERT_TRUE(WaitForText("viewer.log", "listening on", 20)) << Read("viewer.log");
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -507,16 +472,16 @@ TEST_F(ViewerProcessTest, SigtermEndsTheViewerCleanly) {
 // become SIM_CONTROL messages the sim obeys: space pauses and resumes, n
 // steps once, r resets to step 0, Esc closes the viewer.
 TEST_F(ViewerProcessTest, KeysPauseStepResetAndResumeTheSim) {
-  const std::string url = UniqueUrl(5);
+  const std::string url = BusUrl(5);
   Listener bus(url);
   auto sim = StartSim("shapes.xml", url, "sim.log");
   ASSERT_TRUE(bus.Until([&] { return bus.has_model && bus.last_step > 0; }, 15)) << Read("sim.log");
   auto viewer = StartViewer(url, "viewer.log", {"--quit-after", "60"});
   ASSERT_TRUE(WaitForText("viewer.log", "model of simulation", 20, &bus)) << Read("viewer.log");
-  auto xdotool = [&](std::vector<std::string> args) {
-    args.insert(args.begin(), {"/usr/bin/env", "DISPLAY=" + xvfb_->display(), "/usr/bin/xdotool"});
-    ChildProcess run(args, (dir_ / "xdotool.log").string());
-    EXPECT_EQ(run.Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("xdotool.log");
+  auto xdotool = [&](const std::vector<std::string>& args) {
+    const test_support::ProgramRun run = test_support::RunToEnd(
+        XdotoolCommand(xvfb_->display(), args), (dir_ / "xdotool.log").string(), std::chrono::seconds(10));
+    EXPECT_EQ(run.status, 0) << run.output;
   };
   // No window manager: keyboard focus follows the pointer onto the
   // viewer's window, which is centred on the screen.
@@ -560,7 +525,7 @@ TEST_F(ViewerProcessTest, KeysPauseStepResetAndResumeTheSim) {
 // viewer, which learns the model from it and draws the replayed states
 // where they say.
 TEST_F(ViewerProcessTest, LcmLogplayerReplayIsDrawnLikeTheLiveRun) {
-  const std::string url = UniqueUrl(7);
+  const std::string url = BusUrl(7);
   const std::string recording = (dir_ / "run.lcmlog").string();
   int64_t recorded_id = 0;
   {
