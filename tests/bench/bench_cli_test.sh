@@ -8,8 +8,7 @@
 set -uo pipefail
 source_dir=$1
 binary_dir=$2
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/../support/checks.sh"
 
 # bench | a line of its help | a misspelling | the option it must suggest
 cases=(
@@ -34,14 +33,10 @@ for c in "${cases[@]}"; do
     fail "$bench: $path is not built"
     continue
   fi
-  out=$(timeout 20 "$path" --help 2>&1); status=$?
-  [[ $status -eq 0 ]] || fail "$bench --help exited $status: $out"
-  [[ $out == *"$help_line"* ]] || fail "$bench --help does not say '$help_line': $out"
+  expect_help "$bench" "$help_line" "$path" --help
   [[ $out == *"$suggestion"* ]] || fail "$bench --help does not list $suggestion: $out"
   # shellcheck disable=SC2086  # $wrong is an option and its value
-  out=$(timeout 20 "$path" $wrong 2>&1 </dev/null); status=$?
-  [[ $status -eq 2 ]] || fail "$bench $wrong exited $status (want 2): $out"
-  [[ $out == *"did you mean '$suggestion'?"* ]] || fail "$bench $wrong: no did-you-mean '$suggestion': $out"
+  expect_misspelling "$bench $wrong" "$suggestion" "$path" $wrong
 done
 
 # Every bench program in bench/ has a case above (a new one must answer too).
@@ -54,8 +49,7 @@ done
 # The parser every program shares (common/include/simpartner/command_line.h).
 expect_refusal() {  # expected text, then the command line
   local want=$1; shift
-  local out status
-  out=$(timeout 20 "$binary_dir/bench/$1" "${@:2}" 2>&1 </dev/null); status=$?
+  run "$binary_dir/bench/$1" "${@:2}"
   [[ $status -eq 2 && $out == *"$want"* ]] || fail "$*: exited $status, want 2 and '$want': $out"
 }
 expect_refusal "--steps: value 'many' is not a whole number" sim_bench --steps many
@@ -67,8 +61,4 @@ expect_refusal "--kind: value 'flood' is not refused or garbage" flood_bench --k
 # Far from anything: no guess, the list of what it takes.
 expect_refusal "unknown option '--zzzzzzzz'; it takes: --count --lcm-url --help" latency_bench --zzzzzzzz
 
-if (( failures > 0 )); then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "all bench command lines answered as expected"
+finish "all bench command lines answered as expected"

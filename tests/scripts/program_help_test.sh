@@ -6,8 +6,7 @@
 #   tests/scripts/program_help_test.sh BINARY_DIR
 set -uo pipefail
 bin=$1
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/../support/checks.sh"
 
 # program | keys its help must list | keys it must not list | a misspelling | its suggestion
 cases=(
@@ -26,7 +25,7 @@ for c in "${cases[@]}"; do
   IFS='|' read -r program wanted unwanted wrong suggestion <<<"$c"
   name=$(basename "$program")
   # --help ends before any window, socket or leak-prone library start-up.
-  out=$(ASAN_OPTIONS=detect_leaks=0 timeout 20 "$bin/$program" --help 2>&1); status=$?
+  run env ASAN_OPTIONS=detect_leaks=0 "$bin/$program" --help
   [[ $status -eq 0 ]] || { fail "$program --help exited $status: $out"; continue; }
   [[ $out == "Usage: $name [options]"* ]] || fail "$program --help does not start with the usage line: $out"
   [[ $out == *$'\nOptions:\n'* && $out == *"  -h, --help "* ]] || fail "$program --help: not the common layout: $out"
@@ -36,13 +35,9 @@ for c in "${cases[@]}"; do
   for key in $unwanted; do
     [[ $out != *"    $key"* ]] || fail "$program --help lists $key, which it does not read"
   done
-  out=$(ASAN_OPTIONS=detect_leaks=0 timeout 20 "$bin/$program" "$wrong" 2>&1 </dev/null); status=$?
+  run env ASAN_OPTIONS=detect_leaks=0 "$bin/$program" "$wrong"
   [[ $status -eq 2 ]] || fail "$program $wrong exited $status (want 2): $out"
   [[ $out == "$name: unknown option '$wrong' (did you mean '$suggestion'?)"* ]] ||
     fail "$program $wrong: no did-you-mean '$suggestion': $out"
 done
-if (( failures > 0 )); then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "all ${#cases[@]} programs answer --help alike, list only their own parameters and refuse misspellings"
+finish "all ${#cases[@]} programs answer --help alike, list only their own parameters and refuse misspellings"

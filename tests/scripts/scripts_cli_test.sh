@@ -6,8 +6,7 @@
 #   tests/scripts/scripts_cli_test.sh SOURCE_DIR
 set -uo pipefail
 source_dir=$1
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/../support/checks.sh"
 
 # script | a line of its help | a misspelling | the name it must suggest
 cases=(
@@ -23,27 +22,19 @@ cases=(
 for c in "${cases[@]}"; do
   IFS='|' read -r script help_line wrong suggestion <<<"$c"
   path=$source_dir/scripts/$script
-  out=$("$path" --help 2>&1); status=$?
-  [[ $status -eq 0 ]] || fail "$script --help exited $status: $out"
-  [[ $out == *"$help_line"* ]] || fail "$script --help does not say '$help_line': $out"
+  expect_help "$script" "$help_line" "$path" --help
   # shellcheck disable=SC2086  # $wrong may be a command and an option
-  out=$("$path" $wrong 2>&1 </dev/null); status=$?
-  [[ $status -eq 2 ]] || fail "$script $wrong exited $status (want 2): $out"
-  [[ $out == *"did you mean '$suggestion'?"* ]] || fail "$script $wrong: no did-you-mean '$suggestion': $out"
+  expect_misspelling "$script $wrong" "$suggestion" "$path" $wrong
 done
 # scripts/run's help needs no build (it used to build first, which takes
 # many minutes on a fresh clone): its own options, and a note where the
 # sim's are when there is no build.
-out=$(timeout 20 "$source_dir/scripts/run" --help --bin /nonexistent 2>&1); status=$?
+run "$source_dir/scripts/run" --help --bin /nonexistent
 [[ $status -eq 0 && $out == *"The main job, supervised"* && $out == *"build first"* ]] ||
   fail "run --help without a build: $status $out"
 
 # Far from anything: no guess, the list of what it takes.
-out=$("$source_dir/scripts/fuzz" --zzz 2>&1); status=$?
+run "$source_dir/scripts/fuzz" --zzz
 [[ $status -eq 2 && $out == *"it takes: --seconds --help"* ]] || fail "fuzz --zzz: $status $out"
 
-if (( failures > 0 )); then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "all ${#cases[@]} scripts answer --help and refuse misspellings"
+finish "all ${#cases[@]} scripts answer --help and refuse misspellings"
