@@ -22,6 +22,7 @@ cases=(
   "flood_bench|floods|--rat 5|--rate"
   "peer_bench|MuJoCo 2.2|--stnad 3|--stand"
   "multi_host_bench|Needs root|--rte 5|--rate"
+  "lockstep_bench|What lock-step costs|--tikcs 5|--ticks"
 )
 listed=" "
 for c in "${cases[@]}"; do

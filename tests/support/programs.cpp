@@ -23,6 +23,7 @@ constexpr BuiltProgramPlace kPrograms[] = {
     {"simpartner-convert", "convert"},
     {"simpartner-validate", "validate"},
     {"drive_circle", "examples"},
+    {"drive_to_point", "examples"},
     {"stop_at_wall", "examples"},
 };
 

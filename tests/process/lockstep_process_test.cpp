@@ -1,0 +1,300 @@
+// Lock-step between real processes on real LCM multicast: a closed-loop
+// controller (examples/drive_to_point, in C++) gives the same SIM_STATE
+// stream, compared by hash, as fast as possible and at real time, on a
+// machine loaded on every core, and from another network namespace; the
+// same controller without lock-step gives different runs, so the
+// comparison can fail. A controller that stalls or dies is released (the
+// sim names it and runs on), and forged marks change nothing.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "simpartner/channels.h"
+#include "simpartner/child_process.h"
+#include "simpartner/state_t.hpp"
+#include "simpartner/status_t.hpp"
+#include "simpartner/sync_reply_t.hpp"
+#include "simpartner/sync_t.hpp"
+#include "../support/bus_listener.h"
+#include "../support/bus_url.h"
+#include "../support/encode.h"
+#include "../support/netns.h"
+#include "../support/processes.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
+#include "../support/text_file.h"
+
+namespace simpartner {
+namespace {
+
+using test_support::BuiltCommand;
+using test_support::BusUrl;
+using test_support::ReadText;
+using test_support::SimCommand;
+
+// The goal drive_to_point steers gen1 to: about 4.6 s of sim time.
+const std::vector<std::string> kGoal = {"3", "-1"};
+
+// Everything the sim publishes that a comparison of runs needs: the states
+// by step (wall clock and simulation id zeroed: they differ run to run),
+// the sync replies, the newest status.
+class RunListener : public test_support::BusListener {
+ public:
+  explicit RunListener(const std::string& url) : BusListener(url) {
+    Subscribe<state_t>(channels::kState, [this](const state_t& s) {
+      state_t copy = s;
+      copy.utime = 0;
+      copy.simulation_id = 0;
+      states[s.step] = test_support::Encode(copy);
+    });
+    Keep(channels::kSyncReply, &sync_replies);
+    KeepLatest(channels::kStatus, &status);
+  }
+
+  // FNV-1a over the states of steps 1..last in order; 0 when one is missing
+  // (a lost datagram would make runs differ for the listener's sake).
+  uint64_t Hash(int64_t last) const {
+    uint64_t h = 1469598103934665603ull;
+    for (int64_t step = 1; step <= last; ++step) {
+      const auto it = states.find(step);
+      if (it == states.end()) return 0;
+      for (uint8_t byte : it->second) h = (h ^ byte) * 1099511628211ull;
+    }
+    return h;
+  }
+  bool Released(const std::string& controller) const {
+    for (const sync_reply_t& r : sync_replies)
+      if (r.controller == controller && r.event == sync_reply_t::EVENT_RELEASED) return true;
+    return false;
+  }
+
+  std::map<int64_t, std::vector<uint8_t>> states;
+  std::vector<sync_reply_t> sync_replies;
+  status_t status{};
+};
+
+struct RunResult {
+  int status = -1;
+  std::string output;
+  int64_t last_tick = -1;  // the controller's last tick, from its output
+  uint64_t hash = 0;
+};
+
+int64_t LastTick(const std::string& output) {
+  const size_t at = output.find("tick ");
+  return at == std::string::npos ? -1 : std::stoll(output.substr(at + 5));
+}
+
+class LockStepProcessTest : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = test_support::FreshTestDir("sp_lockstep_", 40); }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  // gen1 on flat ground, paused, at `speed`; drive_to_point with `period`
+  // (0: without lock-step). `controller_host` runs the controller in a
+  // network namespace (with the sim in `sim_host`) when a LAN is given.
+  RunResult ClosedLoop(double speed, int period, const std::string& name,
+                       const test_support::NamespaceLan* lan = nullptr) {
+    std::string url = BusUrl(next_bus_++);
+    if (lan) url.replace(url.find("ttl=0"), 5, "ttl=1");
+    std::vector<std::string> sim_argv =
+        SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
+                   {"--startPaused=1", "--speed=" + std::to_string(speed)});
+    if (lan) sim_argv = lan->Exec("sim", sim_argv);
+    std::unique_ptr<test_support::ScopedNetns> inside;
+    if (lan) inside = std::make_unique<test_support::ScopedNetns>(lan->Namespace("sim"));
+    RunListener listener(url);
+    inside.reset();
+    ChildProcess sim(sim_argv, (dir_ / (name + "_sim.log")).string());
+    std::vector<std::string> controller = BuiltCommand(
+        "drive_to_point", {url, kGoal[0], kGoal[1], std::to_string(period)});
+    if (lan) controller = lan->Exec("ctl", controller);
+    const std::string log = (dir_ / (name + "_controller.log")).string();
+    RunResult run;
+    const test_support::ProgramRun done =
+        test_support::RunToEnd(controller, log, std::chrono::seconds(120));
+    run.status = done.status;
+    run.output = done.output;
+    run.last_tick = LastTick(done.output);
+    // The states up to the last tick were published before it was answered.
+    listener.Until([&] { return listener.states.count(run.last_tick) > 0; }, 5);
+    run.hash = listener.Hash(run.last_tick);
+    sim.Signal(SIGTERM);
+    sim.Wait(std::chrono::seconds(10));
+    return run;
+  }
+
+  std::filesystem::path dir_;
+  int next_bus_ = 0;
+};
+
+TEST_F(LockStepProcessTest, AClosedLoopRepeatsBitForBitAtAnySpeed) {
+  const RunResult fast = ClosedLoop(0, 10, "fast");
+  ASSERT_EQ(fast.status, 0) << fast.output;
+  ASSERT_GT(fast.last_tick, 4000) << fast.output;
+  ASSERT_NE(fast.hash, 0u) << "a state went missing for the listener";
+  const RunResult again = ClosedLoop(0, 10, "again");
+  const RunResult real_time = ClosedLoop(1, 10, "real_time");
+  EXPECT_EQ(again.output, fast.output);
+  EXPECT_EQ(real_time.output, fast.output);
+  EXPECT_EQ(again.hash, fast.hash);
+  EXPECT_EQ(real_time.hash, fast.hash);
+}
+
+TEST_F(LockStepProcessTest, AClosedLoopRepeatsOnAMachineLoadedOnEveryCore) {
+  const RunResult quiet = ClosedLoop(0, 1, "quiet");
+  ASSERT_EQ(quiet.status, 0) << quiet.output;
+  std::vector<std::unique_ptr<ChildProcess>> busy;
+  for (long core = 0; core < ::sysconf(_SC_NPROCESSORS_ONLN); ++core)
+    busy.push_back(std::make_unique<ChildProcess>(
+        std::vector<std::string>{"/bin/sh", "-c", "while :; do :; done"}, "/dev/null"));
+  const RunResult loaded = ClosedLoop(0, 1, "loaded");
+  busy.clear();
+  EXPECT_EQ(loaded.output, quiet.output);
+  EXPECT_EQ(loaded.hash, quiet.hash);
+  EXPECT_NE(quiet.hash, 0u);
+}
+
+TEST_F(LockStepProcessTest, AClosedLoopRepeatsWithTheControllerOnAnotherHost) {
+  ASSERT_EQ(::geteuid(), 0u) << "network namespaces need root";
+  const RunResult here = ClosedLoop(0, 10, "here");
+  ASSERT_EQ(here.status, 0) << here.output;
+  test_support::NamespaceLan lan("spls", {"sim", "ctl"});
+  const RunResult there = ClosedLoop(0, 10, "there", &lan);
+  EXPECT_EQ(there.status, 0) << there.output;
+  EXPECT_EQ(there.output, here.output);
+  EXPECT_EQ(there.hash, here.hash);
+  EXPECT_NE(here.hash, 0u);
+}
+
+// The comparison above can fail: the same controller reading the newest
+// state and sending as it goes (period 0) lands its commands wherever the
+// machine puts them.
+TEST_F(LockStepProcessTest, WithoutLockStepTheSameControllerGivesDifferentRuns) {
+  const RunResult fast = ClosedLoop(0, 0, "async_fast");
+  const RunResult real_time = ClosedLoop(1, 0, "async_real_time");
+  ASSERT_EQ(fast.status, 0) << fast.output;
+  ASSERT_EQ(real_time.status, 0) << real_time.output;
+  const int64_t last = std::min(fast.last_tick, real_time.last_tick);
+  ASSERT_GT(last, 4000);
+  EXPECT_NE(fast.hash == real_time.hash && fast.output == real_time.output, true)
+      << "two runs without lock-step came out the same";
+}
+
+TEST_F(LockStepProcessTest, AStalledControllerIsReleasedAndTheRunGoesOn) {
+  const std::string url = BusUrl(90);
+  RunListener listener(url);
+  ChildProcess sim(SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
+                              {"--startPaused=1", "--speed=1", "--lockStepTimeout=1"}),
+                   (dir_ / "sim.log").string());
+  const std::string log = (dir_ / "controller.log").string();
+  ChildProcess controller(BuiltCommand("drive_to_point", {url, "50", "0", "10"}), log);
+  ASSERT_TRUE(listener.Until([&] { return listener.states.size() > 500; }, 10));
+  controller.Signal(SIGSTOP);
+  const auto stopped_at = std::chrono::steady_clock::now();
+  ASSERT_TRUE(listener.Until([&] { return listener.Released("drive_to_point"); }, 5))
+      << ReadText(dir_ / "sim.log");
+  const double waited =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - stopped_at).count();
+  EXPECT_GE(waited, 0.9);
+  EXPECT_LT(waited, 3.0);
+  // Said on stderr with the controller's name and the tick, and in SIM_STATUS.
+  const std::string sim_log = ReadText(dir_ / "sim.log");
+  EXPECT_NE(sim_log.find("lockstep: released controller 'drive_to_point'"), std::string::npos)
+      << sim_log;
+  EXPECT_NE(sim_log.find("within 1 s (lockStepTimeout); from this tick on it is not synchronous"),
+            std::string::npos)
+      << sim_log;
+  // The run goes on without it.
+  const int64_t step = listener.states.rbegin()->first;
+  EXPECT_TRUE(listener.Until([&] { return listener.states.rbegin()->first > step + 500; }, 5));
+  listener.Until([&] { return listener.status.num_warnings > 0; }, 3);
+  bool named = false;
+  for (const warning_t& w : listener.status.warnings)
+    named = named || (w.source == "lockstep" && w.message.find("drive_to_point") != std::string::npos);
+  EXPECT_TRUE(named);
+  // Woken, the controller learns it and ends saying so.
+  controller.Signal(SIGCONT);
+  const auto status = controller.Wait(std::chrono::seconds(20));
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 1);
+  EXPECT_NE(ReadText(log).find("released by the sim at tick"), std::string::npos) << ReadText(log);
+}
+
+TEST_F(LockStepProcessTest, AControllerThatDiesIsReleased) {
+  const std::string url = BusUrl(91);
+  RunListener listener(url);
+  ChildProcess sim(SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
+                              {"--startPaused=1", "--speed=0", "--lockStepTimeout=0.5"}),
+                   (dir_ / "sim.log").string());
+  ChildProcess controller(BuiltCommand("drive_to_point", {url, "50", "0", "1"}),
+                          (dir_ / "controller.log").string());
+  ASSERT_TRUE(listener.Until([&] { return listener.states.size() > 200; }, 10));
+  controller.Signal(SIGKILL);
+  EXPECT_TRUE(listener.Until([&] { return listener.Released("drive_to_point"); }, 5));
+  const int64_t step = listener.states.rbegin()->first;
+  EXPECT_TRUE(listener.Until([&] { return listener.states.rbegin()->first > step + 1000; }, 5));
+}
+
+// Marks for ticks that never happened, another process's marks for the
+// controller's name and replays of old ones: refused and counted, and the
+// run is the very run it is without them.
+TEST_F(LockStepProcessTest, ForgedAndDuplicatedMarksChangeNothing) {
+  const RunResult clean = ClosedLoop(0, 10, "clean");
+  ASSERT_EQ(clean.status, 0) << clean.output;
+
+  const std::string url = BusUrl(92);
+  RunListener listener(url);
+  ChildProcess sim(SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
+                              {"--startPaused=1", "--speed=0"}),
+                   (dir_ / "forged_sim.log").string());
+  // The sim listens once it has said how it is.
+  ASSERT_TRUE(listener.Until([&] { return listener.status.utime != 0; }, 10));
+  ChildProcess controller(
+      BuiltCommand("drive_to_point", {url, kGoal[0], kGoal[1], "10"}),
+      (dir_ / "forged_controller.log").string());
+  int forged = 0;
+  auto forge = [&](const std::string& name, const std::string& sender, int64_t tick) {
+    sync_t m{};
+    m.controller = name;
+    m.sender = sender;
+    m.action = sync_t::ACTION_DONE;
+    m.tick = tick;
+    listener.lcm().publish(channels::kSync, &m);
+    ++forged;
+  };
+  while (controller.running() && forged < 300) {
+    listener.Pump(0.005);
+    const int64_t step = listener.states.empty() ? 0 : listener.states.rbegin()->first;
+    forge("drive_to_point", "forger@elsewhere:1", step - step % 10);  // not its sender
+    forge("drive_to_point", "forger@elsewhere:1", step + 1000000);    // never happened
+    forge("ghost", "ghost@nowhere:2", step);                          // never joined
+  }
+  ASSERT_TRUE(controller.Wait(std::chrono::seconds(60)).has_value());
+  const std::string output = ReadText(dir_ / "forged_controller.log");
+  const int64_t last = LastTick(output);
+  listener.Until([&] { return listener.states.count(last) > 0; }, 5);
+  EXPECT_EQ(output, clean.output);
+  EXPECT_EQ(listener.Hash(last), clean.hash);
+  ASSERT_GT(forged, 30);
+  // Every one counted as a bad message by the sim, none fatal.
+  listener.Until([&] { return listener.status.bad_messages >= forged; }, 3);
+  EXPECT_GE(listener.status.bad_messages, forged);
+  int refused = 0;
+  for (const sync_reply_t& r : listener.sync_replies)
+    refused += r.event == sync_reply_t::EVENT_REFUSED &&
+               (r.sender == "forger@elsewhere:1" || r.sender == "ghost@nowhere:2");
+  EXPECT_GE(refused, forged);
+}
+
+}  // namespace
+}  // namespace simpartner
