@@ -172,6 +172,143 @@ class ExampleTest(unittest.TestCase):
             shutil.rmtree(work, ignore_errors=True)
 
 
+def start_paused_sim(url, log, world, speed):
+    return subprocess.Popen(
+        [BINARY_DIR + "/sim_core/simpartner-sim", "--params", "/dev/null",
+         "--environment=" + SOURCE_DIR + "/models/worlds/" + world, "--lcm-url", url,
+         "--startPaused=1", "--speed=%g" % speed],
+        stdout=log, stderr=subprocess.STDOUT, env=child_env())
+
+
+class LockStepTest(unittest.TestCase):
+    """sim.lockstep: a closed loop in Python repeats; commands land in the next step."""
+
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="sp_pyls_")
+        self.processes = []
+
+    def tearDown(self):
+        for process, log in self.processes:
+            stop(process)
+            log.close()
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def sim(self, offset, speed, world="gen1_flat.xml"):
+        url = unique_url(offset)
+        log = open(os.path.join(self.dir, "sim%d.log" % offset), "w")
+        self.processes.append((start_paused_sim(url, log, world, speed), log))
+        return simpartner.Sim(url, timeout=30.0, program="lockstep_test")
+
+    def closed_loop(self, sim):
+        """Steers gen1's Turner joint from its heading for 1500 steps; every
+        tick's positions and joint angles."""
+        front = sim.model()["bodies"].index("FrontChassis")
+        seen = []
+        for state in sim.lockstep(period=5, steps=300):
+            seen.append(np.concatenate([state["position"].ravel(), state["joint_angle"].ravel()]))
+            q = state["orientation"][front]
+            heading = math.atan2(-2 * (q[1] * q[3] - q[0] * q[2]), 1 - 2 * (q[2] ** 2 + q[3] ** 2))
+            for w in range(1, 5):
+                sim.set_velocity("Axle%dMotor" % w, [2.0 + state["time"]])
+            sim.set_angle("TurnerMotor", [max(-0.3, min(0.3, 0.5 - heading))], 100, 100, 0)
+        return np.array(seen)
+
+    def test_a_closed_loop_repeats_bit_for_bit_at_any_speed(self):
+        fast = self.closed_loop(self.sim(10, 0))
+        real_time = self.closed_loop(self.sim(11, 2))
+        self.assertEqual(fast.shape, real_time.shape)
+        self.assertEqual(fast.shape[0], 300)
+        self.assertTrue(np.array_equal(fast, real_time))  # bit for bit, not approximately
+        self.assertGreater(np.ptp(fast[:, 0]), 0.5)  # it drove
+
+    def test_commands_apply_in_the_step_after_the_tick(self):
+        sim = self.sim(12, 0)
+        axle = sim.model()["joints"].index("Axle1")
+        loop = sim.lockstep(period=1)
+        ticks = []
+        for state in loop:
+            ticks.append(state)
+            if len(ticks) == 3:
+                self.assertEqual(sim.set_velocity("Axle1Motor", [3.0]), state["step"])
+            if len(ticks) == 5:
+                break
+        loop.close()
+        # Before the tick the command was given at, the wheel held still;
+        # in the step after it, its motor turns it.
+        self.assertAlmostEqual(ticks[2]["joint_rate"][axle, 0], 0.0, delta=1e-3)
+        self.assertGreater(abs(ticks[3]["joint_rate"][axle, 0]), 1.0)
+
+    def test_a_refused_command_raises_at_the_next_tick_and_the_loop_leaves(self):
+        sim = self.sim(13, 0)
+        with self.assertRaises(simpartner.Refused) as caught:
+            for state in sim.lockstep(period=2, name="refused"):
+                sim.set_angle("TurnerMotor", [3.0])  # beyond the Turner joint's range
+        self.assertIn("TurnerMotor", str(caught.exception))
+        # The loop left lock-step: the sim runs on, and the name is free again.
+        step = sim.state()["step"]
+        time.sleep(0.3)
+        self.assertGreater(sim.state()["step"], step)
+        for state in sim.lockstep(period=2, steps=3, name="refused"):
+            pass
+
+    def test_scanner_readings_as_numpy(self):
+        sim = self.sim(14, 0, world="scanner_wall.xml")
+        for state in sim.lockstep(period=10, steps=5):
+            if state["step"] == 0:
+                sim.command("Scanner", "1000", action="params")
+        scan = sim.reading("Scanner")
+        self.assertIsInstance(scan["values"], np.ndarray)
+        self.assertEqual(scan["values"].shape, (11,))
+        # The middle ray: the wall 5.335 m ahead of the scanner.
+        self.assertAlmostEqual(scan["values"][5], 5.335, delta=0.01)
+        with self.assertRaises(simpartner.UnknownTarget):
+            sim.reading("Scaner")
+
+
+class ReadmeAndLockStepExampleTest(unittest.TestCase):
+    """The README's first Python controller, as printed, and
+    examples/lockstep_stop_at_wall.py, each against a real sim."""
+
+    def run_python(self, url, script_args, world, extra=()):
+        work = tempfile.mkdtemp(prefix="sp_pyrd_")
+        log = open(os.path.join(work, "sim.log"), "w")
+        sim_process = subprocess.Popen(
+            [BINARY_DIR + "/sim_core/simpartner-sim", "--params", "/dev/null",
+             "--environment=" + SOURCE_DIR + "/models/worlds/" + world, "--lcm-url", url]
+            + list(extra), stdout=log, stderr=subprocess.STDOUT, env=child_env())
+        try:
+            return subprocess.run(["/usr/bin/python3"] + script_args, env=dict(os.environ),
+                                  capture_output=True, text=True, timeout=240)
+        finally:
+            stop(sim_process)
+            log.close()
+            shutil.rmtree(work, ignore_errors=True)
+
+    def test_the_readmes_python_controller(self):
+        readme = read(SOURCE_DIR + "/README.md")
+        start = readme.index("```python\n") + len("```python\n")
+        code = readme[start:readme.index("```", start)]
+        self.assertIn("simpartner.Sim()", code)
+        url = unique_url(20)
+        # On this test's bus instead of the default one.
+        code = code.replace("simpartner.Sim()", "simpartner.Sim(%r, timeout=30.0)" % url)
+        done = self.run_python(url, ["-c", code], "flat_ground.xml")
+        self.assertEqual(done.returncode, 0, done.stderr)
+        # 2 rad/s on 0.235 m wheels for 3 s: the front moves about 1.4 m
+        # from its start at x = 0.35.
+        x = float(done.stdout.split("x = ")[1].split()[0])
+        self.assertAlmostEqual(x - 0.35, 1.41, delta=0.15)
+
+    def test_lockstep_stop_at_wall(self):
+        url = unique_url(21)
+        done = self.run_python(url, [SOURCE_DIR + "/examples/lockstep_stop_at_wall.py", url],
+                               "scanner_wall.xml", ["--startPaused=1", "--speed=0"])
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("stopped at tick", done.stdout)
+        scanner = float(done.stdout.split("scanner ")[1].split()[0])
+        self.assertAlmostEqual(scanner, 1.0, delta=0.01)
+
+
 class DatabaseTest(unittest.TestCase):
     """read_logged: a run logged by a real simpartner-logger into a private server."""
 
