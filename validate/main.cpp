@@ -1,5 +1,5 @@
 // simpartner-validate: reruns the validation experiments (SPEC 8) and
-// compares each with its target; see validate_lib.
+// compares each with its target; see sp_validate.
 #include <iostream>
 
 #include "simpartner/validate/cli.h"

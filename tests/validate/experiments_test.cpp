@@ -1,7 +1,7 @@
 // The validation experiments, shortened where they run for minutes (fewer
 // laps, a shorter scan, three gait cycles, the test track's planks alone),
 // with the team's tolerances from issue 5. Targets are written here
-// from SPEC 8 and from physics, never taken from validate_lib.
+// from SPEC 8 and from physics, never taken from sp_validate.
 //
 // Where a SPEC 8 target is physically wrong (docs/validation explains
 // why), the test asserts what physics does predict.

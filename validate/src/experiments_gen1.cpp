@@ -288,7 +288,7 @@ ExperimentResult CircleEqualSpeeds(const Context& context) {
       "slip, none across it), each wheel touching at its two rim edges 0.14 m apart, with "
       "each wheel's load and each edge's share of it as measured in the run (the turn moves "
       "load to the outer wheels; the edges' shares come from the wheel's contact torque), "
-      "independently of the sim (`SkidSteerRadius` in validate_lib); the mass sits at the "
+      "independently of the sim (`SkidSteerRadius` in sp_validate); the mass sits at the "
       "steering joint. Every contact here slides faster than mu g h (what one step of "
       "friction can stop), where the sim applies that cone: friction across the slip is "
       "zero (docs/contacts.md). Until 2026-11-23 it held up to mu N across the slip (ODE's "

@@ -1,4 +1,4 @@
-// The query library (target logger_query): what is in the logger's
+// The query library (target sp_logger_query): what is in the logger's
 // database, for people and for spreadsheets, Octave or Python. It holds no
 // writer, receiver or spool; simpartner-query and the Python module link it
 // alone.

@@ -1,5 +1,5 @@
 // The validation experiments of SPEC 8 and the two beyond the original:
-// each runs a shipped world through the sim library (sim_core_lib) exactly
+// each runs a shipped world through the sim library (sp_sim_core) exactly
 // as simpartner-sim would, drives the robot with timed commands and
 // compares what happened with the analytic or real-robot target.
 #pragma once
