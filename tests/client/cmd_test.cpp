@@ -3,6 +3,7 @@
 // unknown name). RunCmd in-process for most, the real binary for the
 // shell commands of docs/driving.md.
 #include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
 
 #include <fstream>
 #include <sstream>
@@ -14,7 +15,9 @@
 #include "../support/test_dir.h"
 #include "../support/text_file.h"
 #include "simpartner/client/client.h"
+#include "simpartner/channels.h"
 #include "simpartner/client/cmd.h"
+#include "simpartner/control_t.hpp"
 
 namespace simpartner::client {
 namespace {
@@ -143,6 +146,59 @@ TEST_F(CmdTest, OutcomesAndExitStatuses) {
   EXPECT_EQ(r.status, kCmdOk) << r.err;
   EXPECT_TRUE(Contains(r.out, "sim stopped")) << r.out;
   EXPECT_TRUE(sim.Wait(std::chrono::seconds(10)).has_value());
+}
+
+// A paused sim sends no SIM_STATE; it answers a state request.
+TEST_F(CmdTest, AStateOfAPausedSim) {
+  const std::string url = BusUrl(13);
+  SimProcess sim(ShippedWorld("gen4_flat.xml"), url, (dir_ / "sim.log").string(),
+                 {"--startPaused=1"});
+  ASSERT_TRUE(sim.WaitUntilRunning(30)) << sim.Log();
+  auto cmd = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"--lcm-url", url});
+    return RunInProcess(args);
+  };
+  CmdResult r = cmd({"state", "--body", "FrontChassis"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "step 0, t = 0 s")) << r.out;
+  EXPECT_TRUE(Contains(r.out, "FrontChassis position ")) << r.out;
+  r = cmd({"step", "5"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  r = cmd({"state"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_TRUE(Contains(r.out, "step 5, t = 0.005 s")) << r.out;
+  EXPECT_TRUE(Contains(r.out, "joint Turner position ")) << r.out;
+}
+
+// The sim keeps its recent warnings in every status: a reply to a control
+// says a warning once, not again in each later reply.
+TEST_F(CmdTest, RepliesDoNotRepeatOldWarnings) {
+  const std::string url = BusUrl(14);
+  SimProcess sim(ShippedWorld("gen4_flat.xml"), url, (dir_ / "sim.log").string());
+  ASSERT_TRUE(sim.WaitUntilRunning(30)) << sim.Log();
+  auto cmd = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"--lcm-url", url});
+    return RunInProcess(args);
+  };
+  // A pause meant for another simulation: the sim refuses it and warns
+  // ("bus: SIM_CONTROL: action 0 from 'elsewhere' is for simulation_id 42").
+  lcm::LCM bus(url);
+  control_t stray{};
+  stray.simulation_id = 42;
+  stray.sender = "elsewhere";
+  stray.action = control_t::ACTION_PAUSE;
+  bus.publish(channels::kControl, &stray);
+  const std::string warning = "from 'elsewhere' is for simulation_id 42";
+  CmdResult r;
+  for (int tries = 0; tries < 20 && !Contains(r.out, warning); ++tries) r = cmd({"status"});
+  ASSERT_TRUE(Contains(r.out, warning)) << r.out;  // the status lists it
+  r = cmd({"pause"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_FALSE(Contains(r.out, warning)) << r.out;
+  EXPECT_TRUE(Contains(r.out, "(1 earlier warning not repeated: simpartner-cmd status lists them)"))
+      << r.out;
+  r = cmd({"resume"});
+  EXPECT_FALSE(Contains(r.out, warning)) << r.out;
 }
 
 TEST_F(CmdTest, UsageErrorsAndNoSim) {

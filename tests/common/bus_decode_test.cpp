@@ -22,7 +22,10 @@
 #include "simpartner/model_t.hpp"
 #include "simpartner/sensor_reading_t.hpp"
 #include "simpartner/state_t.hpp"
+#include "simpartner/state_request_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "simpartner/sync_reply_t.hpp"
+#include "simpartner/sync_t.hpp"
 
 namespace simpartner {
 namespace {
@@ -42,6 +45,9 @@ std::optional<DecodeFailure> DecodeForChannel(const std::string& channel, const 
           {channels::kSensor, [](const Bytes& b) { sensor_reading_t m; return DecodeLcm(b.data(), b.size(), &m); }},
           {channels::kState, [](const Bytes& b) { state_t m; return DecodeLcm(b.data(), b.size(), &m); }},
           {channels::kStatus, [](const Bytes& b) { status_t m; return DecodeLcm(b.data(), b.size(), &m); }},
+          {channels::kStateRequest, [](const Bytes& b) { state_request_t m; return DecodeLcm(b.data(), b.size(), &m); }},
+          {channels::kSync, [](const Bytes& b) { sync_t m; return DecodeLcm(b.data(), b.size(), &m); }},
+          {channels::kSyncReply, [](const Bytes& b) { sync_reply_t m; return DecodeLcm(b.data(), b.size(), &m); }},
       };
   return decoders.at(channel)(bytes);
 }
@@ -53,7 +59,8 @@ TEST(HostileCorpus, CoversEveryChannelWithAtLeastThirtyMessages) {
   for (const auto& m : corpus) ++per_channel[m.channel];
   for (const char* channel : {channels::kCommand, channels::kCommandReply, channels::kControl,
                               channels::kModel, channels::kModelRequest, channels::kSensor,
-                              channels::kState, channels::kStatus})
+                              channels::kState, channels::kStatus, channels::kStateRequest,
+                              channels::kSync, channels::kSyncReply})
     EXPECT_GE(per_channel[channel], 2) << channel;
 }
 

@@ -12,7 +12,10 @@
 #include "simpartner/model_t.hpp"
 #include "simpartner/sensor_reading_t.hpp"
 #include "simpartner/state_t.hpp"
+#include "simpartner/state_request_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "simpartner/sync_reply_t.hpp"
+#include "simpartner/sync_t.hpp"
 #include "encode.h"
 
 namespace simpartner::test_support {
@@ -100,7 +103,10 @@ std::vector<HostileMessage> HostileCorpus(int64_t simulation_id) {
   using channels::kModelRequest;
   using channels::kSensor;
   using channels::kState;
+  using channels::kStateRequest;
   using channels::kStatus;
+  using channels::kSync;
+  using channels::kSyncReply;
   std::vector<HostileMessage> corpus;
   auto bad = [&](std::string name, const char* channel, std::vector<uint8_t> bytes) {
     corpus.push_back({std::move(name), channel, std::move(bytes), true});
@@ -211,6 +217,59 @@ std::vector<HostileMessage> HostileCorpus(int64_t simulation_id) {
     RawMessage n(model_request_t::getHash());
     n.I64(1).I32(3).I8('a').I8('b').I8('c');
     bad("model_request_t sender without its NUL", kModelRequest, n.bytes());
+  }
+
+  // --- SIM_STATE_REQUEST: state_request_t
+  {
+    RawMessage m(state_request_t::getHash());
+    m.I64(1).I64(simulation_id).StrLength(-1);
+    bad("state_request_t sender length -1", kStateRequest, m.bytes());
+    state_request_t r{};
+    r.simulation_id = simulation_id + 1;
+    r.sender = "elsewhere";
+    nonsense("state_request_t for another simulation", kStateRequest, Encode(r));
+  }
+
+  // --- SIM_SYNC: sync_t (lock-step marks)
+  {
+    auto head = [&](int32_t num_commands) {
+      RawMessage m(sync_t::getHash());
+      m.I64(1).I64(simulation_id).Str("ctl").Str("ctl@host:1").I8(sync_t::ACTION_DONE);
+      m.I64(1).I64(5).I32(num_commands);
+      return m;
+    };
+    bad("sync_t num_commands -1", kSync, head(-1).bytes());
+    bad("sync_t num_commands 257 (bound 256)", kSync, head(257).bytes());
+    RawMessage m(sync_t::getHash());
+    m.I64(1).I64(simulation_id).StrLength(0);
+    bad("sync_t controller length 0", kSync, m.bytes());
+    sync_t s{};
+    s.simulation_id = simulation_id;
+    s.controller = "forger";
+    s.sender = "forger@elsewhere:1";
+    s.action = sync_t::ACTION_DONE;
+    s.tick = 1000000000000;
+    nonsense("sync_t DONE for a tick that never happened, never joined", kSync, Encode(s));
+    s.action = sync_t::ACTION_JOIN;
+    s.period = 0;
+    nonsense("sync_t JOIN with period 0", kSync, Encode(s));
+    s.action = sync_t::ACTION_LEAVE;
+    nonsense("sync_t LEAVE of a controller that never joined", kSync, Encode(s));
+    s.action = 42;
+    nonsense("sync_t unknown action 42", kSync, Encode(s));
+    s.action = sync_t::ACTION_JOIN;
+    s.period = 1;
+    s.simulation_id = simulation_id + 1;
+    nonsense("sync_t JOIN for another simulation", kSync, Encode(s));
+  }
+
+  // --- SIM_SYNC_REPLY: sync_reply_t
+  {
+    RawMessage m(sync_reply_t::getHash());
+    m.I64(1).I64(simulation_id).Str("ctl").Str("ctl@host:1").I8(sync_reply_t::EVENT_RELEASED);
+    m.I64(1).I64(5).StrLength(-1);
+    bad("sync_reply_t reason length -1", kSyncReply, m.bytes());
+    bad("empty datagram on SIM_SYNC_REPLY", kSyncReply, {});
   }
 
   // --- SIM_STATE: state_t
