@@ -217,6 +217,31 @@ TEST_F(SupervisedRunTest, SequenceRunsInTheWorldItNamesAndRefusesAnother) {
   EXPECT_FALSE(fs::exists(dir_ / "state/runs")) << refused;
 }
 
+// --keep-db leaves the server running, and the run's last line says how to
+// reach and stop it: commands that work from any directory, for this
+// run's own --state.
+TEST_F(SupervisedRunTest, KeepDbHintWorksFromAnotherDirectory) {
+  const std::string state = (dir_ / "state").string();
+  ChildProcess launcher({"/bin/bash", SourceDir() + "/scripts/run", "--bin", BinaryDir(), "--state",
+                         state, "--no-viewer", "--keep-db", "--lcm-url", url_, "--duration=1"},
+                        (dir_ / "launcher.log").string());
+  ASSERT_EQ(launcher.Wait(std::chrono::seconds(120)).value_or(-1), 0) << ReadText(dir_ / "launcher.log");
+  const std::string out = ReadText(dir_ / "launcher.log");
+  const std::string query = "SIMPARTNER_STATE=" + state + " " + BinaryDir() +
+                            "/logger/simpartner-query list";
+  const std::string stop = SourceDir() + "/scripts/mariadb stop --datadir " + state + "/mariadb";
+  EXPECT_NE(out.find("the database server keeps running: " + query + "; " + stop), std::string::npos)
+      << out;
+  const test_support::ProgramRun listed = test_support::RunToEnd(
+      {"/bin/bash", "-c", "cd / && " + query}, (dir_ / "list.log").string(), std::chrono::seconds(60));
+  const test_support::ProgramRun stopped = test_support::RunToEnd(
+      {"/bin/bash", "-c", "cd / && " + stop}, (dir_ / "stop.log").string(), std::chrono::seconds(60));
+  EXPECT_EQ(listed.status, 0) << listed.output;
+  EXPECT_NE(listed.output.find("the sim stopped"), std::string::npos) << listed.output;
+  EXPECT_EQ(stopped.status, 0) << stopped.output;
+  EXPECT_NE(stopped.output.find("stopped"), std::string::npos) << stopped.output;
+}
+
 // A process that dies young (within 3 s of its start) is a start-up
 // failure: the launcher backs off 0.5, 1, 2, 4 s rather than spin, and a
 // crash after a healthy run is restarted at once (the next test). The

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <thread>
 
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
@@ -24,6 +25,7 @@
 #include "simpartner/model_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "simpartner/teleop/keyboard_window.h"
 #include "simpartner/viewer/xvfb.h"
 #include "../support/bus_listener.h"
 #include "../support/bus_url.h"
@@ -459,11 +461,35 @@ TEST_F(TeleopProcessTest, ButtonsRaiseTheBodyTurnTheTorsoAndOpenTheClaws) {
 
 // The keyboard window on a private X server, with real key presses: space
 // held is the dead-man, Up drives, Right steers right; letting go stops.
+// The keyboard window's background (keyboard_window.cpp) and a test that it
+// shows text on it: centred on the screen, most of its pixels the
+// background, and a few thousand white ones (the status and the keys).
+constexpr uint32_t kAmber = 0xAA7814;
+constexpr uint32_t kGreen = 0x28823C;
+
+bool WindowShows(const viewer::XvfbServer& xvfb, uint32_t background) {
+  for (int tries = 0; tries < 20; ++tries) {  // it redraws twice a second
+    const viewer::ScreenImage screen = xvfb.ReadScreen();
+    const int w = teleop::KeyboardWindow::kWidth, h = teleop::KeyboardWindow::kHeight;
+    const int x0 = (screen.width - w) / 2, y0 = (screen.height - h) / 2;
+    size_t fill = 0, white = 0;
+    for (int y = y0; y < y0 + h; ++y)
+      for (int x = x0; x < x0 + w; ++x) {
+        const uint32_t p = screen.At(x, y);
+        fill += p == background;
+        white += p == 0xFFFFFF;
+      }
+    if (fill > static_cast<size_t>(w * h) / 2 && white > 2000 && white < 40000) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+  }
+  return false;
+}
+
 TEST_F(TeleopProcessTest, KeyboardWindowDrivesWithRealKeyPresses) {
   const std::string url = BusUrl(4);
   Bus bus(url);
   StartSim(url, "gen1_flat.xml");
-  viewer::XvfbServer xvfb(1280, 720, (dir_ / "xvfb.log").string());
+  viewer::XvfbServer xvfb(1280, 720, (dir_ / "xvfb.log").string(), dir_.string());
   teleop_ = std::make_unique<ChildProcess>(
       test_support::OnDisplay(xvfb.display(),
                               BuiltCommand("simpartner-teleop", {"--input", "keyboard", "--lcm-url", url})),
@@ -482,6 +508,10 @@ TEST_F(TeleopProcessTest, KeyboardWindowDrivesWithRealKeyPresses) {
   xdotool({"mousemove", "640", "360"});
   bus.Pump(0.5);
 
+  // The window says it, in the window (no window manager shows a title):
+  // white text on amber while the dead-man stops the robot.
+  EXPECT_TRUE(WindowShows(xvfb, kAmber)) << Log();
+
   // Up without space: nothing moves.
   const double x0 = bus.X("RearChassis");
   xdotool({"keydown", "Up"});
@@ -489,6 +519,7 @@ TEST_F(TeleopProcessTest, KeyboardWindowDrivesWithRealKeyPresses) {
   EXPECT_LT(std::abs(bus.X("RearChassis") - x0), 0.02);
   xdotool({"keydown", "space"});
   ASSERT_TRUE(bus.Until([&] { return bus.X("RearChassis") - x0 > 0.5; }, 10)) << Log();
+  EXPECT_TRUE(WindowShows(xvfb, kGreen)) << Log();  // green while it moves
   xdotool({"keydown", "Right"});
   ASSERT_TRUE(bus.Until([&] { return bus.JointPosition("Turner") < -0.4; }, 5))
       << "Turner at " << bus.JointPosition("Turner") << "\n" << Log();
