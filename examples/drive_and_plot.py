@@ -3,7 +3,7 @@
 and plot the live run with matplotlib: the chassis track seen from above
 (the ground is the x-z plane, y up) and the wheels' rates.
 
-Usage: drive_and_plot.py [--url URL] [--seconds S] [--out FILE.png]
+Usage: drive_and_plot.py [--lcm-url URL] [--seconds S] [--out FILE.png]
 With no display (or with --out) the plot goes to a PNG (Agg backend)."""
 import argparse
 import os
@@ -19,7 +19,8 @@ import simpartner  # noqa: E402
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--url", default=simpartner.DEFAULT_URL)
+    parser.add_argument("--lcm-url", dest="url", default=simpartner.DEFAULT_URL,
+                        help="the bus, as every SimPartner program takes it")
     parser.add_argument("--seconds", type=float, default=5.0, help="sim seconds to drive")
     parser.add_argument("--out", help="write the plot to this PNG instead of a window")
     args = parser.parse_args()

@@ -1,20 +1,30 @@
 // Drive WorkPartner (gen1 or gen3) in a circle with its articulation joint:
 // steer the Turner joint with its angle controller, drive each side at the
 // speed the steering geometry asks, and measure the radius from SIM_STATE.
-// Usage: drive_circle [LCM_URL] [ALPHA_RAD]
+// Usage: drive_circle [--lcm-url URL] [--alpha RAD]
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <string>
 
 #include "simpartner/client/client.h"
+#include "simpartner/command_line.h"
 
 using namespace simpartner::client;
 
 int main(int argc, char** argv) {
+  simpartner::CommandLineSpec spec;
+  spec.program = "drive_circle";
+  spec.summary = "Drives WorkPartner (gen1 or gen3) in a circle and prints its radius.";
+  spec.options = {simpartner::Text("lcm-url", "URL", "the bus (default: the sim's default)"),
+                  simpartner::Number("alpha", "RAD", "steering angle, + turns left (default 0.2972)")};
+  simpartner::CommandLine args;
+  if (auto done = simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
   ClientOptions options;
   options.program = "drive_circle";
-  if (argc > 1) options.url = argv[1];
-  const double alpha = argc > 2 ? std::stod(argv[2]) : 0.2972;  // [rad], + turns left
+  options.url = args.Text("lcm-url", options.url);
+  const double alpha = args.Number("alpha", 0.2972);  // [rad], + turns left
   // WorkPartner's geometry (SPEC 7): Turner joint to each axle, half the
   // track, wheel radius; and the speed of the axle midpoints [m/s].
   const double a = 0.6, half_track = 0.3, wheel_radius = 0.235, speed = 1.0;

@@ -5,14 +5,16 @@
 // PERIOD_STEPS 0 runs the same controller without lock-step, as control
 // code usually runs: it reads the newest state every 10 ms of sim time
 // and its commands land whenever they arrive (runs differ).
-// Usage: drive_to_point [LCM_URL] [X Z] [PERIOD_STEPS]
+// Usage: drive_to_point [--lcm-url URL] [--x X] [--z Z] [--period STEPS]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <string>
 
 #include "simpartner/client/client.h"
 #include "simpartner/client/lock_step.h"
+#include "simpartner/command_line.h"
 
 using namespace simpartner::client;
 
@@ -52,12 +54,24 @@ bool Decide(Client& sim, const state_t& s, const Goal& goal) {
 }
 
 int main(int argc, char** argv) {
+  simpartner::CommandLineSpec spec;
+  spec.program = "drive_to_point";
+  spec.summary = "Drives WorkPartner (gen1 or gen3) to a point in lock-step, steering from its heading.";
+  spec.options = {
+      simpartner::Text("lcm-url", "URL", "the bus (default: the sim's default)"),
+      simpartner::Number("x", "M", "the goal's x [m] (default 4)"),
+      simpartner::Number("z", "M", "the goal's z [m] (default -3)"),
+      simpartner::Integer("period", "STEPS",
+                          "steps between ticks (default 10); 0: without lock-step").Range(0, 1000000)};
+  simpartner::CommandLine args;
+  if (auto done = simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
   ClientOptions options;
   options.program = "drive_to_point";
-  if (argc > 1) options.url = argv[1];
-  const Goal goal{argc > 3 ? std::stod(argv[2]) : 4.0, argc > 3 ? std::stod(argv[3]) : -3.0};
+  options.url = args.Text("lcm-url", options.url);
+  const Goal goal{args.Number("x", 4.0), args.Number("z", -3.0)};
   LockStepOptions loop_options;
-  loop_options.period = argc > 4 ? std::stol(argv[4]) : 10;  // 100 Hz at 1 ms steps
+  loop_options.period = args.Integer("period", 10);  // 100 Hz at 1 ms steps
   try {
     Client sim(options);
     if (loop_options.period == 0) {  // without lock-step

@@ -5,9 +5,9 @@ its laser scanner sees, to stand 1 m from the wall.
 
 Started on a paused sim (simpartner-sim --startPaused=1 ...), the run is
 fully determined by this controller: the same at any speed, on any
-machine. Usage: lockstep_stop_at_wall.py [LCM_URL]
+machine. Usage: lockstep_stop_at_wall.py [--lcm-url URL]
 """
-import sys
+import argparse
 
 import numpy as np
 import simpartner
@@ -16,8 +16,10 @@ STOP_AT = 1.0        # [m] from the wall
 WHEEL_RADIUS = 0.235  # [m]
 PERIOD = 10          # steps between ticks: 100 Hz at 1 ms steps
 
-url = sys.argv[1] if len(sys.argv) > 1 else simpartner.DEFAULT_URL
-sim = simpartner.Sim(url, program="lockstep_stop_at_wall")
+parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+parser.add_argument("--lcm-url", dest="url", default=simpartner.DEFAULT_URL,
+                    help="the bus, as every SimPartner program takes it")
+sim = simpartner.Sim(parser.parse_args().url, program="lockstep_stop_at_wall")
 wheels = ["Axle1Motor", "Axle2Motor", "Axle3Motor", "Axle4Motor"]
 front = sim.model()["bodies"].index("FrontChassis")
 

@@ -1,19 +1,28 @@
 // Drive WorkPartner (gen2 or gen3) forward until its laser scanner sees
 // something within 1 m, then stop the wheels: a closed loop on SIM_SENSOR.
 // Try it in models/worlds/scanner_wall.xml (a wall 5.3 m ahead).
-// Usage: stop_at_wall [LCM_URL]
+// Usage: stop_at_wall [--lcm-url URL]
 #include <algorithm>
 #include <cstdio>
+#include <iostream>
 #include <string>
 
 #include "simpartner/client/client.h"
+#include "simpartner/command_line.h"
 
 using namespace simpartner::client;
 
 int main(int argc, char** argv) {
+  simpartner::CommandLineSpec spec;
+  spec.program = "stop_at_wall";
+  spec.summary = "Drives WorkPartner forward until its scanner sees something within 1 m.";
+  spec.options = {simpartner::Text("lcm-url", "URL", "the bus (default: the sim's default)")};
+  simpartner::CommandLine args;
+  if (auto done = simpartner::ReadCommandLine(spec, {argv + 1, argv + argc}, std::cout, std::cerr, &args))
+    return *done;
   ClientOptions options;
   options.program = "stop_at_wall";
-  if (argc > 1) options.url = argv[1];
+  options.url = args.Text("lcm-url", options.url);
   const double stop_distance = 1.0;        // [m]
   const double wheel_speed = 1.0 / 0.235;  // [rad/s]: 1 m/s on 0.235 m wheels
   try {

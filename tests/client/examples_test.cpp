@@ -58,7 +58,7 @@ void ExpectCircle(ExamplesTest* test, const std::string& world, int port_offset)
   const std::string url = BusUrl(port_offset);
   SimProcess sim(ShippedWorld(world), url, (test->dir() / "sim.log").string(), {"--speed=0"});
   const double alpha = 0.3;
-  const auto [status, output] = test->RunExample("drive_circle", {url, "0.3"});
+  const auto [status, output] = test->RunExample("drive_circle", {"--lcm-url", url, "--alpha", "0.3"});
   ASSERT_EQ(status, 0) << output;
   const std::optional<double> printed_radius = NumberAfter(output, "radius ");
   ASSERT_TRUE(printed_radius) << output;
@@ -83,7 +83,7 @@ void ExpectCircle(ExamplesTest* test, const std::string& world, int port_offset)
 TEST_F(ExamplesTest, StopAtWallStopsWithinAMetre) {
   const std::string url = BusUrl(22);
   SimProcess sim(ShippedWorld("scanner_wall.xml"), url, (dir() / "sim.log").string(), {"--speed=0"});
-  const auto [status, output] = RunExample("stop_at_wall", {url});
+  const auto [status, output] = RunExample("stop_at_wall", {"--lcm-url", url});
   ASSERT_EQ(status, 0) << output;
   EXPECT_NE(output.find("stopped: nearest "), std::string::npos) << output;
   // It reacted to a scan under 1 m: at 100 Hz and 1 m/s scans are 1 cm

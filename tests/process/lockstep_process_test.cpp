@@ -116,7 +116,8 @@ class LockStepProcessTest : public ::testing::Test {
     inside.reset();
     ChildProcess sim(sim_argv, (dir_ / (name + "_sim.log")).string());
     std::vector<std::string> controller = BuiltCommand(
-        "drive_to_point", {url, kGoal[0], kGoal[1], std::to_string(period)});
+        "drive_to_point",
+        {"--lcm-url", url, "--x", kGoal[0], "--z", kGoal[1], "--period", std::to_string(period)});
     if (lan) controller = lan->Exec("ctl", controller);
     const std::string log = (dir_ / (name + "_controller.log")).string();
     RunResult run;
@@ -197,7 +198,7 @@ TEST_F(LockStepProcessTest, AStalledControllerIsReleasedAndTheRunGoesOn) {
                               {"--startPaused=1", "--speed=1", "--lockStepTimeout=1"}),
                    (dir_ / "sim.log").string());
   const std::string log = (dir_ / "controller.log").string();
-  ChildProcess controller(BuiltCommand("drive_to_point", {url, "50", "0", "10"}), log);
+  ChildProcess controller(BuiltCommand("drive_to_point", {"--lcm-url", url, "--x", "50", "--z", "0", "--period", "10"}), log);
   ASSERT_TRUE(listener.Until([&] { return listener.states.size() > 500; }, 10));
   controller.Signal(SIGSTOP);
   const auto stopped_at = std::chrono::steady_clock::now();
@@ -236,7 +237,7 @@ TEST_F(LockStepProcessTest, AControllerThatDiesIsReleased) {
   ChildProcess sim(SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
                               {"--startPaused=1", "--speed=0", "--lockStepTimeout=0.5"}),
                    (dir_ / "sim.log").string());
-  ChildProcess controller(BuiltCommand("drive_to_point", {url, "50", "0", "1"}),
+  ChildProcess controller(BuiltCommand("drive_to_point", {"--lcm-url", url, "--x", "50", "--z", "0", "--period", "1"}),
                           (dir_ / "controller.log").string());
   ASSERT_TRUE(listener.Until([&] { return listener.states.size() > 200; }, 10));
   controller.Signal(SIGKILL);
@@ -260,7 +261,8 @@ TEST_F(LockStepProcessTest, ForgedAndDuplicatedMarksChangeNothing) {
   // The sim listens once it has said how it is.
   ASSERT_TRUE(listener.Until([&] { return listener.status.utime != 0; }, 10));
   ChildProcess controller(
-      BuiltCommand("drive_to_point", {url, kGoal[0], kGoal[1], "10"}),
+      BuiltCommand("drive_to_point",
+                   {"--lcm-url", url, "--x", kGoal[0], "--z", kGoal[1], "--period", "10"}),
       (dir_ / "forged_controller.log").string());
   int forged = 0;
   auto forge = [&](const std::string& name, const std::string& sender, int64_t tick) {

@@ -1,6 +1,7 @@
 """The simpartner Python module against a real simpartner-sim on the bus
 (udpm, ttl=0, a port of its own) and a real private MariaDB written by a real
 simpartner-logger. Run by ctest with PYTHONPATH at the build's module."""
+import functools
 import math
 import os
 import shutil
@@ -17,9 +18,12 @@ BINARY_DIR = os.environ["SP_BINARY_DIR"]
 SOURCE_DIR = os.environ["SP_SOURCE_DIR"]
 
 
+@functools.lru_cache(maxsize=None)
 def unique_url(offset):
-    port = 20000 + (os.getpid() * 17 + offset * 131) % 20000
-    return "udpm://239.255.76.67:%d?ttl=0" % port
+    """This test's bus number `offset`, from tests/support/bus_url.h (a port
+    no other process holds), the same for every call with that offset."""
+    return subprocess.check_output(
+        [BINARY_DIR + "/tests/sp_test_bus_url", str(offset)], text=True).strip()
 
 
 def child_env():
@@ -156,7 +160,7 @@ class ExampleTest(unittest.TestCase):
             out = os.path.join(work, "run.png")
             done = subprocess.run(
                 ["python3" if not os.path.exists("/usr/bin/python3") else "/usr/bin/python3",
-                 SOURCE_DIR + "/examples/drive_and_plot.py", "--url", url, "--seconds", "3",
+                 SOURCE_DIR + "/examples/drive_and_plot.py", "--lcm-url", url, "--seconds", "3",
                  "--out", out],
                 env=env, capture_output=True, text=True, timeout=240)
             self.assertEqual(done.returncode, 0, done.stderr)
@@ -301,7 +305,7 @@ class ReadmeAndLockStepExampleTest(unittest.TestCase):
 
     def test_lockstep_stop_at_wall(self):
         url = unique_url(21)
-        done = self.run_python(url, [SOURCE_DIR + "/examples/lockstep_stop_at_wall.py", url],
+        done = self.run_python(url, [SOURCE_DIR + "/examples/lockstep_stop_at_wall.py", "--lcm-url", url],
                                "scanner_wall.xml", ["--startPaused=1", "--speed=0"])
         self.assertEqual(done.returncode, 0, done.stderr)
         self.assertIn("stopped at tick", done.stdout)

@@ -42,8 +42,7 @@ for _ in $(seq 50); do [[ -s $work/display ]] && break; sleep 0.1; done
 [[ -s $work/display ]] || fail "Xvfb did not start: $(cat "$work/xvfb.log")"
 export DISPLAY=:$(<"$work/display")
 
-port=$(( 20000 + ($$ * 7 + 4099) % 20000 ))
-url="udpm://239.255.76.67:$port?ttl=0"
+url=$("$bin/tests/sp_test_bus_url" 0)
 "$bin/sim_core/simpartner-sim" --params /dev/null \
   --environment="$src/models/worlds/flat_ground.xml" --lcm-url="$url" --duration=120 \
   >"$work/sim.log" 2>&1 &
