@@ -84,6 +84,9 @@ int main(int argc, char** argv) {
     }
     loop.Next();  // the stop applies in the step after the last tick
     return 0;
+  } catch (const SimStopped& e) {
+    std::printf("%s\n", e.what());  // its duration reached: a batch run's end
+    return 0;
   } catch (const ClientError& e) {
     std::fprintf(stderr, "drive_to_point: %s\n", e.what());
     return 1;

@@ -199,9 +199,12 @@ class LockStepLoop {
       throw py::stop_iteration();
     }
     simpartner::state_t state;
-    {
+    try {
       py::gil_scoped_release release;
       state = loop_->Next();
+    } catch (const simpartner::client::SimStopped&) {
+      Close();  // the sim ended (its duration reached): so does the loop
+      throw py::stop_iteration();
     }
     ++taken_;
     return StateDict(state);
@@ -328,6 +331,7 @@ PYBIND11_MODULE(simpartner, m) {
   py::register_exception<client::SimRestarted>(m, "SimRestarted", client_error.ptr());
   py::register_exception<client::BadValues>(m, "BadValues", client_error.ptr());
   py::register_exception<client::LockStepError>(m, "LockStepError", client_error.ptr());
+  py::register_exception<client::SimStopped>(m, "SimStopped", client_error.ptr());
   py::register_exception<simpartner::Error>(m, "DatabaseError", PyExc_RuntimeError);
   m.attr("DEFAULT_URL") = client::kDefaultUrl;
 

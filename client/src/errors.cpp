@@ -75,4 +75,9 @@ LockStepError::LockStepError(std::string controller, std::string what, int64_t t
       controller_(std::move(controller)),
       tick_(tick) {}
 
+SimStopped::SimStopped(int64_t step)
+    : ClientError("the sim stopped at step " + std::to_string(step) +
+                  " (its duration reached, or told to quit)"),
+      step_(step) {}
+
 }  // namespace simpartner::client

@@ -128,6 +128,10 @@ state_t LockStep::AwaitTick(int64_t tick) {
                           tick);
     }
     CheckSyncReplies(tick);
+    if (const auto status = client_.LatestStatus();
+        status && status->run_state == status_t::RUN_STOPPED &&
+        status->simulation_id == client_.catalog()->simulation_id())
+      throw SimStopped(status->step);
     const Clock::time_point now = Clock::now();
     if (now >= deadline)
       throw Timeout("SIM_STATE of lock-step tick " + std::to_string(tick) + " for controller '" +

@@ -166,6 +166,7 @@ void Logger::WriterLoop() {
   writer_options.lcm_url = options_.lcm_url;
   writer_options.log_interval = options_.log_interval;
   writer_options.scratch_dir = options_.spool_dir;
+  writer_options.tag = options_.tag;
   DbWriter writer(options_.db, writer_options,
                   [this](const std::string& text) { reporter_->Say(text); });
   Batch batch;

@@ -45,6 +45,9 @@ CommandLineSpec LoggerCommandLine() {
       Number("status-period", "S", "seconds between status lines (default 10)").Above(0, 86400),
       Number("drain-timeout", "S", "seconds to go on writing after SIGINT/SIGTERM (default 10)")
           .Above(0, 86400),
+      Text("tag", "TEXT",
+           "mark every simulation it logs with TEXT (Simulation.tag), e.g. the batch run's "
+           "values; at most 1024 characters"),
       Number("sim-silence", "S",
              "seconds without SIM_STATE or SIM_STATUS after which a simulation whose sim sent no "
              "RUN_STOPPED is closed as dead; reopened if the sim is heard again (default 10)")
@@ -72,6 +75,13 @@ LoggerOptions MakeLoggerOptions(const CommandLine& command_line, const Parameter
   options.status_period = command_line.Number("status-period", 10);
   options.drain_timeout = command_line.Number("drain-timeout", 10);
   options.sim_silence = command_line.Number("sim-silence", 10);
+  options.tag = command_line.Text("tag");
+  if (options.tag.size() > 1024) {
+    DiagnosticList too_long;
+    too_long.Add("command line", 0, "--tag",
+                 "is " + std::to_string(options.tag.size()) + " characters; at most 1024");
+    throw ConfigError(too_long);
+  }
   options.sender = "logger@" + HostName() + ":" + std::to_string(::getpid());
   options.db = ResolveDbTarget(params, command_line.Text("db-options"), kPrivateLoggerOptions,
                                warnings);

@@ -197,7 +197,7 @@ uint32_t InsertSimulation(DbConnection* db, const model_t& model, const WriterOp
                           int64_t received_us) {
   std::string sql =
       "INSERT INTO Simulation (busSimulationID, host, lcmUrl, startTime, worldFile, worldName, "
-      "parameters, stepSize, stateEvery, logInterval, gravityX, gravityY, gravityZ) VALUES (";
+      "parameters, stepSize, stateEvery, logInterval, gravityX, gravityY, gravityZ, tag) VALUES (";
   AppendInt(&sql, model.simulation_id);
   sql += "," + Quoted(model.host) + "," + Quoted(options.lcm_url) + "," +
          UtcFromMicros(received_us) + "," + Quoted(model.world_file) + "," +
@@ -208,7 +208,7 @@ uint32_t InsertSimulation(DbConnection* db, const model_t& model, const WriterOp
     sql += ",";
     AppendDouble(&sql, g);
   }
-  sql += ")";
+  sql += "," + (options.tag.empty() ? std::string("NULL") : Quoted(options.tag)) + ")";
   db->Execute(sql, "INSERT INTO Simulation");
   return static_cast<uint32_t>(db->QueryInt("SELECT LAST_INSERT_ID()", "SELECT LAST_INSERT_ID()", 0));
 }

@@ -300,6 +300,15 @@ std::vector<Migration> BuildMigrations() {
                       " COMMENT 'command_t.simulation_id: the Simulation.busSimulationID the sender meant it for; 0 = any; NULL = logged before the logger stored it'"
                       " AFTER simulationID"),
       }});
+  m.push_back(Migration{
+      7,
+      "Simulation.tag: what the logger was told to mark its simulations with (simpartner-batch: "
+      "the batch, the run and its values)",
+      {
+          std::string("ALTER TABLE Simulation ADD COLUMN IF NOT EXISTS tag VARCHAR(1024) NULL"
+                      " COMMENT 'simpartner-logger --tag: e.g. batch=sweep run=3 contactMu=0.5; "
+                      "NULL = none'"),
+      }});
   return m;
 }
 

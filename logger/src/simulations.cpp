@@ -12,13 +12,20 @@
 namespace simpartner::logger {
 
 void ListSimulations(DbConnection* db, std::ostream& out) {
+  // Simulation.tag came with schema 7; a database no newer logger has
+  // opened yet lacks it.
+  const bool has_tag =
+      db->QueryInt("SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = DATABASE() "
+                   "AND TABLE_NAME = 'Simulation' AND COLUMN_NAME = 'tag'",
+                   "look for Simulation.tag", 0) > 0;
   std::unique_ptr<sql::ResultSet> rows = db->Query(
       "SELECT s.simulationID, s.busSimulationID, s.host, s.worldName, s.startTime, s.endTime, "
       "(SELECT COUNT(*) FROM SimulationRow r WHERE r.simulationID = s.simulationID), "
       "(SELECT MAX(step) FROM SimulationRow r WHERE r.simulationID = s.simulationID), "
       "(SELECT COALESCE(SUM(missing), 0) FROM LogGap g WHERE g.simulationID = s.simulationID), "
-      "COALESCE(s.endReason, 'open') "
-      "FROM Simulation s ORDER BY s.simulationID",
+      "COALESCE(s.endReason, 'open'), " +
+          std::string(has_tag ? "s.tag" : "NULL") +
+          " FROM Simulation s ORDER BY s.simulationID",
       "list simulations");
   char line[512];
   std::snprintf(line, sizeof line, "%-6s %-18s %-16s %-20s %-26s %-26s %10s %10s %8s  %s\n", "id",
@@ -37,6 +44,7 @@ void ListSimulations(DbConnection* db, std::ostream& out) {
           rows->isNull(8) ? "-" : std::string(rows->getString(8)).c_str(),
           static_cast<long long>(rows->getInt64(9)), std::string(rows->getString(10)).c_str());
       out << line;
+      if (!rows->isNull(11)) out << "       tag: " << std::string(rows->getString(11)) << "\n";
     }
   } catch (const sql::SQLException&) {
     db->Rethrow("read the list of simulations");

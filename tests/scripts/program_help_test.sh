@@ -20,6 +20,7 @@ cases=(
   "sequencer/simpartner-sequencer||lcmUrl= stepsize=|--quite|--quiet"
   "teleop/simpartner-teleop||lcmUrl= stepsize=|--lst|--list"
   "teleop/simpartner-teleop-vpad||lcmUrl= stepsize=|--scrpt=x|--script"
+  "batch/simpartner-batch||lcmUrl= stepsize=|--paralel=2|--parallel"
 )
 for c in "${cases[@]}"; do
   IFS='|' read -r program wanted unwanted wrong suggestion <<<"$c"

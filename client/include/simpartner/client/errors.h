@@ -79,6 +79,17 @@ class SimRestarted : public ClientError {
   int64_t old_id_, new_id_;
 };
 
+// The sim ended (its duration reached, or told to quit): a lock-step loop
+// ends with it. step: where it stopped.
+class SimStopped : public ClientError {
+ public:
+  explicit SimStopped(int64_t step);
+  int64_t step() const { return step_; }
+
+ private:
+  int64_t step_;
+};
+
 // Lock-step (lock_step.h): the sim refused a JOIN, LEAVE or done mark, or
 // released this controller (it did not answer a tick within the sim's
 // lockStepTimeout). tick: the tick concerned, -1 when none.

@@ -48,8 +48,9 @@ class LockStep {
   // The state of the next tick (the first call: the tick the sim named at
   // the join). Throws Refused when the sim refused a command of the
   // previous tick, LockStepError when it released this controller (it was
-  // too slow: lockStepTimeout) or refused its answer, Timeout,
-  // SimRestarted.
+  // too slow: lockStepTimeout) or refused its answer, SimStopped when the
+  // sim ended (its duration reached: the loop's normal end in a batch),
+  // Timeout, SimRestarted.
   const state_t& Next();
 
   int64_t tick() const { return tick_; }  // of the last Next(), -1 before

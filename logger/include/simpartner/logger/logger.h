@@ -42,6 +42,7 @@ struct LoggerOptions {
   double sim_silence = 10.0;    // [s] without SIM_STATE/SIM_STATUS: the sim died, close it
   double stall_report = 3.0;    // [s] a database call may take before it is reported
   std::string sender;           // in SIM_MODEL_REQUEST
+  std::string tag;              // Simulation.tag of what it logs; "" = NULL
 };
 
 // Log-scale histogram of lags (about 2 % resolution) for percentiles.

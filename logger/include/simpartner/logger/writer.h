@@ -41,6 +41,7 @@ struct WriterOptions {
   std::string lcm_url;      // recorded in Simulation.lcmUrl
   int log_interval = 1;     // recorded in Simulation.logInterval
   std::string scratch_dir;  // where LOAD DATA files are written
+  std::string tag;          // Simulation.tag ("" = NULL)
 };
 
 // LogGap.reason of steps that never reached the logger.

@@ -1,0 +1,98 @@
+#include "observer.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+#include "simpartner/channels.h"
+
+namespace simpartner::batch {
+
+RunObserver::RunObserver(const std::string& url, const std::vector<Figure>& figures)
+    : lcm_(url), figures_(figures), accumulators_(figures.size()) {
+  if (!lcm_.good()) throw std::runtime_error("cannot open LCM at '" + url + "'");
+  lcm_.subscribe(channels::kModel, &RunObserver::OnModel, this);
+  lcm_.subscribe(channels::kState, &RunObserver::OnState, this)->setQueueCapacity(100000);
+}
+
+void RunObserver::Pump(int quiet_ms, int budget_ms) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(budget_ms);
+  // handleTimeout dispatches one message: go on while they come.
+  while (lcm_.handleTimeout(quiet_ms) > 0 && std::chrono::steady_clock::now() < end) {
+  }
+}
+
+void RunObserver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  model_t model;
+  if (DecodeFromBus(channel, buffer->data, buffer->data_size, &model, &refused_)) return;
+  if (model_) return;  // the periodic announcement of the same model
+  for (size_t f = 0; f < figures_.size(); ++f)
+    for (const body_t& b : model.bodies)
+      if (b.name == figures_[f].body && accumulators_[f].body < 0) accumulators_[f].body = b.id;
+  model_ = std::move(model);
+}
+
+void RunObserver::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  state_t state;
+  if (DecodeFromBus(channel, buffer->data, buffer->data_size, &state, &refused_)) return;
+  if (model_ && state.simulation_id != model_->simulation_id) return;
+  // Every step, in order (the sim publishes each, stateEvery 1): a gap or
+  // a step out of order makes the hash no longer the run's.
+  if (state.step != last_step_ + 1 && !(last_step_ < 0 && state.step == 1)) complete_ = false;
+  last_step_ = state.step;
+  sim_time_ = state.sim_time;
+  ++states_;
+  state_t copy = state;
+  copy.utime = 0;
+  copy.simulation_id = 0;
+  std::vector<uint8_t> bytes(static_cast<size_t>(copy.getEncodedSize()));
+  copy.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  for (const uint8_t byte : bytes) hash_ = (hash_ ^ byte) * 1099511628211ull;
+  Accumulate(state);
+}
+
+void RunObserver::Accumulate(const state_t& state) {
+  for (Accumulator& a : accumulators_) {
+    if (a.body < 0 || static_cast<size_t>(a.body) >= state.bodies.size()) continue;
+    const body_state_t& b = state.bodies[static_cast<size_t>(a.body)];
+    if (a.any)
+      a.path += std::hypot(b.position[0] - a.position[0], b.position[1] - a.position[1],
+                           b.position[2] - a.position[2]);
+    for (int k = 0; k < 3; ++k) a.position[k] = b.position[k];
+    a.speed = std::hypot(b.linear_velocity[0], b.linear_velocity[1], b.linear_velocity[2]);
+    a.peak_force = std::max(a.peak_force, std::hypot(b.contact_force[0], b.contact_force[1],
+                                                     b.contact_force[2]));
+    a.any = true;
+  }
+}
+
+std::string RunObserver::Hash(int64_t last_step) const {
+  if (!complete_ || states_ == 0 || last_step_ != last_step) return "";
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash_));
+  return text;
+}
+
+std::vector<double> RunObserver::Figures() const {
+  std::vector<double> values;
+  for (size_t f = 0; f < figures_.size(); ++f) {
+    const Accumulator& a = accumulators_[f];
+    if (!a.any) {
+      values.push_back(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
+    switch (figures_[f].quantity) {
+      case Quantity::kX: values.push_back(a.position[0]); break;
+      case Quantity::kY: values.push_back(a.position[1]); break;
+      case Quantity::kZ: values.push_back(a.position[2]); break;
+      case Quantity::kPathLength: values.push_back(a.path); break;
+      case Quantity::kFinalSpeed: values.push_back(a.speed); break;
+      case Quantity::kPeakContactForce: values.push_back(a.peak_force); break;
+    }
+  }
+  return values;
+}
+
+}  // namespace simpartner::batch
