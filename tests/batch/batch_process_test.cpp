@@ -153,7 +153,8 @@ TEST_F(BatchProcessTest, EveryRunIsLoggedIntoOneDatabaseWithItsValues) {
 }
 
 // The cluster path on a single-node Slurm of the test's own: the same runs
-// (state hashes) as run here.
+// (state hashes) as run here, every task logging into the one server the
+// batch names.
 TEST_F(BatchProcessTest, OnSlurmTheRunsAreTheRunsRunHere) {
   ASSERT_EQ(::geteuid(), 0u) << "the private Slurm runs its daemons as root";
   const std::string file = Write("cluster.xml",
@@ -165,8 +166,13 @@ TEST_F(BatchProcessTest, OnSlurmTheRunsAreTheRunsRunHere) {
       Batch({file, "--no-log", "--results", (dir_ / "here").string()}, "here.log");
   ASSERT_EQ(here.status, 0) << here.output;
   test_support::PrivateSlurm slurm(dir_ / "slurm");
+  logger::PrivateServer server(test_support::SourceDir() + "/scripts/mariadb",
+                               (dir_ / "db").string(), false);
+  server.Start();
   const test_support::ProgramRun there =
-      Batch({file, "--no-log", "--slurm", "--results", (dir_ / "there").string()}, "there.log");
+      Batch({file, "--db-options", server.logger_options(), "--slurm", "--results",
+             (dir_ / "there").string()},
+            "there.log");
   ASSERT_EQ(there.status, 0) << there.output;
   EXPECT_NE(there.output.find("slurm job "), std::string::npos) << there.output;
   EXPECT_NE(there.output.find("6 run(s) as array tasks 0,1,2,3,4,5"), std::string::npos)
@@ -179,6 +185,13 @@ TEST_F(BatchProcessTest, OnSlurmTheRunsAreTheRunsRunHere) {
     EXPECT_EQ(b[i].at("state_hash"), a[i].at("state_hash")) << "run " << i;
     EXPECT_EQ(a[i].at("state_hash").size(), 16u);
   }
+  auto db = logger::DbConnection::Open(server.AdminTarget("simpartner"), false);
+  db->UseDatabase(false);
+  EXPECT_EQ(db->QueryInt("SELECT COUNT(*) FROM Simulation WHERE tag LIKE 'batch=cluster run=%'",
+                         "tagged runs", -1),
+            6);
+  EXPECT_EQ(db->QueryInt("SELECT COUNT(*) FROM SimulationRow", "logged steps", -1), 6 * 1500);
+  server.Stop();
   // Again: every run is done; nothing is submitted.
   const test_support::ProgramRun again =
       Batch({file, "--no-log", "--slurm", "--results", (dir_ / "there").string()}, "again.log");

@@ -99,12 +99,19 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   std::vector<std::string> notices;
   auto b = DbConnection::Open(server_->LoggerTarget("simpartner_b"), false);
   EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 6);
-  ASSERT_EQ(notices.size(), 4u);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 7);
+  ASSERT_EQ(notices.size(), 5u);
   EXPECT_NE(notices[0].find("applied schema migration 3 (LogGap.reason"), std::string::npos);
   EXPECT_NE(notices[1].find("applied schema migration 4 (Material"), std::string::npos);
   EXPECT_NE(notices[2].find("applied schema migration 5 (JointPose.continuousAngle"), std::string::npos);
   EXPECT_NE(notices[3].find("applied schema migration 6 (Command.meantForBusSimulationID"), std::string::npos);
+  EXPECT_NE(notices[4].find("applied schema migration 7 (Simulation.tag"), std::string::npos);
+  // Simulations logged before migration 7 carry no tag: NULL.
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = "
+                     "'simpartner_b' AND TABLE_NAME = 'Simulation' AND COLUMN_NAME = 'tag' AND "
+                     "IS_NULLABLE = 'YES'",
+                     "simpartner_b"),
+            1);
   // Commands logged before migration 6: whom they were meant for is unknown.
   EXPECT_EQ(QueryRows(old.get(), "SELECT sender, meantForBusSimulationID IS NULL FROM Command"),
             (std::vector<std::string>{"teleop\t1"}));
@@ -127,7 +134,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   // Migrations cut short after adding their columns run again harmlessly.
   old->Execute("DELETE FROM SchemaVersion WHERE version >= 3", "");
   EXPECT_EQ(MigrateSchema(b.get(), nullptr), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 6);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 7);
 
   // A database from a newer logger is left alone.
   old->Execute("INSERT INTO SchemaVersion VALUES (99, 'from the future', NOW())", "");
@@ -136,7 +143,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
     FAIL() << "a newer schema was accepted";
   } catch (const DbError& e) {
     EXPECT_NE(std::string(e.what()).find("database 'simpartner_b' has schema version 99, newer than "
-                                         "this program's 6"),
+                                         "this program's 7"),
               std::string::npos) << e.what();
   }
 }

@@ -18,6 +18,8 @@
 #include <vector>
 
 #include "simpartner/channels.h"
+#include "simpartner/client/client.h"
+#include "simpartner/client/lock_step.h"
 #include "simpartner/child_process.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
@@ -175,6 +177,52 @@ TEST_F(LockStepProcessTest, AClosedLoopRepeatsWithTheControllerOnAnotherHost) {
   EXPECT_EQ(there.output, here.output);
   EXPECT_EQ(there.hash, here.hash);
   EXPECT_NE(here.hash, 0u);
+}
+
+// Two synchronous controllers at different periods: drive_to_point every
+// 10 steps and an observer of the test's own every 7 that answers with no
+// command. The sim waits for each at its ticks (both at step 70, 140 ...),
+// and the run is the very run drive_to_point gives alone.
+TEST_F(LockStepProcessTest, TwoControllersAtDifferentPeriods) {
+  const RunResult alone = ClosedLoop(0, 10, "alone");
+  ASSERT_EQ(alone.status, 0) << alone.output;
+
+  const std::string url = BusUrl(next_bus_++);
+  RunListener listener(url);
+  ChildProcess sim(SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
+                              {"--startPaused=1", "--speed=0"}),
+                   (dir_ / "two_sim.log").string());
+  client::ClientOptions options;
+  options.url = url;
+  options.program = "observer";
+  options.model_timeout = 10;
+  client::Client observer(options);
+  client::LockStepOptions every7;
+  every7.period = 7;
+  every7.resume = false;  // drive_to_point resumes when it has joined too
+  client::LockStep loop(observer, every7);
+  ChildProcess controller(
+      BuiltCommand("drive_to_point",
+                   {"--lcm-url", url, "--x", kGoal[0], "--z", kGoal[1], "--period", "10"}),
+      (dir_ / "two_controller.log").string());
+  int64_t ticks = 0;
+  try {
+    for (;; ++ticks) {
+      const state_t& s = loop.Next();
+      ASSERT_EQ(s.step % 7, 0);
+      if (!controller.running() && s.step > alone.last_tick) break;
+    }
+  } catch (const client::LockStepError& e) {
+    FAIL() << e.what();
+  }
+  ASSERT_TRUE(controller.Wait(std::chrono::seconds(10)).has_value());
+  const std::string output = ReadText(dir_ / "two_controller.log");
+  EXPECT_EQ(output, alone.output);
+  listener.Until([&] { return listener.states.count(alone.last_tick) > 0; }, 5);
+  EXPECT_EQ(listener.Hash(alone.last_tick), alone.hash);
+  EXPECT_GT(ticks, alone.last_tick / 7 - 2);  // every tick of the observer's came
+  // Both ticks' states were published: multiples of 7 and of 10.
+  EXPECT_TRUE(listener.states.count(70) && listener.states.count(77) && listener.states.count(80));
 }
 
 // The comparison above can fail: the same controller reading the newest
