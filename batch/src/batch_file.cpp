@@ -11,6 +11,7 @@
 #include "batch_dtd.h"  // generated: kBatchDtdText
 #include "simpartner/data_paths.h"
 #include "simpartner/model/loader.h"
+#include "simpartner/model/robot_choice.h"
 #include "simpartner/parameters.h"
 #include "simpartner/text.h"
 #include "simpartner/xml_document.h"
@@ -119,6 +120,8 @@ class Reader {
     if (key == "lcmUrl" || key == "speed" || key == "startPaused" || key == "duration")
       Error(node, "parameter '" + key + "' is the batch's to set (every run has its own bus, "
                   "starts paused, runs as fast as possible for <duration>)");
+    else if (key == "environment")
+      Error(node, "the world is <world>'s (or a <vary key=\"environment\">'s, a world per run)");
     else if (CheckParameter(node, key, value))
       batch_.parameters.emplace_back(key, value);
   }
@@ -174,13 +177,36 @@ class Reader {
       vary.values = Words(*Attribute(node, "values"));
       if (vary.values.empty()) Error(node, "'" + vary.name + "' has no values");
       if (!names.insert(vary.name).second) Error(node, "'" + vary.name + "' is swept twice");
-      CheckVary(node, vary);
+      CheckVary(node, &vary);
       batch_.sweep.push_back(std::move(vary));
     }
     CheckListLengths(sweep);
   }
 
-  void CheckVary(const xmlNode* node, const Vary& vary) {
+  // A sweep over worlds (key environment) or robots (key robot, the sim's
+  // --robot): each value found now, so a run never starts on a name that is
+  // not there.
+  bool CheckScenario(const xmlNode* node, Vary* vary) {
+    if (vary->name == "environment") {
+      for (std::string& value : vary->values)
+        if (const auto path = Find(node, value, "world", {"models/worlds"})) value = *path;
+      return true;
+    }
+    if (vary->name != "robot") return false;
+    if (!batch_.robot.empty()) Error(node, "the robot is fixed by <robot> and swept here");
+    for (const std::string& value : vary->values) {
+      try {
+        model::RobotFileOf(value);
+      } catch (const ConfigError& e) {
+        for (const Diagnostic& d : e.diagnostics().items()) Error(node, d.message);
+      }
+    }
+    return true;
+  }
+
+  void CheckVary(const xmlNode* node, Vary* swept) {
+    if (swept->is_parameter && CheckScenario(node, swept)) return;
+    const Vary& vary = *swept;
     if (!vary.is_parameter) {
       if (!IsPlainName(vary.name) || kBuiltInPlaceholders.count(vary.name))
         Error(node, "variable name '" + vary.name + "': letters, digits, _ - . and not one of "
@@ -215,9 +241,16 @@ class Reader {
     for (const batch::Figure& other : batch_.figures)
       if (other.name == f.name) Error(node, "figure '" + f.name + "' is named twice");
     if (!IsPlainName(f.name)) Error(node, "figure name '" + f.name + "': letters, digits, _ - .");
-    if (world_ && batch_.robot.empty() && !HasBody(f.body))
+    if (world_ && batch_.robot.empty() && !Swept("environment") && !Swept("robot") &&
+        !HasBody(f.body))
       Error(node, "body '" + f.body + "' is in none of the world's robots and objects");
     batch_.figures.push_back(f);
+  }
+
+  bool Swept(const std::string& key) const {
+    for (const Vary& v : batch_.sweep)
+      if (v.is_parameter && v.name == key) return true;
+    return false;
   }
 
   bool HasBody(const std::string& name) const {

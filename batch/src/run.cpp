@@ -36,6 +36,9 @@ std::vector<std::string> SimArgv(const BatchFile& batch, const PlannedRun& run,
                                  const std::string& url) {
   // No parameters file: the built-in defaults and the batch's values, so a
   // run does not depend on the directory it runs in.
+  // A sweep's environment (a world per run) comes after the batch's and
+  // wins, as the last of a key on a command line does; robot is the sim's
+  // --robot=NAME.
   std::vector<std::string> argv = {Program("simpartner-sim"), "--params", "/dev/null",
                                    "--environment=" + batch.world, "--startPaused=1",
                                    "--speed=0", "--duration=" + ShortestNumber(batch.duration),

@@ -118,6 +118,35 @@ TEST(BatchFileTest, RefusalsNameTheLineAndWhy) {
   EXPECT_TRUE(has(e, f + "4: duration: duration '-1': seconds of sim time above 0")) << e;
 }
 
+// A regression suite of scenarios: a world per run, a robot per run, each
+// found before anything starts.
+TEST(BatchFileTest, WorldsAndRobotsCanBeSwept) {
+  const std::string scenarios =
+      "  <world>gen1_flat.xml</world>\n  <duration>1</duration>\n"
+      "  <controller>drive_to_point --lcm-url {url}</controller>\n"
+      "  <sweep mode=\"list\">\n"
+      "    <vary key=\"environment\" values=\"flat_ground.xml maze.xml\"/>\n"  // line 6
+      "    <vary key=\"robot\" values=\"gen3 gen2\"/>\n"                       // line 7
+      "  </sweep>\n";
+  const BatchParseResult r = ParseBatchFile(File(scenarios), Name());
+  ASSERT_TRUE(r.batch) << r.diagnostics.Format();
+  const std::vector<PlannedRun> runs = PlanRuns(*r.batch);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[1].parameters[0].second, test_support::SourceDir() + "/models/worlds/maze.xml");
+  EXPECT_EQ(runs[1].parameters[1], (std::pair<std::string, std::string>{"robot", "gen2"}));
+
+  std::string bad = scenarios;
+  bad.replace(bad.find("maze.xml"), 8, "maize.xml");
+  bad.replace(bad.find("gen2"), 4, "gen5");
+  const std::string e = Errors(File(bad));
+  EXPECT_NE(e.find(Name() + ":6: vary: world 'maize.xml' not found"), std::string::npos) << e;
+  EXPECT_NE(e.find(Name() + ":7: vary: "), std::string::npos) << e;
+  EXPECT_NE(e.find("gen5"), std::string::npos) << e;
+  std::string fixed = scenarios;
+  fixed.replace(fixed.find("  <duration>"), 0, "  <parameter key=\"environment\">maze.xml</parameter>\n");
+  EXPECT_NE(Errors(File(fixed)).find("the world is <world>'s"), std::string::npos);
+}
+
 TEST(BatchFileTest, AFileThatCannotBeReadSaysSo) {
   const BatchParseResult r = LoadBatchFile("/nonexistent/batch.xml");
   EXPECT_FALSE(r.batch);
