@@ -58,11 +58,19 @@ std::vector<std::string> ControllerOrSequencer(const BatchFile& batch, const Pla
   return argv;
 }
 
-bool FileHolds(const fs::path& path, const std::string& text) {
+std::string FileText(const fs::path& path) {
   std::ifstream in(path);
   std::stringstream s;
   s << in.rdbuf();
-  return s.str().find(text) != std::string::npos;
+  return s.str();
+}
+
+// What a process that ended early wrote (why, as a rule), on one line.
+std::string LogInOneLine(const fs::path& log) {
+  std::string text = Trim(FileText(log));
+  for (char& c : text)
+    if (c == '\n') c = ' ';
+  return text.size() > 400 ? text.substr(0, 400) + " ..." : text;
 }
 
 // The run's processes, stopped (and reaped) when it goes.
@@ -92,9 +100,9 @@ bool StartLogger(const RunContext& context, const std::string& url, const std::s
   p->logger = std::make_unique<ChildProcess>(argv, (dir / "logger.log").string());
   const Clock::time_point start = Clock::now();
   while (SecondsSince(start) < 30) {
-    if (FileHolds(dir / "logger.log", "logging ")) return true;
+    if (FileText(dir / "logger.log").find("logging ") != std::string::npos) return true;
     if (const auto ended = p->logger->Wait(std::chrono::milliseconds(50))) {
-      *status = ExitText("logger", *ended) + " before logging (see logger.log)";
+      *status = ExitText("logger", *ended) + " before logging: " + LogInOneLine(dir / "logger.log");
       return false;
     }
   }
