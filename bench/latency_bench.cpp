@@ -23,6 +23,7 @@
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_t.hpp"
+#include "simpartner/sender.h"
 #include "simpartner/sim/sim_node.h"
 
 int main(int argc, char** argv) {
@@ -87,7 +88,7 @@ int main(int argc, char** argv) {
     c.target = target.name;
     c.action = command_t::ACTION_HOLD;
     c.apply_at_step = -1;
-    c.utime = sim::NowMicros();
+    c.utime = WallMicros();
     sent[c.request_id] = c.utime;
     bus.publish(channels::kCommand, &c);
     const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(gap_us(random));

@@ -25,17 +25,12 @@
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/state_t.hpp"
+#include "simpartner/sender.h"
 
 namespace simpartner {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-int64_t NowMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 struct Options {
   double seconds = 60;
@@ -72,7 +67,7 @@ class Receiver {
  public:
   explicit Receiver(int64_t expected) : seen_(static_cast<size_t>(expected) + 1, false) {}
   void OnState(const lcm::ReceiveBuffer* buffer, const std::string&) {
-    const int64_t now = NowMicros();
+    const int64_t now = WallMicros();
     state_t s;
     if (s.decode(buffer->data, 0, static_cast<int>(buffer->data_size)) < 0) return;
     if (s.step < 1 || s.step >= static_cast<int64_t>(seen_.size())) return;
@@ -119,7 +114,7 @@ Figures Measure(const test_support::NamespaceLan& lan, const std::string& from, 
     for (int64_t i = 1; i <= count; ++i) {
       std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(period * (i - 1)));
       state.step = i;
-      state.utime = NowMicros();
+      state.utime = WallMicros();
       if (lcm.publish(channels::kState, &state) != 0) ++sent.failed_sends;
       ++sent.sent;
     }

@@ -7,20 +7,90 @@
 #include <stdexcept>
 
 #include "simpartner/channels.h"
+#include "simpartner/sender.h"
+#include "simpartner/state_request_t.hpp"
+#include "simpartner/sync_t.hpp"
 
 namespace simpartner::batch {
 
 RunObserver::RunObserver(const std::string& url, const std::vector<Figure>& figures)
-    : lcm_(url), figures_(figures), accumulators_(figures.size()) {
+    : lcm_(url),
+      figures_(figures),
+      accumulators_(figures.size()),
+      sender_(SenderName("simpartner-batch")) {
   if (!lcm_.good()) throw std::runtime_error("cannot open LCM at '" + url + "'");
   lcm_.subscribe(channels::kModel, &RunObserver::OnModel, this);
   lcm_.subscribe(channels::kState, &RunObserver::OnState, this)->setQueueCapacity(100000);
+  lcm_.subscribe(channels::kStateReply, &RunObserver::OnStateReply, this);
+  lcm_.subscribe(channels::kSyncReply, &RunObserver::OnSyncReply, this);
 }
 
 void RunObserver::Pump(int quiet_ms, int budget_ms) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(budget_ms);
   // handleTimeout dispatches one message: go on while they come.
-  while (lcm_.handleTimeout(quiet_ms) > 0 && std::chrono::steady_clock::now() < end) {
+  while (lcm_.handleTimeout(quiet_ms) > 0) {
+    last_heard_ = std::chrono::steady_clock::now();
+    if (last_heard_ >= end) return;
+  }
+  AskAgainIfQuiet();
+}
+
+void RunObserver::AskToJoin() {
+  sync_t join{};
+  join.utime = WallMicros();
+  join.controller = kPaceName;
+  join.sender = sender_;
+  join.action = sync_t::ACTION_JOIN;
+  join.period = kPacePeriod;
+  lcm_.publish(channels::kSync, &join);
+}
+
+void RunObserver::Answer(int64_t tick) {
+  sync_t done{};
+  done.utime = WallMicros();
+  done.controller = kPaceName;
+  done.sender = sender_;
+  done.action = sync_t::ACTION_DONE;
+  done.tick = tick;
+  lcm_.publish(channels::kSync, &done);
+  answered_ = std::max(answered_, tick);
+}
+
+// Quiet while paced: the sim may wait at a tick whose state was lost, or
+// for an answer that was; it says which step it is at (OnStateReply). A
+// paused sim answers too, at most a few times a second.
+void RunObserver::AskAgainIfQuiet() {
+  if (!joined() || !pacing_ ||
+      std::chrono::steady_clock::now() - last_heard_ < std::chrono::milliseconds(200))
+    return;
+  state_request_t request{};
+  request.utime = WallMicros();
+  request.sender = sender_;
+  lcm_.publish(channels::kStateRequest, &request);
+  last_heard_ = std::chrono::steady_clock::now();
+}
+
+void RunObserver::OnStateReply(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  state_t state;
+  if (DecodeFromBus(channel, buffer->data, buffer->data_size, &state, &refused_)) return;
+  if (!joined() || !pacing_ || (model_ && state.simulation_id != model_->simulation_id)) return;
+  // The sim waits at this step: for our answer to a tick whose state we
+  // missed (the stream then has a gap, and the hash says so), or for an
+  // answer of ours that was lost (sent again; refused as a duplicate if not).
+  if (state.step >= first_tick_ && state.step % kPacePeriod == 0) Answer(state.step);
+}
+
+void RunObserver::OnSyncReply(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  sync_reply_t reply;
+  if (DecodeFromBus(channel, buffer->data, buffer->data_size, &reply, &refused_)) return;
+  if (reply.controller != kPaceName || reply.sender != sender_) return;
+  if (reply.event == sync_reply_t::EVENT_JOINED) {
+    first_tick_ = reply.tick;
+  } else if (reply.event == sync_reply_t::EVENT_RELEASED ||
+             (reply.event == sync_reply_t::EVENT_REFUSED &&
+              reply.reason.find("duplicate") == std::string::npos)) {
+    pacing_ = false;  // the run goes on unpaced
+    pace_problem_ = reply.reason;
   }
 }
 
@@ -51,6 +121,8 @@ void RunObserver::OnState(const lcm::ReceiveBuffer* buffer, const std::string& c
   copy.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   for (const uint8_t byte : bytes) hash_ = (hash_ ^ byte) * 1099511628211ull;
   Accumulate(state);
+  if (joined() && pacing_ && state.step >= first_tick_ && state.step % kPacePeriod == 0)
+    Answer(state.step);
 }
 
 void RunObserver::Accumulate(const state_t& state) {

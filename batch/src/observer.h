@@ -1,11 +1,19 @@
-// What a batch run's bus shows, taken as it comes: the model (for the
-// bodies' indices), every SIM_STATE hashed in step order (wall clock and
-// simulation id left out: they differ from run to run), and the figures
-// of the batch file.
+// What a batch run's bus shows: the model (for the bodies' indices), every
+// SIM_STATE hashed in step order (wall clock and simulation id left out:
+// they differ from run to run), and the figures of the batch file.
+//
+// It also paces the sim: it joins as a synchronous (lock-step) controller
+// with a period of kPacePeriod steps and answers each tick, with no
+// commands, once it has that tick's state. So the sim is never more than
+// a period ahead of what this process has read, and a logger beside it
+// sees the same pace: on a loaded machine (a Slurm node running several
+// tasks) a run takes longer, but no state is lost in a full socket
+// buffer. The answers change nothing in the run (sync_t.lcm).
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -15,16 +23,29 @@
 #include "simpartner/bus_decode.h"
 #include "simpartner/model_t.hpp"
 #include "simpartner/state_t.hpp"
+#include "simpartner/sync_reply_t.hpp"
 
 namespace simpartner::batch {
 
 class RunObserver {
  public:
+  static constexpr int64_t kPacePeriod = 50;  // [steps]
+  // Its lock-step name (controllers' names order their commands; it sends none).
+  static constexpr const char* kPaceName = "simpartner-batch";
+
   // Opens `url` (throws std::runtime_error when LCM cannot).
   RunObserver(const std::string& url, const std::vector<Figure>& figures);
   // Handles what arrives until nothing has for `quiet_ms`, or for
   // `budget_ms` at most (states keep coming while a sim runs).
   void Pump(int quiet_ms, int budget_ms = 100);
+
+  // Asks the sim to take this observer as a lock-step controller (call
+  // again until joined(): a datagram may be lost). The sim should be
+  // paused, so that no step goes unpaced.
+  void AskToJoin();
+  bool joined() const { return first_tick_ >= 0; }
+  // Why the sim refused the join or released the observer, or "".
+  const std::string& pace_problem() const { return pace_problem_; }
 
   int64_t states() const { return states_; }
   int64_t last_step() const { return last_step_; }
@@ -45,6 +66,10 @@ class RunObserver {
   };
   void OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnStateReply(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnSyncReply(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void Answer(int64_t tick);
+  void AskAgainIfQuiet();
   void Accumulate(const state_t& state);
 
   lcm::LCM lcm_;
@@ -56,6 +81,12 @@ class RunObserver {
   bool complete_ = true;
   int64_t states_ = 0, last_step_ = -1;
   double sim_time_ = 0;
+  // Pacing: ticks are multiples of kPacePeriod from first_tick_ on.
+  std::string sender_;
+  int64_t first_tick_ = -1, answered_ = -1;
+  bool pacing_ = true;  // false once refused or released
+  std::string pace_problem_;
+  std::chrono::steady_clock::time_point last_heard_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace simpartner::batch

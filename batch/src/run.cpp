@@ -76,6 +76,7 @@ std::string LogInOneLine(const fs::path& log) {
 // The run's processes, stopped (and reaped) when it goes.
 struct Processes {
   std::unique_ptr<ChildProcess> logger, sim, controller;
+  std::filesystem::path sim_log;
   ~Processes() {
     for (auto* p : {&controller, &sim, &logger})
       if (*p) (*p)->Signal(SIGTERM);
@@ -108,6 +109,23 @@ bool StartLogger(const RunContext& context, const std::string& url, const std::s
   }
   *status = "logger not logging after 30 s (see logger.log)";
   return false;
+}
+
+// The observer joins the paused sim as a lock-step controller before the
+// controller starts (observer.h: no state lost on a loaded machine).
+// Returns "" or what failed.
+std::string JoinPacer(Processes* p, RunObserver* observer) {
+  const Clock::time_point start = Clock::now();
+  while (!observer->joined()) {
+    if (!observer->pace_problem().empty())
+      return "the sim refused the batch's lock-step join: " + observer->pace_problem();
+    if (const auto ended = p->sim->Wait(std::chrono::milliseconds(0)))
+      return ExitText("sim", *ended) + " before it ran: " + LogInOneLine(p->sim_log);
+    if (SecondsSince(start) > 60) return "the sim did not answer a lock-step join in 60 s (see sim.log)";
+    observer->AskToJoin();
+    observer->Pump(20, 250);
+  }
+  return "";
 }
 
 // Follows the run until the sim ends (its duration) or the timeout; then
@@ -149,10 +167,14 @@ RunResult RunOne(const BatchFile& batch, const PlannedRun& run, const RunContext
     Processes p;
     std::string failure;
     if (!context.log || StartLogger(context, url, result.tag, dir, &p, &failure)) {
-      p.sim = std::make_unique<ChildProcess>(SimArgv(batch, run, url), (dir / "sim.log").string());
-      p.controller = std::make_unique<ChildProcess>(ControllerOrSequencer(batch, run, url),
-                                                    (dir / "controller.log").string());
-      failure = Follow(context, &p, &observer, start);
+      p.sim_log = dir / "sim.log";
+      p.sim = std::make_unique<ChildProcess>(SimArgv(batch, run, url), p.sim_log.string());
+      failure = JoinPacer(&p, &observer);
+      if (failure.empty()) {
+        p.controller = std::make_unique<ChildProcess>(ControllerOrSequencer(batch, run, url),
+                                                      (dir / "controller.log").string());
+        failure = Follow(context, &p, &observer, start);
+      }
     }
     result.ok = failure.empty();
     result.status = result.ok ? "ok" : failure;

@@ -1,7 +1,5 @@
 #include "simpartner/client/client.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <iostream>
 #include <lcm/lcm-cpp.hpp>
@@ -12,22 +10,11 @@
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
+#include "simpartner/sender.h"
 #include "simpartner/state_request_t.hpp"
 
 namespace simpartner::client {
 namespace {
-
-int64_t WallMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-std::string HostName() {
-  char host[256] = {};
-  if (::gethostname(host, sizeof host - 1) != 0) return "unknown";
-  return host;
-}
 
 template <class T>
 std::vector<uint8_t> Encode(const T& message) {
@@ -43,7 +30,7 @@ constexpr size_t kMaxKeptSyncReplies = 64;
 
 Client::Client(ClientOptions options)
     : options_(std::move(options)),
-      sender_(options_.program + "@" + HostName() + ":" + std::to_string(::getpid())) {
+      sender_(SenderName(options_.program)) {
   // Two clients of one process share the sender; request ids starting at a
   // random point keep their replies apart.
   std::random_device random;

@@ -1,22 +1,12 @@
 #include "simpartner/logger/logger_config.h"
 
-#include "simpartner/data_paths.h"
-
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdlib>
 
+#include "simpartner/data_paths.h"
+#include "simpartner/sender.h"
+
 namespace simpartner::logger {
-namespace {
-
-std::string HostName() {
-  char name[256] = {0};
-  if (::gethostname(name, sizeof name - 1) != 0) return "unknown";
-  return name;
-}
-
-}  // namespace
 
 CommandLineSpec LoggerCommandLine() {
   CommandLineSpec spec;
@@ -82,7 +72,7 @@ LoggerOptions MakeLoggerOptions(const CommandLine& command_line, const Parameter
                  "is " + std::to_string(options.tag.size()) + " characters; at most 1024");
     throw ConfigError(too_long);
   }
-  options.sender = "logger@" + HostName() + ":" + std::to_string(::getpid());
+  options.sender = SenderName("logger");
   options.db = ResolveDbTarget(params, command_line.Text("db-options"), kPrivateLoggerOptions,
                                warnings);
   return options;

@@ -11,6 +11,7 @@
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/text.h"
+#include "simpartner/sender.h"
 
 namespace simpartner::logger {
 namespace {
@@ -19,12 +20,6 @@ constexpr size_t kNameBytes = 255;    // VARCHAR(255)
 constexpr size_t kPathBytes = 1024;   // VARCHAR(1024)
 constexpr size_t kTextBytes = 65535;  // TEXT
 constexpr auto kModelRequestPeriod = std::chrono::milliseconds(250);
-
-int64_t NowMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 // First non-finite value of an array, as "field[i] = value", or "". The
 // name is only built for the message (this runs for every body and joint
@@ -286,7 +281,7 @@ Record Receiver::MakeRecord(RecordKind kind, int64_t simulation_id,
   Record r;
   r.kind = kind;
   r.simulation_id = simulation_id;
-  r.received_us = NowMicros();
+  r.received_us = WallMicros();
   const uint8_t* data = static_cast<const uint8_t*>(buffer->data);
   r.payload.assign(data, data + buffer->data_size);
   return r;
@@ -371,7 +366,7 @@ bool Receiver::PushPending() {
         GapPayload gap{p.first, p.last, p.count,
                        "refused by the logger: memory queue full and spool disk full" +
                            (p.cause.empty() ? std::string() : " (" + p.cause + ")")};
-        queue_->Push(MakeGapRecord(p.record.simulation_id, NowMicros(), gap));
+        queue_->Push(MakeGapRecord(p.record.simulation_id, WallMicros(), gap));
       } else {
         const uint64_t bytes = p.record.ByteSize();
         queue_->Push(std::move(p.record));
@@ -419,7 +414,7 @@ void Receiver::Wait(Record record) {
 
 void Receiver::RequestModel() {
   model_request_t request;
-  request.utime = NowMicros();
+  request.utime = WallMicros();
   request.sender = options_.sender;
   lcm_->publish(channels::kModelRequest, &request);
   last_request_ = std::chrono::steady_clock::now();
@@ -454,7 +449,7 @@ void Receiver::CloseSilent() {
     }
     reporter_->Say("bus simulation " + std::to_string(simulation) + ": " + reason +
                    "; closing it (it is reopened if the sim is heard again)");
-    Push(MakeEndedRecord(simulation, NowMicros(), EndedPayload{clock.step, EndKind::kSilent, reason}));
+    Push(MakeEndedRecord(simulation, WallMicros(), EndedPayload{clock.step, EndKind::kSilent, reason}));
   }
 }
 
@@ -478,7 +473,7 @@ void Receiver::Heard(int64_t simulation) {
                   "the sim was heard again after %.1f s of silence (last step seen %lld)",
                   clock.silence_seconds, static_cast<long long>(clock.step));
     reporter_->Say("bus simulation " + std::to_string(simulation) + ": " + text + "; reopening it");
-    Push(MakeReopenedRecord(simulation, NowMicros(), text));
+    Push(MakeReopenedRecord(simulation, WallMicros(), text));
   }
   clock.heard = now;
 }
@@ -498,7 +493,7 @@ void Receiver::PushSilenceGap(const state_t& state, const ModelShape& shape) {
                 "the sim was silent for %.1f s (no SIM_STATE or SIM_STATUS): closed as silent "
                 "after %g s, reopened when heard again",
                 clock.silence_seconds, options_.sim_silence);
-  Push(MakeGapRecord(state.simulation_id, NowMicros(), GapPayload{before, state.step, missing, reason}));
+  Push(MakeGapRecord(state.simulation_id, WallMicros(), GapPayload{before, state.step, missing, reason}));
 }
 
 std::string Receiver::CheckStepRate(const state_t& s, int64_t received_us, const ModelShape& shape) {
@@ -693,7 +688,7 @@ void Receiver::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& cha
   if (status.run_state != status_t::RUN_STOPPED) return;
   if (ended_.count(status.simulation_id) > 0) return;
   ended_.insert(status.simulation_id);
-  Push(MakeEndedRecord(status.simulation_id, NowMicros(),
+  Push(MakeEndedRecord(status.simulation_id, WallMicros(),
                        EndedPayload{status.step, EndKind::kStopped, ""}));
 }
 

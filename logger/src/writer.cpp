@@ -15,6 +15,7 @@
 #include "simpartner/model_t.hpp"
 #include "step_rows.h"
 #include "writer_text.h"
+#include "simpartner/sender.h"
 
 namespace simpartner::logger {
 namespace {
@@ -37,12 +38,6 @@ bool IsLoadDataRefused(int code) {
          code == 2068 /* CR_LOAD_DATA_LOCAL_INFILE_REJECTED */ || code == 3948;
 }
 
-int64_t NowMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 bool IsBoundary(const Record& record) {
   return record.kind == RecordKind::kModel || record.kind == RecordKind::kSimulationEnded ||
          record.kind == RecordKind::kSimulationReopened;
@@ -51,7 +46,7 @@ bool IsBoundary(const Record& record) {
 // What a committed run adds to the result; lags from the publish times.
 void AddCommitted(const WriteResult& pending, const std::vector<int64_t>& published,
                   WriteResult* result) {
-  const int64_t committed = NowMicros();
+  const int64_t committed = WallMicros();
   result->states_written += pending.states_written;
   result->states_present += pending.states_present;
   result->rows_written += pending.rows_written;

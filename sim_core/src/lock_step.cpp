@@ -1,16 +1,11 @@
 #include "simpartner/sim/lock_step.h"
+#include "simpartner/sender.h"
 
 #include <chrono>
 #include <utility>
 
 namespace simpartner::sim {
 namespace {
-
-int64_t NowMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 std::string Quoted(const std::string& name) { return "'" + name + "'"; }
 
@@ -19,7 +14,7 @@ std::string Quoted(const std::string& name) { return "'" + name + "'"; }
 sync_reply_t LockStep::Reply(const sync_t& message, int8_t event, int64_t period, int64_t tick,
                              std::string reason) {
   sync_reply_t reply{};
-  reply.utime = NowMicros();
+  reply.utime = WallMicros();
   reply.simulation_id = message.simulation_id;
   reply.controller = message.controller;
   reply.sender = message.sender;

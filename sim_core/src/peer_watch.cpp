@@ -3,6 +3,7 @@
 #include "simpartner/channels.h"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/model_t.hpp"
+#include "simpartner/sender.h"
 #include "simpartner/sim/sim_node.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
@@ -67,7 +68,7 @@ std::optional<OtherSimulation> ProbeForOtherSimulation(lcm::LCM* lcm,
                                                        std::chrono::milliseconds wait) {
   PeerWatch watch(lcm);
   model_request_t request{};
-  request.utime = NowMicros();
+  request.utime = WallMicros();
   request.sender = SenderName("simpartner-sim");
   lcm->publish(channels::kModelRequest, &request);
   const auto end = std::chrono::steady_clock::now() + wait;

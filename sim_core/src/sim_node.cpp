@@ -13,6 +13,7 @@
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
+#include "simpartner/sender.h"
 #include "simpartner/state_request_t.hpp"
 #include "simpartner/sync_t.hpp"
 #include "simpartner/text.h"
@@ -42,22 +43,6 @@ std::string FormatMs(double ms) {
 }
 
 }  // namespace
-
-int64_t NowMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-std::string HostName() {
-  char name[256] = {0};
-  if (::gethostname(name, sizeof name - 1) != 0) return "unknown";
-  return name;
-}
-
-std::string SenderName(const std::string& program) {
-  return program + "@" + HostName() + ":" + std::to_string(::getpid());
-}
 
 void ReportMessageSizes(const Simulation& sim, std::ostream& out) {
   model_t model;
@@ -212,7 +197,7 @@ void SimNode::OnControl(const lcm::ReceiveBuffer* buffer, const std::string& cha
       wake_ = true;
       break;
     case control_t::ACTION_RESET:
-      sim_->Reset(NowMicros());
+      sim_->Reset(WallMicros());
       lock_step_.Clear();  // they were synchronous with the old simulation
       peers_.AddOwnId(sim_->simulation_id());
       steps_to_run_ = 0;
@@ -503,7 +488,7 @@ void SimNode::PublishStatus() {
     compute_steps_ = 0;
   }
   status_t status{};
-  status.utime = NowMicros();
+  status.utime = WallMicros();
   status.simulation_id = sim_->simulation_id();
   status.host = host_;
   status.run_state = quit_             ? status_t::RUN_STOPPED

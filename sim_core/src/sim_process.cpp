@@ -9,6 +9,7 @@
 
 #include "simpartner/bus_url.h"
 #include "simpartner/sim/peer_watch.h"
+#include "simpartner/sender.h"
 #include "simpartner/sim/sim_node.h"
 #include "simpartner/stop_signals.h"
 
@@ -41,7 +42,7 @@ int RunSimProcess(model::World world, const Parameters& params, bool allow_other
       return kOtherSimulationExitStatus;
     }
   }
-  Simulation simulation(std::move(world), params, NowMicros());
+  Simulation simulation(std::move(world), params, WallMicros());
   SimNode node(&simulation, &bus, stop_fd);
   out << "simpartner-sim: running (step " << params.stepsize << " s, " << params.stepper
       << " stepper, speed " << params.speed << ") on " << params.lcmUrl << std::endl;

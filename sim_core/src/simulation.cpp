@@ -9,15 +9,10 @@
 #include "simpartner/model/model_message.h"
 #include "simpartner/sensor_t.hpp"
 #include "simpartner/text.h"
+#include "simpartner/sender.h"
 
 namespace simpartner::sim {
 namespace {
-
-int64_t WallMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 void Copy3(const Eigen::Vector3d& v, double* out) {
   out[0] = v.x();

@@ -4,13 +4,16 @@
 // run while the others finish, logs every run with its tag into one
 // database, and a bad batch file starts nothing.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <thread>
 
 #include "../support/processes.h"
+#include "simpartner/child_process.h"
 #include "../support/programs.h"
 #include "../support/slurm.h"
 #include "../support/test_dir.h"
@@ -150,6 +153,37 @@ TEST_F(BatchProcessTest, EveryRunIsLoggedIntoOneDatabaseWithItsValues) {
     EXPECT_EQ(steps, 1000) << tag << "\n" << run.output;
   }
   server.Stop();
+}
+
+// The batch paces each sim (a lock-step controller of its own): a batch
+// process that gets no CPU for 2 s (SIGSTOP, as a loaded node does to it)
+// loses no state, and the run's hash is whole. Without the pacing the sim
+// ran on at full speed, the socket buffer overflowed and the batch saw
+// states only up to step 949 of 10,000: no hash.
+TEST_F(BatchProcessTest, ABatchThatGetsNoCpuForAWhileLosesNoState) {
+  const std::string file = Write("stall.xml",
+      "  <world>gen1_flat.xml</world>\n  <duration>10</duration>\n"
+      "  <controller>drive_to_point --lcm-url {url} --x 3 --period 10</controller>\n");
+  const fs::path results = dir_ / "results";
+  ChildProcess batch(test_support::BuiltCommand("simpartner-batch",
+                                                {file, "--no-log", "--results", results.string()}),
+                     (dir_ / "batch.log").string());
+  // The controller starts once the sim is up and paced.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(results / "runs" / "0" / "controller.log") &&
+         std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  batch.Signal(SIGSTOP);
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  batch.Signal(SIGCONT);
+  ASSERT_EQ(batch.Wait(std::chrono::minutes(5)), std::optional<int>(0))
+      << ReadText((dir_ / "batch.log").string());
+  const auto rows = Summary(results);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].at("status"), "ok");
+  EXPECT_EQ(rows[0].at("last_step"), "10000");
+  EXPECT_EQ(rows[0].at("state_hash").size(), 16u) << "a state was lost";
 }
 
 // The cluster path on a single-node Slurm of the test's own: the same runs

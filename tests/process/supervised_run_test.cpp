@@ -34,6 +34,7 @@
 #include "../support/programs.h"
 #include "../support/test_dir.h"
 #include "../support/text_file.h"
+#include "simpartner/sender.h"
 
 namespace simpartner {
 namespace {
@@ -49,12 +50,6 @@ int Count(const std::string& text, const std::string& what) {
   int n = 0;
   for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
   return n;
-}
-
-int64_t WallMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
 }
 
 double SecondsSince(Clock::time_point t) {

@@ -35,6 +35,7 @@
 #include "../support/test_dir.h"
 #include "../support/text_file.h"
 #include "../support/wait.h"
+#include "simpartner/sender.h"
 
 namespace simpartner {
 namespace {
@@ -167,12 +168,6 @@ class TeleopProcessTest : public ::testing::Test {
   std::unique_ptr<ChildProcess> teleop_;
   int pad_fd_ = -1;
 };
-
-int64_t WallMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 // The most commands one target got in any second of [from, to) (wall
 // clock micros), by the utime their sender stamped on them: the time they

@@ -1,7 +1,5 @@
 #include "simpartner/viewer/bus.h"
 
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
@@ -11,6 +9,7 @@
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
+#include "simpartner/sender.h"
 
 namespace simpartner::viewer {
 namespace {
@@ -25,12 +24,6 @@ constexpr int kStateQueue = 2000;
 // harmless for a stateless stream).
 constexpr auto kMaxDrainOverrun = std::chrono::milliseconds(30);
 
-int64_t WallMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 // Decodes a whole buffer through the shared total decoder; on failure
 // returns what is wrong ("9 bytes refused as simpartner.state_t: ...").
 template <class T>
@@ -43,14 +36,8 @@ std::optional<std::string> Decode(const lcm::ReceiveBuffer* buffer, T* out) {
 
 }  // namespace
 
-std::string ViewerSenderName() {
-  char host[256] = {0};
-  if (::gethostname(host, sizeof host - 1) != 0) std::snprintf(host, sizeof host, "unknown");
-  return "viewer@" + std::string(host) + ":" + std::to_string(::getpid());
-}
-
 ViewerBus::ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Reporter report)
-    : lcm_(*lcm), url_(url), scene_(scene), report_(std::move(report)), sender_(ViewerSenderName()) {
+    : lcm_(*lcm), url_(url), scene_(scene), report_(std::move(report)), sender_(SenderName("viewer")) {
   lcm_.subscribe(channels::kModel, &ViewerBus::OnModel, this)->setQueueCapacity(4);
   lcm_.subscribe(channels::kState, &ViewerBus::OnState, this)->setQueueCapacity(kStateQueue);
   lcm_.subscribe(channels::kStatus, &ViewerBus::OnStatus, this)->setQueueCapacity(100);

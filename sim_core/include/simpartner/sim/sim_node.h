@@ -173,10 +173,5 @@ class SimNode {
 inline constexpr size_t kSafeMessageBytes = 200 * 1024;
 void ReportMessageSizes(const Simulation& sim, std::ostream& out);
 
-// "name@host:pid", the sender name of this process on the bus.
-std::string SenderName(const std::string& program);
-std::string HostName();
-// Microseconds of the wall clock (for utime fields).
-int64_t NowMicros();
 
 }  // namespace simpartner::sim

@@ -63,7 +63,5 @@ class ViewerBus {
   int64_t request_id_ = 0;
 };
 
-// "viewer@host:pid".
-std::string ViewerSenderName();
 
 }  // namespace simpartner::viewer
