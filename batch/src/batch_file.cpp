@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "batch_dtd.h"  // generated: kBatchDtdText
+#include "simpartner/bounded_file.h"
 #include "simpartner/data_paths.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/model/robot_choice.h"
@@ -320,14 +321,11 @@ BatchParseResult ParseBatchFile(const std::string& text, const std::string& file
 BatchParseResult LoadBatchFile(const std::string& path) {
   std::string text;
   try {
-    if (!model::ReadFileFromDisk(path, &text)) {
-      BatchParseResult result;
-      result.diagnostics.Add(path, 0, "", "cannot read the batch file");
-      return result;
-    }
-  } catch (const model::ModelFileError& e) {
+    text = ReadBoundedFile(path, xml::kMaxDocumentBytes, "batch files");
+  } catch (const FileReadError& e) {
     BatchParseResult result;
-    result.diagnostics.Add(path, 0, "", e.what());
+    result.diagnostics.Add(
+        path, 0, "", e.cannot_open() ? std::string("cannot read the batch file: ") + e.what() : e.what());
     return result;
   }
   return ParseBatchFile(text, path);

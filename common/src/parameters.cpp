@@ -6,12 +6,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
+#include "simpartner/bounded_file.h"
 #include "simpartner/data_paths.h"
 #include "simpartner/edit_distance.h"
 #include "simpartner/text.h"
@@ -237,14 +237,17 @@ Parameters LoadParameters(const ParameterSources& sources) {
     } catch (const DataFileNotFound&) {
     }
   }
-  std::ifstream in;
-  if (!file.empty()) in.open(file, std::ios::binary);
-  if (in) {
-    std::ostringstream text;
-    text << in.rdbuf();
-    ParseParametersText(text.str(), file, &params, &diagnostics);
-  } else if (sources.file_given) {
-    diagnostics.Add(file, 0, "", "cannot open parameters file");
+  if (!file.empty()) {
+    try {
+      ParseParametersText(ReadBoundedFile(file, kMaxSettingsFileBytes, "parameters files"), file,
+                          &params, &diagnostics);
+    } catch (const FileReadError& e) {
+      // The default file is optional: one that cannot be opened is skipped.
+      if (!e.cannot_open())
+        diagnostics.Add(file, 0, "", e.what());
+      else if (sources.file_given)
+        diagnostics.Add(file, 0, "", std::string("cannot open parameters file: ") + e.what());
+    }
   }
   const std::vector<Entry> entries = BindEntries(&params);
   for (const auto& [key, value] : sources.overrides) {

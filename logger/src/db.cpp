@@ -8,12 +8,12 @@
 #include <cppconn/prepared_statement.h>
 #include <sys/stat.h>
 
+#include "simpartner/bounded_file.h"
 #include "simpartner/data_paths.h"
 #include "simpartner/logger/sql_text.h"
 #include "simpartner/text.h"
 
 #include <cctype>
-#include <fstream>
 #include <sstream>
 
 namespace simpartner::logger {
@@ -33,11 +33,17 @@ struct ClientOptions {
 
 ClientOptions ReadClientOptions(const std::string& path, DiagnosticList* diagnostics) {
   ClientOptions options;
-  std::ifstream in(path);
-  if (!in) {
-    diagnostics->Add(path, 0, "", "cannot open the database option file");
+  std::string text;
+  try {
+    text = ReadBoundedFile(path, kMaxSettingsFileBytes, "database option files");
+  } catch (const FileReadError& e) {
+    diagnostics->Add(path, 0, "",
+                     e.cannot_open()
+                         ? std::string("cannot open the database option file: ") + e.what()
+                         : e.what());
     return options;
   }
+  std::istringstream in(text);
   std::string line;
   std::string group;
   while (std::getline(in, line)) {

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 #include "sequence_dtds.h"
+#include "simpartner/bounded_file.h"
 #include "simpartner/command_shape.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/text.h"
@@ -574,15 +574,16 @@ SequenceParseResult ParseSequence(const std::string& xml, const std::string& fil
 }
 
 SequenceParseResult LoadSequenceFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::string text;
+  try {
+    text = ReadBoundedFile(path, xml::kMaxDocumentBytes, "sequence files");
+  } catch (const FileReadError& e) {
     SequenceParseResult result;
-    result.diagnostics.Add(path, 0, "", "cannot be read");
+    result.diagnostics.Add(path, 0, "",
+                           e.cannot_open() ? std::string("cannot be read: ") + e.what() : e.what());
     return result;
   }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return ParseSequence(buffer.str(), path);
+  return ParseSequence(text, path);
 }
 
 }  // namespace simpartner::sequencer

@@ -29,6 +29,12 @@ CommandLineSpec SimCommandLine() {
              "start even when another simulation is heard on the bus (by default the sim asks "
              "for SIM_MODEL first and refuses to start if another sim answers)"),
   };
+  spec.epilogue =
+      "Exit status: 0 the run ended (its duration, SIM_CONTROL quit, SIGINT or SIGTERM); 1 an "
+      "error while running; 2 bad input (parameters, world, robot), nothing started; 3 another "
+      "simulation is on the bus, nothing started; 4 the run faulted (an exploding or non-finite "
+      "state, or ODE gave up) before its --duration, which a faulted sim cannot reach without a "
+      "reset.";
   spec.parameters = ParameterUse{{parameter_sections::kWorld, parameter_sections::kStepping,
                                   parameter_sections::kContact, parameter_sections::kRunning,
                                   parameter_sections::kTransport}};

@@ -83,8 +83,15 @@ void SimNode::Warn(int8_t severity, const std::string& source, const std::string
   w.severity = severity;
   w.source = source;
   w.message = message;
-  std::cerr << "simpartner-sim: step " << w.step << ": " << source << ": " << message << "\n";
+  Record(std::move(w));
+}
+
+void SimNode::Record(warning_t w) {
+  std::cerr << "simpartner-sim: step " << w.step << ": " << w.source << ": " << w.message << "\n";
   ++warnings_total_;
+  // The fault that paused the run stays in every status while it lasts,
+  // however many warnings come after it.
+  if (w.severity == warning_t::SEVERITY_ERROR && sim_->faulted()) fault_warning_ = w;
   recent_warnings_.push_back(std::move(w));
   if (recent_warnings_.size() > kRecentWarnings) recent_warnings_.pop_front();
   status_changed_ = true;
@@ -381,14 +388,7 @@ void SimNode::ReportInputDeferrals() {
 }
 
 void SimNode::CollectWarnings() {
-  for (warning_t& w : sim_->TakeWarnings()) {
-    std::cerr << "simpartner-sim: step " << w.step << ": " << w.source << ": " << w.message
-              << "\n";
-    ++warnings_total_;
-  recent_warnings_.push_back(std::move(w));
-    if (recent_warnings_.size() > kRecentWarnings) recent_warnings_.pop_front();
-    status_changed_ = true;
-  }
+  for (warning_t& w : sim_->TakeWarnings()) Record(std::move(w));
 }
 
 bool SimNode::WaitingForControllers() {
@@ -504,6 +504,11 @@ void SimNode::PublishStatus() {
   status.commands_rejected = commands_rejected_;
   status.bad_messages = bad_messages_;
   status.warnings.assign(recent_warnings_.begin(), recent_warnings_.end());
+  if (sim_->faulted() && fault_warning_ &&
+      std::none_of(status.warnings.begin(), status.warnings.end(), [&](const warning_t& w) {
+        return w.step == fault_warning_->step && w.message == fault_warning_->message;
+      }))
+    status.warnings.insert(status.warnings.begin(), *fault_warning_);
   status.num_warnings = static_cast<int16_t>(status.warnings.size());
   status.sync_controllers = lock_step_.Describe(sim_->step());
   status.num_sync_controllers = static_cast<int16_t>(status.sync_controllers.size());
@@ -597,6 +602,7 @@ int SimNode::Run() {
   auto next_status = Clock::now();
   run_start_ = last_progress_ = Clock::now();
   PublishModel();
+  int exit_status = 0;
 
   while (!quit_) {
     const bool stepping = !sim_->faulted() && (!paused_ || steps_to_run_ > 0);
@@ -633,10 +639,18 @@ int SimNode::Run() {
     } else {
       PublishPending();
     }
+    if (last_step >= 0 && sim_->faulted() && !quit_) {
+      PublishPending();  // the fault's warning, with the status below
+      std::cerr << "simpartner-sim: faulted at step " << sim_->step() << " of the " << last_step
+                << " of --duration, which it cannot reach without a reset: ending (exit status "
+                << kFaultedExitStatus << ")" << std::endl;
+      exit_status = kFaultedExitStatus;
+      quit_ = true;
+    }
     PublishDue(&next_model, &next_status, model_period, status_period);
   }
-  PublishStatus();  // RUN_STOPPED
-  return 0;
+  PublishStatus();  // RUN_STOPPED, with the fault among its warnings
+  return exit_status;
 }
 
 }  // namespace simpartner::sim

@@ -8,11 +8,11 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include "simpartner/actuator_t.hpp"
+#include "simpartner/bounded_file.h"
 #include "simpartner/client/errors.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/model/model_message.h"
@@ -238,11 +238,12 @@ Mapping ParseMapping(const std::string& text, const std::string& file) {
 }
 
 Mapping LoadMapping(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw MappingError({{path, 0, "cannot be read"}});
-  std::stringstream s;
-  s << in.rdbuf();
-  return ParseMapping(s.str(), path);
+  try {
+    return ParseMapping(ReadBoundedFile(path, kMaxSettingsFileBytes, "mapping files"), path);
+  } catch (const FileReadError& e) {
+    throw MappingError(
+        {{path, 0, e.cannot_open() ? std::string("cannot be read: ") + e.what() : e.what()}});
+  }
 }
 
 std::string MappingFileFor(const std::string& model_name, const std::string& dir) {

@@ -304,6 +304,45 @@ TEST_F(SimProcessTest, SigintAndSigtermStopTheRunCleanly) {
   }
 }
 
+// A world that explodes at step 1 (a 9,999 m/s start, beyond
+// maxLinearVelocity) passes --check. With --duration the sim ends at once
+// with exit status 4 (before, it never ended: no step comes after a
+// fault), its last SIM_STATUS naming the fault; without, it stays paused
+// as FAULTED, says why in every status, and SIGTERM ends it.
+TEST_F(SimProcessTest, AFaultedSimEndsAtItsDurationAndOnSigtermNamingTheFault) {
+  std::string world = ReadText(test_support::SourceDir() + "/models/worlds/free_fall_thrown.xml");
+  world.replace(world.find("<vx>10</vx>"), 11, "<vx>9999</vx>");
+  const std::string path = (dir_ / "explodes.xml").string();
+  std::ofstream(path) << world;
+  auto names_fault = [](const status_t& s) {
+    for (const warning_t& w : s.warnings)
+      if (w.message.find("exploded at step 1") != std::string::npos) return true;
+    return false;
+  };
+  {
+    const std::string url = BusUrl(40);
+    Listener bus(url);
+    SimProcess sim(path, url, Log(), {"--duration=1", "--speed=0"});
+    EXPECT_EQ(sim.Wait(std::chrono::seconds(10)), std::optional<int>(4)) << LogText();
+    EXPECT_NE(LogText().find("faulted at step 1 of the 1000 of --duration"), std::string::npos)
+        << LogText();
+    ASSERT_TRUE(bus.Until([&] { return !bus.statuses.empty() &&
+                                       bus.statuses.back().run_state == status_t::RUN_STOPPED; },
+                          2.0));
+    EXPECT_TRUE(names_fault(bus.statuses.back()));
+  }
+  const std::string url = BusUrl(41);
+  Listener bus(url);
+  SimProcess sim(path, url, Log(), {"--speed=0"});
+  ASSERT_TRUE(bus.Until([&] { return !bus.statuses.empty() &&
+                                     bus.statuses.back().run_state == status_t::RUN_FAULTED; },
+                        10.0))
+      << LogText();
+  EXPECT_TRUE(names_fault(bus.statuses.back()));
+  sim.Signal(SIGTERM);
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), std::optional<int>(0)) << LogText();
+}
+
 // The same timed commands give the same SIM_STATE stream at real time and
 // as fast as possible.
 TEST_F(SimProcessTest, SameStreamAtAnySpeed) {

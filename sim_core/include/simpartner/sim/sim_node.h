@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -37,8 +38,12 @@ class SimNode {
   SimNode& operator=(const SimNode&) = delete;
 
   // Runs until SIM_CONTROL quit, stop_fd or the duration parameter.
-  // Returns the process exit status (0).
+  // Returns the process exit status: 0, or kFaultedExitStatus when a
+  // duration was set and the health check (or ODE) faulted the run first:
+  // a faulted sim takes no step until a reset, so its duration would never
+  // come.
   int Run();
+  static constexpr int kFaultedExitStatus = 4;  // 2: bad input, 3: another sim
 
   // Pieces of Run for tests: handle what arrived (waiting at most
   // timeout), then one step with its publications.
@@ -117,6 +122,7 @@ class SimNode {
   void Publish(const char* channel, const T& message);
   // Reports on stderr and in the next SIM_STATUS.
   void Warn(int8_t severity, const std::string& source, const std::string& message);
+  void Record(warning_t warning);  // on stderr and in the statuses
 
   Simulation* sim_;
   lcm::LCM* lcm_;
@@ -155,6 +161,7 @@ class SimNode {
   int64_t refusal_replies_withheld_ = 0;
   bool wake_ = false;            // a control arrived: stop waiting for the deadline
   std::deque<warning_t> recent_warnings_;
+  std::optional<warning_t> fault_warning_;  // what faulted the run (Record)
   // Pacing and figures.
   Clock::time_point next_deadline_;
   bool schedule_anchored_ = false;
