@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
     if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
     model::World world = sim::LoadSimWorld(command_line, params);
     std::cout << model::DescribeWorld(world) << std::flush;
-    if (command_line.Has("check")) return 0;
+    if (command_line.Has("check")) return sim::CheckMessageSizes(world, params, std::cerr);
     return sim::RunSimProcess(std::move(world), params, command_line.Has("allow-other-sims"),
                               std::cout, std::cerr);
   } catch (const DiagnosticError& e) {

@@ -155,6 +155,12 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
   ReadSensorTarget(reader, node, robot, declared, what, &sensor);
   ReadSensorMountAndRate(reader, node, what, &sensor);
   ReadSensorParameters(reader, node, what, &sensor);
+  if (sensor.kind == SensorKind::kScanner && sensor.rate * sensor.rays > kMaxScannerRaysPerSecond)
+    reader.Error(node, what + ": rate " + FormatNumber(sensor.rate, 10) + " Hz x " +
+                           std::to_string(sensor.rays) + " rays = " +
+                           FormatNumber(sensor.rate * sensor.rays, 10) +
+                           " rays/s is more than the " + FormatNumber(kMaxScannerRaysPerSecond, 10) +
+                           " rays/s a scanner may cast (models/.../model.h says why)");
   if (reader.ErrorCount() != errors_before) return std::nullopt;
   return sensor;
 }

@@ -60,8 +60,11 @@ std::vector<OtherSimulation> PeerWatch::TakeNew() { return std::exchange(new_, {
 void PeerWatch::OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   const std::optional<int64_t> id = PeekSimulationId(channel, buffer->data, buffer->data_size);
   if (!id || own_ids_.count(*id) != 0) return;
+  // Forged ids come without end: remember a bounded number (a forgotten
+  // id heard again is new again; reports are rate-limited by the caller).
+  if (heard_ids_.size() >= kMaxRememberedIds) heard_ids_.clear();
   if (!heard_ids_.insert(*id).second) return;
-  new_.push_back(OtherSimulation{*id, channel});
+  if (new_.size() < kMaxRememberedIds) new_.push_back(OtherSimulation{*id, channel});
 }
 
 std::optional<OtherSimulation> ProbeForOtherSimulation(lcm::LCM* lcm,

@@ -64,6 +64,24 @@ void ReportMessageSizes(const Simulation& sim, std::ostream& out) {
   out << std::flush;
 }
 
+std::string MessagesTooLarge(const Simulation& sim) {
+  model_t model;
+  sim.FillModel(&model);
+  state_t state;
+  sim.FillState(&state);
+  std::string problems;
+  for (auto [channel, bytes] :
+       {std::pair{channels::kModel, static_cast<size_t>(model.getEncodedSize())},
+        std::pair{channels::kState, static_cast<size_t>(state.getEncodedSize())}}) {
+    if (bytes <= kMaxMessageBytes) continue;
+    problems += std::string(problems.empty() ? "" : "; ") + channel + " would be " +
+                std::to_string(bytes) + " bytes (" + FormatNumber(bytes / 1048576.0, 4) +
+                " MiB), more than the " + std::to_string(kMaxMessageBytes >> 20) +
+                " MiB a receiver's socket buffer takes (a smaller heightfield, or fewer bodies)";
+  }
+  return problems;
+}
+
 SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd)
     : sim_(sim), lcm_(lcm), stop_fd_(stop_fd), host_(HostName()), peers_(lcm) {
   peers_.AddOwnId(sim->simulation_id());
@@ -209,7 +227,7 @@ void SimNode::OnControl(const lcm::ReceiveBuffer* buffer, const std::string& cha
       peers_.AddOwnId(sim_->simulation_id());
       steps_to_run_ = 0;
       schedule_anchored_ = false;
-      model_requested_ = true;
+      model_changed_ = true;
       wake_ = true;
       break;
     case control_t::ACTION_SET_SPEED:
@@ -330,8 +348,23 @@ void SimNode::Publish(const char* channel, const T& message) {
 }
 
 void SimNode::ReportOtherSimulations() {
-  for (const OtherSimulation& other : peers_.TakeNew())
-    Warn(warning_t::SEVERITY_ERROR, "bus", DescribeOtherSimulation(other, sim_->params().lcmUrl));
+  // The first other simulation in full at once; then at most one line per
+  // kOtherSimulationReportPeriod, counting the ids heard meanwhile (50,000
+  // forged ids once made 48,922 lines).
+  for (const OtherSimulation& other : peers_.TakeNew()) {
+    ++others_unreported_;
+    last_other_ = other;
+  }
+  const auto now = Clock::now();
+  if (others_unreported_ == 0 || now - last_other_report_ < kOtherSimulationReportPeriod) return;
+  std::string text = DescribeOtherSimulation(last_other_, sim_->params().lcmUrl);
+  if (others_unreported_ > 1)
+    text += " (" + std::to_string(others_unreported_ - 1) + " more simulation ids heard since " +
+            (others_reported_ ? "the last such line" : "the start") + ")";
+  Warn(warning_t::SEVERITY_ERROR, "bus", text);
+  others_unreported_ = 0;
+  others_reported_ = true;
+  last_other_report_ = now;
 }
 
 void SimNode::HandleIncoming(Clock::duration timeout) {
@@ -465,11 +498,12 @@ void SimNode::StepAndPublish() {
   }
 }
 
-void SimNode::PublishModel() {
+size_t SimNode::PublishModel() {
   model_t model;
   sim_->FillModel(&model);
   model.host = host_;
   Publish(channels::kModel, model);
+  return static_cast<size_t>(model.getEncodedSize());
 }
 
 void SimNode::PublishStatus() {
@@ -533,10 +567,13 @@ void SimNode::PublishDue(Clock::time_point* next_model, Clock::time_point* next_
                          Clock::duration model_period, Clock::duration status_period) {
   ReplyState();
   const auto now = Clock::now();
-  if (model_requested_ || now >= *next_model) {
-    PublishModel();
-    model_requested_ = false;
+  if (model_changed_ || ((model_requested_ || now >= *next_model) && now >= next_model_allowed_)) {
+    const double bytes = static_cast<double>(PublishModel());
+    model_requested_ = model_changed_ = false;
     *next_model = now + model_period;
+    next_model_allowed_ =
+        now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                  std::max(1.0 / kModelRepliesPerSecond, bytes / kModelBytesPerSecond)));
   }
   if (status_changed_ || now >= *next_status) {
     if (now >= *next_status) ReportInputDeferrals();

@@ -43,6 +43,11 @@ int RunSimProcess(model::World world, const Parameters& params, bool allow_other
     }
   }
   Simulation simulation(std::move(world), params, WallMicros());
+  if (const std::string too_large = MessagesTooLarge(simulation); !too_large.empty()) {
+    err << "simpartner-sim: " << too_large << "; nothing started\n";
+    ::close(stop_fd);
+    return 2;
+  }
   SimNode node(&simulation, &bus, stop_fd);
   out << "simpartner-sim: running (step " << params.stepsize << " s, " << params.stepper
       << " stepper, speed " << params.speed << ") on " << params.lcmUrl << std::endl;
@@ -57,6 +62,14 @@ int RunSimProcess(model::World world, const Parameters& params, bool allow_other
         << " at step " << simulation.step() << std::endl;
   ::close(stop_fd);
   return status;
+}
+
+int CheckMessageSizes(const model::World& world, const Parameters& params, std::ostream& err) {
+  const Simulation simulation(world, params, 0);
+  const std::string too_large = MessagesTooLarge(simulation);
+  if (too_large.empty()) return 0;
+  err << "simpartner-sim: " << too_large << "\n";
+  return 2;
 }
 
 }  // namespace simpartner::sim

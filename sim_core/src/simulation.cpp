@@ -238,6 +238,15 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
             return reject(what + ": values[3] (range) = " + FormatNumber(values[3], 10) +
                           " m is out of range (0, 10000]");
         }
+        // Without rays in the command: the scanner's present number.
+        const size_t index = static_cast<size_t>(pending.sensor);
+        const double rays = values.size() == 4 ? values[1] : sensors_[index].rays;
+        if (scanner && values[0] * rays > model::kMaxScannerRaysPerSecond)
+          return reject(what + ": rate " + FormatNumber(values[0], 10) + " Hz x " +
+                        FormatNumber(rays, 10) + " rays = " + FormatNumber(values[0] * rays, 10) +
+                        " rays/s is more than the " +
+                        FormatNumber(model::kMaxScannerRaysPerSecond, 10) +
+                        " rays/s a scanner may cast (the bus carries a double per ray)");
         break;
       }
       default:
@@ -247,9 +256,13 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
     pending.values = values;
   }
   // The queue of commands waiting for their step is bounded, so that
-  // commands dated far ahead cannot take the sim's memory.
+  // commands dated far ahead cannot take the sim's memory. A command for
+  // the next step always goes in: it leaves the queue in that step, so a
+  // queue full of far-future commands cannot lock out control.
   const size_t bytes = PendingBytes(pending);
-  if (pending_.size() >= kMaxPendingCommands || pending_bytes_ + bytes > kMaxPendingBytes)
+  const bool future = pending.step > step_;
+  if (future &&
+      (pending_.size() >= kMaxPendingCommands || pending_bytes_ + bytes > kMaxPendingBytes))
     return reject("the queue of commands waiting for their step is full (" +
                   std::to_string(pending_.size()) + " commands, " +
                   std::to_string(pending_bytes_ / 1024) + " KiB; at most " +

@@ -213,6 +213,35 @@ TEST(CheckProcess, DeviceOrFifoWorldIsRefusedAtOnce) {
   fs::remove_all(dir);
 }
 
+// A heightfield of 1100 x 1100 samples makes a SIM_MODEL of 4.8 MB, more
+// than a receiver's 4 MiB socket buffer takes: --check says so with the
+// size (before, it passed, and each SIM_MODEL_REQUEST returned the whole
+// model). 1000 x 1000 (4.0 MB) still passes.
+TEST(CheckProcess, AModelTooLargeForTheBusIsRefusedWithItsSize) {
+  char dir_template[] = "/tmp/sp_check_big.XXXXXX";
+  const char* dir = mkdtemp(dir_template);
+  ASSERT_NE(dir, nullptr);
+  auto world = [&](int n) {
+    const fs::path path = fs::path(dir) / ("field" + std::to_string(n) + ".xml");
+    std::ofstream out(path);
+    out << "<world name=\"Field\" version=\"1\">\n<gravity><x>0</x><y>-9.81</y><z>0</z>"
+           "</gravity>\n<heightfield rows=\"" << n << "\" columns=\"" << n << "\">\n"
+        << "<width>100</width><depth>100</depth><samples>";
+    for (int i = 0; i < n * n; ++i) out << "0 ";
+    out << "</samples></heightfield>\n</world>\n";
+    return path;
+  };
+  const SimRun big = RunSim(Check(world(1100)));
+  EXPECT_EQ(big.status, 2) << big.out << big.err;
+  EXPECT_NE(big.err.find("SIM_MODEL would be 4840"), std::string::npos) << big.err;
+  EXPECT_NE(big.err.find("more than the 4 MiB a receiver's socket buffer takes"),
+            std::string::npos)
+      << big.err;
+  const SimRun fits = RunSim(Check(world(1000)));
+  EXPECT_EQ(fits.status, 0) << fits.err;
+  fs::remove_all(dir);
+}
+
 // --robot: the summary names the chosen robot in place of the world's; a
 // wrong name stops before anything with a did-you-mean.
 TEST(CheckProcess, RobotFlagPutsTheNamedRobotIntoTheWorld) {

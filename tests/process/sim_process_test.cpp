@@ -525,6 +525,61 @@ TEST_F(SimProcessTest, SimsSharingABusSayItAtOnce) {
   EXPECT_EQ(second.Wait(std::chrono::seconds(5)), 0);
 }
 
+// 5,000 SIM_STATUS messages with forged simulation ids: the sim says
+// "another simulation" once, not 5,000 times (before: a line per id, 16 MB
+// of stderr for 50,000), and keeps stepping.
+TEST_F(SimProcessTest, ForgedSimulationIdsAreReportedOnceNotPerId) {
+  const std::string url = BusUrl(35);
+  SimProcess sim(world_, url, Log(), {"--allow-other-sims"});
+  Listener bus(url);
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > 10; }, 10.0)) << LogText();
+  for (int i = 0; i < 5000; ++i) {
+    status_t forged{};
+    forged.simulation_id = 1000000 + i;
+    forged.host = "elsewhere";
+    bus.lcm().publish(channels::kStatus, &forged);
+    if (i % 500 == 499) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  auto lines = [&] {
+    const std::string text = LogText();
+    size_t n = 0;
+    for (size_t at = text.find("another simulation"); at != std::string::npos;
+         at = text.find("another simulation", at + 1))
+      ++n;
+    return n;
+  };
+  ASSERT_TRUE(bus.Until([&] { return lines() > 0; }, 3.0)) << LogText();
+  const int64_t step = bus.last_step;
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  EXPECT_EQ(lines(), 1u) << LogText();
+  EXPECT_TRUE(bus.Until([&] { return bus.last_step > step + 500; }, 5.0));
+}
+
+// 1,000 SIM_MODEL_REQUESTs in 2 s get at most kModelRepliesPerSecond
+// models a second (about 8 here, with the periodic announcement), not one
+// each: a 33-byte request returns the whole model.
+TEST_F(SimProcessTest, ModelRequestsAreAnsweredAtABoundedRate) {
+  const std::string url = BusUrl(36);
+  SimProcess sim(world_, url, Log(), {"--speed=0"});
+  Listener bus(url);
+  ASSERT_TRUE(bus.Until([&] { return !bus.models.empty() && bus.last_step > 10; }, 10.0))
+      << LogText();
+  bus.Until([] { return false; }, 0.3);  // the start's models are in
+  const size_t before = bus.models.size();
+  const auto start = Clock::now();
+  for (int i = 0; i < 1000; ++i) {
+    model_request_t request{};
+    request.sender = "flood";
+    bus.lcm().publish(channels::kModelRequest, &request);
+    bus.Until([] { return false; }, 0.002);
+  }
+  bus.Until([] { return false; }, 0.3);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const size_t models = bus.models.size() - before;
+  EXPECT_GE(models, 2u);  // requests are answered
+  EXPECT_LE(static_cast<double>(models), 4.0 * seconds + 2.0) << seconds << " s";
+}
+
 // A run says how it went when it ends, and a person watching it on a
 // terminal sees a progress line every few seconds (script(1) gives the
 // sim a terminal here); a log gets no progress lines.

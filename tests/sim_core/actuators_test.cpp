@@ -224,6 +224,22 @@ TEST(Sensors, ScannerRangesMatchWallGeometry) {
   ASSERT_TRUE(sim->Step());
   const sensor_reading_t short_range = sim->ReadSensor(sim->flat().FindSensor("", "Scanner"));
   for (double v : short_range.values) EXPECT_DOUBLE_EQ(v, 3.0);
+  // At most 200,000 rays a second (model::kMaxScannerRaysPerSecond): the
+  // issue's 10000 Hz x 10000 rays is refused; with 100 rays set, so is a
+  // rate alone of 2001 Hz, and 2000 Hz is allowed.
+  ASSERT_FALSE(sim->Submit(Command("Scanner", command_t::ACTION_SENSOR_PARAMS, {0, 100, 0.1, 3})));
+  ASSERT_TRUE(sim->Step());
+  for (const std::vector<double>& values :
+       {std::vector<double>{10000, 10000, 3.14159, 10000}, std::vector<double>{2001}}) {
+    const auto refused = sim->Submit(Command("Scanner", command_t::ACTION_SENSOR_PARAMS, values));
+    ASSERT_TRUE(refused) << values[0];
+    EXPECT_NE(refused->reason.find("rays/s is more than the 200000 rays/s a scanner may cast"),
+              std::string::npos)
+        << refused->reason;
+  }
+  EXPECT_FALSE(sim->Submit(Command("Scanner", command_t::ACTION_SENSOR_PARAMS, {2000})));
+  EXPECT_FALSE(
+      sim->Submit(Command("Scanner", command_t::ACTION_SENSOR_PARAMS, {20, 10000, 0.1, 3})));
 }
 
 }  // namespace

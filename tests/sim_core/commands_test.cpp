@@ -258,6 +258,15 @@ TEST(CommandQueueTest, TheQueueOfFutureCommandsIsBoundedAndSaysSo) {
                                  "commands"),
             std::string::npos)
       << refusal->reason;
+  // A command for the next step still goes in and applies there (before,
+  // every command was refused until a reset).
+  EXPECT_FALSE(sim->Submit(Command("ArmMotor", command_t::ACTION_HOLD, {0.5}, -1)));
+  EXPECT_FALSE(sim->Submit(Command("ArmMotor", command_t::ACTION_HOLD, {0.25}, 0)));
+  ASSERT_TRUE(sim->Step());
+  const auto replies = sim->TakeReplies();
+  ASSERT_EQ(replies.size(), 2u);
+  EXPECT_TRUE(replies[0].accepted && replies[1].accepted);
+  EXPECT_EQ(replies[1].applied_at_step, 0);
   // A big text fills the byte bound long before the count bound.
   auto other = MakeArmSim();
   command_t big = Command("ArmMotor", command_t::ACTION_HOLD, {1000}, 2000000);

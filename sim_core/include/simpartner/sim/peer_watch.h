@@ -33,6 +33,8 @@ struct OtherSimulation {
 
 class PeerWatch {
  public:
+  static constexpr size_t kMaxRememberedIds = 4096;
+
   // Subscribes to SIM_STATUS and SIM_MODEL on `lcm` (which must
   // outlive this) until destroyed.
   explicit PeerWatch(lcm::LCM* lcm);
@@ -43,7 +45,8 @@ class PeerWatch {
   // Ids this process published under (each start and reset has one): its
   // own messages come back over loopback and are not another simulation.
   void AddOwnId(int64_t simulation_id);
-  // Simulations heard since the last call, each id once in the watch's life.
+  // Simulations heard since the last call, each id once (of the last
+  // kMaxRememberedIds), at most kMaxRememberedIds.
   std::vector<OtherSimulation> TakeNew();
 
  private:

@@ -49,7 +49,8 @@ class SimNode {
   // timeout), then one step with its publications.
   void HandleIncoming(Clock::duration timeout);
   void StepAndPublish();
-  void PublishModel();
+  // Returns the bytes it published.
+  size_t PublishModel();
   void PublishStatus();
 
   // Real-time factors a SIM_CONTROL may ask for (besides <= 0: as fast as
@@ -59,6 +60,13 @@ class SimNode {
   // State requests are answered at most this often (a 40-byte request
   // returns a whole state); requests in between share the next answer.
   static constexpr int kStateRepliesPerSecond = 20;
+  // SIM_MODEL goes out at most kModelRepliesPerSecond and, for a large
+  // model, at most kModelBytesPerSecond on average, however many ask (a
+  // 33-byte request returns the whole model: 20 requests/s of a 35 MB
+  // model once slowed a sim to 0.017 x real time). A reset's new model
+  // goes out at once.
+  static constexpr int kModelRepliesPerSecond = 4;
+  static constexpr double kModelBytesPerSecond = 1024.0 * 1024.0;
 
   // A line every kProgressEvery of wall time while running (sim time,
   // real-time factor, state) to `out`, e.g. std::cout when it is a
@@ -129,12 +137,19 @@ class SimNode {
   int stop_fd_;
   std::string host_;
   PeerWatch peers_;
+  static constexpr std::chrono::seconds kOtherSimulationReportPeriod{10};
+  OtherSimulation last_other_;            // the newest id heard
+  uint64_t others_unreported_ = 0;        // ids heard since the last report
+  bool others_reported_ = false;
+  Clock::time_point last_other_report_{};  // the epoch: the first is said at once
   bool quit_ = false;
   bool paused_ = false;
   LockStep lock_step_;
   int64_t wait_tick_ = -1;                 // the tick being waited at, -1: none
   Clock::time_point wait_start_{};
-  bool model_requested_ = false;
+  bool model_requested_ = false;  // asked for (SIM_MODEL_REQUEST): within the rate
+  bool model_changed_ = false;    // a reset: at once
+  Clock::time_point next_model_allowed_{};
   bool state_requested_ = false;
   Clock::time_point last_state_reply_{};
   bool status_changed_ = true;
@@ -178,6 +193,13 @@ class SimNode {
 // receiver whose socket buffer is the kernel's default (about 208 KiB)
 // loses whole and silently.
 inline constexpr size_t kSafeMessageBytes = 200 * 1024;
+// The largest SIM_MODEL or SIM_STATE a sim publishes at all: every
+// SimPartner receiver asks for a 4 MiB socket buffer (recv_buf_size=4194304,
+// bus_url.h), and a message whose fragments do not fit is lost whole.
+inline constexpr size_t kMaxMessageBytes = 4u << 20;
+// "" or, for a model whose SIM_MODEL or SIM_STATE is larger than
+// kMaxMessageBytes, why it cannot be served (the sizes named).
+std::string MessagesTooLarge(const Simulation& sim);
 void ReportMessageSizes(const Simulation& sim, std::ostream& out);
 
 

@@ -21,4 +21,8 @@ inline constexpr int kOtherSimulationExitStatus = 3;
 int RunSimProcess(model::World world, const Parameters& params, bool allow_other_sims,
                   std::ostream& out, std::ostream& err);
 
+// For --check: builds the world as a run would and returns 2, saying why on
+// err, when its messages are too large for the bus (MessagesTooLarge), else 0.
+int CheckMessageSizes(const model::World& world, const Parameters& params, std::ostream& err);
+
 }  // namespace simpartner::sim
