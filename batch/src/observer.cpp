@@ -15,6 +15,7 @@ namespace simpartner::batch {
 
 RunObserver::RunObserver(const std::string& url, const std::vector<Figure>& figures)
     : lcm_(url),
+      url_(url),
       figures_(figures),
       accumulators_(figures.size()),
       sender_(SenderName("simpartner-batch")) {
@@ -28,10 +29,14 @@ RunObserver::RunObserver(const std::string& url, const std::vector<Figure>& figu
 void RunObserver::Pump(int quiet_ms, int budget_ms) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(budget_ms);
   // handleTimeout dispatches one message: go on while they come.
-  while (lcm_.handleTimeout(quiet_ms) > 0) {
+  int handled;
+  while ((handled = lcm_.handleTimeout(quiet_ms)) > 0) {
     last_heard_ = std::chrono::steady_clock::now();
     if (last_heard_ >= end) return;
   }
+  // LCM opens its receiving socket on the first handle: a port held by a
+  // socket without SO_REUSEADDR makes it fail, and the bus deaf.
+  if (handled < 0) throw std::runtime_error("cannot receive on '" + url_ + "' (LCM said why above)");
   AskAgainIfQuiet();
 }
 

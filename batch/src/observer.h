@@ -36,7 +36,8 @@ class RunObserver {
   // Opens `url` (throws std::runtime_error when LCM cannot).
   RunObserver(const std::string& url, const std::vector<Figure>& figures);
   // Handles what arrives until nothing has for `quiet_ms`, or for
-  // `budget_ms` at most (states keep coming while a sim runs).
+  // `budget_ms` at most (states keep coming while a sim runs). Throws
+  // std::runtime_error when LCM cannot receive at all.
   void Pump(int quiet_ms, int budget_ms = 100);
 
   // Asks the sim to take this observer as a lock-step controller (call
@@ -73,6 +74,7 @@ class RunObserver {
   void Accumulate(const state_t& state);
 
   lcm::LCM lcm_;
+  std::string url_;
   std::vector<Figure> figures_;
   std::vector<Accumulator> accumulators_;
   std::optional<model_t> model_;

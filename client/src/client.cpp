@@ -95,6 +95,15 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     auto model = std::make_shared<model_t>();
     std::lock_guard<std::mutex> lock(mutex_);
     if (refused(DecodeFromBus(channel, data, size, model.get(), &bad_messages_, &print))) return;
+    // Another simulation's model (a second sim on the bus, a stale or
+    // forged one) is not a restart of ours (simulation_follower.h).
+    if (follower_.OnModel(model->simulation_id, model->sender, Clock::now()) ==
+        SimulationFollower::Verdict::kOther) {
+      nonsense("model of another simulation (id " + std::to_string(model->simulation_id) +
+               " from '" + model->sender + "') while simulation " +
+               std::to_string(follower_.followed()) + " runs");
+      return;
+    }
     std::shared_ptr<const Catalog> catalog;
     if (catalog_ && model->simulation_id == catalog_->simulation_id()) {
       catalog = catalog_;  // the periodic announcement of the model we have
@@ -118,6 +127,7 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
       std::lock_guard<std::mutex> lock(mutex_);
       if (refused(DecodeFromBus(channel, data, size, &state, &bad_messages_, &print))) return;
       last_heard_ = Clock::now();  // a sim is there, whichever
+      follower_.Heard(state.simulation_id, Clock::now());
       if (!AcceptState(state, channel)) return;
     }
     if (channel == channels::kStateReply) return;  // a repeated step: no callback
@@ -128,6 +138,9 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     std::lock_guard<std::mutex> lock(mutex_);
     if (refused(DecodeFromBus(channel, data, size, &status, &bad_messages_, &print))) return;
     last_heard_ = Clock::now();
+    follower_.Heard(status.simulation_id, Clock::now());
+    if (status.run_state == status_t::RUN_STOPPED) follower_.Ended(status.simulation_id);
+    if (follower_.IsOther(status.simulation_id)) return;  // not our sim's status
     status_ = status;
     ++status_count_;
     changed_.notify_all();

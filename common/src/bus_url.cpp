@@ -1,12 +1,10 @@
 #include "simpartner/bus_url.h"
 
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace simpartner {
 namespace {
@@ -18,18 +16,30 @@ constexpr int kScatter = 7919;       // a prime: neighbours land far apart
 constexpr int kCandidates = 64;
 constexpr int kPidStep = 37;         // the next candidate: as if the pid were 37 more
 
-// False when some socket is bound to the port already: our processes bind
-// with SO_REUSEADDR, so a bind without it fails beside any of them.
+// False when some UDP socket on this host is bound to the port already
+// (/proc/net/udp and udp6 list them all, whatever their options). Read, not
+// probed with a bind: a probing bind without SO_REUSEADDR, however brief,
+// made another process's LCM bind on that port fail ("bind: Address
+// already in use") and its bus deaf.
 bool PortIsFree(int port) {
-  const int probe = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-  if (probe < 0) throw std::runtime_error(std::string("PrivateBusUrl: socket: ") + std::strerror(errno));
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_ANY);
-  address.sin_port = htons(static_cast<uint16_t>(port));
-  const bool bound = ::bind(probe, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0;
-  ::close(probe);
-  return bound;
+  char wanted[8];
+  std::snprintf(wanted, sizeof wanted, ":%04X", static_cast<unsigned>(port));
+  for (const char* table : {"/proc/net/udp", "/proc/net/udp6"}) {
+    std::ifstream in(table);
+    std::string line;
+    std::getline(in, line);  // the header
+    while (std::getline(in, line)) {
+      // "  sl  local_address rem_address ...": the local address is the
+      // second field, "ADDRESS:PORT" in hex.
+      std::istringstream fields(line);
+      std::string slot, local;
+      fields >> slot >> local;
+      const size_t colon = local.rfind(':');
+      if (colon != std::string::npos && local.compare(colon, std::string::npos, wanted) == 0)
+        return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace

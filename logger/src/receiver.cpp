@@ -99,11 +99,19 @@ ModelShape ShapeOf(const model_t& model) {
                     std::max(1, model.state_every), model.step_size};
 }
 
-int64_t StepAllowance(double step_size, int64_t elapsed_us) {
+int64_t StepAllowance(double step_size, int64_t elapsed_us, double factor) {
   const double seconds = static_cast<double>(std::max<int64_t>(0, elapsed_us)) / 1e6 +
                          kStepAllowanceMarginSeconds;
-  const double steps = std::ceil(kStepAllowanceFactor * seconds / step_size);
+  const double steps = std::ceil(factor * seconds / step_size);
   return steps >= 9e18 ? INT64_MAX : static_cast<int64_t>(steps);
+}
+
+double SpeedAllowance(double target_speed, double real_time_factor) {
+  const double measured = std::isfinite(real_time_factor) ? std::max(0.0, real_time_factor) : 0.0;
+  if (std::isfinite(target_speed) && target_speed > 0)
+    return std::min(kStepAllowanceFactor, std::max({2.0, 2 * target_speed, 2 * measured}));
+  if (measured <= 0) return kStepAllowanceFactor;
+  return std::min(kStepAllowanceFactor, std::max(10.0, 4 * measured));
 }
 
 std::string CheckModel(const model_t& m) {
@@ -113,6 +121,7 @@ std::string CheckModel(const model_t& m) {
     return "step_size = " + FormatNumber(m.step_size) + " (must be a positive number)";
   if (!(p = NonFinite(m.gravity, "gravity")).empty()) return p;
   if (!(p = CheckName(m.host, "host", kNameBytes)).empty()) return p;
+  if (!(p = CheckName(m.sender, "sender", kNameBytes)).empty()) return p;
   if (!(p = CheckName(m.world_file, "world_file", kPathBytes)).empty()) return p;
   if (!(p = CheckName(m.world_name, "world_name", kNameBytes)).empty()) return p;
   if (!(p = CheckName(m.parameters, "parameters", kTextBytes)).empty()) return p;
@@ -235,7 +244,12 @@ std::string CheckSensorReading(const sensor_reading_t& r, const ModelShape& shap
 }
 
 Receiver::Receiver(lcm::LCM* lcm, RecordQueue* queue, ReceiverOptions options, Reporter* reporter)
-    : lcm_(lcm), queue_(queue), options_(std::move(options)), reporter_(reporter) {
+    : lcm_(lcm),
+      queue_(queue),
+      options_(std::move(options)),
+      reporter_(reporter),
+      follower_(std::chrono::duration_cast<SimulationFollower::Clock::duration>(
+          std::chrono::duration<double>(options_.follow_silence))) {
   // Every message counts: deep subscription queues (the socket buffer is
   // raised in the URL).
   lcm_->subscribe(channels::kModel, &Receiver::OnModel, this)->setQueueCapacity(1000);
@@ -390,6 +404,7 @@ void Receiver::SpoolRecovered() {
 }
 
 void Receiver::Wait(Record record) {
+  const bool set_aside = set_aside_.count(record.simulation_id) > 0;
   waiting_bytes_ += record.ByteSize();
   waiting_.push_back(std::move(record));
   uint64_t dropped = 0;
@@ -406,10 +421,15 @@ void Receiver::Wait(Record record) {
     dropped_total = stats_.dropped_no_model;
   }
   if (dropped > 0)
-    reporter_->SayLimited("no model", "no SIM_MODEL came for the messages waiting for one; dropped " +
-                                          std::to_string(dropped_total) +
-                                          " so far (does the sim answer SIM_MODEL_REQUEST?)");
-  if (std::chrono::steady_clock::now() - last_request_ > kModelRequestPeriod) RequestModel();
+    reporter_->SayLimited("no model",
+                          "messages waiting for their SIM_MODEL, or of another simulation "
+                          "waiting to be followed, beyond " +
+                              std::to_string(options_.max_waiting_bytes >> 20) +
+                              " MiB: dropped " + std::to_string(dropped_total) +
+                              " so far (does the sim answer SIM_MODEL_REQUEST? is a second sim "
+                              "on this bus?)");
+  if (!set_aside && std::chrono::steady_clock::now() - last_request_ > kModelRequestPeriod)
+    RequestModel();
 }
 
 void Receiver::RequestModel() {
@@ -423,10 +443,39 @@ void Receiver::RequestModel() {
 }
 
 void Receiver::Tick() {
-  if (!waiting_.empty() && std::chrono::steady_clock::now() - last_request_ > kModelRequestPeriod)
+  if (NeedsModel() && std::chrono::steady_clock::now() - last_request_ > kModelRequestPeriod)
     RequestModel();
   if (!pending_.empty() && PushPending()) SpoolRecovered();
   CloseSilent();
+  FollowSuccessor();
+}
+
+bool Receiver::NeedsModel() const {
+  // Messages of a simulation set aside wait for it to be followed, not for
+  // a model.
+  return std::any_of(waiting_.begin(), waiting_.end(),
+                     [&](const Record& r) { return set_aside_.count(r.simulation_id) == 0; });
+}
+
+void Receiver::FollowSuccessor() {
+  const auto next = follower_.TakeSuccessor(std::chrono::steady_clock::now());
+  if (!next) return;
+  reporter_->Say("following simulation " + std::to_string(*next) +
+                 ": the one before stopped or went silent (a restarted sim)");
+  const auto aside = set_aside_.find(*next);
+  if (aside == set_aside_.end()) {
+    RequestModel();  // followed from its model, when it comes
+    return;
+  }
+  SetAsideModel model = std::move(aside->second);
+  set_aside_.erase(aside);
+  Follow(*next, model.shape, std::move(model.record));
+  if (model.stopped_at) {  // it ran and stopped while set aside
+    ended_.insert(*next);
+    follower_.Ended(*next);
+    Push(MakeEndedRecord(*next, WallMicros(),
+                         EndedPayload{*model.stopped_at, EndKind::kStopped, ""}));
+  }
 }
 
 void Receiver::CloseSilent() {
@@ -442,6 +491,7 @@ void Receiver::CloseSilent() {
                                seconds + " s and no RUN_STOPPED (last step seen " +
                                std::to_string(clock.step) + ")";
     ended_.insert(simulation);
+    follower_.Ended(simulation);
     clock.closed_silent = true;
     {
       std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -500,7 +550,7 @@ std::string Receiver::CheckStepRate(const state_t& s, int64_t received_us, const
   SimClock& clock = clocks_[s.simulation_id];
   if (clock.step >= 0 && s.step > clock.step) {
     const int64_t elapsed = received_us - clock.received_us;
-    const int64_t allowed = StepAllowance(shape.step_size, elapsed);
+    const int64_t allowed = StepAllowance(shape.step_size, elapsed, clock.speed_allowance);
     if (s.step - clock.step > allowed) {
       char text[256];
       std::snprintf(text, sizeof text,
@@ -509,7 +559,7 @@ std::string Receiver::CheckStepRate(const state_t& s, int64_t received_us, const
                     "or absurd",
                     static_cast<long long>(s.step), static_cast<long long>(s.step - clock.step),
                     static_cast<long long>(clock.step), static_cast<double>(elapsed) / 1e6,
-                    kStepAllowanceFactor, static_cast<long long>(allowed), shape.step_size);
+                    clock.speed_allowance, static_cast<long long>(allowed), shape.step_size);
       return text;
     }
   }
@@ -599,22 +649,60 @@ void Receiver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& chan
                            std::to_string(k.sensors) + ")");
     return;  // announced again
   }
-  models_[model.simulation_id] = shape;
-  clocks_[model.simulation_id].heard = std::chrono::steady_clock::now();
+  const auto now = std::chrono::steady_clock::now();
+  if (follower_.OnModel(model.simulation_id, model.sender, now) ==
+      SimulationFollower::Verdict::kOther) {
+    SetAside(model, MakeRecord(RecordKind::kModel, model.simulation_id, buffer));
+    return;
+  }
+  Follow(model.simulation_id, shape, MakeRecord(RecordKind::kModel, model.simulation_id, buffer));
+}
+
+void Receiver::SetAside(const model_t& model, Record record) {
+  const bool is_new = set_aside_.count(model.simulation_id) == 0;
+  SetAsideModel& aside = set_aside_[model.simulation_id];  // keeps a stop heard before
+  aside.shape = ShapeOf(model);
+  aside.record = std::move(record);
+  // Only the ones the follower still remembers, and a few: a successor
+  // without its model here is asked for it.
+  for (auto it = set_aside_.begin(); it != set_aside_.end();)
+    it = follower_.IsOther(it->first) ? std::next(it) : set_aside_.erase(it);
+  while (set_aside_.size() > kMaxSetAside) set_aside_.erase(set_aside_.begin());
+  if (!is_new) return;
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
-    stats_.simulation_id = model.simulation_id;
+    ++stats_.other_simulations;
+  }
+  reporter_->SayLimited(
+      "other simulation",
+      "another simulation on the bus: id " + std::to_string(model.simulation_id) + " from '" +
+          model.sender + "' (world '" + model.world_name + "'), while simulation " +
+          std::to_string(follower_.followed()) +
+          " runs: not logged, and it closes nothing (it is logged if the followed sim stops or "
+          "goes silent, as a restarted sim would); one bus per sim");
+}
+
+void Receiver::Follow(int64_t simulation, const ModelShape& shape, Record model_record) {
+  models_[simulation] = shape;
+  clocks_[simulation].heard = std::chrono::steady_clock::now();
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_.simulation_id = simulation;
     stats_.last_step = -1;
   }
-  Push(MakeRecord(RecordKind::kModel, model.simulation_id, buffer));
+  Push(std::move(model_record));
+  DeliverWaiting(simulation);
+}
+
+void Receiver::DeliverWaiting(int64_t simulation) {
   // What waited for this model, in arrival order; commands sent before any
   // model belong to the first simulation.
   std::deque<Record> still_waiting;
   std::deque<Record> ready;
   for (Record& r : waiting_) {
-    if (r.simulation_id == model.simulation_id ||
+    if (r.simulation_id == simulation ||
         (r.kind == RecordKind::kCommand && r.simulation_id == 0)) {
-      r.simulation_id = model.simulation_id;
+      r.simulation_id = simulation;
       ready.push_back(std::move(r));
     } else {
       still_waiting.push_back(std::move(r));
@@ -633,6 +721,7 @@ void Receiver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& chan
 void Receiver::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   state_t state;
   if (!Decode(buffer, channel, &state)) return;
+  follower_.Heard(state.simulation_id, std::chrono::steady_clock::now());
   if (models_.count(state.simulation_id) > 0) Heard(state.simulation_id);
   Deliver(MakeRecord(RecordKind::kState, state.simulation_id, buffer), &state);
 }
@@ -683,11 +772,18 @@ void Receiver::OnReply(const lcm::ReceiveBuffer* buffer, const std::string& chan
 void Receiver::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   status_t status;
   if (!Decode(buffer, channel, &status)) return;
+  follower_.Heard(status.simulation_id, std::chrono::steady_clock::now());
+  if (const auto aside = set_aside_.find(status.simulation_id);
+      aside != set_aside_.end() && status.run_state == status_t::RUN_STOPPED)
+    aside->second.stopped_at = status.step;  // closed when followed
   if (models_.count(status.simulation_id) == 0) return;
   Heard(status.simulation_id);
+  clocks_[status.simulation_id].speed_allowance =
+      SpeedAllowance(status.target_speed, status.real_time_factor);
   if (status.run_state != status_t::RUN_STOPPED) return;
   if (ended_.count(status.simulation_id) > 0) return;
   ended_.insert(status.simulation_id);
+  follower_.Ended(status.simulation_id);
   Push(MakeEndedRecord(status.simulation_id, WallMicros(),
                        EndedPayload{status.step, EndKind::kStopped, ""}));
 }

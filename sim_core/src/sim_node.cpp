@@ -83,7 +83,7 @@ std::string MessagesTooLarge(const Simulation& sim) {
 }
 
 SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd)
-    : sim_(sim), lcm_(lcm), stop_fd_(stop_fd), host_(HostName()), peers_(lcm) {
+    : sim_(sim), lcm_(lcm), stop_fd_(stop_fd), host_(HostName()), sender_(SenderName("simpartner-sim")), peers_(lcm) {
   peers_.AddOwnId(sim->simulation_id());
   paused_ = sim->params().startPaused;
   speed_ = sim->params().speed;
@@ -502,6 +502,7 @@ size_t SimNode::PublishModel() {
   model_t model;
   sim_->FillModel(&model);
   model.host = host_;
+  model.sender = sender_;
   Publish(channels::kModel, model);
   return static_cast<size_t>(model.getEncodedSize());
 }

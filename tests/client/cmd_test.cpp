@@ -195,7 +195,9 @@ TEST_F(CmdTest, RepliesDoNotRepeatOldWarnings) {
   r = cmd({"pause"});
   EXPECT_EQ(r.status, kCmdOk) << r.err;
   EXPECT_FALSE(Contains(r.out, warning)) << r.out;
-  EXPECT_TRUE(Contains(r.out, "(1 earlier warning not repeated: simpartner-cmd status lists them)"))
+  // At least that one: a loaded machine adds "behind real time" warnings.
+  EXPECT_TRUE(Contains(r.out, "earlier warning") &&
+              Contains(r.out, " not repeated: simpartner-cmd status lists them)"))
       << r.out;
   r = cmd({"resume"});
   EXPECT_FALSE(Contains(r.out, warning)) << r.out;

@@ -94,11 +94,12 @@ class ReceiverTest : public ::testing::Test {
     spool_.reset();
     std::filesystem::remove_all(dir_);
   }
-  void Start(int interval = 1, double sim_silence = 10.0) {
+  void Start(int interval = 1, double sim_silence = 10.0, double follow_silence = 2.5) {
     ReceiverOptions options;
     options.log_interval = interval;
     options.sender = "test";
     options.sim_silence = sim_silence;
+    options.follow_silence = follow_silence;
     receiver_ = std::make_unique<Receiver>(&lcm_, queue_.get(), options, &reporter_);
   }
   template <class M>
@@ -407,6 +408,109 @@ TEST_F(ReceiverTest, AForgedStepNumberIsRefusedAndLoggingGoesOn) {
   EXPECT_NE(text.find("SIM_STATE: step = 500000000 is 499999000 steps after step 1000"),
             std::string::npos) << text;
   EXPECT_NE(text.find("refused as forged or absurd"), std::string::npos) << text;
+}
+
+// The step rule at the sim's own speed (SIM_STATUS): at speed 1 a state
+// 5,000 steps ahead of the last, at once, is refused (1000 x real time
+// let it in, and a forged state +0.9e6 steps ahead made a 10-million-step
+// gap); no gap is recorded for it, and the real steps go on.
+TEST_F(ReceiverTest, AtTheSimsSpeedAStateALittleAheadIsRefused) {
+  Start();
+  Publish(channels::kModel, TwoBodyModel(5));
+  status_t status{};
+  status.simulation_id = 5;
+  status.run_state = status_t::RUN_RUNNING;
+  status.target_speed = 1;
+  status.real_time_factor = 1;
+  Publish(channels::kStatus, status);
+  for (int step = 1; step <= 100; ++step) Publish(channels::kState, State(5, step));
+  Publish(channels::kState, State(5, 5100));
+  for (int step = 101; step <= 110; ++step) Publish(channels::kState, State(5, step));
+  std::vector<int64_t> steps;
+  for (const Record& r : Queued()) {
+    EXPECT_NE(r.kind, RecordKind::kGap);
+    if (r.kind == RecordKind::kState) steps.push_back(StepOf(r));
+  }
+  ASSERT_EQ(steps.size(), 110u);
+  EXPECT_EQ(steps.back(), 110);
+  EXPECT_NE(out_.str().find("step = 5100 is 5000 steps after step 100"), std::string::npos)
+      << out_.str();
+  EXPECT_NE(out_.str().find("more than 2 x real time allows"), std::string::npos) << out_.str();
+}
+
+TEST(StepAllowanceTest, TheSimsSpeedSetsTheFactor) {
+  EXPECT_EQ(SpeedAllowance(1, 0.98), 2);
+  EXPECT_EQ(SpeedAllowance(5, 4.9), 10);
+  EXPECT_EQ(SpeedAllowance(0.1, 3), 6);      // measured above the target: a burst
+  EXPECT_EQ(SpeedAllowance(0, 1.35), 10);    // as fast as possible, slow
+  EXPECT_EQ(SpeedAllowance(0, 50), 200);     // as fast as possible, fast
+  EXPECT_EQ(SpeedAllowance(-1, 0), kStepAllowanceFactor);  // nothing measured yet
+  EXPECT_EQ(SpeedAllowance(1e9, 1e9), kStepAllowanceFactor);
+  EXPECT_EQ(StepAllowance(0.001, 500000, 2), 3000);
+}
+
+// A SIM_MODEL of another simulation from another sender while the followed
+// sim runs (a forged or stray one) is not logged and closes nothing (the
+// writer closes older simulations when a model is queued); its states wait.
+// Once the followed sim goes silent, the other is followed with the states
+// that waited, as a restarted sim's are.
+TEST_F(ReceiverTest, AnotherSimulationsModelClosesNothingUntilTheSimGoesSilent) {
+  Start(1, 10.0, 0.3);
+  model_t real = TwoBodyModel(5);
+  real.sender = "simpartner-sim@testhost:100";
+  model_t other = TwoBodyModel(6);
+  other.sender = "simpartner-sim@elsewhere:200";
+  Publish(channels::kModel, real);
+  Publish(channels::kState, State(5, 1));
+  Publish(channels::kModel, other);
+  Publish(channels::kState, State(6, 1));
+  Publish(channels::kState, State(5, 2));
+  receiver_->Tick();
+  std::vector<int64_t> models;
+  int states_of_5 = 0;
+  for (const Record& r : Queued()) {
+    if (r.kind == RecordKind::kModel) models.push_back(r.simulation_id);
+    if (r.kind == RecordKind::kState && r.simulation_id == 5) ++states_of_5;
+    EXPECT_NE(r.simulation_id, 6) << "a record of the other simulation was queued";
+  }
+  EXPECT_EQ(models, std::vector<int64_t>{5});
+  EXPECT_EQ(states_of_5, 2);
+  EXPECT_EQ(receiver_->Stats().other_simulations, 1u);
+  EXPECT_NE(out_.str().find("another simulation on the bus: id 6 from "
+                            "'simpartner-sim@elsewhere:200'"),
+            std::string::npos)
+      << out_.str();
+  // The followed sim falls silent; the other goes on.
+  for (int i = 0; i < 5; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    Publish(channels::kState, State(6, 2 + i));
+    receiver_->Tick();
+  }
+  std::vector<int64_t> steps_of_6;
+  for (const Record& r : Queued()) {
+    if (r.kind == RecordKind::kModel) {
+      EXPECT_EQ(r.simulation_id, 6);
+    }
+    if (r.kind == RecordKind::kState && r.simulation_id == 6) steps_of_6.push_back(StepOf(r));
+  }
+  EXPECT_EQ(steps_of_6, (std::vector<int64_t>{1, 2, 3, 4, 5, 6}));
+}
+
+// A new simulation from the followed sim's own sender is a reset: followed
+// at once.
+TEST_F(ReceiverTest, ANewSimulationFromTheSameSenderIsAReset) {
+  Start();
+  model_t before = TwoBodyModel(5), after = TwoBodyModel(6);
+  before.sender = after.sender = "simpartner-sim@testhost:100";
+  Publish(channels::kModel, before);
+  Publish(channels::kState, State(5, 1));
+  Publish(channels::kModel, after);
+  Publish(channels::kState, State(6, 1));
+  std::vector<int64_t> models;
+  for (const Record& r : Queued())
+    if (r.kind == RecordKind::kModel) models.push_back(r.simulation_id);
+  EXPECT_EQ(models, (std::vector<int64_t>{5, 6}));
+  EXPECT_EQ(receiver_->Stats().other_simulations, 0u);
 }
 
 TEST(StepAllowanceTest, ThousandTimesRealTimePlusOneSecond) {

@@ -281,6 +281,33 @@ TEST_F(SequencerProcessTest, RestartedSimStopsTheSequence) {
                                               "the sim restarted under the sequence");
 }
 
+// The attack: 20 forged SIM_MODELs with other simulation ids (a
+// stale sim elsewhere, a replayed log) while a sequence plays. Before, the
+// sequencer stopped ("the sim restarted under the sequence") and under
+// scripts/run played again from line 1; now it plays on.
+TEST_F(SequencerProcessTest, ForgedModelsOfOtherSimulationsDoNotStopTheSequence) {
+  const std::string url = BusUrl(12);
+  Listener bus(url, false);
+  auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");
+  const std::string file = Write("long.xml", kLongDrive);
+  auto sequencer = StartSequencer(url, file, {});
+  ASSERT_TRUE(LogHas("line 2: set Axle1Motor", 10)) << Log();
+  ASSERT_TRUE(bus.Until([&] { return !bus.models.empty(); }, 5));
+  for (int i = 0; i < 20; ++i) {
+    model_t forged = bus.models.front();
+    forged.simulation_id = 777000 + i;
+    forged.sender = "simpartner-sim@elsewhere:" + std::to_string(i);
+    bus.lcm().publish(channels::kModel, &forged);
+    bus.Pump(0.05);
+  }
+  bus.Pump(2.0);
+  EXPECT_FALSE(sequencer->Wait(std::chrono::milliseconds(0)).has_value()) << Log();
+  EXPECT_EQ(Log().find("restarted"), std::string::npos) << Log();
+  sequencer->Signal(SIGTERM);
+  sequencer->Wait(std::chrono::seconds(10));
+  sim->Stop(std::chrono::seconds(5));
+}
+
 TEST_F(SequencerProcessTest, WrongFileAgainstTheBusModelSendsNothing) {
   const std::string url = BusUrl(6);
   Listener bus(url, false);

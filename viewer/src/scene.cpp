@@ -190,6 +190,14 @@ Verdict Scene::OfferModel(const model_t& model) {
                            "): model ignored");
     return v;
   }
+  // Another simulation's model (a second sim on the bus, a stale or forged
+  // one) does not replace the one shown (simulation_follower.h).
+  if (follower_.OnModel(model.simulation_id, model.sender, SimulationFollower::Clock::now()) ==
+      SimulationFollower::Verdict::kOther)
+    return Reject(Rejection::kOtherSimulation, "SIM_MODEL",
+                  "simulation " + std::to_string(model.simulation_id) + " from '" + model.sender +
+                      "' while simulation " + std::to_string(follower_.followed()) +
+                      " is shown (another sim on this bus, or a stale or forged model): ignored");
   Verdict v;
   v.accepted = true;
   ++version_;
@@ -208,6 +216,7 @@ Verdict Scene::OfferModel(const model_t& model) {
 }
 
 Verdict Scene::OfferState(state_t&& s) {
+  follower_.Heard(s.simulation_id, SimulationFollower::Clock::now());
   if (!model_) {
     ++states_before_model_;
     Verdict v;
@@ -219,7 +228,7 @@ Verdict Scene::OfferState(state_t&& s) {
     Verdict v = Reject(Rejection::kOtherSimulation, "SIM_STATE",
                        "simulation_id = " + std::to_string(s.simulation_id) + ", the model is of " +
                            std::to_string(m.simulation_id) + ": ignored, asking for the model");
-    v.want_model = true;
+    v.want_model = !follower_.IsOther(s.simulation_id);  // its model came and was not taken
     return v;
   }
   if (s.num_bodies != m.num_bodies || static_cast<int32_t>(s.bodies.size()) != m.num_bodies)
@@ -279,9 +288,13 @@ Verdict Scene::OfferStatus(const status_t& status) {
                   "sim_time = " + FormatNumber(status.sim_time) + ", real_time_factor = " +
                       FormatNumber(status.real_time_factor) + ": ignored");
   v.accepted = true;
+  follower_.Heard(status.simulation_id, SimulationFollower::Clock::now());
+  if (status.run_state == status_t::RUN_STOPPED) follower_.Ended(status.simulation_id);
   // A status of another simulation means the sim restarted (or a paused
-  // one is running that we have not heard the model of).
-  v.want_model = !model_ || status.simulation_id != model_->simulation_id;
+  // one is running that we have not heard the model of), unless its model
+  // came and was not taken.
+  v.want_model = (!model_ || status.simulation_id != model_->simulation_id) &&
+                 !follower_.IsOther(status.simulation_id);
   if (!v.want_model || !model_) {
     status_ = status;
     ++version_;

@@ -48,6 +48,7 @@
 #include "simpartner/status_t.hpp"
 #include "simpartner/sync_reply_t.hpp"
 #include "simpartner/sync_t.hpp"
+#include "simpartner/simulation_follower.h"
 
 namespace lcm {
 class LCM;
@@ -241,6 +242,7 @@ class Client {
   std::map<int64_t, command_reply_t> replies_;
   std::optional<SimRestarted> restart_;
   int64_t latest_simulation_id_ = 0;
+  SimulationFollower follower_;  // which SIM_MODEL is our sim's (guarded by mutex_)
   std::optional<Clock::time_point> last_heard_;
   // Held while a callback runs, so that once OnState/OnReading returns the
   // old callback is not running any more.

@@ -10,6 +10,10 @@
 // spool disk full) are recorded as a gap with that reason; a simulation
 // whose sim goes silent is closed, and reopened if the sim is heard again
 // (it was stopped, or its link was down), with the silence as a gap.
+// It logs the simulation it follows (common/.../simulation_follower.h): a
+// SIM_MODEL of another simulation (a second sim on the bus, a stale or
+// forged one) closes nothing and is not logged, unless the followed sim
+// stops or goes silent first, as a restarted sim's does.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -19,6 +23,7 @@
 #include <deque>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -26,6 +31,7 @@
 #include "simpartner/logger/reporter.h"
 #include "simpartner/model_t.hpp"
 #include "simpartner/sensor_reading_t.hpp"
+#include "simpartner/simulation_follower.h"
 #include "simpartner/state_t.hpp"
 
 namespace simpartner::logger {
@@ -38,20 +44,34 @@ struct ReceiverOptions {
   // RUN_STOPPED) is closed: its sim died, as far as anyone can tell. If
   // the sim is heard again it is reopened. [s]
   double sim_silence = 10.0;
+  // A new simulation from another sender is followed (logged) once the
+  // followed sim has not been heard for this long (a restarted sim; the sim
+  // publishes a status at least every second by default) or stopped;
+  // before, it is another simulation on the bus. [s]
+  double follow_silence = 2.5;
   // Records other than states that the queue refused (its spool disk
   // full), held in memory until it takes them again.
   uint64_t max_held_bytes = 8u << 20;
 };
 
-// The step-number rule: a state may be at most this many times real time
+// The step-number rule: a state may be at most `factor` times real time
 // ahead of the last one of its simulation, counted from the wall time
 // between their arrivals plus kStepAllowanceMarginSeconds (so a burst, a
-// pause or a slow receive loop never trips it; a forged step 5e8 does).
+// pause or a slow receive loop never trips it; a forged leap does). The
+// factor comes from the sim's own SIM_STATUS (SpeedAllowance), and is
+// kStepAllowanceFactor until its first status.
 inline constexpr double kStepAllowanceFactor = 1000.0;
 inline constexpr double kStepAllowanceMarginSeconds = 1.0;
 // Steps a state may be ahead of the previous one (step_size [s], elapsed
 // wall time [us]).
-int64_t StepAllowance(double step_size, int64_t elapsed_us);
+int64_t StepAllowance(double step_size, int64_t elapsed_us,
+                      double factor = kStepAllowanceFactor);
+// The factor for a sim whose status says target_speed (<= 0: as fast as
+// possible) and real_time_factor (measured over its last status period):
+// twice the target or the measured rate, at least 2; as fast as possible,
+// four times the measured rate, at least 10, and kStepAllowanceFactor
+// while it has measured nothing (paused, starting).
+double SpeedAllowance(double target_speed, double real_time_factor);
 
 struct ChannelCounts {
   uint64_t received = 0;
@@ -72,6 +92,7 @@ struct ReceiverStats {
   uint64_t simulations_silent = 0; // closed because their sim went silent (and not heard since)
   uint64_t simulations_reopened = 0;  // closed as silent, then heard again
   uint64_t model_requests = 0;
+  uint64_t other_simulations = 0;  // other simulation ids heard on the bus, not logged
   int64_t simulation_id = 0;       // the simulation followed (latest model)
   int64_t last_step = -1;          // its last state received
   int64_t last_publish_us = 0;     // and when the sim published it
@@ -145,12 +166,29 @@ class Receiver {
   // to `state`, the first after.
   void PushSilenceGap(const state_t& state, const ModelShape& shape);
   void Wait(Record record);
+  // A model of another simulation than the followed one: kept, not logged.
+  void SetAside(const model_t& model, Record record);
+  // `simulation` is followed: its model to the queue, then what waited.
+  void Follow(int64_t simulation, const ModelShape& shape, Record model_record);
+  void DeliverWaiting(int64_t simulation);
+  // Follows the newest other simulation once the followed one is gone.
+  void FollowSuccessor();
+  // Some waiting message belongs to a simulation whose model is unknown.
+  bool NeedsModel() const;
+
+  struct SetAsideModel {
+    ModelShape shape;
+    Record record;
+    std::optional<int64_t> stopped_at;  // its sim said RUN_STOPPED at this step
+  };
+  static constexpr size_t kMaxSetAside = 8;
 
   // Per simulation: the newest state accepted and when it came (for the
   // step-number rule), and when the sim was last heard of (for silence).
   struct SimClock {
     int64_t step = -1;
     int64_t received_us = 0;
+    double speed_allowance = kStepAllowanceFactor;  // from its SIM_STATUS
     std::chrono::steady_clock::time_point heard{};
     bool closed_silent = false;
     // Reopened after a silence: its last step before it, and how long it
@@ -174,7 +212,9 @@ class Receiver {
   RecordQueue* queue_;
   ReceiverOptions options_;
   Reporter* reporter_;
-  std::map<int64_t, ModelShape> models_;  // by simulation id
+  SimulationFollower follower_;
+  std::map<int64_t, SetAsideModel> set_aside_;  // by simulation id
+  std::map<int64_t, ModelShape> models_;  // by simulation id (followed, now or before)
   std::set<int64_t> ended_;
   std::map<int64_t, SimClock> clocks_;   // by simulation id
   std::deque<Pending> pending_;

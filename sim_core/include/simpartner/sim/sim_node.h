@@ -136,6 +136,7 @@ class SimNode {
   lcm::LCM* lcm_;
   int stop_fd_;
   std::string host_;
+  std::string sender_;  // "simpartner-sim@host:pid", in SIM_MODEL
   PeerWatch peers_;
   static constexpr std::chrono::seconds kOtherSimulationReportPeriod{10};
   OtherSimulation last_other_;            // the newest id heard

@@ -21,6 +21,7 @@
 
 #include "simpartner/model_t.hpp"
 #include "simpartner/sensor_reading_t.hpp"
+#include "simpartner/simulation_follower.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 
@@ -112,6 +113,7 @@ class Scene {
   Verdict Reject(Rejection kind, const std::string& channel, const std::string& message);
 
   std::optional<model_t> model_;
+  SimulationFollower follower_;  // which SIM_MODEL is the shown sim's
   int64_t version_ = 0;
   int64_t model_generation_ = 0;
   std::optional<state_t> state_;
