@@ -12,7 +12,8 @@
 #   2. scripts/bus-guard on: neither does, the host's own still does;
 #   3. a multicast route on lo instead: the datagram to the host's address
 #      still arrives (why the guard is what we ship); whether the group's
-#      is kept out is printed, not asserted (here it was not).
+#      is kept out is printed, not asserted (here it was not);
+#   4. sweep: a guard whose owner process is gone is removed, others stay.
 #   bus_guard_test.sh SOURCE_DIR BINARY_DIR
 set -euo pipefail
 src=$1
@@ -133,6 +134,27 @@ in_host "$src/scripts/bus-guard" status 7667
 in_host "$src/scripts/bus-guard" off 7667
 in_host ip route add 239.255.76.67/32 dev lo
 run_case "multicast route on lo" either yes yes
+
+# A guard whose owner is gone (scripts/run killed with -9) is swept; one
+# whose owner runs, and one set by hand (no owner), stay.
+echo "== sweep"
+sleep 300 & owner=$!
+sleep 300 & gone=$!
+in_host "$src/scripts/bus-guard" on 7681 --owner "$gone" >/dev/null
+in_host "$src/scripts/bus-guard" on 7682 --owner "$owner" >/dev/null
+in_host "$src/scripts/bus-guard" on 7683 >/dev/null
+kill "$gone"; wait "$gone" 2>/dev/null || true
+in_host "$src/scripts/bus-guard" sweep
+for case in "7681 gone" "7682 kept" "7683 kept"; do
+  set -- $case
+  if in_host "$src/scripts/bus-guard" status "$1" >/dev/null; then state=kept; else state=gone; fi
+  if [[ $state == "$2" ]]; then
+    echo "ok: sweep: the guard of port $1 is $state"
+  else
+    echo "FAIL: sweep: the guard of port $1 is $state, expected $2" >&2; failures=$((failures + 1))
+  fi
+done
+kill "$owner"; wait "$owner" 2>/dev/null || true
 
 if (( failures )); then
   echo "bus_guard_test: $failures failed" >&2
