@@ -4,6 +4,8 @@
 //   sim       Simulation::Step (commands, controllers, step, health check)
 //   sim+enc   the same plus SIM_STATE filled and encoded (our part of publishing)
 //   sim+pub   the same plus SIM_STATE filled, encoded and published on LCM
+//   signed    sim+pub with every SIM_STATE signed (SIMPARTNER_BUS_KEY), and
+//             "signing", its cost over sim+pub
 // for each world given (default: the WorkPartner worlds), each stepper
 // setting, as fast as possible. Also peak resident memory.
 //   bench/sim_bench [--steps N] [--lcm-url URL] [world.xml ...]
@@ -18,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/bus_signing.h"
 #include "simpartner/channels.h"
 #include "simpartner/command_line.h"
 #include "simpartner/model/loader.h"
@@ -105,8 +108,9 @@ int main(int argc, char** argv) {
                               {"QuickStep 20", "quick", 20},
                               {"QuickStep 50", "quick", 50},
                               {"QuickStep 100", "quick", 100}};
-  std::printf("%-28s %-14s %6s %10s %10s %10s %10s %8s %8s %9s\n", "world", "stepper", "bodies",
-              "bare us", "sim us", "sim+enc us", "sim+pub us", "sim/bare", "pub/bare", "x realtime");
+  std::printf("%-28s %-14s %6s %10s %10s %10s %10s %10s %8s %8s %9s %8s\n", "world", "stepper",
+              "bodies", "bare us", "sim us", "sim+enc us", "sim+pub us", "signed us", "sim/bare",
+              "pub/bare", "x realtime", "signing");
   for (const std::string& path : worlds) {
     model::WorldLoadResult loaded = model::LoadWorldFile(path);
     if (!loaded.world) {
@@ -163,22 +167,26 @@ int main(int argc, char** argv) {
         }
         enc_us = MicrosPerStep(Clock::now() - start, steps);
       }
-      {
+      // Published as the sim does, unsigned and signed (bus_signing.h).
+      BusSigning signing(BusSigning::Key{});
+      double signed_us = 0;
+      for (BusSigning* signer : {static_cast<BusSigning*>(nullptr), &signing}) {
         sim::Simulation sim(*loaded.world, params, 1);
         state_t state;
         const auto start = Clock::now();
         for (int n = 0; n < steps; ++n) {
           faulted |= !sim.Step();
           sim.FillState(&state);
-          bus.publish(channels::kState, &state);
+          PublishSigned(&bus, channels::kState, state, signer);
         }
-        pub_us = MicrosPerStep(Clock::now() - start, steps);
+        (signer ? signed_us : pub_us) = MicrosPerStep(Clock::now() - start, steps);
       }
       std::string name = std::filesystem::path(path).filename().string();
-      std::printf("%-28s %-14s %6zu %10.1f %10.1f %10.1f %10.1f %8.3f %8.3f %9.1f%s\n", name.c_str(),
-                  setting.name, bodies, bare_us, sim_us, enc_us, pub_us, sim_us / bare_us,
-                  pub_us / bare_us, params.stepsize * 1e6 / pub_us,
-                  faulted ? "  FAULTED (unstable)" : "");
+      std::printf("%-28s %-14s %6zu %10.1f %10.1f %10.1f %10.1f %10.1f %8.3f %8.3f %9.1f"
+                  " %+7.1f%%%s\n",
+                  name.c_str(), setting.name, bodies, bare_us, sim_us, enc_us, pub_us, signed_us,
+                  sim_us / bare_us, pub_us / bare_us, params.stepsize * 1e6 / pub_us,
+                  100.0 * (signed_us - pub_us) / pub_us, faulted ? "  FAULTED (unstable)" : "");
       std::fflush(stdout);
     }
   }

@@ -19,6 +19,7 @@ RunObserver::RunObserver(const std::string& url, const std::vector<Figure>& figu
       figures_(figures),
       accumulators_(figures.size()),
       sender_(SenderName("simpartner-batch")) {
+  signing_ = BusSigning::FromEnvironment();
   if (!lcm_.good()) throw std::runtime_error("cannot open LCM at '" + url + "'");
   lcm_.subscribe(channels::kModel, &RunObserver::OnModel, this);
   lcm_.subscribe(channels::kState, &RunObserver::OnState, this)->setQueueCapacity(100000);
@@ -47,7 +48,7 @@ void RunObserver::AskToJoin() {
   join.sender = sender_;
   join.action = sync_t::ACTION_JOIN;
   join.period = kPacePeriod;
-  lcm_.publish(channels::kSync, &join);
+  PublishSigned(&lcm_, channels::kSync, join, signer());
 }
 
 void RunObserver::Answer(int64_t tick) {
@@ -57,7 +58,7 @@ void RunObserver::Answer(int64_t tick) {
   done.sender = sender_;
   done.action = sync_t::ACTION_DONE;
   done.tick = tick;
-  lcm_.publish(channels::kSync, &done);
+  PublishSigned(&lcm_, channels::kSync, done, signer());
   answered_ = std::max(answered_, tick);
 }
 
@@ -71,13 +72,13 @@ void RunObserver::AskAgainIfQuiet() {
   state_request_t request{};
   request.utime = WallMicros();
   request.sender = sender_;
-  lcm_.publish(channels::kStateRequest, &request);
+  PublishSigned(&lcm_, channels::kStateRequest, request, signer());
   last_heard_ = std::chrono::steady_clock::now();
 }
 
 void RunObserver::OnStateReply(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   state_t state;
-  if (DecodeFromBus(channel, buffer->data, buffer->data_size, &state, &refused_)) return;
+  if (DecodeSigned(channel, buffer->data, buffer->data_size, signer(), &state, &refused_)) return;
   if (!joined() || !pacing_ || (model_ && state.simulation_id != model_->simulation_id)) return;
   // The sim waits at this step: for our answer to a tick whose state we
   // missed (the stream then has a gap, and the hash says so), or for an
@@ -87,7 +88,7 @@ void RunObserver::OnStateReply(const lcm::ReceiveBuffer* buffer, const std::stri
 
 void RunObserver::OnSyncReply(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   sync_reply_t reply;
-  if (DecodeFromBus(channel, buffer->data, buffer->data_size, &reply, &refused_)) return;
+  if (DecodeSigned(channel, buffer->data, buffer->data_size, signer(), &reply, &refused_)) return;
   if (reply.controller != kPaceName || reply.sender != sender_) return;
   if (reply.event == sync_reply_t::EVENT_JOINED) {
     first_tick_ = reply.tick;
@@ -101,7 +102,7 @@ void RunObserver::OnSyncReply(const lcm::ReceiveBuffer* buffer, const std::strin
 
 void RunObserver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   model_t model;
-  if (DecodeFromBus(channel, buffer->data, buffer->data_size, &model, &refused_)) return;
+  if (DecodeSigned(channel, buffer->data, buffer->data_size, signer(), &model, &refused_)) return;
   if (model_) return;  // the periodic announcement of the same model
   for (size_t f = 0; f < figures_.size(); ++f)
     for (const body_t& b : model.bodies)
@@ -111,7 +112,7 @@ void RunObserver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& c
 
 void RunObserver::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   state_t state;
-  if (DecodeFromBus(channel, buffer->data, buffer->data_size, &state, &refused_)) return;
+  if (DecodeSigned(channel, buffer->data, buffer->data_size, signer(), &state, &refused_)) return;
   if (model_ && state.simulation_id != model_->simulation_id) return;
   // Every step, in order (the sim publishes each, stateEvery 1): a gap or
   // a step out of order makes the hash no longer the run's.

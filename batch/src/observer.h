@@ -73,8 +73,11 @@ class RunObserver {
   void AskAgainIfQuiet();
   void Accumulate(const state_t& state);
 
+  BusSigning* signer() { return signing_ ? &*signing_ : nullptr; }
+
   lcm::LCM lcm_;
   std::string url_;
+  std::optional<BusSigning> signing_;  // SIMPARTNER_BUS_KEY, as its sims have
   std::vector<Figure> figures_;
   std::vector<Accumulator> accumulators_;
   std::optional<model_t> model_;

@@ -26,11 +26,21 @@ std::vector<uint8_t> Encode(const T& message) {
 constexpr size_t kMaxKeptReplies = 4096;
 constexpr size_t kMaxKeptSyncReplies = 64;
 
+// The bus key of SIMPARTNER_BUS_KEY, if set (bus_signing.h).
+std::optional<BusSigning> SigningFromEnvironment() {
+  try {
+    return BusSigning::FromEnvironment();
+  } catch (const BusKeyError& e) {
+    throw ClientError(e.what());
+  }
+}
+
 }  // namespace
 
 Client::Client(ClientOptions options)
     : options_(std::move(options)),
-      sender_(SenderName(options_.program)) {
+      sender_(SenderName(options_.program)),
+      signing_(SigningFromEnvironment()) {
   // Two clients of one process share the sender; request ids starting at a
   // random point keep their replies apart.
   std::random_device random;
@@ -81,6 +91,19 @@ void Client::ReceiveLoop() {
 
 void Client::OnMessage(const void* data, size_t size, const std::string& channel) {
   bool print = false;
+  {
+    // With a key, only signed messages; without, a signature is dropped.
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::string refusal;
+    const std::optional<size_t> message =
+        OpenFromBus(channel, data, size, signing_ ? &*signing_ : nullptr, &bad_messages_,
+                    &refusal, &print);
+    if (!message) {
+      if (print) std::cerr << "simpartner client: " << refusal << "\n";
+      return;
+    }
+    size = *message;
+  }
   // Counts a message that decodes but does not fit the model it claims.
   auto nonsense = [&](const std::string& what) {
     const std::string description = channel + ": " + what + "; ignored";
@@ -290,6 +313,12 @@ Target Client::Find(const std::string& name_or_port) const {
 
 void Client::Publish(const std::string& channel, const void* data, int size) {
   std::lock_guard<std::mutex> lock(publish_mutex_);
+  std::vector<uint8_t> signed_bytes;
+  if (signing_) {
+    signed_bytes = signing_->Sign(channel, data, static_cast<size_t>(size));
+    data = signed_bytes.data();
+    size = static_cast<int>(signed_bytes.size());
+  }
   if (lcm_->publish(channel, data, static_cast<unsigned>(size)) != 0)
     throw ClientError("publishing on " + channel + " failed (" + options_.url + ")");
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "simpartner/lcm_schema.hpp"
+#include "simpartner/sender.h"
 
 namespace simpartner {
 namespace {
@@ -284,6 +285,18 @@ std::string BadMessageCounter::Summary() const {
     out += channel + " " + std::to_string(n);
   }
   return out;
+}
+
+std::optional<size_t> OpenFromBus(const std::string& channel, const void* data, size_t size,
+                                  BusSigning* signing, BadMessageCounter* counter,
+                                  std::string* refusal, bool* print) {
+  if (signing == nullptr) return UnsignedSize(data, size);
+  const BusSigning::Opened opened = signing->Open(channel, data, size, WallMicros());
+  if (opened.refusal.empty()) return opened.size;
+  *refusal = channel + ": " + std::to_string(size) + " bytes refused: " + opened.refusal;
+  const bool should_print = counter ? counter->Count(channel, *refusal) : true;
+  if (print) *print = should_print;
+  return std::nullopt;
 }
 
 }  // namespace simpartner

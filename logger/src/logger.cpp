@@ -84,6 +84,12 @@ Logger::Logger(LoggerOptions options, Reporter* reporter)
   receiver_options.log_interval = options_.log_interval;
   receiver_options.sender = options_.sender;
   receiver_options.sim_silence = options_.sim_silence;
+  try {
+    signing_ = BusSigning::FromEnvironment();
+  } catch (const BusKeyError& e) {
+    throw Error(e.what());
+  }
+  receiver_options.signing = signing_ ? &*signing_ : nullptr;
   receiver_ = std::make_unique<Receiver>(lcm_.get(), queue_.get(), receiver_options, reporter_);
 }
 
@@ -328,9 +334,13 @@ std::string Logger::StatusLine() const {
           " steps missing)";
   line += "; bad messages " + std::to_string(s.receiver.BadMessages());
   for (const auto& [channel, c] : s.receiver.channels)
-    if (c.malformed + c.invalid > 0)
+    if (c.malformed + c.invalid + c.unsigned_or_forged > 0)
       line += " [" + channel + ": " + std::to_string(c.malformed) + " malformed, " +
-              std::to_string(c.invalid) + " invalid]";
+              std::to_string(c.invalid) + " invalid" +
+              (c.unsigned_or_forged > 0
+                   ? ", " + std::to_string(c.unsigned_or_forged) + " unsigned or forged"
+                   : std::string()) +
+              "]";
   if (s.receiver.dropped_no_model > 0)
     line += "; dropped " + std::to_string(s.receiver.dropped_no_model) + " without a model";
   if (s.receiver.lost_spool_failed > 0)

@@ -51,7 +51,7 @@ bool InRange(int64_t index, int64_t size, bool none_allowed) {
 
 uint64_t ReceiverStats::BadMessages() const {
   uint64_t n = 0;
-  for (const auto& [channel, c] : channels) n += c.malformed + c.invalid;
+  for (const auto& [channel, c] : channels) n += c.malformed + c.invalid + c.unsigned_or_forged;
   return n;
 }
 
@@ -263,8 +263,10 @@ Receiver::Receiver(lcm::LCM* lcm, RecordQueue* queue, ReceiverOptions options, R
 template <class Message>
 bool Receiver::Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel,
                       Message* message) {
+  if (!CheckSignature(buffer, channel)) return false;
   const std::optional<DecodeFailure> failure =
-      DecodeLcm(buffer->data, static_cast<size_t>(buffer->data_size), message);
+      DecodeLcm(buffer->data, UnsignedSize(buffer->data, static_cast<size_t>(buffer->data_size)),
+                message);
   uint64_t count = 0;
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -277,6 +279,25 @@ bool Receiver::Decode(const lcm::ReceiveBuffer* buffer, const std::string& chann
                         DescribeRefusal(channel, Message::getTypeName(),
                                         static_cast<size_t>(buffer->data_size), *failure) +
                             "; not written (" + std::to_string(count) + " malformed so far)");
+  return false;
+}
+
+bool Receiver::CheckSignature(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  if (options_.signing == nullptr) return true;
+  const BusSigning::Opened opened = options_.signing->Open(
+      channel, buffer->data, static_cast<size_t>(buffer->data_size), WallMicros());
+  if (opened.refusal.empty()) return true;
+  uint64_t count = 0;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ChannelCounts& c = stats_.channels[channel];
+    ++c.received;
+    count = ++c.unsigned_or_forged;
+  }
+  reporter_->SayLimited(channel + "/signature",
+                        channel + ": " + std::to_string(buffer->data_size) + " bytes refused: " +
+                            opened.refusal + "; not written (" + std::to_string(count) +
+                            " so far)");
   return false;
 }
 
@@ -296,8 +317,9 @@ Record Receiver::MakeRecord(RecordKind kind, int64_t simulation_id,
   r.kind = kind;
   r.simulation_id = simulation_id;
   r.received_us = WallMicros();
+  // The message without its signature (checked in Decode).
   const uint8_t* data = static_cast<const uint8_t*>(buffer->data);
-  r.payload.assign(data, data + buffer->data_size);
+  r.payload.assign(data, data + UnsignedSize(data, static_cast<size_t>(buffer->data_size)));
   return r;
 }
 
@@ -436,7 +458,7 @@ void Receiver::RequestModel() {
   model_request_t request;
   request.utime = WallMicros();
   request.sender = options_.sender;
-  lcm_->publish(channels::kModelRequest, &request);
+  PublishSigned(lcm_, channels::kModelRequest, request, options_.signing);
   last_request_ = std::chrono::steady_clock::now();
   std::lock_guard<std::mutex> lock(stats_mutex_);
   ++stats_.model_requests;

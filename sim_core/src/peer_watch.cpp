@@ -37,7 +37,7 @@ std::optional<int64_t> PeekSimulationId(const std::string& channel, const void* 
   return static_cast<int64_t>(BigEndian64(bytes + 16));
 }
 
-PeerWatch::PeerWatch(lcm::LCM* lcm) : lcm_(lcm) {
+PeerWatch::PeerWatch(lcm::LCM* lcm, BusSigning* signing) : lcm_(lcm), signing_(signing) {
   // Not SIM_STATE: reading back its own 1 kHz state would wake the sim's
   // input wait every step (measured: ~190 steps a second then overran the
   // input budget). Every sim publishes SIM_STATUS at least once a second
@@ -58,7 +58,13 @@ void PeerWatch::AddOwnId(int64_t simulation_id) { own_ids_.insert(simulation_id)
 std::vector<OtherSimulation> PeerWatch::TakeNew() { return std::exchange(new_, {}); }
 
 void PeerWatch::OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
-  const std::optional<int64_t> id = PeekSimulationId(channel, buffer->data, buffer->data_size);
+  size_t size = static_cast<size_t>(buffer->data_size);
+  if (signing_ != nullptr) {
+    const BusSigning::Opened opened = signing_->Open(channel, buffer->data, size, WallMicros());
+    if (!opened.refusal.empty()) return;  // not from a holder of the key
+    size = opened.size;
+  }
+  const std::optional<int64_t> id = PeekSimulationId(channel, buffer->data, size);
   if (!id || own_ids_.count(*id) != 0) return;
   // Forged ids come without end: remember a bounded number (a forgotten
   // id heard again is new again; reports are rate-limited by the caller).
@@ -68,12 +74,13 @@ void PeerWatch::OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& c
 }
 
 std::optional<OtherSimulation> ProbeForOtherSimulation(lcm::LCM* lcm,
-                                                       std::chrono::milliseconds wait) {
-  PeerWatch watch(lcm);
+                                                       std::chrono::milliseconds wait,
+                                                       BusSigning* signing) {
+  PeerWatch watch(lcm, signing);
   model_request_t request{};
   request.utime = WallMicros();
   request.sender = SenderName("simpartner-sim");
-  lcm->publish(channels::kModelRequest, &request);
+  PublishSigned(lcm, channels::kModelRequest, request, signing);
   const auto end = std::chrono::steady_clock::now() + wait;
   while (true) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(

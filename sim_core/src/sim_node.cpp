@@ -82,8 +82,14 @@ std::string MessagesTooLarge(const Simulation& sim) {
   return problems;
 }
 
-SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd)
-    : sim_(sim), lcm_(lcm), stop_fd_(stop_fd), host_(HostName()), sender_(SenderName("simpartner-sim")), peers_(lcm) {
+SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd, BusSigning* signing)
+    : sim_(sim),
+      lcm_(lcm),
+      stop_fd_(stop_fd),
+      signing_(signing),
+      host_(HostName()),
+      sender_(SenderName("simpartner-sim")),
+      peers_(lcm, signing) {
   peers_.AddOwnId(sim->simulation_id());
   paused_ = sim->params().startPaused;
   speed_ = sim->params().speed;
@@ -131,8 +137,8 @@ void SimNode::ReportBadMessageText(const std::string& description, bool print) {
 template <class T>
 bool SimNode::DecodeInput(const lcm::ReceiveBuffer* buffer, const std::string& channel, T* out) {
   bool print = false;
-  const auto refusal = DecodeFromBus(channel, buffer->data, buffer->data_size, out,
-                                     &bad_message_counter_, &print);
+  const auto refusal = DecodeSigned(channel, buffer->data, buffer->data_size, signing_, out,
+                                    &bad_message_counter_, &print);
   if (!refusal) return true;
   ReportBadMessageText(*refusal, print);
   return false;
@@ -318,7 +324,7 @@ void SimNode::ReplyState() {
 
 template <class T>
 void SimNode::Publish(const char* channel, const T& message) {
-  if (lcm_->publish(channel, &message) == 0) {
+  if (PublishSigned(lcm_, channel, message, signing_) == 0) {
     if (failed_sends_in_outage_ > 0) {
       Warn(warning_t::SEVERITY_INFO, "bus",
            "sending works again; " + std::to_string(failed_sends_in_outage_) +

@@ -17,6 +17,10 @@ namespace simpartner::sim {
 
 int RunSimProcess(model::World world, const Parameters& params, bool allow_other_sims,
                   std::ostream& out, std::ostream& err) {
+  // With a key (SIMPARTNER_BUS_KEY) every message is signed and every
+  // input must be; a bad key file stops here, named.
+  std::optional<BusSigning> signing = BusSigning::FromEnvironment();
+  BusSigning* const signer = signing ? &*signing : nullptr;
   // SIGINT/SIGTERM end the run like SIM_CONTROL quit (a last SIM_STATUS
   // says RUN_STOPPED, so a logger closes the simulation): they arrive as a
   // readable fd that the loop watches beside the bus.
@@ -35,7 +39,7 @@ int RunSimProcess(model::World world, const Parameters& params, bool allow_other
   // Before anything is published: a second sim on a bus would apply every
   // command meant for the first.
   if (!allow_other_sims) {
-    if (const auto other = ProbeForOtherSimulation(&bus, std::chrono::milliseconds(300))) {
+    if (const auto other = ProbeForOtherSimulation(&bus, std::chrono::milliseconds(300), signer)) {
       err << "simpartner-sim: " << DescribeOtherSimulation(*other, params.lcmUrl)
           << " (or start anyway with --allow-other-sims); nothing started\n";
       ::close(stop_fd);
@@ -48,9 +52,10 @@ int RunSimProcess(model::World world, const Parameters& params, bool allow_other
     ::close(stop_fd);
     return 2;
   }
-  SimNode node(&simulation, &bus, stop_fd);
+  SimNode node(&simulation, &bus, stop_fd, signer);
   out << "simpartner-sim: running (step " << params.stepsize << " s, " << params.stepper
-      << " stepper, speed " << params.speed << ") on " << params.lcmUrl << std::endl;
+      << " stepper, speed " << params.speed << ") on " << params.lcmUrl
+      << (signer ? ", signed (SIMPARTNER_BUS_KEY)" : "") << std::endl;
   ReportMessageSizes(simulation, out);
   // Progress lines only for a person watching; a log gets the summary.
   if (::isatty(STDOUT_FILENO)) node.SetProgressOutput(&out);

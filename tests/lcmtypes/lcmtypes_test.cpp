@@ -216,5 +216,19 @@ TEST(LcmTypes, JarHasAClassPerType) {
   EXPECT_GE(count, 19);
 }
 
+// lcm-spy keeps working on a signed bus: lcm-java decodes a message that
+// carries a signature trailer (bus_signing.h) and ignores the trailer.
+TEST(LcmTypes, LcmJavaDecodesASignedMessage) {
+  const std::string command = "java -cp '" + std::string(SP_LCM_JAR_SYSTEM) + ":" + SP_LCM_JAR +
+                              "' '" + SP_SOURCE_DIR + "/tests/lcmtypes/SignedDecode.java' 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  char line[512];
+  while (std::fgets(line, sizeof line, pipe)) out += line;
+  EXPECT_EQ(::pclose(pipe), 0) << out;
+  EXPECT_EQ(out, "sender=x@y:1 action=3 steps=7\n");
+}
+
 }  // namespace
 }  // namespace simpartner

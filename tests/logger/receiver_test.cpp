@@ -13,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/logger/logger.h"
@@ -94,8 +95,10 @@ class ReceiverTest : public ::testing::Test {
     spool_.reset();
     std::filesystem::remove_all(dir_);
   }
-  void Start(int interval = 1, double sim_silence = 10.0, double follow_silence = 2.5) {
+  void Start(int interval = 1, double sim_silence = 10.0, double follow_silence = 2.5,
+             BusSigning* signing = nullptr) {
     ReceiverOptions options;
+    options.signing = signing;
     options.log_interval = interval;
     options.sender = "test";
     options.sim_silence = sim_silence;
@@ -511,6 +514,33 @@ TEST_F(ReceiverTest, ANewSimulationFromTheSameSenderIsAReset) {
     if (r.kind == RecordKind::kModel) models.push_back(r.simulation_id);
   EXPECT_EQ(models, (std::vector<int64_t>{5, 6}));
   EXPECT_EQ(receiver_->Stats().other_simulations, 0u);
+}
+
+// With a key (bus_signing.h), signed messages are logged as the message
+// alone (the signature is not in the record); an unsigned model and state
+// are refused, counted and never queued.
+TEST_F(ReceiverTest, WithAKeyOnlySignedMessagesAreLogged) {
+  BusSigning signing(BusSigning::Key{}), sim_key(BusSigning::Key{});
+  Start(1, 10.0, 2.5, &signing);
+  const model_t unsigned_model = TwoBodyModel(9);
+  lcm_.publish(channels::kModel, &unsigned_model);  // no signature
+  PublishSigned(&lcm_, channels::kModel, TwoBodyModel(5), &sim_key);
+  PublishSigned(&lcm_, channels::kState, State(5, 1), &sim_key);
+  const state_t unsigned_state = State(5, 2);
+  lcm_.publish(channels::kState, &unsigned_state);  // no signature
+  Drain();
+  std::vector<Record> records = Queued();
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_EQ(records[0].kind, RecordKind::kModel);
+  EXPECT_EQ(records[0].simulation_id, 5);
+  EXPECT_EQ(StepOf(records[1]), 1);
+  state_t decoded;
+  EXPECT_FALSE(simpartner::DecodeLcm(records[1].payload.data(), records[1].payload.size(), &decoded));
+  const ReceiverStats stats = receiver_->Stats();
+  EXPECT_EQ(stats.channels.at(channels::kModel).unsigned_or_forged, 1u);
+  EXPECT_EQ(stats.channels.at(channels::kState).unsigned_or_forged, 1u);
+  EXPECT_NE(out_.str().find("SIM_STATE: "), std::string::npos);
+  EXPECT_NE(out_.str().find("bytes refused: no signature"), std::string::npos) << out_.str();
 }
 
 TEST(StepAllowanceTest, ThousandTimesRealTimePlusOneSecond) {

@@ -115,7 +115,9 @@ class Viewer {
         toggles_(options.toggles),
         window_(options.width, options.height, options.max_fps > 0),
         lcm_(OpenLcm(options.lcm_url)),
-        bus_(lcm_.get(), options.lcm_url, &scene_, [this](const std::string& m) { Warn(m); }) {
+        signing_(BusSigning::FromEnvironment()),
+        bus_(lcm_.get(), options.lcm_url, &scene_, [this](const std::string& m) { Warn(m); },
+             signing_ ? &*signing_ : nullptr) {
     out_ << "simpartner-viewer: OpenGL " << Text(GL_VERSION) << " on " << Text(GL_RENDERER)
          << ", listening on " << bus_.url() << std::endl;
     renderer_ = std::make_unique<Renderer>();
@@ -452,6 +454,7 @@ class Viewer {
   Window window_;
   Scene scene_;
   std::unique_ptr<lcm::LCM> lcm_;
+  std::optional<BusSigning> signing_;  // SIMPARTNER_BUS_KEY
   ViewerBus bus_;
   std::unique_ptr<Renderer> renderer_;
   Camera camera_;

@@ -26,18 +26,36 @@ constexpr auto kMaxDrainOverrun = std::chrono::milliseconds(30);
 
 // Decodes a whole buffer through the shared total decoder; on failure
 // returns what is wrong ("9 bytes refused as simpartner.state_t: ...").
+// With a key (`signing`), an unsigned, forged or replayed message is
+// refused first.
 template <class T>
-std::optional<std::string> Decode(const lcm::ReceiveBuffer* buffer, T* out) {
-  const auto failure = DecodeLcm(buffer->data, buffer->data_size, out);
+std::optional<std::string> Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel,
+                                  BusSigning* signing, T* out) {
+  size_t size = static_cast<size_t>(buffer->data_size);
+  if (signing != nullptr) {
+    const BusSigning::Opened opened = signing->Open(channel, buffer->data, size, WallMicros());
+    if (!opened.refusal.empty())
+      return std::to_string(size) + " bytes refused: " + opened.refusal;
+    size = opened.size;
+  } else {
+    size = UnsignedSize(buffer->data, size);
+  }
+  const auto failure = DecodeLcm(buffer->data, size, out);
   if (!failure) return std::nullopt;
-  return std::to_string(buffer->data_size) + " bytes refused as simpartner." + T::getTypeName() +
-         ": " + failure->reason;
+  return std::to_string(size) + " bytes refused as simpartner." + T::getTypeName() + ": " +
+         failure->reason;
 }
 
 }  // namespace
 
-ViewerBus::ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Reporter report)
-    : lcm_(*lcm), url_(url), scene_(scene), report_(std::move(report)), sender_(SenderName("viewer")) {
+ViewerBus::ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Reporter report,
+                     BusSigning* signing)
+    : lcm_(*lcm),
+      url_(url),
+      scene_(scene),
+      report_(std::move(report)),
+      sender_(SenderName("viewer")),
+      signing_(signing) {
   lcm_.subscribe(channels::kModel, &ViewerBus::OnModel, this)->setQueueCapacity(4);
   lcm_.subscribe(channels::kState, &ViewerBus::OnState, this)->setQueueCapacity(kStateQueue);
   lcm_.subscribe(channels::kStatus, &ViewerBus::OnStatus, this)->setQueueCapacity(100);
@@ -83,7 +101,7 @@ void ViewerBus::RequestModelIfNeeded() {
   model_request_t request{};
   request.utime = WallMicros();
   request.sender = sender_;
-  lcm_.publish(channels::kModelRequest, &request);
+  PublishSigned(&lcm_, channels::kModelRequest, request, signing_);
   last_request_ = now;
   ++model_requests_;
   want_model_ = false;  // until a message shows it is still missing
@@ -91,7 +109,7 @@ void ViewerBus::RequestModelIfNeeded() {
 
 void ViewerBus::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   model_t model;
-  if (auto refusal = Decode(buffer, &model)) {
+  if (auto refusal = Decode(buffer, channel, signing_, &model)) {
     scene_->CountUndecodable(channel, *refusal);
     Note(Verdict{false, scene_->recent_problems().back(), false});
     return;
@@ -103,7 +121,7 @@ void ViewerBus::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& cha
 
 void ViewerBus::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   state_t state;
-  if (auto refusal = Decode(buffer, &state)) {
+  if (auto refusal = Decode(buffer, channel, signing_, &state)) {
     scene_->CountUndecodable(channel, *refusal);
     Note(Verdict{false, scene_->recent_problems().back(), false});
     return;
@@ -113,7 +131,7 @@ void ViewerBus::OnState(const lcm::ReceiveBuffer* buffer, const std::string& cha
 
 void ViewerBus::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   status_t status;
-  if (auto refusal = Decode(buffer, &status)) {
+  if (auto refusal = Decode(buffer, channel, signing_, &status)) {
     scene_->CountUndecodable(channel, *refusal);
     Note(Verdict{false, scene_->recent_problems().back(), false});
     return;
@@ -123,7 +141,7 @@ void ViewerBus::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& ch
 
 void ViewerBus::OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   sensor_reading_t reading;
-  if (auto refusal = Decode(buffer, &reading)) {
+  if (auto refusal = Decode(buffer, channel, signing_, &reading)) {
     scene_->CountUndecodable(channel, *refusal);
     Note(Verdict{false, scene_->recent_problems().back(), false});
     return;
@@ -142,7 +160,7 @@ void ViewerBus::SendControl(int8_t action, int64_t steps, double speed) {
   control.action = action;
   control.steps = steps;
   control.speed = speed;
-  lcm_.publish(channels::kControl, &control);
+  PublishSigned(&lcm_, channels::kControl, control, signing_);
 }
 
 void ViewerBus::RequestScans() {
@@ -160,7 +178,7 @@ void ViewerBus::RequestScans() {
     command.target = sensor.name;
     command.action = command_t::ACTION_READ;
     command.apply_at_step = -1;
-    lcm_.publish(channels::kCommand, &command);
+    PublishSigned(&lcm_, channels::kCommand, command, signing_);
   }
 }
 

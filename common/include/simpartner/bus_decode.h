@@ -20,6 +20,8 @@
 #include <optional>
 #include <string>
 
+#include "simpartner/bus_signing.h"
+
 namespace simpartner {
 
 // Why a datagram was refused, for messages: "field 'sender': string length
@@ -98,6 +100,27 @@ std::optional<std::string> DecodeFromBus(const std::string& channel, const void*
   const bool should_print = counter ? counter->Count(channel, description) : true;
   if (print) *print = should_print;
   return description;
+}
+
+// A datagram read from the bus, before decoding: with `signing`, its
+// signature must verify and be fresh (bus_signing.h); without, a signature
+// trailer is dropped unread. Returns the message's size, or counts the
+// refusal in `counter` and returns nothing with the description in
+// *refusal (`print` as in DecodeFromBus).
+std::optional<size_t> OpenFromBus(const std::string& channel, const void* data, size_t size,
+                                  BusSigning* signing, BadMessageCounter* counter,
+                                  std::string* refusal, bool* print = nullptr);
+
+// OpenFromBus, then DecodeFromBus: the one call every subscriber makes.
+template <class T>
+std::optional<std::string> DecodeSigned(const std::string& channel, const void* data, size_t size,
+                                        BusSigning* signing, T* out, BadMessageCounter* counter,
+                                        bool* print = nullptr) {
+  std::string refusal;
+  const std::optional<size_t> message =
+      OpenFromBus(channel, data, size, signing, counter, &refusal, print);
+  if (!message) return refusal;
+  return DecodeFromBus(channel, data, *message, out, counter, print);
 }
 
 }  // namespace simpartner

@@ -221,7 +221,7 @@ class Client {
   ClientOptions options_;
   std::string sender_;
   std::unique_ptr<lcm::LCM> lcm_;
-  std::mutex publish_mutex_;
+  std::mutex publish_mutex_;  // also keeps signed timestamps in send order
 
   mutable std::mutex mutex_;
   std::condition_variable changed_;
@@ -243,6 +243,7 @@ class Client {
   std::optional<SimRestarted> restart_;
   int64_t latest_simulation_id_ = 0;
   SimulationFollower follower_;  // which SIM_MODEL is our sim's (guarded by mutex_)
+  std::optional<BusSigning> signing_;  // SIMPARTNER_BUS_KEY: sign and check (thread-safe)
   std::optional<Clock::time_point> last_heard_;
   // Held while a callback runs, so that once OnState/OnReading returns the
   // old callback is not running any more.

@@ -13,10 +13,12 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "simpartner/bus_signing.h"
 #include "simpartner/bus_url.h"
 #include "simpartner/logger/db.h"
 #include "simpartner/logger/receiver.h"
@@ -112,6 +114,7 @@ class Logger {
   std::unique_ptr<Spool> spool_;
   std::unique_ptr<RecordQueue> queue_;
   std::unique_ptr<lcm::LCM> lcm_;
+  std::optional<BusSigning> signing_;  // SIMPARTNER_BUS_KEY; before the receiver that uses it
   std::unique_ptr<Receiver> receiver_;
   std::thread writer_;
   std::atomic<bool> stopping_{false};

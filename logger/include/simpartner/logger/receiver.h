@@ -27,6 +27,7 @@
 #include <set>
 #include <string>
 
+#include "simpartner/bus_signing.h"
 #include "simpartner/logger/record_queue.h"
 #include "simpartner/logger/reporter.h"
 #include "simpartner/model_t.hpp"
@@ -49,6 +50,9 @@ struct ReceiverOptions {
   // publishes a status at least every second by default) or stopped;
   // before, it is another simulation on the bus. [s]
   double follow_silence = 2.5;
+  // With a key (bus_signing.h; outlives the receiver): only signed, fresh
+  // messages; null: an unsigned bus.
+  BusSigning* signing = nullptr;
   // Records other than states that the queue refused (its spool disk
   // full), held in memory until it takes them again.
   uint64_t max_held_bytes = 8u << 20;
@@ -77,6 +81,7 @@ struct ChannelCounts {
   uint64_t received = 0;
   uint64_t malformed = 0;  // did not decode as the channel's type (foreign, truncated, padded)
   uint64_t invalid = 0;    // decoded but does not fit the model or the database
+  uint64_t unsigned_or_forged = 0;  // with a key: no valid, fresh signature
 };
 
 struct ReceiverStats {
@@ -144,6 +149,9 @@ class Receiver {
   template <class Message>
   bool Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel, Message* message);
   void Invalid(const std::string& channel, const std::string& problem);
+  // With a key: whether the message is signed and fresh (counted and
+  // reported when not).
+  bool CheckSignature(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   // The step-number rule for a state that fits its model; "" if it passes.
   std::string CheckStepRate(const state_t& state, int64_t received_us, const ModelShape& shape);
   Record MakeRecord(RecordKind kind, int64_t simulation_id, const lcm::ReceiveBuffer* buffer) const;

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/bus_signing.h"
+
 namespace simpartner::sim {
 
 // The simulation id of a SIM_STATE, SIM_STATUS or SIM_MODEL datagram read
@@ -37,7 +39,9 @@ class PeerWatch {
 
   // Subscribes to SIM_STATUS and SIM_MODEL on `lcm` (which must
   // outlive this) until destroyed.
-  explicit PeerWatch(lcm::LCM* lcm);
+  // `signing` (may be null) outlives the watch: with it, only signed
+  // messages count (a forged status names no other simulation).
+  explicit PeerWatch(lcm::LCM* lcm, BusSigning* signing = nullptr);
   ~PeerWatch();
   PeerWatch(const PeerWatch&) = delete;
   PeerWatch& operator=(const PeerWatch&) = delete;
@@ -53,6 +57,7 @@ class PeerWatch {
   void OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel);
 
   lcm::LCM* lcm_;
+  BusSigning* signing_;
   std::vector<lcm::Subscription*> subscriptions_;
   std::set<int64_t> own_ids_;
   std::set<int64_t> heard_ids_;
@@ -64,7 +69,8 @@ class PeerWatch {
 // millisecond at real time); a sim that never answers is caught later by
 // the running sim's PeerWatch when it publishes.
 std::optional<OtherSimulation> ProbeForOtherSimulation(lcm::LCM* lcm,
-                                                       std::chrono::milliseconds wait);
+                                                       std::chrono::milliseconds wait,
+                                                       BusSigning* signing = nullptr);
 
 // What a user reads when another simulation is heard: the id, the channel,
 // what goes wrong, and the way out.

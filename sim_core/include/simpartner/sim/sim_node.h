@@ -33,7 +33,9 @@ class SimNode {
   // becomes readable when the process is told to stop (a signalfd for
   // SIGINT/SIGTERM): the node then ends as on SIM_CONTROL quit, with a
   // last SIM_STATUS saying RUN_STOPPED.
-  SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd = -1);
+  // `signing` (may be null: an unsigned bus) outlives the node: with it,
+  // every message is signed and every input must be (bus_signing.h).
+  SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd = -1, BusSigning* signing = nullptr);
   SimNode(const SimNode&) = delete;
   SimNode& operator=(const SimNode&) = delete;
 
@@ -135,6 +137,7 @@ class SimNode {
   Simulation* sim_;
   lcm::LCM* lcm_;
   int stop_fd_;
+  BusSigning* signing_;
   std::string host_;
   std::string sender_;  // "simpartner-sim@host:pid", in SIM_MODEL
   PeerWatch peers_;

@@ -13,6 +13,7 @@
 #include <functional>
 #include <string>
 
+#include "simpartner/bus_signing.h"
 #include "simpartner/viewer/scene.h"
 
 namespace simpartner::viewer {
@@ -24,8 +25,10 @@ class ViewerBus {
   // the first time and then every 1000th time, so a flood stays readable.
   using Reporter = std::function<void(const std::string&)>;
 
-  // lcm must be good(); lcm and scene outlive the bus.
-  ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Reporter report);
+  // lcm must be good(); lcm, scene and signing (null: an unsigned bus,
+  // bus_signing.h) outlive the bus.
+  ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Reporter report,
+            BusSigning* signing = nullptr);
   ViewerBus(const ViewerBus&) = delete;
   ViewerBus& operator=(const ViewerBus&) = delete;
 
@@ -57,6 +60,7 @@ class ViewerBus {
   Scene* scene_;
   Reporter report_;
   std::string sender_;
+  BusSigning* signing_;
   bool want_model_ = true;
   Clock::time_point last_request_{};
   int64_t model_requests_ = 0;

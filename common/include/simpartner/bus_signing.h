@@ -1,0 +1,112 @@
+// Signed bus messages: with a key, every message a process publishes is
+// signed and every message it reads must carry a valid, fresh signature;
+// without one, nothing changes. Off by default: a deployment gives every
+// process one key file (32 random bytes or 64 hex digits, mode 0600) in
+// SIMPARTNER_BUS_KEY.
+//
+// The anchor is MAVLink 2's message signing (a link id, a timestamp and a
+// truncated SHA-256 signature, with replay protection). A signed message is
+// the LCM-encoded message followed by a 36-byte trailer:
+//
+//   link id    8 bytes  random per publishing process: names its stream
+//   timestamp  8 bytes  [us] since the Unix epoch, strictly increasing per link
+//   tag       16 bytes  HMAC-SHA-256(key, "SPS1" channel NUL message link timestamp),
+//                       the first 16 bytes (MAVLink keeps 6; 16 make a forgery
+//                       a 2^-128 guess)
+//   magic      4 bytes  "SPS1"
+//
+// A reader refuses a message whose tag is wrong, whose timestamp is not
+// after the last of its link (a replay), or, from a link it has not seen,
+// more than kFreshnessSeconds from its own clock (a replayed log). The
+// stock LCM tools keep working: lcm-spy and lcm-logger decode the message
+// and ignore the trailing bytes. HMAC-SHA-256 is libsodium's.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace simpartner {
+
+inline constexpr size_t kSignatureBytes = 36;
+inline constexpr const char* kBusKeyVariable = "SIMPARTNER_BUS_KEY";
+
+class BusKeyError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class BusSigning {
+ public:
+  using Key = std::array<uint8_t, 32>;
+  static constexpr int64_t kFreshnessSeconds = 60;
+  static constexpr size_t kMaxLinks = 4096;
+
+  // The key file named by SIMPARTNER_BUS_KEY, or nothing when the variable
+  // is unset or empty. Throws BusKeyError naming the file and what is
+  // wrong with it (missing, not 32 bytes or 64 hex digits, readable by
+  // others).
+  static std::optional<BusSigning> FromEnvironment();
+  static Key LoadKey(const std::string& path);
+
+  explicit BusSigning(const Key& key);
+  // Moves the key and the replay state (not while another thread uses it).
+  BusSigning(BusSigning&& other) noexcept;
+  BusSigning& operator=(BusSigning&& other) noexcept;
+  BusSigning(const BusSigning&) = delete;
+  BusSigning& operator=(const BusSigning&) = delete;
+
+  // `size` bytes of an encoded message, signed for `channel`.
+  std::vector<uint8_t> Sign(const std::string& channel, const void* data, size_t size);
+
+  // The message's size without its signature when it verifies and is
+  // fresh; else why not ("no signature", "wrong signature", "replayed:
+  // ...", "stale: ..."). `now_us`: the reader's clock.
+  struct Opened {
+    size_t size = 0;
+    std::string refusal;  // "" when it verifies
+  };
+  Opened Open(const std::string& channel, const void* data, size_t size, int64_t now_us);
+
+ private:
+  void Tag(const std::string& channel, const uint8_t* data, size_t size, uint64_t link,
+           int64_t timestamp, uint8_t out[16]) const;
+
+  Key key_;
+  uint64_t link_;
+  std::mutex mutex_;  // a client publishes and reads on two threads
+  int64_t last_sent_ = 0;
+  // link -> newest timestamp read, and when it was read (the oldest goes
+  // first when kMaxLinks are known).
+  struct Link {
+    int64_t timestamp = 0;
+    uint64_t used = 0;
+  };
+  std::map<uint64_t, Link> links_;
+  uint64_t uses_ = 0;
+};
+
+// The message's size without a signature trailer, for a reader without a
+// key: it cannot check the signature and reads the message as unsigned.
+size_t UnsignedSize(const void* data, size_t size);
+
+// Publishes `message` on `channel`, signed when `signing` is set. Returns
+// lcm's status (0 when sent).
+template <class T>
+int PublishSigned(lcm::LCM* lcm, const std::string& channel, const T& message,
+                  BusSigning* signing) {
+  std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
+  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  if (signing != nullptr) bytes = signing->Sign(channel, bytes.data(), bytes.size());
+  return lcm->publish(channel, bytes.data(), static_cast<unsigned>(bytes.size()));
+}
+
+}  // namespace simpartner

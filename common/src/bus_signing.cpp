@@ -1,0 +1,177 @@
+#include "simpartner/bus_signing.h"
+
+#include <sodium.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+
+#include "simpartner/bounded_file.h"
+
+namespace simpartner {
+namespace {
+
+constexpr uint8_t kMagic[4] = {'S', 'P', 'S', '1'};
+
+void PutBigEndian(uint64_t value, uint8_t* out) {
+  for (int i = 7; i >= 0; --i, value >>= 8) out[i] = static_cast<uint8_t>(value & 0xff);
+}
+
+uint64_t GetBigEndian(const uint8_t* in) {
+  uint64_t value = 0;
+  for (int i = 0; i < 8; ++i) value = value << 8 | in[i];
+  return value;
+}
+
+int64_t NowMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+void InitSodium() {
+  if (sodium_init() < 0) throw BusKeyError("libsodium cannot be initialised");
+}
+
+}  // namespace
+
+BusSigning::Key BusSigning::LoadKey(const std::string& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) == 0 && (info.st_mode & 077) != 0) {
+    char mode[8];
+    std::snprintf(mode, sizeof mode, "%04o", static_cast<unsigned>(info.st_mode & 07777));
+    throw BusKeyError(path + ": bus key file readable by others (mode " + mode +
+                      "): chmod 600 it");
+  }
+  std::string text;
+  try {
+    text = ReadBoundedFile(path, 1024, "bus key files");
+  } catch (const FileReadError& e) {
+    throw BusKeyError(path + ": " + (e.cannot_open() ? "cannot read the bus key file: " : "") +
+                      e.what());
+  }
+  Key key{};
+  if (text.size() == key.size()) {
+    std::copy(text.begin(), text.end(), key.begin());
+    return key;
+  }
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  size_t used = 0;
+  const bool hex = text.size() == 2 * key.size() &&
+                   sodium_hex2bin(key.data(), key.size(), text.data(), text.size(), nullptr,
+                                  &used, nullptr) == 0 &&
+                   used == key.size();
+  if (!hex)
+    throw BusKeyError(path + ": a bus key file holds 32 bytes or 64 hex digits, this one " +
+                      std::to_string(text.size()) +
+                      " bytes (make one: head -c 32 /dev/urandom > FILE; chmod 600 FILE)");
+  return key;
+}
+
+std::optional<BusSigning> BusSigning::FromEnvironment() {
+  const char* path = std::getenv(kBusKeyVariable);
+  if (path == nullptr || *path == '\0') return std::nullopt;
+  return std::optional<BusSigning>(std::in_place, LoadKey(path));
+}
+
+BusSigning::BusSigning(const Key& key) : key_(key) {
+  InitSodium();
+  randombytes_buf(&link_, sizeof link_);
+}
+
+BusSigning::BusSigning(BusSigning&& other) noexcept
+    : key_(other.key_),
+      link_(other.link_),
+      last_sent_(other.last_sent_),
+      links_(std::move(other.links_)),
+      uses_(other.uses_) {}
+
+BusSigning& BusSigning::operator=(BusSigning&& other) noexcept {
+  key_ = other.key_;
+  link_ = other.link_;
+  last_sent_ = other.last_sent_;
+  links_ = std::move(other.links_);
+  uses_ = other.uses_;
+  return *this;
+}
+
+void BusSigning::Tag(const std::string& channel, const uint8_t* data, size_t size, uint64_t link,
+                     int64_t timestamp, uint8_t out[16]) const {
+  crypto_auth_hmacsha256_state state;
+  crypto_auth_hmacsha256_init(&state, key_.data(), key_.size());
+  crypto_auth_hmacsha256_update(&state, kMagic, sizeof kMagic);
+  crypto_auth_hmacsha256_update(&state, reinterpret_cast<const uint8_t*>(channel.c_str()),
+                                channel.size() + 1);  // with its NUL
+  crypto_auth_hmacsha256_update(&state, data, size);
+  uint8_t stamp[16];
+  PutBigEndian(link, stamp);
+  PutBigEndian(static_cast<uint64_t>(timestamp), stamp + 8);
+  crypto_auth_hmacsha256_update(&state, stamp, sizeof stamp);
+  uint8_t full[crypto_auth_hmacsha256_BYTES];
+  crypto_auth_hmacsha256_final(&state, full);
+  std::memcpy(out, full, 16);
+}
+
+std::vector<uint8_t> BusSigning::Sign(const std::string& channel, const void* data, size_t size) {
+  const auto* bytes = static_cast<const uint8_t*>(data);
+  std::vector<uint8_t> out(bytes, bytes + size);
+  out.resize(size + kSignatureBytes);
+  int64_t timestamp;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    timestamp = std::max(NowMicros(), last_sent_ + 1);
+    last_sent_ = timestamp;
+  }
+  uint8_t* trailer = out.data() + size;
+  PutBigEndian(link_, trailer);
+  PutBigEndian(static_cast<uint64_t>(timestamp), trailer + 8);
+  Tag(channel, bytes, size, link_, timestamp, trailer + 16);
+  std::memcpy(trailer + 32, kMagic, sizeof kMagic);
+  return out;
+}
+
+BusSigning::Opened BusSigning::Open(const std::string& channel, const void* data, size_t size,
+                                    int64_t now_us) {
+  const auto* bytes = static_cast<const uint8_t*>(data);
+  if (size < kSignatureBytes || std::memcmp(bytes + size - 4, kMagic, 4) != 0)
+    return {size, "no signature (this bus is signed: SIMPARTNER_BUS_KEY)"};
+  const size_t message = size - kSignatureBytes;
+  const uint8_t* trailer = bytes + message;
+  const uint64_t link = GetBigEndian(trailer);
+  const int64_t timestamp = static_cast<int64_t>(GetBigEndian(trailer + 8));
+  uint8_t expected[16];
+  Tag(channel, bytes, message, link, timestamp, expected);
+  if (crypto_verify_16(expected, trailer + 16) != 0)
+    return {message, "wrong signature (another key, or altered on the way)"};
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto known = links_.find(link);
+  if (known != links_.end() && timestamp <= known->second.timestamp)
+    return {message, "replayed: timestamp " + std::to_string(timestamp) +
+                         " us is not after the last of its sender, " +
+                         std::to_string(known->second.timestamp)};
+  if (known == links_.end() && std::llabs(timestamp - now_us) > kFreshnessSeconds * 1000000)
+    return {message, "stale: a new sender's first message, " +
+                         std::to_string((now_us - timestamp) / 1000000) +
+                         " s from this host's clock (at most " +
+                         std::to_string(kFreshnessSeconds) + " s: a replayed log?)"};
+  if (known == links_.end() && links_.size() >= kMaxLinks) {
+    const auto oldest = std::min_element(
+        links_.begin(), links_.end(),
+        [](const auto& a, const auto& b) { return a.second.used < b.second.used; });
+    links_.erase(oldest);
+  }
+  links_[link] = Link{timestamp, ++uses_};
+  return {message, ""};
+}
+
+size_t UnsignedSize(const void* data, size_t size) {
+  const auto* bytes = static_cast<const uint8_t*>(data);
+  if (size >= kSignatureBytes && std::memcmp(bytes + size - 4, kMagic, 4) == 0)
+    return size - kSignatureBytes;
+  return size;
+}
+
+}  // namespace simpartner

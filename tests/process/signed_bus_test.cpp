@@ -1,0 +1,127 @@
+// A signed bus (SIMPARTNER_BUS_KEY, common/bus_signing.h) with real
+// processes: simpartner-sim and a client holding the key drive the robot
+// as on an open bus; a process without the key sends a quit, a command, a
+// model of another simulation and a state, and replays a signed command:
+// nothing changes, and the sim says why it refused each. Without the key
+// (the same sim, no SIMPARTNER_BUS_KEY) the forged quit stops the sim: the
+// test that shows what the key does.
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+#include <stdlib.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "../support/bus_url.h"
+#include "../support/programs.h"
+#include "../support/sim_process.h"
+#include "../support/test_dir.h"
+#include "../support/wait.h"
+#include "simpartner/channels.h"
+#include "simpartner/client/client.h"
+#include "simpartner/command_t.hpp"
+#include "simpartner/control_t.hpp"
+
+namespace simpartner {
+namespace {
+
+namespace fs = std::filesystem;
+using test_support::BusUrl;
+using test_support::ShippedWorld;
+using test_support::SimProcess;
+
+class SignedBusTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test_support::FreshTestDir("sp_signed_", 30);
+    key_ = (dir_ / "bus.key").string();
+    std::ofstream(key_) << std::string(64, 'c') << "\n";
+    ::chmod(key_.c_str(), 0600);
+  }
+  void TearDown() override {
+    ::unsetenv(kBusKeyVariable);
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  // What a process without the key sends: a quit for any simulation.
+  static void ForgeQuit(lcm::LCM& raw) {
+    control_t quit{};
+    quit.action = control_t::ACTION_QUIT;
+    quit.sender = "forger@elsewhere:1";
+    raw.publish(channels::kControl, &quit);
+  }
+  fs::path dir_;
+  std::string key_;
+};
+
+TEST_F(SignedBusTest, WithoutTheKeyNothingChangesAndAReplayIsRefused) {
+  ASSERT_EQ(::setenv(kBusKeyVariable, key_.c_str(), 1), 0);
+  const std::string url = BusUrl(1);
+  SimProcess sim(ShippedWorld("gen1_flat.xml"), url, (dir_ / "sim.log").string());
+  ASSERT_TRUE(sim.WaitUntilRunning(30)) << sim.Log();
+  EXPECT_NE(sim.Log().find("signed (SIMPARTNER_BUS_KEY)"), std::string::npos) << sim.Log();
+  client::ClientOptions options;
+  options.url = url;
+  options.model_timeout = 10;
+  client::Client keyed(options);  // reads the key too
+  const int64_t simulation = keyed.catalog()->simulation_id();
+  // A signed command from the keyed client, seen raw by a process without
+  // the key, which keeps the bytes to replay them.
+  lcm::LCM raw(url);
+  struct Capture {
+    std::vector<uint8_t> bytes;
+    void On(const lcm::ReceiveBuffer* b, const std::string&) {
+      const auto* data = static_cast<const uint8_t*>(b->data);
+      bytes.assign(data, data + b->data_size);
+    }
+  } capture;
+  raw.subscribe(channels::kCommand, &Capture::On, &capture);
+  std::vector<uint8_t>& captured = capture.bytes;
+  const command_reply_t accepted =
+      keyed.Command("Axle1Motor", command_t::ACTION_SET, "1000,1");
+  EXPECT_TRUE(accepted.accepted) << accepted.reason;
+  for (int i = 0; i < 20 && captured.empty(); ++i) raw.handleTimeout(50);
+  ASSERT_FALSE(captured.empty());
+
+  // The replay first: the sim prints the first refusal of each channel.
+  raw.publish(channels::kCommand, captured.data(), static_cast<unsigned>(captured.size()));
+  ForgeQuit(raw);
+  command_t forged_command{};
+  forged_command.sender = "forger@elsewhere:1";
+  forged_command.target = "Axle1Motor";
+  forged_command.action = command_t::ACTION_SET;
+  forged_command.text = "1000,-5";
+  forged_command.apply_at_step = -1;
+  raw.publish(channels::kCommand, &forged_command);
+  model_t forged_model = *keyed.model();
+  forged_model.simulation_id = simulation + 1;
+  raw.publish(channels::kModel, &forged_model);
+
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  EXPECT_TRUE(sim.running()) << sim.Log();
+  EXPECT_EQ(keyed.catalog()->simulation_id(), simulation);
+  const std::string log = sim.Log();
+  EXPECT_NE(log.find("SIM_CONTROL: 72 bytes refused: no signature"), std::string::npos) << log;
+  EXPECT_NE(log.find("SIM_COMMAND: " + std::to_string(captured.size()) +
+                     " bytes refused: replayed: "),
+            std::string::npos)
+      << log;
+  const auto status = keyed.WaitForStatus(3.0);
+  EXPECT_EQ(status.commands_accepted, 1) << log;  // the forged and the replayed were not
+  EXPECT_EQ(status.bad_messages, 3) << log;       // replay, quit, command
+  keyed.Quit();
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(10)), std::optional<int>(0)) << sim.Log();
+}
+
+TEST_F(SignedBusTest, WithoutAKeyTheForgedQuitStopsTheSim) {
+  const std::string url = BusUrl(2);
+  SimProcess sim(ShippedWorld("gen1_flat.xml"), url, (dir_ / "sim.log").string());
+  ASSERT_TRUE(sim.WaitUntilRunning(30)) << sim.Log();
+  lcm::LCM raw(url);
+  ForgeQuit(raw);
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(10)), std::optional<int>(0)) << sim.Log();
+}
+
+}  // namespace
+}  // namespace simpartner
