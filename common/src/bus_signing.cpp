@@ -1,6 +1,9 @@
 #include "simpartner/bus_signing.h"
 
-#include <sodium.h>
+#include <openssl/core_names.h>
+#include <openssl/crypto.h>
+#include <openssl/evp.h>
+#include <openssl/rand.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -32,8 +35,21 @@ int64_t NowMicros() {
       .count();
 }
 
-void InitSodium() {
-  if (sodium_init() < 0) throw BusKeyError("libsodium cannot be initialised");
+// 64 hex digits to the key; false when they are not.
+bool FromHex(const std::string& text, BusSigning::Key* key) {
+  if (text.size() != 2 * key->size()) return false;
+  for (size_t i = 0; i < key->size(); ++i) {
+    unsigned value = 0;
+    for (const char c : {text[2 * i], text[2 * i + 1]}) {
+      if (!std::isxdigit(static_cast<unsigned char>(c))) return false;
+      value = value * 16 +
+              static_cast<unsigned>(std::isdigit(static_cast<unsigned char>(c))
+                                        ? c - '0'
+                                        : std::tolower(static_cast<unsigned char>(c)) - 'a' + 10);
+    }
+    (*key)[i] = static_cast<uint8_t>(value);
+  }
+  return true;
 }
 
 }  // namespace
@@ -59,12 +75,7 @@ BusSigning::Key BusSigning::LoadKey(const std::string& path) {
     return key;
   }
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-  size_t used = 0;
-  const bool hex = text.size() == 2 * key.size() &&
-                   sodium_hex2bin(key.data(), key.size(), text.data(), text.size(), nullptr,
-                                  &used, nullptr) == 0 &&
-                   used == key.size();
-  if (!hex)
+  if (!FromHex(text, &key))
     throw BusKeyError(path + ": a bus key file holds 32 bytes or 64 hex digits, this one " +
                       std::to_string(text.size()) +
                       " bytes (make one: head -c 32 /dev/urandom > FILE; chmod 600 FILE)");
@@ -78,8 +89,8 @@ std::optional<BusSigning> BusSigning::FromEnvironment() {
 }
 
 BusSigning::BusSigning(const Key& key) : key_(key) {
-  InitSodium();
-  randombytes_buf(&link_, sizeof link_);
+  if (RAND_bytes(reinterpret_cast<unsigned char*>(&link_), sizeof link_) != 1)
+    throw BusKeyError("OpenSSL has no random bytes for a link id");
 }
 
 BusSigning::BusSigning(BusSigning&& other) noexcept
@@ -100,18 +111,28 @@ BusSigning& BusSigning::operator=(BusSigning&& other) noexcept {
 
 void BusSigning::Tag(const std::string& channel, const uint8_t* data, size_t size, uint64_t link,
                      int64_t timestamp, uint8_t out[16]) const {
-  crypto_auth_hmacsha256_state state;
-  crypto_auth_hmacsha256_init(&state, key_.data(), key_.size());
-  crypto_auth_hmacsha256_update(&state, kMagic, sizeof kMagic);
-  crypto_auth_hmacsha256_update(&state, reinterpret_cast<const uint8_t*>(channel.c_str()),
-                                channel.size() + 1);  // with its NUL
-  crypto_auth_hmacsha256_update(&state, data, size);
   uint8_t stamp[16];
   PutBigEndian(link, stamp);
   PutBigEndian(static_cast<uint64_t>(timestamp), stamp + 8);
-  crypto_auth_hmacsha256_update(&state, stamp, sizeof stamp);
-  uint8_t full[crypto_auth_hmacsha256_BYTES];
-  crypto_auth_hmacsha256_final(&state, full);
+  // OpenSSL's HMAC, fetched once (immutable, shared by threads); a
+  // context per call: a client signs and checks on two threads.
+  static EVP_MAC* const mac = EVP_MAC_fetch(nullptr, "HMAC", nullptr);
+  EVP_MAC_CTX* context = mac ? EVP_MAC_CTX_new(mac) : nullptr;
+  char digest[] = "SHA256";
+  const OSSL_PARAM params[] = {
+      OSSL_PARAM_construct_utf8_string(OSSL_MAC_PARAM_DIGEST, digest, 0), OSSL_PARAM_construct_end()};
+  uint8_t full[EVP_MAX_MD_SIZE];
+  size_t length = 0;
+  const bool done =
+      context && EVP_MAC_init(context, key_.data(), key_.size(), params) == 1 &&
+      EVP_MAC_update(context, kMagic, sizeof kMagic) == 1 &&
+      EVP_MAC_update(context, reinterpret_cast<const uint8_t*>(channel.c_str()),
+                     channel.size() + 1) == 1 &&  // with its NUL
+      EVP_MAC_update(context, data, size) == 1 &&
+      EVP_MAC_update(context, stamp, sizeof stamp) == 1 &&
+      EVP_MAC_final(context, full, &length, sizeof full) == 1 && length >= 16;
+  EVP_MAC_CTX_free(context);
+  if (!done) throw BusKeyError("OpenSSL could not compute HMAC-SHA-256");
   std::memcpy(out, full, 16);
 }
 
@@ -144,7 +165,7 @@ BusSigning::Opened BusSigning::Open(const std::string& channel, const void* data
   const int64_t timestamp = static_cast<int64_t>(GetBigEndian(trailer + 8));
   uint8_t expected[16];
   Tag(channel, bytes, message, link, timestamp, expected);
-  if (crypto_verify_16(expected, trailer + 16) != 0)
+  if (CRYPTO_memcmp(expected, trailer + 16, 16) != 0)
     return {message, "wrong signature (another key, or altered on the way)"};
   std::lock_guard<std::mutex> lock(mutex_);
   const auto known = links_.find(link);

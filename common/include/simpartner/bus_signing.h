@@ -19,7 +19,9 @@
 // after the last of its link (a replay), or, from a link it has not seen,
 // more than kFreshnessSeconds from its own clock (a replayed log). The
 // stock LCM tools keep working: lcm-spy and lcm-logger decode the message
-// and ignore the trailing bytes. HMAC-SHA-256 is libsodium's.
+// and ignore the trailing bytes. HMAC-SHA-256 is OpenSSL's (libcrypto: it
+// uses the CPU's SHA instructions, about 4 us for a 9 KB gen4 state, where
+// libsodium's portable SHA-256 took about 20).
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
