@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 
+#include "simpartner/bus_exposure.h"
 #include "simpartner/bus_url.h"
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
@@ -51,6 +52,9 @@ Client::Client(ClientOptions options)
   if (!lcm_->good())
     throw ClientError("cannot open the LCM bus '" + options_.url +
                       "' (expected e.g. udpm://239.255.76.67:7667?ttl=0)");
+  if (const std::string open = BusExposureWarning(options_.url, signing_.has_value());
+      !open.empty())
+    std::cerr << "simpartner client: warning: " << open << "\n";
   for (const char* channel : {channels::kModel, channels::kState, channels::kStateReply,
                               channels::kStatus, channels::kCommandReply, channels::kSensor,
                               channels::kSyncReply}) {

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "simpartner/bus_exposure.h"
+
 namespace simpartner::logger {
 namespace {
 
@@ -90,6 +92,9 @@ Logger::Logger(LoggerOptions options, Reporter* reporter)
     throw Error(e.what());
   }
   receiver_options.signing = signing_ ? &*signing_ : nullptr;
+  if (const std::string open = BusExposureWarning(options_.lcm_url, signing_.has_value());
+      !open.empty())
+    reporter_->Say("warning: " + open);
   receiver_ = std::make_unique<Receiver>(lcm_.get(), queue_.get(), receiver_options, reporter_);
 }
 

@@ -7,6 +7,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "simpartner/bus_exposure.h"
 #include "simpartner/bus_url.h"
 #include "simpartner/sim/peer_watch.h"
 #include "simpartner/sender.h"
@@ -53,6 +54,8 @@ int RunSimProcess(model::World world, const Parameters& params, bool allow_other
     return 2;
   }
   SimNode node(&simulation, &bus, stop_fd, signer);
+  if (const std::string open = BusExposureWarning(params.lcmUrl, signer != nullptr); !open.empty())
+    err << "simpartner-sim: warning: " << open << std::endl;
   out << "simpartner-sim: running (step " << params.stepsize << " s, " << params.stepper
       << " stepper, speed " << params.speed << ") on " << params.lcmUrl
       << (signer ? ", signed (SIMPARTNER_BUS_KEY)" : "") << std::endl;
