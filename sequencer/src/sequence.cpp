@@ -430,11 +430,14 @@ class Builder {
         if (x) w.threshold = *x;
       }
       if (const std::optional<double> index = Number(node, "index", false, true)) {
+        // Checked before the cast: 1e11 does not fit an int (a fuzzer's find).
         if (*index != std::floor(*index) || *index > 100000) {
-          Error(node, "index " + FormatNumber(*index, 10) + " must be a whole number");
+          Error(node, "index " + FormatNumber(*index, 10) +
+                          " must be a whole number from 0 to 100000");
           ok = false;
+        } else {
+          w.index = static_cast<int>(*index);
         }
-        w.index = static_cast<int>(*index);
       }
     }
     if (!ok) return;

@@ -281,6 +281,8 @@ const std::map<std::string, std::string>& Expected() {
       {"v2_sequence_robot.xml",
        "v2_sequence_robot.xml:3: sequence: robot 'WorkPartner3' is not in the model (it has "
        "'WorkPartner')"},
+      {"v2_wait_index_huge.xml",
+       "v2_wait_index_huge.xml:4: wait: index 1e+11 must be a whole number from 0 to 100000"},
       {"v2_wait_no_timeout.xml",
        "v2_wait_no_timeout.xml:4: wait: timeout is missing"},
       {"v2_wait_unknown_joint.xml",
