@@ -41,24 +41,21 @@ void RunObserver::Pump(int quiet_ms, int budget_ms) {
   AskAgainIfQuiet();
 }
 
-void RunObserver::AskToJoin() {
-  sync_t join{};
-  join.utime = WallMicros();
-  join.controller = kPaceName;
-  join.sender = sender_;
-  join.action = sync_t::ACTION_JOIN;
-  join.period = kPacePeriod;
-  PublishSigned(&lcm_, channels::kSync, join, signer());
+void RunObserver::PublishMark(int8_t action, int64_t period, int64_t tick) {
+  sync_t mark{};
+  mark.utime = WallMicros();
+  mark.controller = kPaceName;
+  mark.sender = sender_;
+  mark.action = action;
+  mark.period = period;
+  mark.tick = tick;
+  PublishSigned(&lcm_, channels::kSync, mark, signer());
 }
 
+void RunObserver::AskToJoin() { PublishMark(sync_t::ACTION_JOIN, kPacePeriod, 0); }
+
 void RunObserver::Answer(int64_t tick) {
-  sync_t done{};
-  done.utime = WallMicros();
-  done.controller = kPaceName;
-  done.sender = sender_;
-  done.action = sync_t::ACTION_DONE;
-  done.tick = tick;
-  PublishSigned(&lcm_, channels::kSync, done, signer());
+  PublishMark(sync_t::ACTION_DONE, 0, tick);
   answered_ = std::max(answered_, tick);
 }
 

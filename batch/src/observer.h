@@ -69,6 +69,8 @@ class RunObserver {
   void OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnStateReply(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnSyncReply(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  // A SIM_SYNC mark of this observer: JOIN with its period, DONE for a tick.
+  void PublishMark(int8_t action, int64_t period, int64_t tick);
   void Answer(int64_t tick);
   void AskAgainIfQuiet();
   void Accumulate(const state_t& state);

@@ -290,8 +290,7 @@ std::string BadMessageCounter::Summary() const {
 std::optional<size_t> OpenFromBus(const std::string& channel, const void* data, size_t size,
                                   BusSigning* signing, BadMessageCounter* counter,
                                   std::string* refusal, bool* print) {
-  if (signing == nullptr) return UnsignedSize(data, size);
-  const BusSigning::Opened opened = signing->Open(channel, data, size, WallMicros());
+  const BusSigning::Opened opened = OpenMessage(signing, channel, data, size);
   if (opened.refusal.empty()) return opened.size;
   *refusal = channel + ": " + std::to_string(size) + " bytes refused: " + opened.refusal;
   const bool should_print = counter ? counter->Count(channel, *refusal) : true;

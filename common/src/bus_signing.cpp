@@ -8,11 +8,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cstdlib>
 #include <cstring>
 
 #include "simpartner/bounded_file.h"
+#include "simpartner/sender.h"
 
 namespace simpartner {
 namespace {
@@ -27,12 +27,6 @@ uint64_t GetBigEndian(const uint8_t* in) {
   uint64_t value = 0;
   for (int i = 0; i < 8; ++i) value = value << 8 | in[i];
   return value;
-}
-
-int64_t NowMicros() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
 }
 
 // 64 hex digits to the key; false when they are not.
@@ -143,7 +137,7 @@ std::vector<uint8_t> BusSigning::Sign(const std::string& channel, const void* da
   int64_t timestamp;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    timestamp = std::max(NowMicros(), last_sent_ + 1);
+    timestamp = std::max(WallMicros(), last_sent_ + 1);
     last_sent_ = timestamp;
   }
   uint8_t* trailer = out.data() + size;
@@ -186,6 +180,12 @@ BusSigning::Opened BusSigning::Open(const std::string& channel, const void* data
   }
   links_[link] = Link{timestamp, ++uses_};
   return {message, ""};
+}
+
+BusSigning::Opened OpenMessage(BusSigning* signing, const std::string& channel, const void* data,
+                               size_t size) {
+  if (signing == nullptr) return {UnsignedSize(data, size), ""};
+  return signing->Open(channel, data, size, WallMicros());
 }
 
 size_t UnsignedSize(const void* data, size_t size) {

@@ -263,10 +263,9 @@ Receiver::Receiver(lcm::LCM* lcm, RecordQueue* queue, ReceiverOptions options, R
 template <class Message>
 bool Receiver::Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel,
                       Message* message) {
-  if (!CheckSignature(buffer, channel)) return false;
-  const std::optional<DecodeFailure> failure =
-      DecodeLcm(buffer->data, UnsignedSize(buffer->data, static_cast<size_t>(buffer->data_size)),
-                message);
+  const std::optional<size_t> size = OpenSigned(buffer, channel);
+  if (!size) return false;
+  const std::optional<DecodeFailure> failure = DecodeLcm(buffer->data, *size, message);
   uint64_t count = 0;
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -282,11 +281,11 @@ bool Receiver::Decode(const lcm::ReceiveBuffer* buffer, const std::string& chann
   return false;
 }
 
-bool Receiver::CheckSignature(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
-  if (options_.signing == nullptr) return true;
-  const BusSigning::Opened opened = options_.signing->Open(
-      channel, buffer->data, static_cast<size_t>(buffer->data_size), WallMicros());
-  if (opened.refusal.empty()) return true;
+std::optional<size_t> Receiver::OpenSigned(const lcm::ReceiveBuffer* buffer,
+                                           const std::string& channel) {
+  const BusSigning::Opened opened = OpenMessage(options_.signing, channel, buffer->data,
+                                                static_cast<size_t>(buffer->data_size));
+  if (opened.refusal.empty()) return opened.size;
   uint64_t count = 0;
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -298,7 +297,7 @@ bool Receiver::CheckSignature(const lcm::ReceiveBuffer* buffer, const std::strin
                         channel + ": " + std::to_string(buffer->data_size) + " bytes refused: " +
                             opened.refusal + "; not written (" + std::to_string(count) +
                             " so far)");
-  return false;
+  return std::nullopt;
 }
 
 void Receiver::Invalid(const std::string& channel, const std::string& problem) {
@@ -465,8 +464,14 @@ void Receiver::RequestModel() {
 }
 
 void Receiver::Tick() {
-  if (NeedsModel() && std::chrono::steady_clock::now() - last_request_ > kModelRequestPeriod)
-    RequestModel();
+  // Tick runs after every message; what waits (up to 64 MiB of records) is
+  // looked through at most once a request period.
+  const auto now = std::chrono::steady_clock::now();
+  if (!waiting_.empty() && now - last_request_ > kModelRequestPeriod &&
+      now - last_waiting_check_ > kModelRequestPeriod) {
+    last_waiting_check_ = now;
+    if (NeedsModel()) RequestModel();
+  }
   if (!pending_.empty() && PushPending()) SpoolRecovered();
   CloseSilent();
   FollowSuccessor();

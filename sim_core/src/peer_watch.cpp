@@ -58,13 +58,10 @@ void PeerWatch::AddOwnId(int64_t simulation_id) { own_ids_.insert(simulation_id)
 std::vector<OtherSimulation> PeerWatch::TakeNew() { return std::exchange(new_, {}); }
 
 void PeerWatch::OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
-  size_t size = static_cast<size_t>(buffer->data_size);
-  if (signing_ != nullptr) {
-    const BusSigning::Opened opened = signing_->Open(channel, buffer->data, size, WallMicros());
-    if (!opened.refusal.empty()) return;  // not from a holder of the key
-    size = opened.size;
-  }
-  const std::optional<int64_t> id = PeekSimulationId(channel, buffer->data, size);
+  const BusSigning::Opened opened =
+      OpenMessage(signing_, channel, buffer->data, static_cast<size_t>(buffer->data_size));
+  if (!opened.refusal.empty()) return;  // not from a holder of the key
+  const std::optional<int64_t> id = PeekSimulationId(channel, buffer->data, opened.size);
   if (!id || own_ids_.count(*id) != 0) return;
   // Forged ids come without end: remember a bounded number (a forgotten
   // id heard again is new again; reports are rate-limited by the caller).

@@ -44,17 +44,19 @@ std::string FormatMs(double ms) {
 
 }  // namespace
 
-void ReportMessageSizes(const Simulation& sim, std::ostream& out) {
+MessageSizes MeasureMessages(const Simulation& sim) {
   model_t model;
   sim.FillModel(&model);
   state_t state;
   sim.FillState(&state);
-  const size_t model_bytes = static_cast<size_t>(model.getEncodedSize());
-  const size_t state_bytes = static_cast<size_t>(state.getEncodedSize());
-  out << "simpartner-sim: SIM_MODEL is " << model_bytes << " bytes, SIM_STATE " << state_bytes
+  return {static_cast<size_t>(model.getEncodedSize()), static_cast<size_t>(state.getEncodedSize())};
+}
+
+void ReportMessageSizes(const MessageSizes& sizes, std::ostream& out) {
+  out << "simpartner-sim: SIM_MODEL is " << sizes.model << " bytes, SIM_STATE " << sizes.state
       << " bytes\n";
-  for (auto [channel, bytes] : {std::pair{channels::kModel, model_bytes},
-                                std::pair{channels::kState, state_bytes}}) {
+  for (auto [channel, bytes] : {std::pair{channels::kModel, sizes.model},
+                                std::pair{channels::kState, sizes.state}}) {
     if (bytes > kSafeMessageBytes)
       out << "simpartner-sim: warning: " << channel << " (" << bytes / 1024
           << " KiB) is above " << kSafeMessageBytes / 1024
@@ -64,15 +66,10 @@ void ReportMessageSizes(const Simulation& sim, std::ostream& out) {
   out << std::flush;
 }
 
-std::string MessagesTooLarge(const Simulation& sim) {
-  model_t model;
-  sim.FillModel(&model);
-  state_t state;
-  sim.FillState(&state);
+std::string MessagesTooLarge(const MessageSizes& sizes) {
   std::string problems;
-  for (auto [channel, bytes] :
-       {std::pair{channels::kModel, static_cast<size_t>(model.getEncodedSize())},
-        std::pair{channels::kState, static_cast<size_t>(state.getEncodedSize())}}) {
+  for (auto [channel, bytes] : {std::pair{channels::kModel, sizes.model},
+                                std::pair{channels::kState, sizes.state}}) {
     if (bytes <= kMaxMessageBytes) continue;
     problems += std::string(problems.empty() ? "" : "; ") + channel + " would be " +
                 std::to_string(bytes) + " bytes (" + FormatNumber(bytes / 1048576.0, 4) +

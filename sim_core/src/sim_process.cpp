@@ -48,7 +48,8 @@ int RunSimProcess(model::World world, const Parameters& params, bool allow_other
     }
   }
   Simulation simulation(std::move(world), params, WallMicros());
-  if (const std::string too_large = MessagesTooLarge(simulation); !too_large.empty()) {
+  const MessageSizes sizes = MeasureMessages(simulation);
+  if (const std::string too_large = MessagesTooLarge(sizes); !too_large.empty()) {
     err << "simpartner-sim: " << too_large << "; nothing started\n";
     ::close(stop_fd);
     return 2;
@@ -59,7 +60,7 @@ int RunSimProcess(model::World world, const Parameters& params, bool allow_other
   out << "simpartner-sim: running (step " << params.stepsize << " s, " << params.stepper
       << " stepper, speed " << params.speed << ") on " << params.lcmUrl
       << (signer ? ", signed (SIMPARTNER_BUS_KEY)" : "") << std::endl;
-  ReportMessageSizes(simulation, out);
+  ReportMessageSizes(sizes, out);
   // Progress lines only for a person watching; a log gets the summary.
   if (::isatty(STDOUT_FILENO)) node.SetProgressOutput(&out);
   const int status = node.Run();
@@ -74,7 +75,7 @@ int RunSimProcess(model::World world, const Parameters& params, bool allow_other
 
 int CheckMessageSizes(const model::World& world, const Parameters& params, std::ostream& err) {
   const Simulation simulation(world, params, 0);
-  const std::string too_large = MessagesTooLarge(simulation);
+  const std::string too_large = MessagesTooLarge(MeasureMessages(simulation));
   if (too_large.empty()) return 0;
   err << "simpartner-sim: " << too_large << "\n";
   return 2;

@@ -31,15 +31,11 @@ constexpr auto kMaxDrainOverrun = std::chrono::milliseconds(30);
 template <class T>
 std::optional<std::string> Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel,
                                   BusSigning* signing, T* out) {
-  size_t size = static_cast<size_t>(buffer->data_size);
-  if (signing != nullptr) {
-    const BusSigning::Opened opened = signing->Open(channel, buffer->data, size, WallMicros());
-    if (!opened.refusal.empty())
-      return std::to_string(size) + " bytes refused: " + opened.refusal;
-    size = opened.size;
-  } else {
-    size = UnsignedSize(buffer->data, size);
-  }
+  const BusSigning::Opened opened =
+      OpenMessage(signing, channel, buffer->data, static_cast<size_t>(buffer->data_size));
+  if (!opened.refusal.empty())
+    return std::to_string(buffer->data_size) + " bytes refused: " + opened.refusal;
+  const size_t size = opened.size;
   const auto failure = DecodeLcm(buffer->data, size, out);
   if (!failure) return std::nullopt;
   return std::to_string(size) + " bytes refused as simpartner." + T::getTypeName() + ": " +

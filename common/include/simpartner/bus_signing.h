@@ -100,6 +100,12 @@ class BusSigning {
 // key: it cannot check the signature and reads the message as unsigned.
 size_t UnsignedSize(const void* data, size_t size);
 
+// A datagram read from the bus, before decoding: with `signing`, checked
+// (Open, at this host's clock); without, its signature trailer dropped
+// unread (UnsignedSize). The one step every reader takes.
+BusSigning::Opened OpenMessage(BusSigning* signing, const std::string& channel, const void* data,
+                               size_t size);
+
 // Publishes `message` on `channel`, signed when `signing` is set. Returns
 // lcm's status (0 when sent).
 template <class T>

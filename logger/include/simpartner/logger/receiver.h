@@ -149,9 +149,9 @@ class Receiver {
   template <class Message>
   bool Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel, Message* message);
   void Invalid(const std::string& channel, const std::string& problem);
-  // With a key: whether the message is signed and fresh (counted and
-  // reported when not).
-  bool CheckSignature(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  // The message's size without its signature (OpenMessage); with a key,
+  // nothing when it is not signed and fresh (counted and reported).
+  std::optional<size_t> OpenSigned(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   // The step-number rule for a state that fits its model; "" if it passes.
   std::string CheckStepRate(const state_t& state, int64_t received_us, const ModelShape& shape);
   Record MakeRecord(RecordKind kind, int64_t simulation_id, const lcm::ReceiveBuffer* buffer) const;
@@ -232,6 +232,7 @@ class Receiver {
   std::deque<Record> waiting_;
   uint64_t waiting_bytes_ = 0;
   std::chrono::steady_clock::time_point last_request_{};
+  std::chrono::steady_clock::time_point last_waiting_check_{};  // Tick's NeedsModel
   mutable std::mutex stats_mutex_;
   ReceiverStats stats_;
 };

@@ -201,10 +201,17 @@ inline constexpr size_t kSafeMessageBytes = 200 * 1024;
 // SimPartner receiver asks for a 4 MiB socket buffer (recv_buf_size=4194304,
 // bus_url.h), and a message whose fragments do not fit is lost whole.
 inline constexpr size_t kMaxMessageBytes = 4u << 20;
-// "" or, for a model whose SIM_MODEL or SIM_STATE is larger than
-// kMaxMessageBytes, why it cannot be served (the sizes named).
-std::string MessagesTooLarge(const Simulation& sim);
-void ReportMessageSizes(const Simulation& sim, std::ostream& out);
+// The encoded sizes of a simulation's SIM_MODEL and SIM_STATE, measured
+// once at start for both uses below.
+struct MessageSizes {
+  size_t model = 0;  // [bytes]
+  size_t state = 0;  // [bytes]
+};
+MessageSizes MeasureMessages(const Simulation& sim);
+// "" or, for a SIM_MODEL or SIM_STATE larger than kMaxMessageBytes, why the
+// sim cannot serve it (the sizes named).
+std::string MessagesTooLarge(const MessageSizes& sizes);
+void ReportMessageSizes(const MessageSizes& sizes, std::ostream& out);
 
 
 }  // namespace simpartner::sim
