@@ -40,6 +40,7 @@ struct Parameters {
 
   // Stepping.
   double stepsize = 0.001;
+  std::string engine = "ode";
   std::string stepper = "accurate";
   int quickStepIterations = 20;
   double quickStepW = 1.3;
@@ -98,6 +99,9 @@ struct Parameters {
     v.Section(parameter_sections::kStepping);
     v.Double("stepsize", stepsize, 1e-5, 0.1,
              "fixed step [s]; stable range roughly 0.001 to 0.02");
+    v.Choice("engine", engine, {"ode", "mujoco"},
+             "physics engine: ode = ODE (the original's, the validated default), "
+             "mujoco = MuJoCo 2.2 (docs/engines.md)");
     v.Choice("stepper", stepper, {"accurate", "quick"},
              "accurate = dWorldStep (exact LCP, slow), quick = "
              "dWorldQuickStep (iterative)");
