@@ -122,13 +122,13 @@ Figures RunOurs(const model::World& world, const Run& run, lcm::LCM* bus,
   Clock::duration busy{};
   double cpu = 0;
   for (int n = 0; n < run.stand_steps + run.drive_steps; ++n) {
-    if (n == settled) start = sim.ode().ReadBody(tracked).position;
+    if (n == settled) start = sim.engine().ReadBody(tracked).position;
     if (n == run.stand_steps) {
-      const Eigen::Vector3d d = sim.ode().ReadBody(tracked).position - start;
+      const Eigen::Vector3d d = sim.engine().ReadBody(tracked).position - start;
       figures.drift_mm = std::hypot(d.x(), d.z()) * 1000;
       CommandWheels(&sim, kWheelSpeed);
     }
-    if (n == speed_from) drive_from = sim.ode().ReadBody(tracked).position;
+    if (n == speed_from) drive_from = sim.engine().ReadBody(tracked).position;
     const auto begin = Clock::now();
     const double cpu_begin = ThreadCpuMicros();
     if (node) {
@@ -145,7 +145,7 @@ Figures RunOurs(const model::World& world, const Run& run, lcm::LCM* bus,
     }
     if (n >= measure_from && n < run.stand_steps) {
       double vertical = 0;
-      for (int wheel : wheels) vertical += sim.ode().ReadBody(wheel).contact_force.y();
+      for (int wheel : wheels) vertical += sim.engine().ReadBody(wheel).contact_force.y();
       load_sum += vertical;
       ++load_samples;
     }
@@ -154,7 +154,7 @@ Figures RunOurs(const model::World& world, const Run& run, lcm::LCM* bus,
                                  (run.stand_steps + run.drive_steps);
   figures.micros_per_step = cpu / (run.stand_steps + run.drive_steps);
   figures.wheel_load_over_weight = load_sum / std::max(load_samples, 1) / weight;
-  const Eigen::Vector3d driven = sim.ode().ReadBody(tracked).position - drive_from;
+  const Eigen::Vector3d driven = sim.engine().ReadBody(tracked).position - drive_from;
   const double drive_time = (run.stand_steps + run.drive_steps - speed_from) * run.dt;
   figures.speed = drive_time > 0 ? std::hypot(driven.x(), driven.z()) / drive_time : 0;
   return figures;

@@ -24,6 +24,8 @@
 #include "simpartner/channels.h"
 #include "simpartner/command_line.h"
 #include "simpartner/model/loader.h"
+#include "simpartner/sim/mujoco_world.h"
+#include "simpartner/sim/ode_world.h"
 #include "simpartner/sim/simulation.h"
 
 namespace {
@@ -71,6 +73,32 @@ double MicrosPerStep(Clock::duration d, int steps) {
 
 }  // namespace
 
+namespace {
+
+double BareOde(sim::OdeWorld& ode, const Parameters& params, int steps) {
+  Bare bare{ode.world(), dJointGroupCreate(0), params.maxContacts, params.contactMu};
+  const auto start = Clock::now();
+  for (int n = 0; n < steps; ++n) {
+    dSpaceCollide(ode.space(), &bare, &Bare::Near);
+    if (params.stepper == "quick") dWorldQuickStep(bare.world, params.stepsize);
+    else dWorldStep(bare.world, params.stepsize);
+    dJointGroupEmpty(bare.group);
+  }
+  const double us = MicrosPerStep(Clock::now() - start, steps);
+  dJointGroupDestroy(bare.group);
+  return us;
+}
+
+// MuJoCo's mj_step on the engine's model: its own contact defaults, the
+// servos as the set-up before left them.
+double BareMujoco(sim::MujocoWorld& mujoco, int steps) {
+  const auto start = Clock::now();
+  for (int n = 0; n < steps; ++n) mujoco.BareStep();
+  return MicrosPerStep(Clock::now() - start, steps);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   simpartner::CommandLineSpec spec;
   spec.program = "sim_bench";
@@ -101,13 +129,15 @@ int main(int argc, char** argv) {
   }
   struct Setting {
     const char* name;
+    const char* engine;
     const char* stepper;
     int iterations;
   };
-  const Setting settings[] = {{"dWorldStep", "accurate", 20},
-                              {"QuickStep 20", "quick", 20},
-                              {"QuickStep 50", "quick", 50},
-                              {"QuickStep 100", "quick", 100}};
+  const Setting settings[] = {{"dWorldStep", "ode", "accurate", 20},
+                              {"QuickStep 20", "ode", "quick", 20},
+                              {"QuickStep 50", "ode", "quick", 50},
+                              {"QuickStep 100", "ode", "quick", 100},
+                              {"MuJoCo", "mujoco", "accurate", 20}};
   std::printf("%-28s %-14s %6s %10s %10s %10s %10s %10s %8s %8s %9s %8s\n", "world", "stepper",
               "bodies", "bare us", "sim us", "sim+enc us", "sim+pub us", "signed us", "sim/bare",
               "pub/bare", "x realtime", "signing");
@@ -119,9 +149,10 @@ int main(int argc, char** argv) {
     }
     for (const Setting& setting : settings) {
       Parameters params;
+      params.engine = setting.engine;
       params.stepper = setting.stepper;
       params.quickStepIterations = setting.iterations;
-      // Bare ODE on the same built world.
+      // The bare engine on the same built world.
       double bare_us = 0;
       {
         sim::Simulation sim(*loaded.world, params, 1);
@@ -130,18 +161,11 @@ int main(int argc, char** argv) {
         for (const model::FlatActuator& actuator : sim.flat().actuators) {
           const int joint = actuator.joint;
           for (int axis = 0; joint >= 0 && axis < sim.flat().joints[joint].num_axes; ++axis)
-            sim.ode().SetMotor(joint, axis, 0.0, 1000.0);
+            sim.engine().SetMotor(joint, axis, 0.0, 1000.0);
         }
-        Bare bare{sim.ode().world(), dJointGroupCreate(0), params.maxContacts, params.contactMu};
-        const auto start = Clock::now();
-        for (int n = 0; n < steps; ++n) {
-          dSpaceCollide(sim.ode().space(), &bare, &Bare::Near);
-          if (params.stepper == "quick") dWorldQuickStep(bare.world, params.stepsize);
-          else dWorldStep(bare.world, params.stepsize);
-          dJointGroupEmpty(bare.group);
-        }
-        bare_us = MicrosPerStep(Clock::now() - start, steps);
-        dJointGroupDestroy(bare.group);
+        bare_us = params.engine == "mujoco"
+                      ? BareMujoco(dynamic_cast<sim::MujocoWorld&>(sim.engine()), steps)
+                      : BareOde(dynamic_cast<sim::OdeWorld&>(sim.engine()), params, steps);
       }
       double sim_us = 0, pub_us = 0;
       bool faulted = false;

@@ -34,6 +34,7 @@
 #include "simpartner/command_line.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/model/loader.h"
+#include "simpartner/sim/ode_world.h"
 #include "simpartner/sim/simulation.h"
 
 namespace {
@@ -141,8 +142,10 @@ Outcome Run(const model::World& world, const Parameters& params, const Scenario&
     for (const char* axle : {"Axle1Motor", "Axle2Motor", "Axle3Motor", "Axle4Motor"})
       submit(axle, {1000, 1.5});
   }
-  const std::vector<dJointID> joints = AllJoints(sim.ode().space());
-  const auto start_pose = sim.ode().ReadBody(chassis).position;
+  // An ODE survey: the ODE engine (the default) behind the interface.
+  const std::vector<dJointID> joints =
+      AllJoints(dynamic_cast<sim::OdeWorld&>(sim.engine()).space());
+  const auto start_pose = sim.engine().ReadBody(chassis).position;
   Outcome out;
   const auto t0 = std::chrono::steady_clock::now();
   const int64_t steps = static_cast<int64_t>(std::llround(scenario.seconds / params.stepsize));
@@ -154,18 +157,18 @@ Outcome Run(const model::World& world, const Parameters& params, const Scenario&
     }
     for (dJointID j : joints) out.max_joint_error = std::max(out.max_joint_error, AnchorError(j));
     if (sim.time() < scenario.settle) continue;
-    const auto chassis_state = sim.ode().ReadBody(chassis);
+    const auto chassis_state = sim.engine().ReadBody(chassis);
     // y is up in the WorkPartner files.
     out.max_vertical_speed =
         std::max(out.max_vertical_speed, std::abs(chassis_state.linear_velocity.y()));
     if (!scenario.drive) {
       for (size_t b = 0; b < flat.bodies.size(); ++b)
         out.max_still_speed = std::max(
-            out.max_still_speed, sim.ode().ReadBody(static_cast<int>(b)).linear_velocity.norm());
+            out.max_still_speed, sim.engine().ReadBody(static_cast<int>(b)).linear_velocity.norm());
     }
   }
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const auto end = sim.ode().ReadBody(chassis).position;
+  const auto end = sim.engine().ReadBody(chassis).position;
   out.distance = std::hypot(end.x() - start_pose.x(), end.z() - start_pose.z());
   return out;
 }

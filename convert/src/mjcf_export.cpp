@@ -8,6 +8,7 @@
 
 #include "xml_text.h"
 #include "simpartner/convert/urdf_import.h"
+#include "simpartner/model/body_tree.h"
 #include "simpartner/model/flat_model.h"
 #include "simpartner/model/surface.h"
 
@@ -35,15 +36,6 @@ std::string CommentSafe(std::string text) {
     text.replace(at, 2, "- -");
   return text;
 }
-
-// What each flat body is in MuJoCo's tree.
-struct TreeNode {
-  int parent = -1;           // flat body index, -1 = worldbody
-  int joint = -1;            // flat joint that joins it to its parent; -1 = none
-  bool free = false;         // root of a floating tree (freejoint)
-  bool joint_reversed = false;  // the parent is the joint's body1
-  std::vector<int> children;
-};
 
 class Writer {
  public:
@@ -77,7 +69,7 @@ class Writer {
   const Parameters& params_;
   MjcfGains gains_;
   Eigen::Matrix3d c_;
-  std::vector<TreeNode> tree_;
+  std::vector<model::TreeNode> tree_;
   std::vector<std::string> names_;
   std::vector<std::string> joint_names_;
   std::set<int> angle_joints_;          // joints driven by an angle controller (damped)
@@ -100,58 +92,12 @@ const model::Material* Writer::MaterialOf(int body) const {
 }
 
 void Writer::BuildTree() {
-  const int n = static_cast<int>(flat_.bodies.size());
-  tree_.assign(static_cast<size_t>(n), TreeNode{});
-  std::vector<bool> placed(static_cast<size_t>(n), false);
-  std::vector<bool> joint_used(flat_.joints.size(), false);
-  // Breadth first from a set of placed bodies over unused joints.
-  auto grow = [&](std::vector<int> frontier) {
-    while (!frontier.empty()) {
-      std::vector<int> next;
-      for (int at : frontier) {
-        for (size_t j = 0; j < flat_.joints.size(); ++j) {
-          if (joint_used[j]) continue;
-          const model::FlatJoint& joint = flat_.joints[j];
-          const int a = Static(joint.body1) ? -1 : joint.body1;
-          const int b = Static(joint.body2) ? -1 : joint.body2;
-          int child = -1;
-          bool reversed = false;
-          if (a == at && b != at) {
-            child = b;
-            reversed = true;  // body1 is the parent
-          } else if (b == at && a != at) {
-            child = a;
-          } else {
-            continue;
-          }
-          if (child < 0 || placed[static_cast<size_t>(child)]) continue;
-          joint_used[j] = true;
-          placed[static_cast<size_t>(child)] = true;
-          TreeNode& node = tree_[static_cast<size_t>(child)];
-          node.parent = at;
-          node.joint = static_cast<int>(j);
-          node.joint_reversed = reversed;
-          if (at >= 0) tree_[static_cast<size_t>(at)].children.push_back(child);
-          next.push_back(child);
-        }
-      }
-      frontier = next;
-    }
-  };
-  grow({-1});
-  for (int b = 0; b < n; ++b) {
-    if (Static(b) || placed[static_cast<size_t>(b)]) continue;
-    placed[static_cast<size_t>(b)] = true;
-    tree_[static_cast<size_t>(b)].free = true;
-    grow({b});
-  }
-  for (size_t j = 0; j < flat_.joints.size(); ++j) {
-    const model::FlatJoint& joint = flat_.joints[j];
-    if (joint_used[j] || (Static(joint.body1) && Static(joint.body2))) continue;
-    not_carried_.push_back("joint '" + JointName(static_cast<int>(j)) +
+  const model::BodyTree tree = model::BuildBodyTree(flat_);
+  tree_ = tree.nodes;
+  for (int j : tree.loop_joints)
+    not_carried_.push_back("joint '" + JointName(j) +
                            "' closes a loop of bodies; MuJoCo's body tree has no place for it "
                            "(left out)");
-  }
 }
 
 std::string Writer::ContactAttributes(const model::Material* material) {
@@ -201,7 +147,7 @@ std::string Writer::GeomAttributes(const model::Geometry& geometry,
 }
 
 void Writer::WriteBody(int body, const std::string& indent, std::ostringstream& out) {
-  const TreeNode& node = tree_[static_cast<size_t>(body)];
+  const model::TreeNode& node = tree_[static_cast<size_t>(body)];
   const model::FlatBody& flat = flat_.bodies[static_cast<size_t>(body)];
   const model::Body& source = *flat.source;
   const Eigen::Isometry3d pose = ZUpPose(body);

@@ -2,6 +2,7 @@
 
 #include "simpartner/model/loader.h"
 #include "simpartner/model/robot_choice.h"
+#include "simpartner/sim/engine.h"
 
 namespace simpartner::sim {
 
@@ -41,7 +42,25 @@ CommandLineSpec SimCommandLine() {
   return spec;
 }
 
+namespace {
+
+// What the chosen engine cannot represent is refused here, at --check and
+// before anything starts, never approximated silently.
+model::World RefuseWhatTheEngineCannotRun(model::World world, const Parameters& params) {
+  const model::FlatModel flat = model::Flatten(world);
+  DiagnosticList list;
+  for (Diagnostic& d : EngineLimits(flat, params)) list.Add(std::move(d));
+  if (!list.empty()) throw DiagnosticError(list);
+  return world;
+}
+
+}  // namespace
+
 model::World LoadSimWorld(const CommandLine& command_line, const Parameters& params) {
+  return RefuseWhatTheEngineCannotRun(LoadWorldWithRobot(command_line, params), params);
+}
+
+model::World LoadWorldWithRobot(const CommandLine& command_line, const Parameters& params) {
   model::World world = model::LoadWorldOrThrow(params.environment);
   if (!command_line.Has("robot")) {
     for (const char* flag : {"robot-pose", "robot-add"}) {

@@ -72,11 +72,6 @@ class MessageSinkScope {
   MessageSinkScope& operator=(const MessageSinkScope&) = delete;
 };
 
-std::string Join(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
 
 void ToOde(const Eigen::Matrix3d& r, dMatrix3 out) {
   for (int i = 0; i < 3; ++i) {
@@ -90,11 +85,7 @@ Eigen::Vector3d FromOde(const dReal* v) { return Eigen::Vector3d(v[0], v[1], v[2
 }  // namespace
 
 OdeError::OdeError(std::string ode_message, std::string during, std::vector<std::string> bodies)
-    : Error("ODE failed: " + ode_message + (during.empty() ? "" : " (during " + during + ")") +
-            "; bodies: " + (bodies.empty() ? std::string("none stands out") : Join(bodies))),
-      ode_message_(std::move(ode_message)),
-      during_(std::move(during)),
-      bodies_(std::move(bodies)) {}
+    : EngineError("ODE", std::move(ode_message), std::move(during), std::move(bodies)) {}
 
 void InstallOdeHandlers() {
   static const bool initialized = [] {

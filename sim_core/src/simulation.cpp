@@ -87,8 +87,8 @@ Simulation::Simulation(model::World world, Parameters params, int64_t simulation
 }
 
 void Simulation::Build() {
-  ode_.reset();
-  ode_ = std::make_unique<OdeWorld>(flat_, params_);
+  engine_.reset();
+  engine_ = MakeEngine(flat_, params_);
   controllers_.clear();
   for (const model::FlatActuator& a : flat_.actuators) {
     const model::FlatJoint& joint = flat_.joints[static_cast<size_t>(a.joint)];
@@ -292,12 +292,12 @@ void Simulation::ApplyPending(const Pending& pending) {
     reply.previous = previous;
     if (pending.parsed.sets_stops) {
       for (int a = 0; a < joint.num_axes; ++a)
-        ode_->SetStops(actuator.joint, a, pending.parsed.lo[a], pending.parsed.hi[a]);
+        engine_->SetStops(actuator.joint, a, pending.parsed.lo[a], pending.parsed.hi[a]);
     } else {
       ActuatorSetting setting = pending.parsed.setting;
       if (setting.mode == ControlMode::kHold) {
         for (int a = 0; a < joint.num_axes; ++a)
-          setting.target[a] = ode_->JointPosition(actuator.joint, a);
+          setting.target[a] = engine_->JointPosition(actuator.joint, a);
       }
       controller.Apply(setting);
     }
@@ -358,27 +358,27 @@ bool Simulation::Step() {
     const int axes = flat_.joints[static_cast<size_t>(joint)].num_axes;
     double position[2] = {0, 0}, rate[2] = {0, 0};
     for (int k = 0; k < axes; ++k) {
-      position[k] = ode_->JointPosition(joint, k);
-      rate[k] = ode_->JointRate(joint, k);
+      position[k] = engine_->JointPosition(joint, k);
+      rate[k] = engine_->JointRate(joint, k);
     }
     const MotorOutput out = controllers_[a].Update(position, rate, params_.stepsize);
-    for (int k = 0; k < axes; ++k) ode_->SetMotor(joint, k, out.velocity[k], out.max_force[k]);
+    for (int k = 0; k < axes; ++k) engine_->SetMotor(joint, k, out.velocity[k], out.max_force[k]);
   }
 
   try {
-    ode_->Step();
-  } catch (const OdeError& e) {
-    // ODE gave up inside the step (its state is lost): pause as for an
-    // exploding state, naming ODE's message and the bodies; a reset builds
+    engine_->Step();
+  } catch (const EngineError& e) {
+    // The engine gave up inside the step (its state is lost): pause as for
+    // an exploding state, naming its message and the bodies; a reset builds
     // a new world.
     faulted_ = true;
-    AddWarning(warning_t::SEVERITY_ERROR, "ode",
+    AddWarning(warning_t::SEVERITY_ERROR, engine_->name(),
                std::string(e.what()) + "; the sim is paused: reset to go on", e.bodies());
     return false;
   }
   ++step_;
-  for (const std::string& message : ode_->last_messages())
-    AddWarning(warning_t::SEVERITY_WARNING, "ode", message);
+  for (const std::string& message : engine_->last_messages())
+    AddWarning(warning_t::SEVERITY_WARNING, engine_->name(), message);
   CheckHealth();
   if (faulted_) return false;
 
@@ -397,7 +397,7 @@ void Simulation::CheckHealth() {
   std::string worst;
   for (size_t i = 0; i < flat_.bodies.size(); ++i) {
     if (flat_.bodies[i].source->is_static) continue;
-    const BodyReadout b = ode_->ReadBody(static_cast<int>(i));
+    const BodyReadout b = engine_->ReadBody(static_cast<int>(i));
     const bool finite = b.position.allFinite() && b.orientation.coeffs().allFinite() &&
                         b.linear_velocity.allFinite() && b.angular_velocity.allFinite();
     const double v = b.linear_velocity.norm();
@@ -455,7 +455,7 @@ sensor_reading_t Simulation::ReadSensor(int index) {
   Eigen::Isometry3d mount_world = Eigen::Isometry3d::Identity();
   BodyReadout body;
   if (sensor.body >= 0) {
-    body = ode_->ReadBody(sensor.body);
+    body = engine_->ReadBody(sensor.body);
     Eigen::Isometry3d body_pose = Eigen::Isometry3d::Identity();
     body_pose.linear() = body.orientation.toRotationMatrix();
     body_pose.translation() = body.position;
@@ -480,7 +480,7 @@ sensor_reading_t Simulation::ReadSensor(int index) {
       break;
     }
     case model::SensorKind::kForceTorque: {
-      const JointReadout j = ode_->ReadJoint(sensor.joint);
+      const JointReadout j = engine_->ReadJoint(sensor.joint);
       r.values = {j.force2.x(), j.force2.y(), j.force2.z(),
                   j.torque2.x(), j.torque2.y(), j.torque2.z()};
       break;
@@ -495,7 +495,7 @@ sensor_reading_t Simulation::ReadSensor(int index) {
         const Eigen::Vector3d direction =
             mount_world.linear() * Eigen::Vector3d(std::sin(angle), 0.0, std::cos(angle));
         r.values[static_cast<size_t>(k)] =
-            ode_->CastRay(mount_world.translation(), direction, state.range, sensor.body);
+            engine_->CastRay(mount_world.translation(), direction, state.range, sensor.body);
       }
       break;
     }
@@ -512,7 +512,7 @@ void Simulation::FillState(state_t* s) const {
   s->num_bodies = static_cast<int32_t>(flat_.bodies.size());
   s->bodies.resize(flat_.bodies.size());
   for (size_t i = 0; i < flat_.bodies.size(); ++i) {
-    const BodyReadout b = ode_->ReadBody(static_cast<int>(i));
+    const BodyReadout b = engine_->ReadBody(static_cast<int>(i));
     body_state_t& out = s->bodies[i];
     Copy3(b.position, out.position);
     CopyQuat(b.orientation, out.orientation);
@@ -524,7 +524,7 @@ void Simulation::FillState(state_t* s) const {
   s->num_joints = static_cast<int32_t>(flat_.joints.size());
   s->joints.resize(flat_.joints.size());
   for (size_t j = 0; j < flat_.joints.size(); ++j) {
-    const JointReadout r = ode_->ReadJoint(static_cast<int>(j));
+    const JointReadout r = engine_->ReadJoint(static_cast<int>(j));
     joint_state_t& out = s->joints[j];
     for (int a = 0; a < 3; ++a) {
       out.position[a] = r.position[a];

@@ -104,7 +104,7 @@ TEST(MjcfExport, PendulumSwingsWithTheSamePeriod) {
   std::vector<double> ours;
   for (int n = 0; n < steps; ++n) {
     ASSERT_TRUE(sim.Step());
-    ours.push_back(sim.ode().JointRate(pivot, 0));
+    ours.push_back(sim.engine().JointRate(pivot, 0));
   }
   MjModelPtr m = LoadInMujoco(ExportMjcf(world, Parameters{}).xml);
   ASSERT_TRUE(m);
@@ -132,17 +132,17 @@ TEST(MjcfExport, SlidingCubeStopsAtTheSameDistance) {
   const int steps = 3000;  // it stops at 2.04 s
   sim::Simulation sim(world, Parameters{}, 1);
   const int cube = sim.flat().FindBody("", "Cube");
-  const double our_start = sim.ode().ReadBody(cube).position.x();
+  const double our_start = sim.engine().ReadBody(cube).position.x();
   double our_highest = 0;
   for (int n = 0; n < steps; ++n) {
     ASSERT_TRUE(sim.Step());
-    our_highest = std::max(our_highest, sim.ode().ReadBody(cube).position.y());
+    our_highest = std::max(our_highest, sim.engine().ReadBody(cube).position.y());
   }
   // Ours slides flat on the floor (centre 0.5 m up). MuJoCo's hops at these
   // contact settings (docs/convert.md), so only its distance is compared.
   EXPECT_LT(our_highest, 0.5 + 1e-3);
-  const double ours = sim.ode().ReadBody(cube).position.x() - our_start;
-  EXPECT_NEAR(sim.ode().ReadBody(cube).linear_velocity.norm(), 0.0, 1e-3);
+  const double ours = sim.engine().ReadBody(cube).position.x() - our_start;
+  EXPECT_NEAR(sim.engine().ReadBody(cube).linear_velocity.norm(), 0.0, 1e-3);
 
   const MjcfExport exported = ExportMjcf(world, Parameters{});
   MjModelPtr m = LoadInMujoco(exported.xml);

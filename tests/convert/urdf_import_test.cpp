@@ -212,7 +212,7 @@ TEST(UrdfImport, ConvertedCartDrivesForward) {
   const int chassis = sim.flat().FindBody("Cart", "chassis");
   ASSERT_GE(chassis, 0);
   for (int n = 0; n < 500; ++n) ASSERT_TRUE(sim.Step());  // settle
-  const Eigen::Vector3d start = sim.ode().ReadBody(chassis).position;
+  const Eigen::Vector3d start = sim.engine().ReadBody(chassis).position;
   const double omega = 5.0;  // [rad/s]
   for (const char* motor : {"axle_flMotor", "axle_frMotor", "axle_rlMotor", "axle_rrMotor"}) {
     command_t command{};
@@ -227,7 +227,7 @@ TEST(UrdfImport, ConvertedCartDrivesForward) {
   }
   const int steps = 2000;
   for (int n = 0; n < steps; ++n) ASSERT_TRUE(sim.Step());
-  const Eigen::Vector3d moved = sim.ode().ReadBody(chassis).position - start;
+  const Eigen::Vector3d moved = sim.engine().ReadBody(chassis).position - start;
   // 0.1 m * 5 rad/s = 0.5 m/s for 2 s (less the spin-up of some ms).
   EXPECT_NEAR(moved.x(), 1.0, 0.05);
   EXPECT_NEAR(moved.z(), 0.0, 0.01);  // straight

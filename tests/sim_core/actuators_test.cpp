@@ -30,11 +30,11 @@ TEST(Actuators, HoldInitialPositionByDefault) {
   const int shoulder = JointIndex(*sim, "Shoulder");
   const int arm = sim->flat().FindBody("", "Arm");
   for (int n = 0; n < 2000; ++n) {
-    sim->ode().AddForce(arm, Eigen::Vector3d(20, 0, 0));  // 10 N m about the hinge
+    sim->engine().AddForce(arm, Eigen::Vector3d(20, 0, 0));  // 10 N m about the hinge
     ASSERT_TRUE(sim->Step());
   }
   // Only the constraint softness (globalCFM) lets it give a little.
-  EXPECT_NEAR(sim->ode().JointPosition(shoulder, 0), 0.0, 1e-4);
+  EXPECT_NEAR(sim->engine().JointPosition(shoulder, 0), 0.0, 1e-4);
   const auto& setting = sim->controller(sim->flat().FindActuator("", "ArmMotor")).setting();
   EXPECT_EQ(setting.mode, ControlMode::kHold);
   EXPECT_EQ(setting.max_force[0], 1000.0);
@@ -46,7 +46,7 @@ TEST(Actuators, VelocityControllerReachesItsSpeed) {
   ASSERT_FALSE(sim->Submit(Command("Spin", command_t::ACTION_SET, {1000, 1000, 100, 0, 0, 2.0})));
   RunSteps(sim.get(), 500);
   const int axle = JointIndex(*sim, "Axle");
-  EXPECT_NEAR(sim->ode().JointRate(axle, 0), 2.0, 1e-6);
+  EXPECT_NEAR(sim->engine().JointRate(axle, 0), 2.0, 1e-6);
   // The reply carries the previous setting (hold, 1000 on the axle's slot).
   const auto replies = sim->TakeReplies();
   ASSERT_EQ(replies.size(), 1u);
@@ -56,7 +56,7 @@ TEST(Actuators, VelocityControllerReachesItsSpeed) {
   // Short per-axis form: fmax, velocity.
   ASSERT_FALSE(sim->Submit(Command("Spin", command_t::ACTION_SET, {100, -1.5})));
   RunSteps(sim.get(), 500);
-  EXPECT_NEAR(sim->ode().JointRate(axle, 0), -1.5, 1e-6);
+  EXPECT_NEAR(sim->engine().JointRate(axle, 0), -1.5, 1e-6);
   EXPECT_EQ(sim->TakeReplies().at(0).previous_text, "0,0,100,0,0,2");
 }
 
@@ -69,9 +69,9 @@ TEST(Actuators, AngleControllerReachesAndHolds) {
   ASSERT_FALSE(sim->Submit(Command("ArmMotor", command_t::ACTION_SET,
                                    {1000, 1000, 100, 0, 0, 0.5, 5.0, 0.0, 0.0})));
   RunSteps(sim.get(), 4000);
-  EXPECT_NEAR(sim->ode().JointPosition(shoulder, 0), 0.5, 1e-3);
+  EXPECT_NEAR(sim->engine().JointPosition(shoulder, 0), 0.5, 1e-3);
   RunSteps(sim.get(), 2000);
-  EXPECT_NEAR(sim->ode().JointPosition(shoulder, 0), 0.5, 1e-4);
+  EXPECT_NEAR(sim->engine().JointPosition(shoulder, 0), 0.5, 1e-4);
 }
 
 // Saturation: 1 N m cannot lift the 1 kg arm (it needs 9.81 * 0.5 * sin(a)
@@ -88,7 +88,7 @@ TEST(Actuators, AngleControllerDoesNotWindUpWhileSaturated) {
   ASSERT_FALSE(sim->Submit(Command("ArmMotor", command_t::ACTION_SET,
                                    {1, 1, 1, 0, 0, 0.5, 5.0, 6.0, 0.0})));
   RunSteps(sim.get(), 3000);
-  const double stalled = sim->ode().JointPosition(shoulder, 0);
+  const double stalled = sim->engine().JointPosition(shoulder, 0);
   EXPECT_LT(stalled, 0.3);  // it could not get there
   // Without anti-windup the integral would be about (0.5 - stalled) * 3 s.
   EXPECT_LT(std::abs(sim->controller(motor).integral(0)), 0.05 * (0.5 - stalled) * 3.0);
@@ -97,10 +97,10 @@ TEST(Actuators, AngleControllerDoesNotWindUpWhileSaturated) {
   double peak = 0.0;
   for (int n = 0; n < 5000; ++n) {
     ASSERT_TRUE(sim->Step());
-    peak = std::max(peak, sim->ode().JointPosition(shoulder, 0));
+    peak = std::max(peak, sim->engine().JointPosition(shoulder, 0));
   }
   EXPECT_LT(peak, 0.5 + 0.05);
-  EXPECT_NEAR(sim->ode().JointPosition(shoulder, 0), 0.5, 1e-3);
+  EXPECT_NEAR(sim->engine().JointPosition(shoulder, 0), 0.5, 1e-3);
 }
 
 TEST(Actuators, StopsHold) {
@@ -109,10 +109,10 @@ TEST(Actuators, StopsHold) {
   ASSERT_FALSE(sim->Submit(Command("Spin", command_t::ACTION_SET_STOPS, {-0.2, 0.3})));
   ASSERT_FALSE(sim->Submit(Command("Spin", command_t::ACTION_SET, {1000, 1.0})));
   RunSteps(sim.get(), 2000);  // 2 s at 1 rad/s would be 2 rad without the stop
-  EXPECT_NEAR(sim->ode().JointPosition(axle, 0), 0.3, 0.01);
+  EXPECT_NEAR(sim->engine().JointPosition(axle, 0), 0.3, 0.01);
   ASSERT_FALSE(sim->Submit(Command("Spin", command_t::ACTION_SET, {1000, -1.0})));
   RunSteps(sim.get(), 2000);
-  EXPECT_NEAR(sim->ode().JointPosition(axle, 0), -0.2, 0.01);
+  EXPECT_NEAR(sim->engine().JointPosition(axle, 0), -0.2, 0.01);
 }
 
 TEST(Actuators, CommandTakesEffectInTheStepItNames) {
@@ -120,10 +120,10 @@ TEST(Actuators, CommandTakesEffectInTheStepItNames) {
   const int axle = JointIndex(*sim, "Axle");
   ASSERT_FALSE(sim->Submit(Command("Spin", command_t::ACTION_SET, {1000, 3.0}, 100)));
   RunSteps(sim.get(), 100);
-  EXPECT_NEAR(sim->ode().JointRate(axle, 0), 0.0, 1e-9);
+  EXPECT_NEAR(sim->engine().JointRate(axle, 0), 0.0, 1e-9);
   EXPECT_TRUE(sim->TakeReplies().empty());  // replied to when applied
   RunSteps(sim.get(), 1);
-  EXPECT_NEAR(sim->ode().JointRate(axle, 0), 3.0, 1e-3);  // in one step, less CFM slip
+  EXPECT_NEAR(sim->engine().JointRate(axle, 0), 3.0, 1e-3);  // in one step, less CFM slip
   const auto replies = sim->TakeReplies();
   ASSERT_EQ(replies.size(), 1u);
   EXPECT_EQ(replies[0].applied_at_step, 100);
@@ -137,7 +137,7 @@ TEST(Actuators, OriginalCommandStringAndLegacyPort) {
   c.apply_at_step = -1;
   ASSERT_FALSE(sim->Submit(c));
   RunSteps(sim.get(), 300);
-  EXPECT_NEAR(sim->ode().JointRate(JointIndex(*sim, "Axle"), 0), 0.2, 1e-6);
+  EXPECT_NEAR(sim->engine().JointRate(JointIndex(*sim, "Axle"), 0), 0.2, 1e-6);
   EXPECT_EQ(sim->TakeReplies().at(0).target, "Spin");
 }
 
@@ -153,7 +153,7 @@ TEST(Sensors, PositionSensorIsTheBodyPose) {
   // the Shoulder at angle a has turned the Arm (body2) by -a about z. The
   // arm centre, 0.5 m below the hinge at (0.7, 2, 0), is then at
   // (0.7 - 0.5 sin a, 2 - 0.5 cos a, 0).
-  const double a = sim->ode().JointPosition(JointIndex(*sim, "Shoulder"), 0);
+  const double a = sim->engine().JointPosition(JointIndex(*sim, "Shoulder"), 0);
   EXPECT_NEAR(a, 0.5, 1e-3);
   EXPECT_NEAR(r.values[0], 0.7 - 0.5 * std::sin(a), 1e-3);
   EXPECT_NEAR(r.values[1], 2.0 - 0.5 * std::cos(a), 1e-3);

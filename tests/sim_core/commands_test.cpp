@@ -179,7 +179,7 @@ TEST(Reset, BackToTheInitialState) {
   EXPECT_EQ(PhysicsBytes(*sim), initial);
   // The pending command for step 5000 is gone and the wheel holds again.
   for (int n = 0; n < 100; ++n) sim->Step();
-  EXPECT_NEAR(sim->ode().JointRate(sim->flat().FindJoint("", "Axle"), 0), 0.0, 1e-9);
+  EXPECT_NEAR(sim->engine().JointRate(sim->flat().FindJoint("", "Axle"), 0), 0.0, 1e-9);
   EXPECT_EQ(sim->controller(sim->flat().FindActuator("", "Spin")).setting().mode,
             ControlMode::kHold);
 }
@@ -200,7 +200,7 @@ TEST(Health, ExplosionIsDetectedAndNamed) {
   auto sim = testing::MakeSim(world, {}, params);
   for (int n = 0; n < 10; ++n) ASSERT_TRUE(sim->Step());
   // 1e6 N on 1 kg for one 1 ms step: 1000 m/s.
-  sim->ode().AddForce(0, Eigen::Vector3d(1e6, 0, 0));
+  sim->engine().AddForce(0, Eigen::Vector3d(1e6, 0, 0));
   EXPECT_FALSE(sim->Step());
   EXPECT_TRUE(sim->faulted());
   EXPECT_EQ(sim->step(), 11);

@@ -59,7 +59,7 @@ TEST(ContactMaterial, SlidingBoxBrakesAtMuGWhateverTheHeading) {
     auto sim = MakeSim(SlidingBoxWorld(floor, 1, 1, 1, 1, kV0 * std::cos(heading),
                                        kV0 * std::sin(heading)));
     for (int n = 0; n < 300; ++n) ASSERT_TRUE(sim->Step());
-    const Eigen::Vector3d v = sim->ode().ReadBody(0).linear_velocity;
+    const Eigen::Vector3d v = sim->engine().ReadBody(0).linear_velocity;
     EXPECT_NEAR(std::hypot(v.x(), v.z()), expected_speed, 0.01 * expected_speed);
     EXPECT_NEAR(std::atan2(v.z(), v.x()), std::atan2(std::sin(heading), std::cos(heading)), 1e-3);
   }
@@ -71,7 +71,7 @@ TEST(ContactMaterial, ExplicitIsotropicMaterialIsBitIdenticalToTheOldForm) {
   const auto run = [](const std::string& material) {
     auto sim = MakeSim(SlidingBoxWorld(material, 1, 1, 1, 1, 2.0, 1.0));
     for (int n = 0; n < 200; ++n) EXPECT_TRUE(sim->Step());
-    return sim->ode().ReadBody(0);
+    return sim->engine().ReadBody(0);
   };
   const BodyReadout old_form = run("<material name=\"floor\"><mu>0.5</mu></material>");
   const BodyReadout explicit_form = run(
@@ -109,13 +109,13 @@ SlipFrameForces PushSideways(double side_force, int steps) {
   SlipFrameForces out;
   std::vector<double> along, across;
   for (int n = 0; n < steps; ++n) {
-    const Eigen::Vector3d v = sim->ode().ReadBody(0).linear_velocity;
+    const Eigen::Vector3d v = sim->engine().ReadBody(0).linear_velocity;
     const Eigen::Vector3d dir = Eigen::Vector3d(v.x(), 0, v.z()).normalized();
     const Eigen::Vector3d side = Eigen::Vector3d::UnitY().cross(dir);  // dir turned by -90 deg
-    sim->ode().AddForce(0, Eigen::Vector3d(0, 0, side_force));
+    sim->engine().AddForce(0, Eigen::Vector3d(0, 0, side_force));
     EXPECT_TRUE(sim->Step());
     if (n < 20) continue;  // the first contacts settle the plate
-    const Eigen::Vector3d f = sim->ode().ReadBody(0).contact_force;
+    const Eigen::Vector3d f = sim->engine().ReadBody(0).contact_force;
     along.push_back(f.dot(dir));
     across.push_back(f.dot(side));
   }
@@ -130,7 +130,7 @@ SlipFrameForces PushSideways(double side_force, int steps) {
     out.along_worst = std::max(out.along_worst, std::abs(along[i] - out.along_mean));
     out.across_worst = std::max(out.across_worst, std::abs(across[i] - out.across_mean));
   }
-  out.final_velocity = sim->ode().ReadBody(0).linear_velocity;
+  out.final_velocity = sim->engine().ReadBody(0).linear_velocity;
   return out;
 }
 
@@ -207,17 +207,17 @@ TEST(ContactMaterial, RollingTyreDrivesWithMuNAndHoldsSidewaysWithMu2N) {
     const int axle = sim->flat().FindJoint("", "Axle");
     ASSERT_GE(sled, 0);
     ASSERT_GE(axle, 0);
-    sim->ode().SetMotor(axle, 0, 60.0, 1e4);  // 18 m/s at the tread
+    sim->engine().SetMotor(axle, 0, 60.0, 1e4);  // 18 m/s at the tread
     // The ice pushes the sled up only, so the horizontal contact force on
     // the sled is the tyre's friction. 0.2 s: the sled has moved 0.16 m,
     // too little for the off-centre side force to turn it noticeably.
     double traction = 0, side = 0;
     int counted = 0;
     for (int n = 0; n < 200; ++n) {
-      sim->ode().AddForce(sled, Eigen::Vector3d(0, 0, push));
+      sim->engine().AddForce(sled, Eigen::Vector3d(0, 0, push));
       ASSERT_TRUE(sim->Step());
       if (n < 20) continue;  // the wheel settles onto the sled
-      const Eigen::Vector3d f = sim->ode().ReadBody(sled).contact_force;
+      const Eigen::Vector3d f = sim->engine().ReadBody(sled).contact_force;
       traction += std::abs(f.x());
       side += -f.z();
       ++counted;
@@ -278,13 +278,13 @@ TEST(ContactMaterial, GroundAsksForTheRollingDirectionOfTheWheelOnIt) {
     const int axle = sim->flat().FindJoint("", "Axle");
     ASSERT_GE(wheel, 0);
     ASSERT_GE(axle, 0);
-    sim->ode().SetMotor(axle, 0, 30.0, 1e4);
+    sim->engine().SetMotor(axle, 0, 30.0, 1e4);
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     int counted = 0;
     for (int n = 0; n < 200; ++n) {
       ASSERT_TRUE(sim->Step());
       if (n < 20) continue;  // settling onto the ground
-      mean += sim->ode().ReadBody(wheel).contact_force;
+      mean += sim->engine().ReadBody(wheel).contact_force;
       ++counted;
     }
     mean /= counted;
@@ -318,7 +318,7 @@ TEST(ContactMaterial, StaticSinkIsMgOverKAtEveryStepSize) {
     auto sim = MakeSim(BoxOnPlaneWorld(kK, c, kMass, kSide), {}, StepSize(h));
     const int steps = static_cast<int>(std::lround(1.0 / h));
     for (int n = 0; n < steps; ++n) ASSERT_TRUE(sim->Step());
-    const double sink = kSide / 2 - sim->ode().ReadBody(0).position.y();
+    const double sink = kSide / 2 - sim->engine().ReadBody(0).position.y();
     EXPECT_NEAR(sink, expected, 0.01 * expected);
     sinks.push_back(sink);
     std::printf("step %.4f s: sink %.4f um (m g / k = %.4f um)\n", h, sink * 1e6, expected * 1e6);
@@ -340,7 +340,7 @@ TEST(ContactMaterial, PerStepSoftnessSinksDifferentlyAtEachStepSize) {
   for (int i = 0; i < 2; ++i) {
     auto sim = MakeSim(world, {}, StepSize(steps[i]));
     for (int n = 0; n < static_cast<int>(std::lround(1.0 / steps[i])); ++n) ASSERT_TRUE(sim->Step());
-    sink[i] = 0.25 - sim->ode().ReadBody(0).position.y();
+    sink[i] = 0.25 - sim->engine().ReadBody(0).position.y();
   }
   // Per point k = ERP / (h CFM), four corners: sink = m g h CFM / (4 ERP).
   for (int i = 0; i < 2; ++i)
@@ -367,7 +367,7 @@ Ringing Release(double k, double c, double mass, double side, double h) {
   const int steps = static_cast<int>(std::lround(1.2 / h));
   for (int n = 1; n <= steps && peaks.size() < 2; ++n) {
     EXPECT_TRUE(sim->Step());
-    const double sink = side / 2 - sim->ode().ReadBody(0).position.y();
+    const double sink = side / 2 - sim->engine().ReadBody(0).position.y();
     const double rate = sink - previous_sink;
     if (n > 1 && previous_rate > 0 && rate <= 0) {
       times.push_back((n - 1) * h);

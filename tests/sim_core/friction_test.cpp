@@ -36,12 +36,12 @@ TEST(Friction, SlidingDistanceIsTheSameAtEveryHeading) {
     const double heading = degrees * M_PI / 180.0;
     auto sim = MakeSim(SlidingCubeWorld(kV0, heading));
     for (int n = 0; n < 2500; ++n) ASSERT_TRUE(sim->Step());  // stops at 2.04 s
-    const Eigen::Vector3d p = sim->ode().ReadBody(0).position;
+    const Eigen::Vector3d p = sim->engine().ReadBody(0).position;
     const double distance = std::hypot(p.x(), p.z());
     EXPECT_NEAR(distance, expected, 0.01 * expected);
     // Straight on: friction acts against the slip only.
     EXPECT_NEAR(std::atan2(p.z(), p.x()), std::atan2(std::sin(heading), std::cos(heading)), 1e-3);
-    EXPECT_LT(sim->ode().ReadBody(0).linear_velocity.norm(), 1e-6);
+    EXPECT_LT(sim->engine().ReadBody(0).linear_velocity.norm(), 1e-6);
   }
 }
 
@@ -93,10 +93,10 @@ TEST(Friction, SlowSlidePushedSidewaysTurnsAsCoulombsCone) {
     auto sim = MakeSim(world, {}, params);
     const int steps = static_cast<int>(std::lround(kT / stepsize));
     for (int i = 0; i < steps; ++i) {
-      sim->ode().AddForce(0, Eigen::Vector3d(push.x(), 0.0, push.y()));
+      sim->engine().AddForce(0, Eigen::Vector3d(push.x(), 0.0, push.y()));
       ASSERT_TRUE(sim->Step());
     }
-    const BodyReadout plate = sim->ode().ReadBody(0);
+    const BodyReadout plate = sim->engine().ReadBody(0);
     const Eigen::Vector2d v(plate.linear_velocity.x(), plate.linear_velocity.z());
     const Eigen::Vector2d friction(plate.contact_force.x(), plate.contact_force.z());
     std::printf("step %.4f s: slip heading %.3f deg (push %.3f), speed %.5f m/s (reference "

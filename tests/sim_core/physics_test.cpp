@@ -34,14 +34,14 @@ TEST(FreeFall, MatchesSemiImplicitEulerAndExactSlope) {
     double max_closed_form_error = 0.0;
     for (int n = 1; n <= 5000; ++n) {
       ASSERT_TRUE(sim->Step());
-      const double y = sim->ode().ReadBody(0).position.y();
+      const double y = sim->engine().ReadBody(0).position.y();
       const double expected = 500.0 - g * dt * dt * n * (n + 1) / 2.0;
       max_closed_form_error = std::max(max_closed_form_error, std::abs(y - expected));
     }
     EXPECT_LT(max_closed_form_error, 1e-9);
     const double t = sim->time();
     const double exact = 500.0 - g * t * t / 2.0;
-    const double slope = (exact - sim->ode().ReadBody(0).position.y()) / t;
+    const double slope = (exact - sim->engine().ReadBody(0).position.y()) / t;
     EXPECT_NEAR(slope, g * dt / 2.0, 1e-6 * g) << "g = " << g;
   }
 }
@@ -49,7 +49,7 @@ TEST(FreeFall, MatchesSemiImplicitEulerAndExactSlope) {
 TEST(FreeFall, HorizontalVelocityIsKeptExactly) {
   auto sim = MakeSim(ParticleWorld(500, 10, 10, 9.81));
   for (int n = 0; n < 3000; ++n) ASSERT_TRUE(sim->Step());
-  const BodyReadout b = sim->ode().ReadBody(0);
+  const BodyReadout b = sim->engine().ReadBody(0);
   // x = vx t; doubles accumulate 3000 additions of 0.01.
   EXPECT_NEAR(b.position.x(), 10.0 * sim->time(), 1e-9);
   EXPECT_NEAR(b.position.z(), 10.0 * sim->time(), 1e-9);
@@ -78,7 +78,7 @@ TEST(Contacts, RestingSphereContactForceEqualsWeight) {
       Transform(0, 0.5, 0) + "</object></world>";
   auto sim = MakeSim(world);
   for (int n = 0; n < 2000; ++n) ASSERT_TRUE(sim->Step());
-  const BodyReadout b = sim->ode().ReadBody(0);
+  const BodyReadout b = sim->engine().ReadBody(0);
   EXPECT_NEAR(b.contact_force.y(), 2 * 9.81, 1e-3);
   EXPECT_NEAR(b.position.y(), 0.5, 2e-3);
 }
@@ -108,24 +108,13 @@ TEST(Contacts, ContactForceOnEveryBodyWhateverThePairOrder) {
   for (int i = 0; i < static_cast<int>(sim->flat().bodies.size()); ++i) {
     if (sim->flat().bodies[i].source->is_static) continue;
     const double weight = sim->flat().bodies[i].source->mass * 9.81;
-    EXPECT_NEAR(sim->ode().ReadBody(i).contact_force.y(), weight, 1e-3 * weight)
+    EXPECT_NEAR(sim->engine().ReadBody(i).contact_force.y(), weight, 1e-3 * weight)
         << sim->flat().bodies[i].name;
   }
 }
 
-// A joint to "world" reports the force on its body (ODE stores it swapped).
-TEST(Joints, WorldJointFeedbackIsOnTheBody) {
-  const std::string world =
-      "<world><object type=\"Sphere\" name=\"Bob\"><mass>2</mass><radius>0.1</radius>" +
-      Transform(0, 1, 0) +
-      "</object><joint type=\"Ball\" name=\"Pin\"><body1>world</body1><body2>Bob</body2>"
-      "<anchor><x>0</x><y>2</y><z>0</z></anchor></joint></world>";
-  auto sim = MakeSim(world);
-  for (int n = 0; n < 500; ++n) ASSERT_TRUE(sim->Step());
-  const JointReadout j = sim->ode().ReadJoint(0);
-  EXPECT_NEAR(j.force2.y(), 2 * 9.81, 1e-3);  // holds the hanging bob up
-  EXPECT_NEAR(j.force1.norm(), 0.0, 1e-12);
-}
+// A joint to "world" reporting the force on its body: mujoco_engine_test.cpp
+// (JointToTheWorldReportsTheForceOnItsBody, on both engines).
 
 // Rolling friction (beyond the original): a rolling sphere comes to rest.
 TEST(Contacts, RollingFrictionStopsARollingSphere) {
@@ -141,7 +130,7 @@ TEST(Contacts, RollingFrictionStopsARollingSphere) {
         "</rotationalVelocity></object></world>";
     auto sim = MakeSim(world, {}, params);
     for (int n = 0; n < 10000; ++n) sim->Step();
-    return sim->ode().ReadBody(0).linear_velocity.norm();
+    return sim->engine().ReadBody(0).linear_velocity.norm();
   };
   EXPECT_GT(rolling_speed_after(0.0), 0.9);   // the original's sphere never stopped
   EXPECT_LT(rolling_speed_after(0.05), 1e-3);

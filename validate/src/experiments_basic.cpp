@@ -318,7 +318,7 @@ ExperimentResult PendulumEnergy(const Context& context) {
     const double t = run.time();
     const double relative = (run.KineticEnergy() + run.PotentialEnergy() - e0) / swing;
     const double angle = run.JointPosition(pivot);
-    const double rate = run.sim().ode().JointRate(pivot, 0);
+    const double rate = run.sim().engine().JointRate(pivot, 0);
     // Turning points: the rod stops at the top of a swing, where all its
     // energy is potential (semi-implicit Euler's energy error, which
     // swings with the velocity, vanishes there).

@@ -152,9 +152,9 @@ int SimRun::Sensor(const std::string& name) const {
   return index;
 }
 
-sim::BodyReadout SimRun::Read(int body) const { return sim_->ode().ReadBody(body); }
+sim::BodyReadout SimRun::Read(int body) const { return sim_->engine().ReadBody(body); }
 
-double SimRun::JointPosition(int joint) const { return sim_->ode().JointPosition(joint, 0); }
+double SimRun::JointPosition(int joint) const { return sim_->engine().JointPosition(joint, 0); }
 
 double SimRun::VerticalContactForce(int body) const {
   return Read(body).contact_force.dot(sim_->world().Up());

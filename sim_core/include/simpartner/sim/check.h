@@ -14,7 +14,11 @@ CommandLineSpec SimCommandLine();
 
 // The world the sim runs: parameter 'environment' (found as data), with
 // --robot / --robot-pose / --robot-add applied. Throws ConfigError or
-// ModelError.
+// ModelError, or DiagnosticError naming what the chosen engine (parameter
+// 'engine') cannot represent.
 model::World LoadSimWorld(const CommandLine& command_line, const Parameters& params);
+
+// LoadSimWorld without the engine's check.
+model::World LoadWorldWithRobot(const CommandLine& command_line, const Parameters& params);
 
 }  // namespace simpartner::sim

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "simpartner/diagnostic.h"
+#include "simpartner/sim/engine.h"
 #include "simpartner/model/flat_model.h"
 #include "simpartner/model/surface.h"
 #include "simpartner/parameters.h"
@@ -26,23 +27,12 @@ namespace simpartner::sim {
 // abandoned, not freed (ODE left them mid-step: a locked space, a job list
 // not emptied), some KB per body. A new OdeWorld (the sim's reset) works.
 // what(): "ODE failed: <ODE's message> (during <what>); bodies: a, b".
-class OdeError : public Error {
+class OdeError : public EngineError {
  public:
   OdeError(std::string ode_message, std::string during, std::vector<std::string> bodies);
   // ODE's own text, e.g. 'assertion "!bSafeNormalize4Fault" failed in
   // dxNormalize4() [odemath.h:53]'.
-  const std::string& ode_message() const { return ode_message_; }
-  // "step", "collision", "building body 'Bot/Wheel1'", ...
-  const std::string& during() const { return during_; }
-  // Bodies (qualified "robot/body") ODE could not integrate: a state that
-  // is non-finite or beyond the loader's ranges, or a mass beyond them;
-  // empty when none stands out.
-  const std::vector<std::string>& bodies() const { return bodies_; }
-
- private:
-  std::string ode_message_;
-  std::string during_;
-  std::vector<std::string> bodies_;
+  const std::string& ode_message() const { return engine_message(); }
 };
 
 // Makes ODE's fatal errors (dError) and debug assertions (dDebug) throw
@@ -53,60 +43,42 @@ class OdeError : public Error {
 // OdeWorld calls it, and it re-installs them if something replaced them.
 void InstallOdeHandlers();
 
-struct BodyReadout {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // body frame origin, world
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // of the body frame origin
-  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
-  Eigen::Vector3d contact_force = Eigen::Vector3d::Zero();     // sum over this step's contacts
-  Eigen::Vector3d contact_torque = Eigen::Vector3d::Zero();    // about the centre of mass
-};
-
-struct JointReadout {
-  double position[3] = {0, 0, 0};
-  // position with rotational axes unwrapped: no jump at +-pi.
-  double continuous_position[3] = {0, 0, 0};
-  double rate[3] = {0, 0, 0};
-  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
-  Eigen::Vector3d force1 = Eigen::Vector3d::Zero(), torque1 = Eigen::Vector3d::Zero();
-  Eigen::Vector3d force2 = Eigen::Vector3d::Zero(), torque2 = Eigen::Vector3d::Zero();
-};
-
-class OdeWorld {
+class OdeWorld : public PhysicsEngine {
  public:
   // model and its World must outlive this object. Throws OdeError when
   // ODE refuses a part (e.g. an inertia it finds not positive definite).
   OdeWorld(const model::FlatModel& model, const Parameters& params);
-  ~OdeWorld();
+  ~OdeWorld() override;
   OdeWorld(const OdeWorld&) = delete;
   OdeWorld& operator=(const OdeWorld&) = delete;
 
+  const char* name() const override { return "ode"; }
   // Collide, step (dWorldStep or dWorldQuickStep), empty the contact group.
   // Throws OdeError when ODE fails; the world is dead from then on.
-  void Step();
-  bool dead() const { return dead_; }
+  void Step() override;
+  bool dead() const override { return dead_; }
   // Messages ODE printed (e.g. "LCP internal error") during the last Step
   // (the first Step's include those of the construction).
-  const std::vector<std::string>& last_messages() const { return messages_; }
-  int last_contact_count() const { return contact_count_; }
+  const std::vector<std::string>& last_messages() const override { return messages_; }
+  int last_contact_count() const override { return contact_count_; }
 
-  BodyReadout ReadBody(int body) const;
-  JointReadout ReadJoint(int joint) const;
-  double JointPosition(int joint, int axis) const;
-  double JointRate(int joint, int axis) const;
+  BodyReadout ReadBody(int body) const override;
+  JointReadout ReadJoint(int joint) const override;
+  double JointPosition(int joint, int axis) const override;
+  double JointRate(int joint, int axis) const override;
 
   // Adds a force [N] at the centre of mass for the coming step (ODE clears
   // accumulated forces after each step).
-  void AddForce(int body, const Eigen::Vector3d& force);
+  void AddForce(int body, const Eigen::Vector3d& force) override;
 
   // Velocity motor of one joint axis (ODE's built-in joint motor).
-  void SetMotor(int joint, int axis, double velocity, double max_force);
-  void SetStops(int joint, int axis, double lo, double hi);
+  void SetMotor(int joint, int axis, double velocity, double max_force) override;
+  void SetStops(int joint, int axis, double lo, double hi) override;
 
   // Distance along the ray to the first geom hit (range when nothing is
   // hit); geoms of exclude_body are ignored (the scanner's own housing).
   double CastRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double range,
-                 int exclude_body);
+                 int exclude_body) override;
 
   // Raw handles for the benchmark's bare-ODE comparison.
   // Note: this world steps with its own threading implementation (see

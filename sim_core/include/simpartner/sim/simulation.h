@@ -1,4 +1,4 @@
-// One simulated world: the ODE world, the actuator controllers, the sensors,
+// One simulated world: the physics engine (ODE or MuJoCo), the actuator controllers, the sensors,
 // the step counter and the health check. No transport: the node feeds it
 // decoded commands and publishes what it returns, so tests drive it directly.
 #pragma once
@@ -18,7 +18,7 @@
 #include "simpartner/sensor_reading_t.hpp"
 #include "simpartner/sim/controllers.h"
 #include "simpartner/model/flat_model.h"
-#include "simpartner/sim/ode_world.h"
+#include "simpartner/sim/engine.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/warning_t.hpp"
 
@@ -42,7 +42,7 @@ class Simulation {
   const model::FlatModel& flat() const { return flat_; }
   const model::World& world() const { return world_; }
   const Parameters& params() const { return params_; }
-  OdeWorld& ode() { return *ode_; }
+  PhysicsEngine& engine() { return *engine_; }
   const ActuatorController& controller(int actuator) const {
     return controllers_[static_cast<size_t>(actuator)];
   }
@@ -99,7 +99,7 @@ class Simulation {
   Parameters params_;
   model::FlatModel flat_;
   int64_t simulation_id_;
-  std::unique_ptr<OdeWorld> ode_;
+  std::unique_ptr<PhysicsEngine> engine_;
   std::vector<ActuatorController> controllers_;
   std::vector<SensorState> sensors_;
   std::vector<Pending> pending_;  // sorted by (step, sequence)

@@ -1,0 +1,111 @@
+// The physics engine behind a Simulation: what the controllers, sensors,
+// health check and publishing need of it, and nothing of any engine's own
+// types. Two implementations: ODE (ode_world.h, the original's engine and
+// the default) and MuJoCo (mujoco_world.h). docs/engines.md compares them.
+//
+// Frames are ours for both: the world frame of the files (y up for the
+// original's worlds), body frames as in the robot files, joint values
+// counted body1 relative to body2, every quantity after the last step.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "simpartner/diagnostic.h"
+#include "simpartner/model/flat_model.h"
+#include "simpartner/parameters.h"
+
+namespace simpartner::sim {
+
+// The engine stopped on an internal error or found a state it cannot
+// integrate. The engine that raised it is dead: every further Step()
+// throws again; a new engine (the sim's reset) works.
+// what(): "<engine> failed: <its message> (during <what>); bodies: a, b".
+class EngineError : public Error {
+ public:
+  EngineError(const std::string& engine, std::string engine_message, std::string during,
+              std::vector<std::string> bodies);
+  // The engine's own text.
+  const std::string& engine_message() const { return engine_message_; }
+  // "step", "collision", "building body 'Bot/Wheel1'", ...
+  const std::string& during() const { return during_; }
+  // Bodies (qualified "robot/body") the engine could not integrate: a
+  // state that is non-finite or beyond the loader's ranges; empty when
+  // none stands out.
+  const std::vector<std::string>& bodies() const { return bodies_; }
+
+ private:
+  std::string engine_message_;
+  std::string during_;
+  std::vector<std::string> bodies_;
+};
+
+struct BodyReadout {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // body frame origin, world
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // of the body frame origin
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d contact_force = Eigen::Vector3d::Zero();     // sum over this step's contacts
+  Eigen::Vector3d contact_torque = Eigen::Vector3d::Zero();    // about the centre of mass
+};
+
+struct JointReadout {
+  double position[3] = {0, 0, 0};
+  // position with rotational axes unwrapped: no jump at +-pi.
+  double continuous_position[3] = {0, 0, 0};
+  double rate[3] = {0, 0, 0};
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+  // What the joint applies to body1 and body2 (torques about each body's
+  // centre of mass); zero on the static world's side.
+  Eigen::Vector3d force1 = Eigen::Vector3d::Zero(), torque1 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d force2 = Eigen::Vector3d::Zero(), torque2 = Eigen::Vector3d::Zero();
+};
+
+class PhysicsEngine {
+ public:
+  virtual ~PhysicsEngine() = default;
+
+  // "ode" or "mujoco", as the engine parameter names it.
+  virtual const char* name() const = 0;
+
+  // One step of params.stepsize. Throws EngineError when the engine fails;
+  // it is dead from then on.
+  virtual void Step() = 0;
+  virtual bool dead() const = 0;
+  // Messages the engine printed during the last Step (the first Step's
+  // include those of the construction).
+  virtual const std::vector<std::string>& last_messages() const = 0;
+  virtual int last_contact_count() const = 0;
+
+  virtual BodyReadout ReadBody(int body) const = 0;
+  virtual JointReadout ReadJoint(int joint) const = 0;
+  virtual double JointPosition(int joint, int axis) const = 0;
+  virtual double JointRate(int joint, int axis) const = 0;
+
+  // Adds a force [N] at the centre of mass for the coming step only.
+  virtual void AddForce(int body, const Eigen::Vector3d& force) = 0;
+  // Velocity motor of one joint axis: drives the axis to `velocity` with
+  // at most `max_force` [N or N m] (0 = no motor), until set again.
+  virtual void SetMotor(int joint, int axis, double velocity, double max_force) = 0;
+  // Joint stops of one axis; an infinite bound is no stop.
+  virtual void SetStops(int joint, int axis, double lo, double hi) = 0;
+
+  // Distance along the ray to the first geometry hit (range when nothing
+  // is hit); geometry of exclude_body is ignored (the scanner's housing).
+  virtual double CastRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                         double range, int exclude_body) = 0;
+};
+
+// The engine params.engine names, built from model (which, and its World,
+// must outlive it). Throws EngineError when the engine refuses a part.
+std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,
+                                          const Parameters& params);
+
+// What of model params.engine cannot represent, one line each naming the
+// element, its file and line, and why (empty when all of it can). ODE
+// represents everything the loader accepts.
+std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parameters& params);
+
+}  // namespace simpartner::sim

@@ -1,0 +1,152 @@
+// The MuJoCo engine (Debian's libmujoco 2.2): the flat model built as an
+// MJCF in memory (a virtual file, nothing on disk) in our own frame, y up,
+// and stepped so that it behaves as ODE's contacts and motors do where
+// MuJoCo can, and says where it cannot. docs/engines.md derives each
+// mapping; in short:
+//   - contacts: ODE's per-step law (a penetration r corrected by ERP r / h
+//     within the step, the constraint giving way by CFM) as MuJoCo's
+//     reference acceleration and regularizer, per contact point, with our
+//     own rule for combining two materials; friction on Coulomb's elliptic
+//     cone, its first direction set as ODE's sim sets it (a wheel's
+//     rolling direction) for anisotropic materials; bounce through the
+//     reference velocity of the normal row;
+//   - motors: ODE's velocity motor (reach the velocity within a step, up
+//     to a force limit) as a stiff velocity servo integrated implicitly,
+//     or the limit force itself when the servo would pass it;
+//   - stops: MuJoCo joint limits with the same per-step law as contacts.
+// MuJoCo's headers stay in sim_core/src/mujoco_world.cpp.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "simpartner/model/body_tree.h"
+#include "simpartner/model/surface.h"
+#include "simpartner/sim/engine.h"
+
+struct mjModel_;
+struct mjData_;
+struct mjContact_;
+
+namespace simpartner::sim {
+
+class MujocoWorld : public PhysicsEngine {
+ public:
+  // model and its World must outlive this object. Throws EngineError when
+  // the model has what MuJoCo cannot represent (MujocoLimits) or MuJoCo
+  // refuses it.
+  MujocoWorld(const model::FlatModel& model, const Parameters& params);
+  ~MujocoWorld() override;
+  MujocoWorld(const MujocoWorld&) = delete;
+  MujocoWorld& operator=(const MujocoWorld&) = delete;
+
+  const char* name() const override { return "mujoco"; }
+  void Step() override;
+  bool dead() const override { return dead_; }
+  const std::vector<std::string>& last_messages() const override { return messages_; }
+  int last_contact_count() const override { return contact_count_; }
+
+  BodyReadout ReadBody(int body) const override;
+  JointReadout ReadJoint(int joint) const override;
+  double JointPosition(int joint, int axis) const override;
+  double JointRate(int joint, int axis) const override;
+  void AddForce(int body, const Eigen::Vector3d& force) override;
+  void SetMotor(int joint, int axis, double velocity, double max_force) override;
+  void SetStops(int joint, int axis, double lo, double hi) override;
+  double CastRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double range,
+                 int exclude_body) override;
+
+  // MuJoCo's own mj_step on this model with the motors as set, none of
+  // our contact set-up: the bare column of bench/sim_bench.
+  void BareStep();
+
+ private:
+  // One of our joints in MuJoCo: up to two MuJoCo joints (one per axis) in
+  // the child body.
+  struct JointMap {
+    int child = -1, parent = -1;  // flat bodies; parent -1 = the world
+    bool child_is_body1 = true;
+    // MuJoCo's axis is ours turned round when body1 is the parent, so its
+    // values (the child relative to the parent) count as ours (body1
+    // relative to body2).
+    double axis_sign = 1.0;
+    int axes = 0;
+    int mj_joint[2] = {-1, -1};
+    int qpos[2] = {-1, -1};
+    int dof[2] = {-1, -1};
+    int actuator[2] = {-1, -1};
+  };
+  struct Motor {
+    double velocity = 0.0;        // ours
+    double max_force = 0.0;       // 0 = no motor (ODE's default)
+    double kv = 0.0;              // [N m s/rad] or [N s/m] of the servo
+  };
+  struct GeomInfo {
+    int body = -1;                // flat body owning it; -1 = plane or heightfield
+    model::SurfaceProperties surface;
+    Eigen::Vector3d spin_axis = Eigen::Vector3d::Zero();  // body frame
+    bool has_spin_axis = false;
+  };
+
+  void Load(const std::string& xml);
+  void MapElements(const model::BodyTree& tree);
+  void SetInitialVelocities();
+  void FillHeightfield();
+  // mj_step1 with our contact set-up between collision and constraints.
+  void Prepare();
+  void SetUpContacts();
+  // A contact that slides (a slip one step of friction cannot stop): its
+  // Coulomb force per newton of load, on geom1.
+  struct Sliding {
+    int contact = -1;
+    Eigen::Vector3d per_newton = Eigen::Vector3d::Zero();
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();  // applied this step, on geom1
+  };
+  bool Slides(const mjContact_& contact, const model::SurfaceProperties& surface,
+              Sliding* sliding) const;
+  void ApplySlidingFriction();
+  void SetUpBounce();
+  void SetUpMotors();
+  void CollectForces();
+  void CollectJointForces();
+  // Velocity of a point fixed to a MuJoCo body (0 = the world).
+  Eigen::Vector3d PointVelocity(int mj_body, const Eigen::Vector3d& point) const;
+  // The first friction direction of an anisotropic contact, as the ODE
+  // side picks it: a wheel's rolling direction, else the slip; false when
+  // it sticks (MuJoCo's own tangents stay).
+  bool FrictionDirection(const mjContact_& contact, Eigen::Vector3d* direction) const;
+  void CheckWarnings();
+  EngineError Fail(const std::string& message, const std::string& during);
+  std::vector<std::string> SuspectBodies() const;
+  // Solver reference and impedance of the per-step law for a row whose
+  // approximate inverse inertia is inverse_inertia.
+  void StepLaw(double erp, double cfm, double inverse_inertia, double solref[2],
+               double solimp[5]) const;
+  Eigen::Vector3d Up(const double* v) const;
+
+  const model::FlatModel& model_;
+  const Parameters& params_;
+  mjModel_* m_ = nullptr;
+  mjData_* d_ = nullptr;
+  bool dead_ = false;
+  bool first_step_ = true;
+  std::vector<std::string> messages_;
+  int contact_count_ = 0;
+  std::vector<int> body_id_;       // flat body -> MuJoCo body (0 for static ones)
+  std::vector<JointMap> joints_;   // per flat joint
+  std::vector<Motor> motors_;      // per MuJoCo actuator
+  std::vector<GeomInfo> geoms_;    // per MuJoCo geom
+  std::vector<Eigen::Vector3d> contact_force_, contact_torque_;
+  std::vector<JointReadout> joint_forces_;   // per flat joint, of the last step
+  std::vector<model::SurfaceProperties> contact_surface_;  // per MuJoCo contact
+  std::vector<Sliding> sliding_;                            // this step's sliding contacts
+  std::vector<int> warning_counts_;
+  double gravity_ = 0.0;
+};
+
+// What of model MuJoCo cannot represent, each naming the element with its
+// file and line: joints that close a loop of bodies.
+std::vector<Diagnostic> MujocoLimits(const model::FlatModel& model, const Parameters& params);
+
+}  // namespace simpartner::sim

@@ -1,0 +1,37 @@
+#include "simpartner/sim/engine.h"
+
+#include "simpartner/sim/mujoco_world.h"
+#include "simpartner/sim/ode_world.h"
+
+namespace simpartner::sim {
+namespace {
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& name : names) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+}  // namespace
+
+EngineError::EngineError(const std::string& engine, std::string engine_message, std::string during,
+                         std::vector<std::string> bodies)
+    : Error(engine + " failed: " + engine_message +
+            (during.empty() ? "" : " (during " + during + ")") + "; bodies: " +
+            (bodies.empty() ? std::string("none stands out") : Join(bodies))),
+      engine_message_(std::move(engine_message)),
+      during_(std::move(during)),
+      bodies_(std::move(bodies)) {}
+
+std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,
+                                          const Parameters& params) {
+  if (params.engine == "mujoco") return std::make_unique<MujocoWorld>(model, params);
+  return std::make_unique<OdeWorld>(model, params);
+}
+
+std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parameters& params) {
+  if (params.engine == "mujoco") return MujocoLimits(model, params);
+  return {};
+}
+
+}  // namespace simpartner::sim

@@ -1,0 +1,695 @@
+#include "simpartner/sim/mujoco_world.h"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "mujoco_mjcf.h"
+#include "simpartner/sim/simulation.h"
+
+// Exported by libmujoco 2.2 and declared in mujoco.h from 2.3 on.
+extern "C" void mj_implicit(const mjModel* m, mjData* d);
+
+namespace simpartner::sim {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// The motor servo's gain, in units of the axis's own inertia per step: an
+// implicit step closes kServoGain / (1 + kServoGain) of the gap to the
+// target velocity (99 %), and a load torque tau leaves a velocity error of
+// tau h / (kServoGain M).
+constexpr double kServoGain = 100.0;
+// Below this slip speed [m/s] a contact has no slip direction (ODE side:
+// kSlipDirectionSpeed).
+constexpr double kSlipDirectionSpeed = 1e-4;
+// A wheel whose axis is within this sine of the contact normal lies flat.
+constexpr double kMinRollingSine = 1e-3;
+// MuJoCo's cone needs a positive torsional friction where ODE has none.
+constexpr double kTorsionalFriction = 1e-9;  // [m]
+
+// MuJoCo's fatal errors (mju_error) would exit the process; they become an
+// exception of the thread that called MuJoCo, as ODE's do. Its warnings
+// would go to stdout and a MUJOCO_LOG.TXT in the working directory; the
+// engine reads the warning counters of its mjData instead.
+void MujocoFatal(const char* message) {
+  throw EngineError("MuJoCo", message, "", {});
+}
+void MujocoWarning(const char*) {}
+
+void InstallMujocoHandlers() {
+  if (mju_user_error != &MujocoFatal) mju_user_error = &MujocoFatal;
+  if (mju_user_warning != &MujocoWarning) mju_user_warning = &MujocoWarning;
+}
+
+Eigen::Vector3d V(const mjtNum* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+
+double Wrap(double angle) { return std::remainder(angle, 2 * kPi); }
+
+}  // namespace
+
+std::vector<Diagnostic> MujocoLimits(const model::FlatModel& model, const Parameters&) {
+  std::vector<Diagnostic> out;
+  for (int j : model::BuildBodyTree(model).loop_joints) {
+    const model::FlatJoint& joint = model.joints[static_cast<size_t>(j)];
+    out.push_back(Diagnostic{joint.source->where.file, joint.source->where.line, "joint",
+                             "joint '" + joint.name +
+                                 "' closes a loop of bodies: the MuJoCo engine hangs bodies in "
+                                 "a tree and has no place for it (--engine=ode runs it)"});
+  }
+  return out;
+}
+
+MujocoWorld::MujocoWorld(const model::FlatModel& model, const Parameters& params)
+    : model_(model), params_(params) {
+  InstallMujocoHandlers();
+  const std::vector<Diagnostic> limits = MujocoLimits(model, params);
+  if (!limits.empty()) throw EngineError("MuJoCo", limits.front().Format(), "building", {});
+  const model::BodyTree tree = model::BuildBodyTree(model);
+  Load(EngineMjcf(model, tree, params));
+  MapElements(tree);
+  gravity_ = model.world->gravity.norm();
+  for (size_t j = 0; j < model.joints.size(); ++j) {
+    const model::FlatJoint& flat = model.joints[j];
+    for (int axis = 0; axis < flat.num_axes; ++axis) {
+      const double lo = flat.source->lo_stop[axis], hi = flat.source->hi_stop[axis];
+      if (std::isfinite(lo) || std::isfinite(hi)) SetStops(static_cast<int>(j), axis, lo, hi);
+    }
+  }
+  SetInitialVelocities();
+  try {
+    Prepare();
+  } catch (const EngineError& e) {
+    throw Fail(e.engine_message(), "the first collision");
+  }
+}
+
+MujocoWorld::~MujocoWorld() {
+  if (d_ != nullptr) mj_deleteData(d_);
+  if (m_ != nullptr) mj_deleteModel(m_);
+}
+
+void MujocoWorld::Load(const std::string& xml) {
+  // mjVFS holds 2,000 file names of 1,000 bytes: on the heap.
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* name = "simpartner.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml.size())) != 0)
+    throw EngineError("MuJoCo", "cannot make its in-memory model file", "building", {});
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), name)], xml.data(), xml.size());
+  char error[1000] = "";
+  m_ = mj_loadXML(name, vfs.get(), error, sizeof error);
+  mj_deleteVFS(vfs.get());
+  if (m_ == nullptr) throw EngineError("MuJoCo", error, "building the model", {});
+  d_ = mj_makeData(m_);
+  FillHeightfield();
+}
+
+void MujocoWorld::FillHeightfield() {
+  const model::World& world = *model_.world;
+  if (!world.heightfield) return;
+  const model::Heightfield& h = *world.heightfield;
+  double low = INFINITY, high = -INFINITY;
+  for (double s : h.samples) {
+    low = std::min(low, h.scale * s + h.offset);
+    high = std::max(high, h.scale * s + h.offset);
+  }
+  // MuJoCo's elevations are 0..1 times size[2] above the geom: the geom
+  // goes to the lowest height and size[2] spans the rest.
+  const double span = std::max(high - low, 1e-9);
+  m_->hfield_size[2] = span;
+  const int field = mj_name2id(m_, mjOBJ_GEOM, kMjcfField);
+  const Eigen::Vector3d up = world.Up();
+  for (int k = 0; k < 3; ++k) m_->geom_pos[3 * field + k] += low * up[k];
+  // MuJoCo's row r is our row rows-1-r (its y is our -z).
+  float* data = m_->hfield_data + m_->hfield_adr[0];
+  for (int r = 0; r < h.rows; ++r)
+    for (int c = 0; c < h.columns; ++c)
+      data[r * h.columns + c] = static_cast<float>(
+          (h.scale * h.samples[static_cast<size_t>((h.rows - 1 - r) * h.columns + c)] + h.offset -
+           low) /
+          span);
+}
+
+void MujocoWorld::MapElements(const model::BodyTree& tree) {
+  body_id_.assign(model_.bodies.size(), 0);
+  for (size_t b = 0; b < model_.bodies.size(); ++b)
+    if (!model_.bodies[b].source->is_static)
+      body_id_[b] = mj_name2id(m_, mjOBJ_BODY, MjcfBodyName(static_cast<int>(b)).c_str());
+  geoms_.assign(static_cast<size_t>(m_->ngeom), GeomInfo{});
+  const model::World& world = *model_.world;
+  auto surface_of = [&](const model::FlatBody* flat, const std::string& material) {
+    const model::Material* found = nullptr;
+    if (flat != nullptr && flat->robot >= 0)
+      for (const model::Material& m : world.robots[static_cast<size_t>(flat->robot)].robot.materials)
+        if (m.name == material) found = &m;
+    if (found == nullptr && !material.empty()) found = world.FindMaterial(material);
+    return model::ResolveSurface(found, params_);
+  };
+  for (int g = 0; g < m_->ngeom; ++g) {
+    const char* name = mj_id2name(m_, mjOBJ_GEOM, g);
+    GeomInfo& info = geoms_[static_cast<size_t>(g)];
+    if (std::strcmp(name, kMjcfPlane) == 0) {
+      info.surface = surface_of(nullptr, world.plane_material);
+    } else if (std::strcmp(name, kMjcfField) == 0) {
+      info.surface = surface_of(nullptr, world.heightfield->material);
+    } else {
+      info.body = std::atoi(name + 1);
+      const model::FlatBody& flat = model_.bodies[static_cast<size_t>(info.body)];
+      info.surface = surface_of(&flat, flat.source->material);
+      const std::vector<model::Joint>& joints =
+          flat.robot < 0 ? world.joints : world.robots[static_cast<size_t>(flat.robot)].robot.joints;
+      if (const auto axis = model::SpinAxis(*flat.source, joints)) {
+        info.spin_axis = *axis;
+        info.has_spin_axis = true;
+      }
+    }
+  }
+  joints_.assign(model_.joints.size(), JointMap{});
+  motors_.assign(static_cast<size_t>(m_->nu), Motor{});
+  for (size_t b = 0; b < tree.nodes.size(); ++b) {
+    const model::TreeNode& node = tree.nodes[b];
+    if (node.joint < 0) continue;
+    JointMap& map = joints_[static_cast<size_t>(node.joint)];
+    map.child = static_cast<int>(b);
+    map.parent = node.parent;
+    map.child_is_body1 = !node.joint_reversed;
+    map.axis_sign = node.joint_reversed ? -1.0 : 1.0;
+    map.axes = model_.joints[static_cast<size_t>(node.joint)].num_axes;
+    for (int a = 0; a < map.axes; ++a) {
+      const int id = mj_name2id(m_, mjOBJ_JOINT, MjcfJointName(node.joint, a).c_str());
+      map.mj_joint[a] = id;
+      map.qpos[a] = m_->jnt_qposadr[id];
+      map.dof[a] = m_->jnt_dofadr[id];
+      const int actuator = mj_name2id(m_, mjOBJ_ACTUATOR, MjcfActuatorName(node.joint, a).c_str());
+      map.actuator[a] = actuator;
+      motors_[static_cast<size_t>(actuator)].kv =
+          kServoGain * m_->dof_M0[map.dof[a]] / params_.stepsize;
+    }
+  }
+  contact_force_.assign(model_.bodies.size(), Eigen::Vector3d::Zero());
+  contact_torque_.assign(model_.bodies.size(), Eigen::Vector3d::Zero());
+  joint_forces_.assign(model_.joints.size(), JointReadout{});
+  warning_counts_.assign(mjNWARNING, 0);
+}
+
+void MujocoWorld::SetInitialVelocities() {
+  // A floating root moves as the file says (MuJoCo's free joint: the
+  // velocity of the body origin in the world, the angular one in the body
+  // frame); a joint moves at the relative velocity along its axis.
+  for (size_t b = 0; b < model_.bodies.size(); ++b) {
+    const model::FlatBody& flat = model_.bodies[b];
+    if (flat.source->is_static) continue;
+    const int id = body_id_[b];
+    const int joint = m_->body_jntadr[id];
+    if (joint < 0 || m_->jnt_type[joint] != mjJNT_FREE) continue;
+    const int dof = m_->jnt_dofadr[joint];
+    const Eigen::Vector3d w = flat.pose.linear().transpose() * flat.angular_velocity;
+    for (int k = 0; k < 3; ++k) {
+      d_->qvel[dof + k] = flat.linear_velocity[k];
+      d_->qvel[dof + 3 + k] = w[k];
+    }
+  }
+  for (size_t j = 0; j < joints_.size(); ++j) {
+    const JointMap& map = joints_[j];
+    if (map.axes == 0) continue;
+    const model::FlatJoint& joint = model_.joints[j];
+    const model::FlatBody& child = model_.bodies[static_cast<size_t>(map.child)];
+    Eigen::Vector3d w = child.angular_velocity, v = child.linear_velocity;
+    if (map.parent >= 0) {
+      const model::FlatBody& parent = model_.bodies[static_cast<size_t>(map.parent)];
+      w -= parent.angular_velocity;
+      v -= parent.linear_velocity + parent.angular_velocity.cross(child.pose.translation() -
+                                                                   parent.pose.translation());
+    }
+    const bool hinge = joint.source->kind != model::JointKind::kSlider;
+    for (int a = 0; a < map.axes; ++a)
+      d_->qvel[map.dof[a]] = map.axis_sign * joint.axis[a].dot(hinge ? w : v);
+  }
+}
+
+void MujocoWorld::StepLaw(double erp, double cfm, double inverse_inertia, double solref[2],
+                          double solimp[5]) const {
+  // ODE: (A + CFM / h) f = -v / h - ERP r / h^2 - a0 for a row of inverse
+  // inertia A. MuJoCo: (A + R) f = aref - a0 with R = (1 - d) / d A and, in
+  // its direct form, aref = -(b / d) v - (k / d) r. So d = A / (A + CFM /
+  // h), b = d / h, k = d ERP / h^2, with MuJoCo's own estimate of A.
+  const double h = params_.stepsize;
+  const double a = std::max(inverse_inertia, 1e-12);
+  const double d = std::clamp(a / (a + cfm / h), 1e-4, 0.9999);
+  solref[0] = -d * erp / (h * h);
+  solref[1] = -d / h;
+  solimp[0] = solimp[1] = d;
+  solimp[2] = 0.001;
+  solimp[3] = 0.5;
+  solimp[4] = 2.0;
+}
+
+Eigen::Vector3d MujocoWorld::PointVelocity(int mj_body, const Eigen::Vector3d& point) const {
+  if (mj_body <= 0) return Eigen::Vector3d::Zero();
+  const mjtNum* cvel = d_->cvel + 6 * mj_body;  // [angular, linear] at the root's subtree com
+  const Eigen::Vector3d at = V(d_->subtree_com + 3 * m_->body_rootid[mj_body]);
+  return V(cvel + 3) + V(cvel).cross(point - at);
+}
+
+bool MujocoWorld::FrictionDirection(const mjContact& contact, Eigen::Vector3d* direction) const {
+  const GeomInfo& g1 = geoms_[static_cast<size_t>(contact.geom1)];
+  const GeomInfo& g2 = geoms_[static_cast<size_t>(contact.geom2)];
+  const Eigen::Vector3d normal = V(contact.frame);
+  const model::SurfaceProperties combined = model::CombineSurfaces(g1.surface, g2.surface);
+  if (combined.friction_direction == model::FrictionDirection::kRolling &&
+      g1.has_spin_axis != g2.has_spin_axis) {
+    // Perpendicular to the normal and to the wheel's spin axis.
+    const int geom = g1.has_spin_axis ? contact.geom1 : contact.geom2;
+    const GeomInfo& wheel = g1.has_spin_axis ? g1 : g2;
+    Eigen::Matrix3d r;
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col) r(row, col) = d_->geom_xmat[9 * geom + 3 * row + col];
+    const Eigen::Vector3d rolling = normal.cross(r * wheel.spin_axis);
+    if (rolling.norm() > kMinRollingSine) {
+      *direction = rolling.normalized();
+      return true;
+    }
+  }
+  // Along the slip of geom1 against geom2, when it slides.
+  const Eigen::Vector3d at = V(contact.pos);
+  Eigen::Vector3d slip = PointVelocity(m_->geom_bodyid[contact.geom1], at) -
+                         PointVelocity(m_->geom_bodyid[contact.geom2], at);
+  slip -= slip.dot(normal) * normal;
+  if (slip.norm() <= kSlipDirectionSpeed) return false;
+  *direction = slip.normalized();
+  return true;
+}
+
+void MujocoWorld::SetUpContacts() {
+  // Points per pair of geoms: a physical stiffness is shared among them,
+  // as the ODE side shares it.
+  std::vector<int> points(static_cast<size_t>(d_->ncon), 1);
+  for (int i = 0; i < d_->ncon; ++i)
+    for (int k = 0; k < d_->ncon; ++k)
+      if (k != i && d_->contact[k].geom1 == d_->contact[i].geom1 &&
+          d_->contact[k].geom2 == d_->contact[i].geom2)
+        ++points[static_cast<size_t>(i)];
+  contact_surface_.assign(static_cast<size_t>(d_->ncon), model::SurfaceProperties{});
+  sliding_.clear();
+  bool velocities = false;
+  for (int i = 0; i < d_->ncon; ++i) {
+    mjContact& contact = d_->contact[i];
+    const model::SurfaceProperties combined = model::CombineSurfaces(
+        geoms_[static_cast<size_t>(contact.geom1)].surface,
+        geoms_[static_cast<size_t>(contact.geom2)].surface);
+    contact_surface_[static_cast<size_t>(i)] = combined;
+    const double cfm =
+        combined.HasStiffness() ? combined.soft_cfm * points[static_cast<size_t>(i)] : combined.soft_cfm;
+    const double inverse_inertia = m_->body_invweight0[2 * m_->geom_bodyid[contact.geom1]] +
+                                   m_->body_invweight0[2 * m_->geom_bodyid[contact.geom2]];
+    StepLaw(combined.soft_erp, cfm, inverse_inertia, contact.solref, contact.solimp);
+    contact.friction[0] = combined.mu;
+    contact.friction[1] = combined.mu2;
+    contact.friction[2] = kTorsionalFriction;
+    contact.friction[3] = contact.friction[4] = std::max(combined.rolling_friction, 1e-9);
+    contact.dim = combined.rolling_friction > 0 ? 6 : 3;
+    if (!velocities) {
+      mj_comVel(m_, d_);
+      velocities = true;
+    }
+    Eigen::Vector3d along;
+    if (combined.mu2 != combined.mu && FrictionDirection(contact, &along)) {
+      const Eigen::Vector3d normal = V(contact.frame);
+      const Eigen::Vector3d across = normal.cross(along);
+      for (int k = 0; k < 3; ++k) {
+        contact.frame[3 + k] = along[k];
+        contact.frame[6 + k] = across[k];
+      }
+    }
+    Sliding sliding;
+    if (Slides(contact, combined, &sliding)) {
+      sliding.contact = i;
+      sliding_.push_back(sliding);
+      contact.dim = 1;  // no friction rows: its friction is applied (ApplySlidingFriction)
+    }
+  }
+}
+
+bool MujocoWorld::Slides(const mjContact& contact, const model::SurfaceProperties& surface,
+                         Sliding* sliding) const {
+  const Eigen::Vector3d normal = V(contact.frame);
+  const Eigen::Vector3d at = V(contact.pos);
+  Eigen::Vector3d slip = PointVelocity(m_->geom_bodyid[contact.geom1], at) -
+                         PointVelocity(m_->geom_bodyid[contact.geom2], at);
+  slip -= slip.dot(normal) * normal;
+  // A slip one step of friction cannot stop (the ODE side's test).
+  const double speed = slip.norm();
+  if (speed <= std::max(kSlipDirectionSpeed, surface.mu * gravity_ * params_.stepsize)) return false;
+  // Coulomb's force on the ellipse of mu along the first direction and
+  // mu2 across, of most dissipation: -(mu^2 v1, mu2^2 v2) / |(mu v1, mu2 v2)|
+  // per newton of load, on geom1.
+  const Eigen::Vector3d along = V(contact.frame + 3), across = V(contact.frame + 6);
+  const double v1 = slip.dot(along), v2 = slip.dot(across);
+  const double norm = std::hypot(surface.mu * v1, surface.mu2 * v2);
+  if (norm == 0.0) return false;
+  sliding->per_newton =
+      -(surface.mu * surface.mu * v1 * along + surface.mu2 * surface.mu2 * v2 * across) / norm;
+  return true;
+}
+
+void MujocoWorld::ApplySlidingFriction() {
+  // ODE's friction of a sliding contact is mu N against the slip, N what
+  // the normal needs. MuJoCo's contacts are not complementary: a friction
+  // row asking for more than its cone gives raises the normal force
+  // instead (a box sliding at 2 m/s took 38 times its weight and hopped).
+  // So a sliding contact goes into MuJoCo's solve without friction rows; a
+  // first solve gives its load N, and its friction, mu N against the slip
+  // (Slides), is applied to both bodies before the solve that counts.
+  if (sliding_.empty()) return;
+  mj_fwdConstraint(m_, d_);
+  mju_zero(d_->qfrc_applied, m_->nv);
+  const mjtNum zero[3] = {0, 0, 0};
+  for (Sliding& s : sliding_) {
+    const mjContact& contact = d_->contact[s.contact];
+    s.force = std::max(d_->efc_force[contact.efc_address], 0.0) * s.per_newton;  // on geom1
+    mjtNum point[3] = {contact.pos[0], contact.pos[1], contact.pos[2]};
+    for (int side = 0; side < 2; ++side) {
+      const int body = m_->geom_bodyid[side == 0 ? contact.geom1 : contact.geom2];
+      if (body == 0) continue;
+      const Eigen::Vector3d f = side == 0 ? s.force : Eigen::Vector3d(-s.force);
+      const mjtNum force[3] = {f.x(), f.y(), f.z()};
+      mj_applyFT(m_, d_, force, zero, point, body, d_->qfrc_applied);
+    }
+  }
+  mj_fwdAcceleration(m_, d_);
+}
+
+void MujocoWorld::SetUpBounce() {
+  // ODE's bounce: a contact closing faster than the bounce velocity leaves
+  // at bounce times its closing speed (or faster, if the penetration
+  // needs it): the normal row's reference acceleration asks for that.
+  const double h = params_.stepsize;
+  for (int i = 0; i < d_->ncon; ++i) {
+    const model::SurfaceProperties& surface = contact_surface_[static_cast<size_t>(i)];
+    const int row = d_->contact[i].efc_address;
+    if (surface.bounce <= 0.0 || row < 0) continue;
+    const double v = d_->efc_vel[row];
+    if (v >= -surface.bounce_velocity) continue;
+    d_->efc_aref[row] = std::max(d_->efc_aref[row], (-surface.bounce * v - v) / h);
+  }
+}
+
+void MujocoWorld::Prepare() {
+  // mj_step1 without sensors and energy, with the contacts set up between
+  // collision and the constraints they become (mj_fwdPosition's order).
+  mj_checkPos(m_, d_);
+  mj_checkVel(m_, d_);
+  mj_kinematics(m_, d_);
+  mj_comPos(m_, d_);
+  mj_camlight(m_, d_);
+  mj_tendon(m_, d_);
+  mj_crb(m_, d_);
+  mj_factorM(m_, d_);
+  mj_collision(m_, d_);
+  SetUpContacts();
+  mj_makeConstraint(m_, d_);
+  mj_transmission(m_, d_);
+  mj_projectConstraint(m_, d_);
+  mj_fwdVelocity(m_, d_);
+  SetUpBounce();
+}
+
+void MujocoWorld::SetUpMotors() {
+  // ODE's motor reaches its velocity within the step when the force that
+  // takes is within its limit, and pushes with the limit otherwise. The
+  // force the step needs is about the axis's inertia times the velocity
+  // gap over the step: below the limit, a stiff servo integrated
+  // implicitly (force kv (ctrl - qvel) at the step's end, stable at any
+  // kv) closes the gap; above it, the limit force itself.
+  const double h = params_.stepsize;
+  for (int u = 0; u < m_->nu; ++u) {
+    const Motor& motor = motors_[static_cast<size_t>(u)];
+    const int dof = m_->jnt_dofadr[m_->actuator_trnid[2 * u]];
+    mjtNum* gain = m_->actuator_gainprm + mjNGAIN * u;
+    mjtNum* bias = m_->actuator_biasprm + mjNBIAS * u;
+    const double gap = motor.velocity - d_->qvel[dof];
+    const double needed = m_->dof_M0[dof] * gap / h;
+    if (motor.max_force <= 0.0) {
+      gain[0] = bias[2] = d_->ctrl[u] = 0.0;
+    } else if (std::abs(needed) <= motor.max_force) {
+      gain[0] = motor.kv;
+      bias[2] = -motor.kv;
+      d_->ctrl[u] = motor.velocity;
+    } else {
+      gain[0] = 1.0;
+      bias[2] = 0.0;
+      d_->ctrl[u] = std::copysign(motor.max_force, gap);
+    }
+    // The servo's explicit part may pass the limit; its implicit step does
+    // not take more than the limit allowed for, so it is not clipped.
+    const double range = std::abs(needed) <= motor.max_force ? 1e30 : motor.max_force;
+    m_->actuator_forcerange[2 * u] = -range;
+    m_->actuator_forcerange[2 * u + 1] = range;
+  }
+}
+
+void MujocoWorld::CollectForces() {
+  contact_count_ = d_->ncon;
+  for (size_t b = 0; b < contact_force_.size(); ++b) {
+    contact_force_[b].setZero();
+    contact_torque_[b].setZero();
+  }
+  std::vector<int> flat_of(static_cast<size_t>(m_->nbody), -1);
+  for (size_t b = 0; b < body_id_.size(); ++b)
+    if (body_id_[b] > 0) flat_of[static_cast<size_t>(body_id_[b])] = static_cast<int>(b);
+  for (int i = 0; i < d_->ncon; ++i) {
+    const mjContact& contact = d_->contact[i];
+    if (contact.efc_address < 0) continue;
+    mjtNum local[6];
+    mj_contactForce(m_, d_, i, local);
+    // The frame's rows are the normal (from geom1 to geom2) and the two
+    // tangents; the force is the one geom1 exerts on geom2.
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+    for (int r = 0; r < 3; ++r) {
+      force += local[r] * V(contact.frame + 3 * r);
+      torque += local[3 + r] * V(contact.frame + 3 * r);
+    }
+    const Eigen::Vector3d at = V(contact.pos);
+    for (const Sliding& s : sliding_)
+      if (s.contact == i) force -= s.force;  // the friction applied on geom1, on geom2
+    const int sides[2] = {contact.geom2, contact.geom1};
+    for (int side = 0; side < 2; ++side) {
+      const int mj_body = m_->geom_bodyid[sides[side]];
+      const int b = flat_of[static_cast<size_t>(mj_body)];
+      if (b < 0) continue;
+      const double s = side == 0 ? 1.0 : -1.0;
+      contact_force_[static_cast<size_t>(b)] += s * force;
+      contact_torque_[static_cast<size_t>(b)] +=
+          s * ((at - V(d_->xipos + 3 * mj_body)).cross(force) + torque);
+    }
+  }
+  if (!joints_.empty()) CollectJointForces();
+}
+
+void MujocoWorld::CollectJointForces() {
+  mj_rnePostConstraint(m_, d_);
+  for (size_t j = 0; j < joints_.size(); ++j) {
+    const JointMap& map = joints_[j];
+    JointReadout& out = joint_forces_[j];
+    out = JointReadout{};
+    if (map.child < 0) continue;
+    // cfrc_int: what the parent exerts on the child, [torque, force] about
+    // the subtree centre of mass of the child's root.
+    const int child = body_id_[static_cast<size_t>(map.child)];
+    const mjtNum* wrench = d_->cfrc_int + 6 * child;
+    const Eigen::Vector3d force = V(wrench + 3);
+    const Eigen::Vector3d at = V(d_->subtree_com + 3 * m_->body_rootid[child]);
+    const Eigen::Vector3d torque = V(wrench);
+    auto about = [&](int mj_body) {
+      return Eigen::Vector3d(torque + (at - V(d_->xipos + 3 * mj_body)).cross(force));
+    };
+    Eigen::Vector3d& child_force = map.child_is_body1 ? out.force1 : out.force2;
+    Eigen::Vector3d& child_torque = map.child_is_body1 ? out.torque1 : out.torque2;
+    child_force = force;
+    child_torque = about(child);
+    if (map.parent < 0) continue;
+    const int parent = body_id_[static_cast<size_t>(map.parent)];
+    (map.child_is_body1 ? out.force2 : out.force1) = -force;
+    (map.child_is_body1 ? out.torque2 : out.torque1) = -about(parent);
+  }
+}
+
+void MujocoWorld::CheckWarnings() {
+  for (int i = 0; i < mjNWARNING; ++i) {
+    const int now = d_->warning[i].number;
+    if (now == warning_counts_[static_cast<size_t>(i)]) continue;
+    warning_counts_[static_cast<size_t>(i)] = now;
+    switch (i) {
+      case mjWARN_BADQPOS:
+      case mjWARN_BADQVEL:
+      case mjWARN_BADQACC:
+        // MuJoCo has put the model back to its initial state: the run
+        // cannot go on as if nothing happened.
+        throw EngineError("MuJoCo",
+                          std::string("a non-finite or huge ") +
+                              (i == mjWARN_BADQPOS ? "position"
+                               : i == mjWARN_BADQVEL ? "velocity"
+                                                     : "acceleration") +
+                              " in degree of freedom " + std::to_string(d_->warning[i].lastinfo),
+                          "", {});
+      case mjWARN_CONTACTFULL:
+        messages_.push_back("MuJoCo: more contacts than its " + std::to_string(m_->nconmax) +
+                            " places; the rest were dropped");
+        break;
+      case mjWARN_CNSTRFULL:
+        messages_.push_back("MuJoCo: more constraint rows than its " +
+                            std::to_string(m_->njmax) + " places; some were dropped");
+        break;
+      default:
+        messages_.push_back("MuJoCo warning " + std::to_string(i) + " (info " +
+                            std::to_string(d_->warning[i].lastinfo) + ")");
+    }
+  }
+}
+
+std::vector<std::string> MujocoWorld::SuspectBodies() const {
+  std::vector<std::string> out;
+  for (size_t b = 0; b < body_id_.size(); ++b) {
+    const int id = body_id_[b];
+    if (id <= 0) continue;
+    bool finite = true;
+    for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(d_->xpos[3 * id + k]);
+    for (int k = 0; k < 6; ++k) finite = finite && std::isfinite(d_->cvel[6 * id + k]);
+    if (!finite) out.push_back(QualifiedBodyName(model_, static_cast<int>(b)));
+  }
+  return out;
+}
+
+EngineError MujocoWorld::Fail(const std::string& message, const std::string& during) {
+  dead_ = true;
+  return EngineError("MuJoCo", message, during, SuspectBodies());
+}
+
+void MujocoWorld::Step() {
+  if (dead_) throw EngineError("MuJoCo", "the world failed in an earlier step and cannot go on",
+                               "step", SuspectBodies());
+  if (!first_step_) messages_.clear();
+  first_step_ = false;
+  try {
+    // mj_step2 with the sliding contacts' friction applied between the
+    // smooth forces and the constraints (2.2 exports mj_implicit without
+    // declaring it).
+    SetUpMotors();
+    mj_fwdActuation(m_, d_);
+    mj_fwdAcceleration(m_, d_);
+    ApplySlidingFriction();
+    mj_fwdConstraint(m_, d_);
+    mj_checkAcc(m_, d_);
+    mj_implicit(m_, d_);
+    CheckWarnings();
+    CollectForces();
+    mju_zero(d_->xfrc_applied, 6 * m_->nbody);
+    mju_zero(d_->qfrc_applied, m_->nv);
+    Prepare();
+    CheckWarnings();
+  } catch (const EngineError& e) {
+    throw Fail(e.engine_message(), "step");
+  }
+}
+
+void MujocoWorld::BareStep() {
+  SetUpMotors();
+  mj_step(m_, d_);
+}
+
+BodyReadout MujocoWorld::ReadBody(int index) const {
+  BodyReadout out;
+  out.contact_force = contact_force_[static_cast<size_t>(index)];
+  out.contact_torque = contact_torque_[static_cast<size_t>(index)];
+  const int id = body_id_[static_cast<size_t>(index)];
+  if (id <= 0) {
+    const model::FlatBody& flat = model_.bodies[static_cast<size_t>(index)];
+    out.position = flat.pose.translation();
+    out.orientation = Eigen::Quaterniond(flat.pose.linear());
+    return out;
+  }
+  out.position = V(d_->xpos + 3 * id);
+  const mjtNum* q = d_->xquat + 4 * id;
+  out.orientation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+  mjtNum velocity[6];
+  mj_objectVelocity(m_, d_, mjOBJ_BODY, id, velocity, 0);
+  out.angular_velocity = V(velocity);
+  out.linear_velocity = V(velocity + 3);
+  return out;
+}
+
+double MujocoWorld::JointPosition(int joint, int axis) const {
+  const JointMap& map = joints_[static_cast<size_t>(joint)];
+  if (axis >= map.axes || map.qpos[axis] < 0) return 0.0;
+  const double q = d_->qpos[map.qpos[axis]];
+  return m_->jnt_type[map.mj_joint[axis]] == mjJNT_HINGE ? Wrap(q) : q;
+}
+
+double MujocoWorld::JointRate(int joint, int axis) const {
+  const JointMap& map = joints_[static_cast<size_t>(joint)];
+  if (axis >= map.axes || map.dof[axis] < 0) return 0.0;
+  return d_->qvel[map.dof[axis]];
+}
+
+JointReadout MujocoWorld::ReadJoint(int index) const {
+  const JointMap& map = joints_[static_cast<size_t>(index)];
+  JointReadout out = joint_forces_[static_cast<size_t>(index)];
+  for (int a = 0; a < map.axes; ++a) {
+    out.position[a] = JointPosition(index, a);
+    out.continuous_position[a] = map.qpos[a] < 0 ? 0.0 : d_->qpos[map.qpos[a]];
+    out.rate[a] = JointRate(index, a);
+  }
+  const model::FlatJoint& flat = model_.joints[static_cast<size_t>(index)];
+  const int first = mj_name2id(m_, mjOBJ_JOINT, MjcfJointName(index, 0).c_str());
+  if (first >= 0 && m_->jnt_type[first] != mjJNT_SLIDE) {
+    out.anchor = V(d_->xanchor + 3 * first);
+  } else if (flat.body1 >= 0 && body_id_[static_cast<size_t>(flat.body1)] > 0) {
+    // As ODE says for fixed and slider joints: body1's centre of mass.
+    out.anchor = V(d_->xipos + 3 * body_id_[static_cast<size_t>(flat.body1)]);
+  }
+  return out;
+}
+
+void MujocoWorld::AddForce(int body, const Eigen::Vector3d& force) {
+  const int id = body_id_[static_cast<size_t>(body)];
+  if (id <= 0) return;
+  for (int k = 0; k < 3; ++k) d_->xfrc_applied[6 * id + k] += force[k];
+}
+
+void MujocoWorld::SetMotor(int joint, int axis, double velocity, double max_force) {
+  const JointMap& map = joints_[static_cast<size_t>(joint)];
+  if (axis >= map.axes || map.actuator[axis] < 0) return;
+  Motor& motor = motors_[static_cast<size_t>(map.actuator[axis])];
+  motor.velocity = velocity;
+  motor.max_force = max_force;
+}
+
+void MujocoWorld::SetStops(int joint, int axis, double lo, double hi) {
+  const JointMap& map = joints_[static_cast<size_t>(joint)];
+  if (axis >= map.axes || map.mj_joint[axis] < 0) return;
+  const int id = map.mj_joint[axis];
+  m_->jnt_limited[id] = std::isfinite(lo) || std::isfinite(hi) ? 1 : 0;
+  m_->jnt_range[2 * id] = std::isfinite(lo) ? lo : -1e10;
+  m_->jnt_range[2 * id + 1] = std::isfinite(hi) ? hi : 1e10;
+  // ODE's stops use the world's ERP and CFM.
+  StepLaw(params_.globalERP, params_.globalCFM, m_->dof_invweight0[map.dof[axis]],
+          m_->jnt_solref + mjNREF * id, m_->jnt_solimp + mjNIMP * id);
+}
+
+double MujocoWorld::CastRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                            double range, int exclude_body) {
+  if (dead_) return range;
+  const mjtNum point[3] = {origin.x(), origin.y(), origin.z()};
+  const Eigen::Vector3d unit = direction.normalized();
+  const mjtNum vector[3] = {unit.x(), unit.y(), unit.z()};
+  // A static scanner's housing is part of MuJoCo's world body: nothing
+  // is left out for it (excluding the world would hide all the ground).
+  const int exclude = exclude_body >= 0 ? body_id_[static_cast<size_t>(exclude_body)] : -1;
+  int geom = -1;
+  const double hit = mj_ray(m_, d_, point, vector, nullptr, 1, exclude > 0 ? exclude : -1, &geom);
+  return hit < 0 || hit > range ? range : hit;
+}
+
+}  // namespace simpartner::sim
