@@ -306,6 +306,7 @@ py::dict ReadLogged(const py::object& simulation, const std::string& db_options,
   const size_t steps = run.time.size();
   py::dict result;
   result["simulation"] = run.simulation;
+  result["engine"] = run.engine;
   result["time"] = OwningArray(std::move(run.time), {static_cast<py::ssize_t>(steps)});
   result["step"] = OwningArray(std::move(run.step), {static_cast<py::ssize_t>(steps)});
   result["bodies"] = PartDict(&run.poses, steps);
@@ -467,7 +468,8 @@ PYBIND11_MODULE(simpartner, m) {
         py::arg("joints") = py::none(), py::arg("forces") = false,
         "A logged simulation from the database: dict with time (n,), step (n,), bodies "
         "{name: (n, 7 or 10)}, joints {name: (n, 15), angles continuous}, forces {name: (n, 6)} "
-        "(with forces=True), body_columns, joint_columns, force_columns, simulation (its id). "
+        "(with forces=True), body_columns, joint_columns, force_columns, simulation (its id), "
+        "engine ('ode' or 'mujoco'). "
         "simulation: an id (int), 'last' or 'running'. start, end: only the steps from start to "
         "end [s of sim time] (None: from the first, to the last). bodies, joints: None (all), a "
         "name or a list of names ([] for none). velocities: add vx, vy, vz (central differences). "

@@ -13,6 +13,7 @@
 #include "simpartner/diagnostic.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/sensor_t.hpp"
+#include "simpartner/sim_engine.h"
 #include "simpartner/status_t.hpp"
 #include "simpartner/text.h"
 
@@ -54,7 +55,8 @@ std::string FormatStatus(const status_t& s, const status_t* seen = nullptr,
   out << RunStateName(s.run_state) << ", step " << s.step << ", t = " << FormatNumber(s.sim_time)
       << " s, " << FormatNumber(s.real_time_factor) << "x real time (target "
       << (s.target_speed <= 0 ? std::string("as fast as possible") : FormatNumber(s.target_speed) + "x")
-      << "), simulation " << s.simulation_id << " on " << s.host << ", commands "
+      << "), simulation " << s.simulation_id << " on " << s.host << ", engine "
+      << SimEngine(s.engine) << ", commands "
       << s.commands_accepted << " accepted / " << s.commands_rejected << " refused, "
       << s.bad_messages << " bad messages";
   size_t repeated = 0;

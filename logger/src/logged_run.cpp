@@ -218,6 +218,7 @@ LoggedRun ReadLoggedRun(DbConnection* db, const LoggedRunRequest& request) {
   CheckRange(request);
   LoggedRun run;
   run.simulation = ResolveSimulation(db, request.simulation);
+  run.engine = SimulationEngine(db, run.simulation);
   const ReadPlan plan = PlanRead(db, run.simulation, request);
   const StepIndex steps = ReadSteps(db, run.simulation, request, plan);
   std::vector<StepTableFetch> fetches = Fetches(request, plan);

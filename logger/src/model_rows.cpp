@@ -7,6 +7,7 @@
 
 #include "row_sink.h"
 #include "simpartner/logger/sql_text.h"
+#include "simpartner/sim_engine.h"
 #include "writer_text.h"
 
 namespace simpartner::logger {
@@ -197,11 +198,13 @@ uint32_t InsertSimulation(DbConnection* db, const model_t& model, const WriterOp
                           int64_t received_us) {
   std::string sql =
       "INSERT INTO Simulation (busSimulationID, host, lcmUrl, startTime, worldFile, worldName, "
-      "parameters, stepSize, stateEvery, logInterval, gravityX, gravityY, gravityZ, tag) VALUES (";
+      "engine, parameters, stepSize, stateEvery, logInterval, gravityX, gravityY, gravityZ, tag) "
+      "VALUES (";
   AppendInt(&sql, model.simulation_id);
   sql += "," + Quoted(model.host) + "," + Quoted(options.lcm_url) + "," +
          UtcFromMicros(received_us) + "," + Quoted(model.world_file) + "," +
-         Quoted(model.world_name) + "," + Quoted(model.parameters) + ",";
+         Quoted(model.world_name) + "," + Quoted(SimEngine(model.engine)) + "," +
+         Quoted(model.parameters) + ",";
   AppendDouble(&sql, model.step_size);
   sql += "," + std::to_string(model.state_every) + "," + std::to_string(options.log_interval);
   for (double g : model.gravity) {

@@ -17,6 +17,7 @@ namespace simpartner::logger {
 namespace {
 
 constexpr size_t kNameBytes = 255;    // VARCHAR(255)
+constexpr size_t kEngineBytes = 32;   // VARCHAR(32) of Simulation.engine
 constexpr size_t kPathBytes = 1024;   // VARCHAR(1024)
 constexpr size_t kTextBytes = 65535;  // TEXT
 constexpr auto kModelRequestPeriod = std::chrono::milliseconds(250);
@@ -122,6 +123,7 @@ std::string CheckModel(const model_t& m) {
   if (!(p = NonFinite(m.gravity, "gravity")).empty()) return p;
   if (!(p = CheckName(m.host, "host", kNameBytes)).empty()) return p;
   if (!(p = CheckName(m.sender, "sender", kNameBytes)).empty()) return p;
+  if (!(p = CheckName(m.engine, "engine", kEngineBytes)).empty()) return p;
   if (!(p = CheckName(m.world_file, "world_file", kPathBytes)).empty()) return p;
   if (!(p = CheckName(m.world_name, "world_name", kNameBytes)).empty()) return p;
   if (!(p = CheckName(m.parameters, "parameters", kTextBytes)).empty()) return p;

@@ -309,6 +309,16 @@ std::vector<Migration> BuildMigrations() {
                       " COMMENT 'simpartner-logger --tag: e.g. batch=sweep run=3 contactMu=0.5; "
                       "NULL = none'"),
       }});
+  m.push_back(Migration{
+      8,
+      "Simulation.engine: the physics engine the simulation ran on, ode or mujoco "
+      "('ode' in rows logged before: every sim before it ran ODE)",
+      {
+          // Every simulation logged before the sim could run MuJoCo ran ODE.
+          std::string("ALTER TABLE Simulation ADD COLUMN IF NOT EXISTS engine VARCHAR(32) NOT NULL"
+                      " DEFAULT 'ode' COMMENT 'model_t.engine: ode or mujoco'"
+                      " AFTER worldName"),
+      }});
   return m;
 }
 

@@ -10,41 +10,50 @@
 #include "simpartner/edit_distance.h"
 
 namespace simpartner::logger {
+namespace {
+
+// Whether Simulation has `column`: a database no logger of that schema
+// version has opened yet lacks it (the query tool only reads).
+bool SimulationHasColumn(DbConnection* db, const std::string& column) {
+  return db->QueryInt("SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = "
+                      "DATABASE() AND TABLE_NAME = 'Simulation' AND COLUMN_NAME = '" +
+                          column + "'",
+                      "look for Simulation." + column, 0) > 0;
+}
+
+}  // namespace
 
 void ListSimulations(DbConnection* db, std::ostream& out) {
-  // Simulation.tag came with schema 7; a database no newer logger has
-  // opened yet lacks it.
-  const bool has_tag =
-      db->QueryInt("SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = DATABASE() "
-                   "AND TABLE_NAME = 'Simulation' AND COLUMN_NAME = 'tag'",
-                   "look for Simulation.tag", 0) > 0;
+  // tag came with schema 7, engine with schema 8 ('ode': every simulation
+  // logged before ran ODE).
+  const std::string tag = SimulationHasColumn(db, "tag") ? "s.tag" : "NULL";
+  const std::string engine = SimulationHasColumn(db, "engine") ? "s.engine" : "'ode'";
   std::unique_ptr<sql::ResultSet> rows = db->Query(
-      "SELECT s.simulationID, s.busSimulationID, s.host, s.worldName, s.startTime, s.endTime, "
-      "(SELECT COUNT(*) FROM SimulationRow r WHERE r.simulationID = s.simulationID), "
-      "(SELECT MAX(step) FROM SimulationRow r WHERE r.simulationID = s.simulationID), "
-      "(SELECT COALESCE(SUM(missing), 0) FROM LogGap g WHERE g.simulationID = s.simulationID), "
-      "COALESCE(s.endReason, 'open'), " +
-          std::string(has_tag ? "s.tag" : "NULL") +
-          " FROM Simulation s ORDER BY s.simulationID",
+      "SELECT s.simulationID, s.busSimulationID, s.host, s.worldName, " + engine +
+          ", s.startTime, s.endTime, "
+          "(SELECT COUNT(*) FROM SimulationRow r WHERE r.simulationID = s.simulationID), "
+          "(SELECT MAX(step) FROM SimulationRow r WHERE r.simulationID = s.simulationID), "
+          "(SELECT COALESCE(SUM(missing), 0) FROM LogGap g WHERE g.simulationID = s.simulationID), "
+          "COALESCE(s.endReason, 'open'), " + tag + " FROM Simulation s ORDER BY s.simulationID",
       "list simulations");
-  char line[512];
-  std::snprintf(line, sizeof line, "%-6s %-18s %-16s %-20s %-26s %-26s %10s %10s %8s  %s\n", "id",
-                "bus id", "host", "world", "start (UTC)", "end (UTC)", "steps", "last step",
-                "missing", "state");
+  char line[560];
+  std::snprintf(line, sizeof line, "%-6s %-18s %-16s %-20s %-7s %-26s %-26s %10s %10s %8s  %s\n",
+                "id", "bus id", "host", "world", "engine", "start (UTC)", "end (UTC)", "steps",
+                "last step", "missing", "state");
   out << line;
   try {
     while (rows->next()) {
       std::snprintf(
-          line, sizeof line, "%-6u %-18lld %-16s %-20s %-26s %-26s %10lld %10s %8lld  %s\n",
+          line, sizeof line, "%-6u %-18lld %-16s %-20s %-7s %-26s %-26s %10lld %10s %8lld  %s\n",
           rows->getUInt(1), static_cast<long long>(rows->getInt64(2)),
           std::string(rows->getString(3)).c_str(), std::string(rows->getString(4)).c_str(),
-          std::string(rows->getString(5)).c_str(),
-          rows->isNull(6) ? "-" : std::string(rows->getString(6)).c_str(),
-          static_cast<long long>(rows->getInt64(7)),
-          rows->isNull(8) ? "-" : std::string(rows->getString(8)).c_str(),
-          static_cast<long long>(rows->getInt64(9)), std::string(rows->getString(10)).c_str());
+          std::string(rows->getString(5)).c_str(), std::string(rows->getString(6)).c_str(),
+          rows->isNull(7) ? "-" : std::string(rows->getString(7)).c_str(),
+          static_cast<long long>(rows->getInt64(8)),
+          rows->isNull(9) ? "-" : std::string(rows->getString(9)).c_str(),
+          static_cast<long long>(rows->getInt64(10)), std::string(rows->getString(11)).c_str());
       out << line;
-      if (!rows->isNull(11)) out << "       tag: " << std::string(rows->getString(11)) << "\n";
+      if (!rows->isNull(12)) out << "       tag: " << std::string(rows->getString(12)) << "\n";
     }
   } catch (const sql::SQLException&) {
     db->Rethrow("read the list of simulations");
@@ -121,6 +130,20 @@ void RequirePartName(const std::vector<std::string>& names, uint32_t simulation,
 void RequirePartName(DbConnection* db, uint32_t simulation, PartKind kind,
                      const std::string& name) {
   RequirePartName(PartNames(db, simulation, kind), simulation, kind, name);
+}
+
+std::string SimulationEngine(DbConnection* db, uint32_t simulation) {
+  if (!SimulationHasColumn(db, "engine")) return "ode";
+  std::unique_ptr<sql::ResultSet> r = db->Query(
+      "SELECT engine FROM Simulation WHERE simulationID = " + std::to_string(simulation),
+      "SELECT engine FROM Simulation");
+  try {
+    if (r->next()) return r->getString(1);
+  } catch (const sql::SQLException&) {
+    db->Rethrow("read the engine of simulation " + std::to_string(simulation));
+  }
+  throw Error("no simulation " + std::to_string(simulation) + " in database '" +
+              db->target().database + "'");
 }
 
 double LoggedStepTime(DbConnection* db, uint32_t simulation) {

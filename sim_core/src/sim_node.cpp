@@ -529,6 +529,7 @@ void SimNode::PublishStatus() {
   status.utime = WallMicros();
   status.simulation_id = sim_->simulation_id();
   status.host = host_;
+  status.engine = sim_->params().engine;
   status.run_state = quit_             ? status_t::RUN_STOPPED
                      : sim_->faulted() ? status_t::RUN_FAULTED
                      : paused_         ? status_t::RUN_PAUSED

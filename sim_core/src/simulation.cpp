@@ -543,6 +543,7 @@ void Simulation::FillModel(model_t* m) const {
   *m = model_t{};
   m->utime = WallMicros();
   m->simulation_id = simulation_id_;
+  m->engine = params_.engine;
   m->world_file = world_.file;
   m->world_name = world_.name;
   m->parameters = FormatParameters(params_);

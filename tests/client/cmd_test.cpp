@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 
+#include <atomic>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "../support/bus_url.h"
 #include "../support/processes.h"
@@ -18,6 +20,7 @@
 #include "simpartner/channels.h"
 #include "simpartner/client/cmd.h"
 #include "simpartner/control_t.hpp"
+#include "simpartner/status_t.hpp"
 
 namespace simpartner::client {
 namespace {
@@ -139,6 +142,7 @@ TEST_F(CmdTest, OutcomesAndExitStatuses) {
   r = cmd({"status"});
   EXPECT_EQ(r.status, kCmdOk) << r.err;
   EXPECT_TRUE(Contains(r.out, "running, step ")) << r.out;
+  EXPECT_TRUE(Contains(r.out, ", engine ode, ")) << r.out;  // the sim's default engine
   r = cmd({"reset"});
   EXPECT_EQ(r.status, kCmdOk) << r.err;
   EXPECT_TRUE(Contains(r.out, "sim reset: simulation ")) << r.out;
@@ -201,6 +205,35 @@ TEST_F(CmdTest, RepliesDoNotRepeatOldWarnings) {
       << r.out;
   r = cmd({"resume"});
   EXPECT_FALSE(Contains(r.out, warning)) << r.out;
+}
+
+// status prints the engine SIM_STATUS names; a status without one comes
+// from a sim older than the field, and every such sim ran ODE.
+TEST_F(CmdTest, StatusNamesThePhysicsEngine) {
+  const std::string url = BusUrl(15);
+  lcm::LCM bus(url);
+  ASSERT_TRUE(bus.good());
+  for (const auto& [engine, printed] : std::vector<std::pair<std::string, std::string>>{
+           {"mujoco", ", engine mujoco, "}, {"", ", engine ode, "}}) {
+    status_t status{};
+    status.simulation_id = 77;
+    status.host = "elsewhere";
+    status.engine = engine;
+    status.run_state = status_t::RUN_RUNNING;
+    // A sim's status stream (cmd prints one sent after it started listening).
+    std::atomic<bool> done{false};
+    std::thread sim([&] {
+      while (!done) {
+        bus.publish(channels::kStatus, &status);
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+    });
+    const CmdResult r = RunInProcess({"--lcm-url", url, "--timeout", "10", "status"});
+    done = true;
+    sim.join();
+    EXPECT_EQ(r.status, kCmdOk) << r.err;
+    EXPECT_TRUE(Contains(r.out, "simulation 77 on elsewhere" + printed)) << r.out;
+  }
 }
 
 TEST_F(CmdTest, UsageErrorsAndNoSim) {

@@ -93,6 +93,13 @@ TEST(BusDecode, ReasonsNameTheFieldAndTheValue) {
             std::string::npos);
   EXPECT_NE(reason["state_t num_bodies 2^31-1"].find("2147483647 is beyond the bound of 100000"),
             std::string::npos);
+  // The hand-built heads of model_t and status_t reach the field they name.
+  EXPECT_NE(reason["model_t heightfield num_samples 2^31-1"].find("field 'heightfield.samples' at byte 260: 2147483647 elements"),
+            std::string::npos) << reason["model_t heightfield num_samples 2^31-1"];
+  EXPECT_NE(reason["model_t num_materials -1"].find("field 'num_materials'"), std::string::npos)
+      << reason["model_t num_materials -1"];
+  EXPECT_NE(reason["status_t num_warnings -1"].find("field 'num_warnings'"), std::string::npos)
+      << reason["status_t num_warnings -1"];
   EXPECT_NE(reason["status_t warning body name length -5"].find("field 'warnings[0].bodies[0]'"),
             std::string::npos);
   EXPECT_NE(reason["command_t with 3 bytes after it"].find("3 bytes follow the message"),
@@ -111,6 +118,7 @@ model_t FullModel() {
   model_t m{};
   m.simulation_id = 42;
   m.host = "h";
+  m.engine = "mujoco";
   m.heightfield.present = true;
   m.heightfield.num_samples = 4;
   m.heightfield.samples = {0.f, 1.f, 2.f, 3.f};
@@ -141,6 +149,7 @@ model_t FullModel() {
 status_t FullStatus() {
   status_t s{};
   s.host = "h";
+  s.engine = "mujoco";
   s.num_warnings = 2;
   s.warnings.resize(2);
   s.warnings[0].source = "ode";
@@ -162,6 +171,8 @@ TEST(BusDecode, WellFormedMessagesDecodeExactlyAsLcmGenDecodesThem) {
   status_t decoded_status;
   ASSERT_FALSE(DecodeLcm(Encode(status).data(), Encode(status).size(), &decoded_status));
   EXPECT_EQ(decoded_status.warnings[0].bodies[1], "Calf1");
+  EXPECT_EQ(decoded_status.engine, "mujoco");
+  EXPECT_EQ(decoded_model.engine, "mujoco");
 
   state_t state{};
   state.num_bodies = 3;

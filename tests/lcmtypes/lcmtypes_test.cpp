@@ -51,6 +51,7 @@ model_t SampleModel() {
   m.utime = 1234567;
   m.simulation_id = 42;
   m.host = "host-a";
+  m.engine = "mujoco";
   m.world_file = "models/worlds/flat_ground.xml";
   m.world_name = "Flat";
   m.parameters = "stepsize=0.001\n";
@@ -109,6 +110,7 @@ TEST(LcmTypes, ModelRoundTrips) {
   EXPECT_EQ(decoded.heightfield.samples.at(5), 0.5f);
   EXPECT_TRUE(std::isinf(decoded.joints.at(0).lo_stop[0]));
   EXPECT_EQ(decoded.sensors.at(0).params.at(0), 11.0);
+  EXPECT_EQ(decoded.engine, "mujoco");
 }
 
 TEST(LcmTypes, StateRoundTrips) {
@@ -171,6 +173,7 @@ TEST(LcmTypes, SensorControlStatusRequestRoundTrip) {
   EXPECT_EQ(RoundTrip(c).simulation_id, -3);
 
   status_t st{};
+  st.engine = "ode";
   st.run_state = status_t::RUN_FAULTED;
   st.num_warnings = 1;
   st.warnings.resize(1);
@@ -178,6 +181,7 @@ TEST(LcmTypes, SensorControlStatusRequestRoundTrip) {
   st.warnings[0].num_bodies = 2;
   st.warnings[0].bodies = {"Wheel1", "Calf1"};
   EXPECT_EQ(RoundTrip(st).warnings.at(0).bodies.at(1), "Calf1");
+  EXPECT_EQ(RoundTrip(st).engine, "ode");
 
   model_request_t q{};
   q.sender = "viewer";

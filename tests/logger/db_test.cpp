@@ -24,6 +24,26 @@ using testing::ArmRun;
 using testing::Gen3Run;
 using testing::SimRun;
 
+// simpartner-query list: its header line, then each simulation's line split
+// at blanks (a time has one inside, an end time '-' none).
+struct Listing {
+  std::string text, header;
+  std::vector<std::vector<std::string>> rows;
+};
+Listing List(DbConnection* db) {
+  std::ostringstream out;
+  ListSimulations(db, out);
+  Listing listing{out.str(), "", {}};
+  std::stringstream lines(listing.text);
+  std::getline(lines, listing.header);
+  for (std::string line; std::getline(lines, line);) {
+    std::stringstream row(line);
+    listing.rows.emplace_back();
+    for (std::string f; row >> f;) listing.rows.back().push_back(f);
+  }
+  return listing;
+}
+
 class DbTest : public testing::ServerTest {
  protected:
   std::unique_ptr<DbWriter> Writer(const std::string& database = "simpartner",
@@ -91,21 +111,36 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   for (const std::string& statement : Migrations().at(0).statements) old->Execute(statement, "");
   old->Execute("INSERT INTO SchemaVersion VALUES (1, 'v1', NOW())", "");
   old->Execute("INSERT INTO LogGap VALUES (1, 11, 14, 4, NOW())", "");  // a gap of that logger
+  // A simulation of that logger (ODE then was the only engine).
+  old->Execute("INSERT INTO Simulation (busSimulationID, host, lcmUrl, startTime, worldFile, "
+               "worldName, parameters, stepSize, stateEvery, logInterval, gravityX, gravityY, "
+               "gravityZ) VALUES (5, 'old', 'udpm://', NOW(), 'w.xml', 'W', '', 0.001, 1, 1, 0, "
+               "-9.81, 0)", "");
   for (const std::string& statement : Migrations().at(1).statements) old->Execute(statement, "");
   old->Execute("INSERT INTO SchemaVersion VALUES (2, 'v2', NOW())", "");
   old->Execute("INSERT INTO Command (simulationID, receivedUtime, sentUtime, sender, requestID, robot, "
                "target, port, action, applyAtStep, vals, text) VALUES (1, 5, 4, 'teleop', 1, '', "
                "'Spin', 0, 'SET', -1, '1', '')", "");  // a command of that logger
+  // The query tool lists a database no logger has migrated yet: its
+  // simulations ran on ODE.
+  const Listing unmigrated = List(old.get());
+  ASSERT_EQ(unmigrated.rows.size(), 1u) << unmigrated.text;
+  ASSERT_EQ(unmigrated.rows[0].size(), 12u) << unmigrated.text;
+  EXPECT_EQ(unmigrated.rows[0][4], "ode") << unmigrated.text;
   std::vector<std::string> notices;
   auto b = DbConnection::Open(server_->LoggerTarget("simpartner_b"), false);
   EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 7);
-  ASSERT_EQ(notices.size(), 5u);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 8);
+  ASSERT_EQ(notices.size(), 6u);
   EXPECT_NE(notices[0].find("applied schema migration 3 (LogGap.reason"), std::string::npos);
   EXPECT_NE(notices[1].find("applied schema migration 4 (Material"), std::string::npos);
   EXPECT_NE(notices[2].find("applied schema migration 5 (JointPose.continuousAngle"), std::string::npos);
   EXPECT_NE(notices[3].find("applied schema migration 6 (Command.meantForBusSimulationID"), std::string::npos);
   EXPECT_NE(notices[4].find("applied schema migration 7 (Simulation.tag"), std::string::npos);
+  EXPECT_NE(notices[5].find("applied schema migration 8 (Simulation.engine"), std::string::npos);
+  // Simulations logged before migration 8 ran on ODE, the only engine then.
+  EXPECT_EQ(QueryRows(old.get(), "SELECT busSimulationID, engine FROM Simulation"),
+            (std::vector<std::string>{"5\tode"}));
   // Simulations logged before migration 7 carry no tag: NULL.
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM information_schema.COLUMNS WHERE TABLE_SCHEMA = "
                      "'simpartner_b' AND TABLE_NAME = 'Simulation' AND COLUMN_NAME = 'tag' AND "
@@ -134,7 +169,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   // Migrations cut short after adding their columns run again harmlessly.
   old->Execute("DELETE FROM SchemaVersion WHERE version >= 3", "");
   EXPECT_EQ(MigrateSchema(b.get(), nullptr), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 7);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 8);
 
   // A database from a newer logger is left alone.
   old->Execute("INSERT INTO SchemaVersion VALUES (99, 'from the future', NOW())", "");
@@ -143,7 +178,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
     FAIL() << "a newer schema was accepted";
   } catch (const DbError& e) {
     EXPECT_NE(std::string(e.what()).find("database 'simpartner_b' has schema version 99, newer than "
-                                         "this program's 7"),
+                                         "this program's 8"),
               std::string::npos) << e.what();
   }
 }
@@ -263,6 +298,36 @@ TEST_F(DbTest, MaterialsAreStoredWithTheirBodies) {
   EXPECT_EQ(QueryRows(db.get(), "SELECT b.name, b.material, m.name FROM Body b LEFT JOIN Material m "
                                 "USING (materialID) ORDER BY b.name"),
             (std::vector<std::string>{"Crate\t\tNULL", "Wheel\ttyre\ttyre"}));
+}
+
+// Simulation.engine is what SIM_MODEL names; a model with no engine comes
+// from a sender older than the field, and every such sim ran ODE.
+TEST_F(DbTest, EachSimulationKeepsTheEngineItsModelNames) {
+  SimRun mujoco = ArmRun(5, 300);
+  mujoco.model.engine = "mujoco";
+  SimRun older = ArmRun(5, 400);
+  older.model.engine = "";
+  auto writer = Writer();
+  std::vector<Record> records = {mujoco.ModelRecord()};
+  for (Record& r : mujoco.StateRecords(1, 5)) records.push_back(std::move(r));
+  records.push_back(older.ModelRecord());
+  for (Record& r : older.StateRecords(1, 5)) records.push_back(std::move(r));
+  writer->Write(records);
+  auto db = Admin();
+  EXPECT_EQ(QueryRows(db.get(), "SELECT busSimulationID, engine FROM Simulation ORDER BY simulationID"),
+            (std::vector<std::string>{"300\tmujoco", "400\tode"}));
+  EXPECT_EQ(SimulationEngine(db.get(), 1), "mujoco");
+  LoggedRunRequest request;
+  request.simulation = "1";
+  EXPECT_EQ(ReadLoggedRun(db.get(), request).engine, "mujoco");
+  // simpartner-query list: the engine after the world.
+  const Listing listing = List(db.get());
+  EXPECT_NE(listing.header.find(" world                engine  start (UTC)"), std::string::npos)
+      << listing.header;
+  ASSERT_EQ(listing.rows.size(), 2u) << listing.text;
+  for (const auto& row : listing.rows) ASSERT_GE(row.size(), 5u) << listing.text;
+  EXPECT_EQ(listing.rows[0][4], "mujoco") << listing.text;
+  EXPECT_EQ(listing.rows[1][4], "ode") << listing.text;
 }
 
 TEST_F(DbTest, GapsAreRecordedAlsoAcrossARestart) {
@@ -452,18 +517,12 @@ TEST_F(DbTest, GapRecordsGoIntoLogGapWithTheirReason) {
                 QueryInt("SELECT SUM(missing) FROM LogGap"),
             60);
   // simpartner-query list counts them as missing.
-  std::ostringstream list;
-  ListSimulations(db.get(), list);
-  std::stringstream listing(list.str());
-  std::string header_line, row_line;
-  std::getline(listing, header_line);
-  std::getline(listing, row_line);
-  std::vector<std::string> fields;
-  std::stringstream row(row_line);
-  for (std::string f; row >> f;) fields.push_back(f);
-  ASSERT_EQ(fields.size(), 11u) << list.str();
-  EXPECT_EQ(fields[7], "33") << list.str();  // steps
-  EXPECT_EQ(fields[9], "27") << list.str();  // missing
+  const Listing listing = List(db.get());
+  ASSERT_EQ(listing.rows.size(), 1u) << listing.text;
+  const std::vector<std::string>& fields = listing.rows[0];
+  ASSERT_EQ(fields.size(), 12u) << listing.text;
+  EXPECT_EQ(fields[8], "33") << listing.text;   // steps
+  EXPECT_EQ(fields[10], "27") << listing.text;  // missing
 }
 
 // A simulation whose sim went silent is closed at the last step seen,
@@ -714,26 +773,20 @@ TEST_F(DbTest, QueryToolListsAndExportsCsv) {
   auto db = DbConnection::Open(reader_target, false);
   db->UseDatabase(false);
 
-  std::ostringstream list;
-  ListSimulations(db.get(), list);
-  // The row of simulation 1, split at blanks (the times have one inside).
-  std::stringstream listing(list.str());
-  std::string header_line, row_line;
-  std::getline(listing, header_line);
-  std::getline(listing, row_line);
-  std::vector<std::string> fields;
-  std::stringstream row(row_line);
-  for (std::string f; row >> f;) fields.push_back(f);
-  ASSERT_EQ(fields.size(), 11u) << list.str();  // end time '-': one field
+  const Listing listing = List(db.get());
+  ASSERT_EQ(listing.rows.size(), 1u) << listing.text;
+  const std::vector<std::string>& fields = listing.rows[0];  // simulation 1
+  ASSERT_EQ(fields.size(), 12u) << listing.text;  // end time '-': one field
   EXPECT_EQ(fields[0], "1");
   EXPECT_EQ(fields[1], "12");
   EXPECT_EQ(fields[2], "testhost");
   EXPECT_EQ(fields[3], "ArmWorld");
-  EXPECT_EQ(fields[6], "-");
-  EXPECT_EQ(fields[7], "50");  // steps
-  EXPECT_EQ(fields[8], "50");  // last step
-  EXPECT_EQ(fields[9], "0");   // missing
-  EXPECT_EQ(fields[10], "open");
+  EXPECT_EQ(fields[4], "ode");  // the sim's default engine
+  EXPECT_EQ(fields[7], "-");
+  EXPECT_EQ(fields[8], "50");  // steps
+  EXPECT_EQ(fields[9], "50");  // last step
+  EXPECT_EQ(fields[10], "0");  // missing
+  EXPECT_EQ(fields[11], "open");
 
   std::ostringstream csv;
   EXPECT_EQ(ExportCsv(db.get(), ExportRequest{ExportKind::kPoses, "last", "Arm"}, csv), 50u);

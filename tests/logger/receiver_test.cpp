@@ -237,6 +237,9 @@ TEST_F(ReceiverTest, MessagesThatDoNotFitTheModelAreInvalid) {
   model_t bad_text = TwoBodyModel(8);
   bad_text.bodies[0].name = std::string("\xff\xfe", 2);
   Publish(channels::kModel, bad_text);
+  model_t long_engine = TwoBodyModel(9);
+  long_engine.engine = std::string(33, 'e');  // Simulation.engine holds 32
+  Publish(channels::kModel, long_engine);
   sensor_reading_t reading{};
   reading.simulation_id = 5;
   reading.sensor = 3;  // the model has no sensors
@@ -245,7 +248,7 @@ TEST_F(ReceiverTest, MessagesThatDoNotFitTheModelAreInvalid) {
   EXPECT_TRUE(Queued().empty());
   const ReceiverStats stats = receiver_->Stats();
   EXPECT_EQ(stats.channels.at(channels::kState).invalid, 3u);
-  EXPECT_EQ(stats.channels.at(channels::kModel).invalid, 2u);
+  EXPECT_EQ(stats.channels.at(channels::kModel).invalid, 3u);
   EXPECT_EQ(stats.channels.at(channels::kSensor).invalid, 1u);
   const std::string text = out_.str();
   EXPECT_NE(text.find("SIM_STATE: num_bodies = 3 but the model of simulation 5 has 2"),
@@ -253,6 +256,8 @@ TEST_F(ReceiverTest, MessagesThatDoNotFitTheModelAreInvalid) {
   EXPECT_NE(text.find("bodies[1].position[2] = nan"), std::string::npos) << text;
   EXPECT_NE(text.find("joints[0].body1 = 7 (no such body)"), std::string::npos) << text;
   EXPECT_NE(text.find("bodies[0].name is not valid UTF-8"), std::string::npos) << text;
+  EXPECT_NE(text.find("engine is not valid UTF-8 of at most 32 bytes (33 bytes)"), std::string::npos)
+      << text;
   EXPECT_NE(text.find("SIM_SENSOR: sensor = 3 but the model of simulation 5 has 0 sensors"),
             std::string::npos) << text;
 }

@@ -126,6 +126,22 @@ TEST_F(SimProcessTest, LateSubscriberRebuildsTheModel) {
   EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
 }
 
+// SIM_MODEL and SIM_STATUS name the engine the sim was started with.
+TEST_F(SimProcessTest, ModelAndStatusNameTheEngine) {
+  for (const std::string engine : {"ode", "mujoco"}) {
+    SCOPED_TRACE(engine);
+    const std::string url = BusUrl(engine == "ode" ? 20 : 21);
+    Listener bus(url);
+    SimProcess sim(world_, url, Log(), {"--duration=20", "--engine=" + engine});
+    ASSERT_TRUE(bus.Until([&] { return !bus.models.empty() && !bus.statuses.empty(); }, 10.0))
+        << LogText();
+    EXPECT_EQ(bus.models.front().engine, engine);
+    EXPECT_EQ(bus.statuses.front().engine, engine);
+    Control(bus.lcm(), control_t::ACTION_QUIT);
+    EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
+  }
+}
+
 // A sim that is stopped for 0.4 s (a debugger, an overloaded machine) does
 // not race through the missed steps: it re-anchors its schedule, says on
 // SIM_STATUS how far it fell behind, and loses no step of the stream.

@@ -336,7 +336,7 @@ class DatabaseTest(unittest.TestCase):
             while ": logging udpm://" not in read(logger_log.name):
                 self.assertLess(time.time(), deadline, read(logger_log.name))
                 time.sleep(0.1)
-            sim_process = start_sim(url, sim_log, ["--duration=2"])
+            sim_process = start_sim(url, sim_log, ["--duration=2", "--engine=ode"])
             drive = simpartner.Sim(url, timeout=30)
             drive.set_velocity("Axle1Motor", [3.0])
             self.assertEqual(sim_process.wait(60), 0)
@@ -346,6 +346,7 @@ class DatabaseTest(unittest.TestCase):
             run = simpartner.read_logged("last", db_options=server + "/reader.cnf")
             steps = len(run["time"])
             self.assertGreater(steps, 100)
+            self.assertEqual(run["engine"], "ode")  # the sim's --engine
             self.assertTrue(np.all(np.diff(run["time"]) > 0))
             self.assertEqual(run["bodies"]["Wheel1"].shape, (steps, 7))
             self.assertEqual(run["joints"]["Axle1"].shape, (steps, 15))

@@ -61,7 +61,7 @@ RawMessage StateHead(int64_t simulation_id, int64_t step) {
 
 RawMessage StatusHead(int64_t simulation_id) {
   RawMessage m(status_t::getHash());
-  m.I64(1).I64(simulation_id).Str("elsewhere").I8(0).I64(5).F64(0.005).F64(1).F64(1).F64(1e-4);
+  m.I64(1).I64(simulation_id).Str("elsewhere").Str("ode").I8(0).I64(5).F64(0.005).F64(1).F64(1).F64(1e-4);
   m.I64(0).I64(0).I64(0);
   return m;
 }
@@ -84,7 +84,8 @@ RawMessage ModelHead(int64_t simulation_id, int32_t host_length) {
   m.I64(1).I64(simulation_id);
   if (host_length == 1) m.Str("");
   else m.StrLength(host_length);
-  m.Str("w.xml").Str("w").Str("").F64(0.001).I32(1);
+  // sender, engine, world_file, world_name, parameters
+  m.Str("hostile@nowhere:1").Str("ode").Str("w.xml").Str("w").Str("").F64(0.001).I32(1);
   m.F64(0).F64(-9.81).F64(0).F64(0).F64(1).F64(0);
   m.I8(1).F64(0).F64(1).F64(0).F64(0).Str("");
   // heightfield: present, rows, columns, width, depth, scale, offset,

@@ -10,7 +10,6 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <iomanip>
 #include <memory>
 #include <ostream>
 #include <set>
@@ -19,6 +18,7 @@
 
 #include "simpartner/control_t.hpp"
 #include "simpartner/viewer/bus.h"
+#include "simpartner/viewer/hud_text.h"
 #include "simpartner/viewer/keys.h"
 #include "simpartner/viewer/line_of_sight.h"
 #include "simpartner/viewer/renderer.h"
@@ -36,12 +36,6 @@ constexpr double kFastFlyFactor = 4.0;
 constexpr double kWarningSeconds = 10.0;  // [s of sim time] a warning stays on the HUD
 constexpr Color3 kWhite{1, 1, 1};
 
-std::string Fixed(double v, int decimals) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(decimals) << v;
-  return s.str();
-}
-
 double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
 double ProcessCpuSeconds() {
@@ -49,16 +43,6 @@ double ProcessCpuSeconds() {
   getrusage(RUSAGE_SELF, &usage);
   return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
          1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-const char* RunStateName(int8_t run_state) {
-  switch (run_state) {
-    case status_t::RUN_RUNNING: return "RUNNING";
-    case status_t::RUN_PAUSED: return "PAUSED";
-    case status_t::RUN_STOPPED: return "STOPPED";
-    case status_t::RUN_FAULTED: return "FAULTED";
-  }
-  return "?";
 }
 
 // SDL and its window and GL context, released in reverse order.
@@ -334,19 +318,7 @@ class Viewer {
       const model_t& m = scene_.model();
       const state_t* s = scene_.state();
       const status_t* st = scene_.status();
-      std::string line = m.world_name;
-      if (!m.robots.empty()) line += " / " + m.robots[0].model;
-      if (s != nullptr) {
-        line += "   t " + Fixed(s->sim_time, 3) + " s   step " + std::to_string(s->step);
-      } else if (st != nullptr) {
-        line += "   t " + Fixed(st->sim_time, 3) + " s   step " + std::to_string(st->step);
-      } else {
-        line += "   no state yet";
-      }
-      if (st != nullptr) {
-        line += "   x" + Fixed(st->real_time_factor, 2) + " real time   " +
-                RunStateName(st->run_state);
-      }
+      const std::string line = SimLine(m, s, st);
       const bool alarm = st != nullptr && st->run_state == status_t::RUN_FAULTED;
       hud.top.push_back({line, alarm ? Color3{1.0f, 0.45f, 0.35f} : kWhite});
       if (st != nullptr) {

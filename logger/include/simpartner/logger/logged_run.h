@@ -42,6 +42,7 @@ struct PartArray {
 
 struct LoggedRun {
   uint32_t simulation = 0;   // Simulation.simulationID
+  std::string engine;        // Simulation.engine: "ode" or "mujoco"
   std::vector<double> time;  // simulationTime [s] of each step read
   std::vector<int64_t> step;
   std::vector<PartArray> poses, forces, joints;  // bus order; empty when not asked for

@@ -1,8 +1,8 @@
 // Which simulations a database holds and what they are made of: the list
 // for people, a simulation named by id, "last" or "running", the names of
 // its bodies and joints (with a did-you-mean for a wrong one), and the
-// facts the readers need (time between logged steps, stored continuous
-// angles).
+// facts the readers need (engine, time between logged steps, stored
+// continuous angles).
 #pragma once
 
 #include <cstdint>
@@ -31,6 +31,10 @@ std::vector<std::string> PartNames(DbConnection* db, uint32_t simulation, PartKi
 void RequirePartName(const std::vector<std::string>& names, uint32_t simulation, PartKind kind,
                      const std::string& name);
 void RequirePartName(DbConnection* db, uint32_t simulation, PartKind kind, const std::string& name);
+
+// The physics engine the simulation ran on (Simulation.engine): "ode" or
+// "mujoco"; "ode" in a database from before schema 8, when only ODE ran.
+std::string SimulationEngine(DbConnection* db, uint32_t simulation);
 
 // The time between logged steps [s]: step size x stateEvery x logInterval.
 double LoggedStepTime(DbConnection* db, uint32_t simulation);
