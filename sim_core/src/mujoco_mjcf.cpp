@@ -49,6 +49,10 @@ class EngineWriter {
         << "  <option timestep=\"" << ShortestNumber(params_.stepsize) << "\" gravity=\""
         << Vec(world.gravity) << "\" integrator=\"implicit\" cone=\"elliptic\" impratio=\""
         << ShortestNumber(ImpRatio()) << "\"/>\n"
+        // A nanometre of margin: a box placed exactly on the ground touches
+        // at all four corners (at a distance of 0 give or take rounding,
+        // MuJoCo's box-plane test found two of them; ODE's finds four).
+        << "  <default><geom margin=\"1e-9\"/></default>\n"
         << "  <size nconmax=\"" << contacts << "\" njmax=\"" << 6 * contacts + 8 * geoms
         << "\"/>\n";
     if (world.heightfield) {

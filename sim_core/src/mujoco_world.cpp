@@ -26,8 +26,10 @@ constexpr double kServoGain = 100.0;
 constexpr double kSlipDirectionSpeed = 1e-4;
 // A wheel whose axis is within this sine of the contact normal lies flat.
 constexpr double kMinRollingSine = 1e-3;
-// MuJoCo's cone needs a positive torsional friction where ODE has none.
+// MuJoCo's cone needs a positive torsional friction where ODE has none,
+// and positive coefficients where one of ours is 0.
 constexpr double kTorsionalFriction = 1e-9;  // [m]
+constexpr double kLeastFriction = 1e-9;
 
 // MuJoCo's fatal errors (mju_error) would exit the process; they become an
 // exception of the thread that called MuJoCo, as ODE's do. Its warnings
@@ -305,11 +307,14 @@ void MujocoWorld::SetUpContacts() {
     const double inverse_inertia = m_->body_invweight0[2 * m_->geom_bodyid[contact.geom1]] +
                                    m_->body_invweight0[2 * m_->geom_bodyid[contact.geom2]];
     StepLaw(combined.soft_erp, cfm, inverse_inertia, contact.solref, contact.solimp);
-    contact.friction[0] = combined.mu;
-    contact.friction[1] = combined.mu2;
+    // MuJoCo's cone divides by each coefficient: none may be 0. A contact
+    // without friction has no friction rows.
+    contact.friction[0] = std::max(combined.mu, kLeastFriction);
+    contact.friction[1] = std::max(combined.mu2, kLeastFriction);
     contact.friction[2] = kTorsionalFriction;
-    contact.friction[3] = contact.friction[4] = std::max(combined.rolling_friction, 1e-9);
-    contact.dim = combined.rolling_friction > 0 ? 6 : 3;
+    contact.friction[3] = contact.friction[4] = std::max(combined.rolling_friction, kLeastFriction);
+    contact.dim = combined.mu == 0 && combined.mu2 == 0 ? 1 : combined.rolling_friction > 0 ? 6 : 3;
+    if (contact.dim == 1) continue;
     if (!velocities) {
       mj_comVel(m_, d_);
       velocities = true;

@@ -313,11 +313,14 @@ ExperimentResult PendulumEnergy(const Context& context) {
   Series turns{"at the turning points", {}, {}, "points"};
   double highest_turn = -1e9, last_turn = 0.0;
   std::vector<double> bottoms;
-  double last_angle = run.JointPosition(pivot), last_rate = 0.0;
+  // The unwrapped angle: a swing that reaches the far horizontal (-pi) must
+  // not wrap to +pi and count as a bottom.
+  auto angle_of = [&] { return run.sim().engine().ReadJoint(pivot).continuous_position[0]; };
+  double last_angle = angle_of(), last_rate = 0.0;
   run.RunUntil(kDuration, [&] {
     const double t = run.time();
     const double relative = (run.KineticEnergy() + run.PotentialEnergy() - e0) / swing;
-    const double angle = run.JointPosition(pivot);
+    const double angle = angle_of();
     const double rate = run.sim().engine().JointRate(pivot, 0);
     // Turning points: the rod stops at the top of a swing, where all its
     // energy is potential (semi-implicit Euler's energy error, which
