@@ -47,7 +47,7 @@ class EngineWriter {
         << "  <compiler angle=\"radian\" inertiafromgeom=\"false\" boundmass=\"0\" "
            "boundinertia=\"0\" balanceinertia=\"false\" settotalmass=\"-1\"/>\n"
         << "  <option timestep=\"" << ShortestNumber(params_.stepsize) << "\" gravity=\""
-        << Vec(world.gravity) << "\" integrator=\"implicit\" cone=\"elliptic\" impratio=\""
+        << Vec(world.gravity) << "\" integrator=\"Euler\" cone=\"elliptic\" impratio=\""
         << ShortestNumber(ImpRatio()) << "\"/>\n"
         // A nanometre of margin: a box placed exactly on the ground touches
         // at all four corners (at a distance of 0 give or take rounding,

@@ -9,9 +9,6 @@
 #include "mujoco_mjcf.h"
 #include "simpartner/sim/simulation.h"
 
-// Exported by libmujoco 2.2 and declared in mujoco.h from 2.3 on.
-extern "C" void mj_implicit(const mjModel* m, mjData* d);
-
 namespace simpartner::sim {
 namespace {
 
@@ -80,11 +77,7 @@ MujocoWorld::MujocoWorld(const model::FlatModel& model, const Parameters& params
     }
   }
   SetInitialVelocities();
-  try {
-    Prepare();
-  } catch (const EngineError& e) {
-    throw Fail(e.engine_message(), "the first collision");
-  }
+  UpdateReadouts();
 }
 
 MujocoWorld::~MujocoWorld() {
@@ -294,8 +287,7 @@ void MujocoWorld::SetUpContacts() {
           d_->contact[k].geom2 == d_->contact[i].geom2)
         ++points[static_cast<size_t>(i)];
   contact_surface_.assign(static_cast<size_t>(d_->ncon), model::SurfaceProperties{});
-  sliding_.clear();
-  bool velocities = false;
+  applied_.clear();
   for (int i = 0; i < d_->ncon; ++i) {
     mjContact& contact = d_->contact[i];
     const model::SurfaceProperties combined = model::CombineSurfaces(
@@ -315,10 +307,6 @@ void MujocoWorld::SetUpContacts() {
     contact.friction[3] = contact.friction[4] = std::max(combined.rolling_friction, kLeastFriction);
     contact.dim = combined.mu == 0 && combined.mu2 == 0 ? 1 : combined.rolling_friction > 0 ? 6 : 3;
     if (contact.dim == 1) continue;
-    if (!velocities) {
-      mj_comVel(m_, d_);
-      velocities = true;
-    }
     Eigen::Vector3d along;
     if (combined.mu2 != combined.mu && FrictionDirection(contact, &along)) {
       const Eigen::Vector3d normal = V(contact.frame);
@@ -328,25 +316,31 @@ void MujocoWorld::SetUpContacts() {
         contact.frame[6 + k] = across[k];
       }
     }
-    Sliding sliding;
-    if (Slides(contact, combined, &sliding)) {
-      sliding.contact = i;
-      sliding_.push_back(sliding);
-      contact.dim = 1;  // no friction rows: its friction is applied (ApplySlidingFriction)
-    }
+    AppliedFriction applied;
+    applied.contact = i;
+    const bool slides = Slides(contact, combined, &applied);
+    const bool rolls = combined.rolling_friction > 0 && Rolls(contact, combined, slides, &applied);
+    // Rows MuJoCo solves: none for what is applied (ApplyFriction).
+    if (slides) contact.dim = 1;
+    else if (rolls) contact.dim = 3;
+    if (slides || rolls) applied_.push_back(applied);
   }
 }
 
 bool MujocoWorld::Slides(const mjContact& contact, const model::SurfaceProperties& surface,
-                         Sliding* sliding) const {
+                         AppliedFriction* sliding) const {
+  // The point's relative motion: Jacobian rows of geom1's body less
+  // geom2's at the contact.
+  const int nv = m_->nv;
+  const Eigen::MatrixXd jac = RelativeJacobian(contact);
+  const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
   const Eigen::Vector3d normal = V(contact.frame);
-  const Eigen::Vector3d at = V(contact.pos);
-  Eigen::Vector3d slip = PointVelocity(m_->geom_bodyid[contact.geom1], at) -
-                         PointVelocity(m_->geom_bodyid[contact.geom2], at);
+  // The slip the step would end with if friction did nothing: the smooth
+  // forces' (motors, gravity, applied) acceleration added to today's.
+  Eigen::Vector3d slip = jac * qvel + params_.stepsize * (jac * qacc);
   slip -= slip.dot(normal) * normal;
-  // A slip one step of friction cannot stop (the ODE side's test).
   const double speed = slip.norm();
-  if (speed <= std::max(kSlipDirectionSpeed, surface.mu * gravity_ * params_.stepsize)) return false;
+  if (speed <= kSlipDirectionSpeed) return false;
   // Coulomb's force on the ellipse of mu along the first direction and
   // mu2 across, of most dissipation: -(mu^2 v1, mu2^2 v2) / |(mu v1, mu2 v2)|
   // per newton of load, on geom1.
@@ -354,33 +348,102 @@ bool MujocoWorld::Slides(const mjContact& contact, const model::SurfacePropertie
   const double v1 = slip.dot(along), v2 = slip.dot(across);
   const double norm = std::hypot(surface.mu * v1, surface.mu2 * v2);
   if (norm == 0.0) return false;
-  sliding->per_newton =
+  sliding->force_per_newton =
       -(surface.mu * surface.mu * v1 * along + surface.mu2 * surface.mu2 * v2 * across) / norm;
-  return true;
+  // It slides when that force, at the load the point had at the last step
+  // (a new point: none yet, so it holds), cannot stop that slip within the
+  // step: what it takes off is the force over the point's effective mass
+  // along the slip (with the holding servos' armature: a servo-held wheel
+  // resists a change of its spin).
+  Eigen::VectorXd row = jac.transpose() * (slip / speed);
+  Eigen::VectorXd solved(nv);
+  mj_solveM(m_, d_, solved.data(), row.data(), 1);
+  const double brake = -sliding->force_per_newton.dot(slip / speed) * LastLoad(contact) *
+                       row.dot(solved) * params_.stepsize;
+  return speed > brake;
 }
 
-void MujocoWorld::ApplySlidingFriction() {
+bool MujocoWorld::Rolls(const mjContact& contact, const model::SurfaceProperties& surface,
+                        bool slides, AppliedFriction* applied) const {
+  // ODE's rolling resistance holds the rolling when rho N can stop it
+  // within the step, and resists it with rho N otherwise; asked of MuJoCo's
+  // rolling rows, the second raised the normal force (a sphere rolling at
+  // 10 rad/s hopped). As for sliding: the turn the step would end with
+  // without resistance, and what rho N at the last load takes off it.
+  const int nv = m_->nv;
+  const Eigen::MatrixXd jac = RelativeJacobian(contact, /*rotation=*/true);
+  const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
+  const Eigen::Vector3d normal = V(contact.frame);
+  Eigen::Vector3d turn = jac * qvel + params_.stepsize * (jac * qacc);
+  turn -= turn.dot(normal) * normal;
+  const double speed = turn.norm();
+  if (speed <= kSlipDirectionSpeed) return false;
+  const Eigen::Vector3d axis = turn / speed;
+  Eigen::VectorXd row = jac.transpose() * axis;
+  Eigen::VectorXd solved(nv);
+  mj_solveM(m_, d_, solved.data(), row.data(), 1);
+  applied->torque_per_newton = -surface.rolling_friction * axis;
+  // Without friction rows the rolling rows go too: resist at most what
+  // stops it.
+  applied->stop_torque = speed / (row.dot(solved) * params_.stepsize);
+  return slides ||
+         speed > surface.rolling_friction * LastLoad(contact) * row.dot(solved) * params_.stepsize;
+}
+
+Eigen::MatrixXd MujocoWorld::RelativeJacobian(const mjContact& contact, bool rotation) const {
+  using RowMajor = Eigen::Matrix<mjtNum, 3, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor jac1 = RowMajor::Zero(3, m_->nv), jac2 = RowMajor::Zero(3, m_->nv);
+  const int body1 = m_->geom_bodyid[contact.geom1], body2 = m_->geom_bodyid[contact.geom2];
+  if (body1 > 0)
+    mj_jac(m_, d_, rotation ? nullptr : jac1.data(), rotation ? jac1.data() : nullptr, contact.pos,
+           body1);
+  if (body2 > 0)
+    mj_jac(m_, d_, rotation ? nullptr : jac2.data(), rotation ? jac2.data() : nullptr, contact.pos,
+           body2);
+  return jac1 - jac2;
+}
+
+double MujocoWorld::LastLoad(const mjContact& contact) const {
+  // The nearest point of the same pair at the last step (a few per pair).
+  double load = 0.0, nearest = INFINITY;
+  const Eigen::Vector3d at = V(contact.pos);
+  for (const LastLoad_& last : last_loads_) {
+    if (last.geom1 != contact.geom1 || last.geom2 != contact.geom2) continue;
+    const double distance = (last.position - at).squaredNorm();
+    if (distance < nearest) {
+      nearest = distance;
+      load = last.load;
+    }
+  }
+  return load;
+}
+
+void MujocoWorld::ApplyFriction() {
   // ODE's friction of a sliding contact is mu N against the slip, N what
   // the normal needs. MuJoCo's contacts are not complementary: a friction
   // row asking for more than its cone gives raises the normal force
   // instead (a box sliding at 2 m/s took 38 times its weight and hopped).
-  // So a sliding contact goes into MuJoCo's solve without friction rows; a
-  // first solve gives its load N, and its friction, mu N against the slip
-  // (Slides), is applied to both bodies before the solve that counts.
-  if (sliding_.empty()) return;
+  // So a sliding contact goes into MuJoCo's solve without friction rows
+  // (and a rolling one without rolling rows); a first solve gives its load
+  // N, and mu N against the slip and rho N against the rolling are applied
+  // to both bodies before the solve that counts.
+  if (applied_.empty()) return;
   mj_fwdConstraint(m_, d_);
   mju_zero(d_->qfrc_applied, m_->nv);
-  const mjtNum zero[3] = {0, 0, 0};
-  for (Sliding& s : sliding_) {
-    const mjContact& contact = d_->contact[s.contact];
-    s.force = std::max(d_->efc_force[contact.efc_address], 0.0) * s.per_newton;  // on geom1
+  for (AppliedFriction& a : applied_) {
+    const mjContact& contact = d_->contact[a.contact];
+    const double load = std::max(d_->efc_force[contact.efc_address], 0.0);
+    a.force = load * a.force_per_newton;  // on geom1
+    a.torque = load * a.torque_per_newton;
+    if (a.torque.norm() > a.stop_torque) a.torque *= a.stop_torque / a.torque.norm();
     mjtNum point[3] = {contact.pos[0], contact.pos[1], contact.pos[2]};
     for (int side = 0; side < 2; ++side) {
       const int body = m_->geom_bodyid[side == 0 ? contact.geom1 : contact.geom2];
       if (body == 0) continue;
-      const Eigen::Vector3d f = side == 0 ? s.force : Eigen::Vector3d(-s.force);
-      const mjtNum force[3] = {f.x(), f.y(), f.z()};
-      mj_applyFT(m_, d_, force, zero, point, body, d_->qfrc_applied);
+      const double sign = side == 0 ? 1.0 : -1.0;
+      const mjtNum force[3] = {sign * a.force.x(), sign * a.force.y(), sign * a.force.z()};
+      const mjtNum torque[3] = {sign * a.torque.x(), sign * a.torque.y(), sign * a.torque.z()};
+      mj_applyFT(m_, d_, force, torque, point, body, d_->qfrc_applied);
     }
   }
   mj_fwdAcceleration(m_, d_);
@@ -402,8 +465,9 @@ void MujocoWorld::SetUpBounce() {
 }
 
 void MujocoWorld::Prepare() {
-  // mj_step1 without sensors and energy, with the contacts set up between
-  // collision and the constraints they become (mj_fwdPosition's order).
+  // mj_step1 without sensors and energy, in an order that knows the smooth
+  // forces' acceleration (qacc_smooth) before the contacts are set up:
+  // whether a contact will slide depends on what the motors ask of it.
   mj_checkPos(m_, d_);
   mj_checkVel(m_, d_);
   mj_kinematics(m_, d_);
@@ -412,44 +476,61 @@ void MujocoWorld::Prepare() {
   mj_tendon(m_, d_);
   mj_crb(m_, d_);
   mj_factorM(m_, d_);
+  mj_transmission(m_, d_);
+  // mj_fwdVelocity less the constraints' reference (they are not made yet).
+  mju_mulMatVec(d_->actuator_velocity, d_->actuator_moment, d_->qvel, m_->nu, m_->nv);
+  mj_comVel(m_, d_);
+  mj_passive(m_, d_);
+  mj_rne(m_, d_, 0, d_->qfrc_bias);
+  mj_fwdActuation(m_, d_);
+  mj_fwdAcceleration(m_, d_);
   mj_collision(m_, d_);
   SetUpContacts();
   mj_makeConstraint(m_, d_);
-  mj_transmission(m_, d_);
   mj_projectConstraint(m_, d_);
-  mj_fwdVelocity(m_, d_);
+  mj_referenceConstraint(m_, d_);
   SetUpBounce();
 }
 
-void MujocoWorld::SetUpMotors() {
+bool MujocoWorld::ServoHolds(int actuator) const {
   // ODE's motor reaches its velocity within the step when the force that
-  // takes is within its limit, and pushes with the limit otherwise. The
-  // force the step needs is about the axis's inertia times the velocity
-  // gap over the step: below the limit, a stiff servo integrated
-  // implicitly (force kv (ctrl - qvel) at the step's end, stable at any
-  // kv) closes the gap; above it, the limit force itself.
+  // takes is within its limit: about the axis's inertia times the velocity
+  // gap over the step.
+  const Motor& motor = motors_[static_cast<size_t>(actuator)];
+  const int dof = m_->jnt_dofadr[m_->actuator_trnid[2 * actuator]];
+  const double needed = m_->dof_M0[dof] * (motor.velocity - d_->qvel[dof]) / params_.stepsize;
+  return motor.max_force > 0.0 && std::abs(needed) <= motor.max_force;
+}
+
+void MujocoWorld::SetUpMotors() {
+  // Below its limit, a stiff servo, force kv (v - qvel), integrated
+  // backward (implicitly): (M + h kv) dv = h kv (v - qvel) + h f, which is
+  // MuJoCo's semi-implicit step with h kv of armature on the axis. Unlike
+  // MuJoCo 2.2's implicit integrator, the constraint solve sees it too, so
+  // friction holds a driven wheel against its servo's real torque.
+  // Above its limit, the limit force itself.
   const double h = params_.stepsize;
   for (int u = 0; u < m_->nu; ++u) {
     const Motor& motor = motors_[static_cast<size_t>(u)];
     const int dof = m_->jnt_dofadr[m_->actuator_trnid[2 * u]];
     mjtNum* gain = m_->actuator_gainprm + mjNGAIN * u;
     mjtNum* bias = m_->actuator_biasprm + mjNBIAS * u;
-    const double gap = motor.velocity - d_->qvel[dof];
-    const double needed = m_->dof_M0[dof] * gap / h;
+    const bool holds = ServoHolds(u);
+    m_->dof_armature[dof] = holds ? h * motor.kv : 0.0;
     if (motor.max_force <= 0.0) {
       gain[0] = bias[2] = d_->ctrl[u] = 0.0;
-    } else if (std::abs(needed) <= motor.max_force) {
+    } else if (holds) {
       gain[0] = motor.kv;
       bias[2] = -motor.kv;
       d_->ctrl[u] = motor.velocity;
     } else {
       gain[0] = 1.0;
       bias[2] = 0.0;
-      d_->ctrl[u] = std::copysign(motor.max_force, gap);
+      d_->ctrl[u] = std::copysign(motor.max_force, motor.velocity - d_->qvel[dof]);
     }
-    // The servo's explicit part may pass the limit; its implicit step does
-    // not take more than the limit allowed for, so it is not clipped.
-    const double range = std::abs(needed) <= motor.max_force ? 1e30 : motor.max_force;
+    // The servo's explicit force may pass the limit; the step does not
+    // take more than the limit allowed for, so it is not clipped.
+    const double range = holds ? 1e30 : motor.max_force;
     m_->actuator_forcerange[2 * u] = -range;
     m_->actuator_forcerange[2 * u + 1] = range;
   }
@@ -464,11 +545,13 @@ void MujocoWorld::CollectForces() {
   std::vector<int> flat_of(static_cast<size_t>(m_->nbody), -1);
   for (size_t b = 0; b < body_id_.size(); ++b)
     if (body_id_[b] > 0) flat_of[static_cast<size_t>(body_id_[b])] = static_cast<int>(b);
+  last_loads_.clear();
   for (int i = 0; i < d_->ncon; ++i) {
     const mjContact& contact = d_->contact[i];
     if (contact.efc_address < 0) continue;
     mjtNum local[6];
     mj_contactForce(m_, d_, i, local);
+    last_loads_.push_back(LastLoad_{contact.geom1, contact.geom2, V(contact.pos), std::max(local[0], 0.0)});
     // The frame's rows are the normal (from geom1 to geom2) and the two
     // tangents; the force is the one geom1 exerts on geom2.
     Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
@@ -477,8 +560,11 @@ void MujocoWorld::CollectForces() {
       torque += local[3 + r] * V(contact.frame + 3 * r);
     }
     const Eigen::Vector3d at = V(contact.pos);
-    for (const Sliding& s : sliding_)
-      if (s.contact == i) force -= s.force;  // the friction applied on geom1, on geom2
+    for (const AppliedFriction& a : applied_) {
+      if (a.contact != i) continue;
+      force -= a.force;  // what was applied on geom1, on geom2
+      torque -= a.torque;
+    }
     const int sides[2] = {contact.geom2, contact.geom1};
     for (int side = 0; side < 2; ++side) {
       const int mj_body = m_->geom_bodyid[sides[side]];
@@ -578,25 +664,33 @@ void MujocoWorld::Step() {
   if (!first_step_) messages_.clear();
   first_step_ = false;
   try {
-    // mj_step2 with the sliding contacts' friction applied between the
-    // smooth forces and the constraints (2.2 exports mj_implicit without
-    // declaring it).
+    // mj_step, with our motors set before the inertia is computed (a
+    // holding servo adds to it), our contact set-up between collision and
+    // constraints, and the sliding contacts' friction applied between the
+    // smooth forces and the constraint solve.
     SetUpMotors();
-    mj_fwdActuation(m_, d_);
-    mj_fwdAcceleration(m_, d_);
-    ApplySlidingFriction();
+    Prepare();
+    CheckWarnings();
+    ApplyFriction();
     mj_fwdConstraint(m_, d_);
     mj_checkAcc(m_, d_);
-    mj_implicit(m_, d_);
+    mj_Euler(m_, d_);
     CheckWarnings();
     CollectForces();
     mju_zero(d_->xfrc_applied, 6 * m_->nbody);
     mju_zero(d_->qfrc_applied, m_->nv);
-    Prepare();
-    CheckWarnings();
+    UpdateReadouts();
   } catch (const EngineError& e) {
     throw Fail(e.engine_message(), "step");
   }
+}
+
+void MujocoWorld::UpdateReadouts() {
+  // Positions and velocities of the new state, for readouts and rays (the
+  // next step computes them again with its collision).
+  mj_kinematics(m_, d_);
+  mj_comPos(m_, d_);
+  mj_comVel(m_, d_);
 }
 
 void MujocoWorld::BareStep() {

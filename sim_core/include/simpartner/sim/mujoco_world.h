@@ -17,6 +17,8 @@
 // MuJoCo's headers stay in sim_core/src/mujoco_world.cpp.
 #pragma once
 
+#include <Eigen/Dense>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -95,17 +97,34 @@ class MujocoWorld : public PhysicsEngine {
   void FillHeightfield();
   // mj_step1 with our contact set-up between collision and constraints.
   void Prepare();
+  // Kinematics and velocities of the state after a step.
+  void UpdateReadouts();
   void SetUpContacts();
-  // A contact that slides (a slip one step of friction cannot stop): its
-  // Coulomb force per newton of load, on geom1.
-  struct Sliding {
+  // Friction applied to a contact rather than solved by MuJoCo: sliding
+  // (a slip one step of friction cannot stop), rolling resistance (a roll
+  // it cannot stop). Per newton of load, on geom1; then as applied.
+  struct AppliedFriction {
     int contact = -1;
-    Eigen::Vector3d per_newton = Eigen::Vector3d::Zero();
-    Eigen::Vector3d force = Eigen::Vector3d::Zero();  // applied this step, on geom1
+    Eigen::Vector3d force_per_newton = Eigen::Vector3d::Zero();
+    Eigen::Vector3d torque_per_newton = Eigen::Vector3d::Zero();
+    double stop_torque = INFINITY;  // [N m] what stops the roll within the step
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
   };
   bool Slides(const mjContact_& contact, const model::SurfaceProperties& surface,
-              Sliding* sliding) const;
-  void ApplySlidingFriction();
+              AppliedFriction* sliding) const;
+  bool Rolls(const mjContact_& contact, const model::SurfaceProperties& surface, bool slides,
+             AppliedFriction* applied) const;
+  void ApplyFriction();
+  // 3 x nv: the velocity (or with rotation, the angular velocity) of
+  // contact's point on geom1's body relative to geom2's, per generalized
+  // velocity.
+  Eigen::MatrixXd RelativeJacobian(const mjContact_& contact, bool rotation = false) const;
+  // The motor of actuator holds its velocity this step (its limit allows
+  // the force that takes) rather than push with its limit.
+  bool ServoHolds(int actuator) const;
+  // The load [N] of the point of the last step nearest to contact, of the
+  // same pair of geoms; 0 for a new one.
+  double LastLoad(const mjContact_& contact) const;
   void SetUpBounce();
   void SetUpMotors();
   void CollectForces();
@@ -140,7 +159,13 @@ class MujocoWorld : public PhysicsEngine {
   std::vector<Eigen::Vector3d> contact_force_, contact_torque_;
   std::vector<JointReadout> joint_forces_;   // per flat joint, of the last step
   std::vector<model::SurfaceProperties> contact_surface_;  // per MuJoCo contact
-  std::vector<Sliding> sliding_;                            // this step's sliding contacts
+  std::vector<AppliedFriction> applied_;                    // this step's applied friction
+  struct LastLoad_ {
+    int geom1, geom2;
+    Eigen::Vector3d position;
+    double load;
+  };
+  std::vector<LastLoad_> last_loads_;                       // the last step's contact points
   std::vector<int> warning_counts_;
   double gravity_ = 0.0;
 };
