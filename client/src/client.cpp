@@ -62,10 +62,13 @@ Client::Client(ClientOptions options)
         channel, &Client::OnMessageBuffer, this);
     subscription->setQueueCapacity(1000);
   }
+  if (options_.simulation_id != 0) follower_.Attach(options_.simulation_id, Clock::now());
   receiver_ = std::thread([this] { ReceiveLoop(); });
   if (options_.learn_model) {
     try {
-      LearnModel(options_.model_timeout, [](const model_t&) { return true; });
+      const int64_t wanted = options_.simulation_id;
+      LearnModel(options_.model_timeout,
+                 [wanted](const model_t& m) { return wanted == 0 || m.simulation_id == wanted; });
     } catch (...) {
       stop_ = true;
       receiver_.join();
@@ -154,7 +157,7 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
       std::lock_guard<std::mutex> lock(mutex_);
       if (refused(DecodeFromBus(channel, data, size, &state, &bad_messages_, &print))) return;
       last_heard_ = Clock::now();  // a sim is there, whichever
-      follower_.Heard(state.simulation_id, Clock::now());
+      if (!HeardFromAttached(state.simulation_id)) return;
       if (!AcceptState(state, channel)) return;
     }
     if (channel == channels::kStateReply) return;  // a repeated step: no callback
@@ -165,9 +168,8 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     std::lock_guard<std::mutex> lock(mutex_);
     if (refused(DecodeFromBus(channel, data, size, &status, &bad_messages_, &print))) return;
     last_heard_ = Clock::now();
-    follower_.Heard(status.simulation_id, Clock::now());
+    if (!HeardFromAttached(status.simulation_id)) return;  // not our sim's status
     if (status.run_state == status_t::RUN_STOPPED) follower_.Ended(status.simulation_id);
-    if (follower_.IsOther(status.simulation_id)) return;  // not our sim's status
     status_ = status;
     ++status_count_;
     changed_.notify_all();
@@ -242,6 +244,12 @@ bool Client::AcceptState(const state_t& state, const std::string& channel) {
   changed_.notify_all();
   step_changed_.notify_all();
   return true;
+}
+
+bool Client::HeardFromAttached(int64_t simulation_id) {
+  if (follower_.followed() == 0) follower_.Attach(simulation_id, Clock::now());
+  follower_.Heard(simulation_id, Clock::now());
+  return follower_.WasFollowed(simulation_id);  // late messages of a reset one too
 }
 
 void Client::NoteSimulation(int64_t simulation_id) {
@@ -505,7 +513,7 @@ void Client::SendControl(int action, int64_t steps, double speed) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     control.request_id = next_request_id_++;
-    control.simulation_id = options_.any_simulation ? 0 : latest_simulation_id_;
+    control.simulation_id = options_.any_simulation ? 0 : follower_.followed();
   }
   control.sender = sender_;
   control.action = static_cast<int8_t>(action);

@@ -126,6 +126,7 @@ struct Options {
   std::string body;
   bool follow = false;
   long count = -1;  // --follow: stop after this many (tests), -1 = forever
+  int64_t simulation_id = 0;  // --sim: the simulation to talk to; 0 = the first heard
 };
 
 double ParseNumber(const std::string& what, const std::string& text) {
@@ -147,6 +148,7 @@ Options MakeOptions(const CommandLine& command_line, const Parameters& params) {
   o.body = command_line.Text("body");
   o.follow = command_line.Has("follow");
   o.count = static_cast<long>(command_line.Integer("count", o.count));
+  o.simulation_id = command_line.Integer("sim", o.simulation_id);
   return o;
 }
 
@@ -157,6 +159,7 @@ ClientOptions MakeClientOptions(const Options& o, bool learn_model) {
   c.model_timeout = o.timeout;
   c.reply_timeout = o.timeout;
   c.learn_model = learn_model;
+  c.simulation_id = o.simulation_id;
   return c;
 }
 
@@ -231,8 +234,14 @@ int RunRead(const Options& o, std::ostream& out) {
 int RunControl(const Options& o, std::ostream& out) {
   const std::string& verb = o.words[0];
   Client client(MakeClientOptions(o, false));
-  // A first status tells that a sim is there and where it is.
-  std::optional<status_t> before = AwaitStatus(client, o.timeout, [](const status_t&) { return true; });
+  // A first status tells that a sim is there and where it is; the client
+  // is then attached to it (or to --sim), and the control carries its id:
+  // another sim on the bus ignores it.
+  std::optional<status_t> before = AwaitStatus(client, o.timeout, [&o](const status_t& s) {
+    return o.simulation_id == 0 || s.simulation_id == o.simulation_id;
+  });
+  if (!before && o.simulation_id != 0)
+    throw Timeout("SIM_STATUS of simulation " + std::to_string(o.simulation_id), o.timeout, o.url);
   if (!before)
     throw NoSim(o.url, o.timeout);
   std::function<bool(const status_t&)> done;
@@ -263,7 +272,10 @@ int RunControl(const Options& o, std::ostream& out) {
     client.Quit();
     done = [](const status_t& s) { return s.run_state == status_t::RUN_STOPPED; };
   }
-  const std::optional<status_t> after = AwaitStatus(client, o.timeout, done);
+  // The answer may have come before the wait began: a quit's RUN_STOPPED
+  // comes once, and a paused sim answers at once.
+  std::optional<status_t> after = client.LatestStatus();
+  if (!after || !done(*after)) after = AwaitStatus(client, o.timeout, done);
   if (!after)
     throw Timeout("SIM_STATUS confirming '" + verb + "'", o.timeout, o.url);
   out << "sim " << FormatStatus(*after, &*before, true) << "\n";
@@ -348,6 +360,9 @@ CommandLineSpec CmdCommandLine() {
       Text("body", "NAME", "only this body"),
       Switch("follow", "every one until interrupted, not only the newest"),
       Integer("count", "N", "with --follow: stop after N"),
+      Integer("sim", "ID", "talk to the simulation of this id only (several sims on one bus); "
+                           "default: the first sim heard")
+          .Above(0),
   };
   const Positional name{"NAME"};
   spec.commands = {

@@ -273,6 +273,13 @@ bool BadMessageCounter::Count(const std::string& channel, const std::string& des
   return n == 1 || n % kPrintEvery == 0;
 }
 
+std::optional<std::string> BadMessageCounter::CountSignatureRefusal(
+    const std::string& channel, const std::string& description,
+    RateLimitedLog::Clock::time_point now) {
+  Count(channel, description);
+  return signature_lines_.Pass("signature", description, now);
+}
+
 uint64_t BadMessageCounter::count(const std::string& channel) const {
   auto it = counts_.find(channel);
   return it == counts_.end() ? 0 : it->second;
@@ -292,10 +299,21 @@ std::optional<size_t> OpenFromBus(const std::string& channel, const void* data, 
                                   std::string* refusal, bool* print) {
   const BusSigning::Opened opened = OpenMessage(signing, channel, data, size);
   if (opened.refusal.empty()) return opened.size;
-  *refusal = channel + ": " + std::to_string(size) + " bytes refused: " + opened.refusal;
-  const bool should_print = counter ? counter->Count(channel, *refusal) : true;
+  *refusal = DescribeSignatureRefusal(channel, size, opened.refusal);
+  bool should_print = true;
+  if (counter != nullptr) {
+    const auto line =
+        counter->CountSignatureRefusal(channel, *refusal, RateLimitedLog::Clock::now());
+    should_print = line.has_value();
+    if (line) *refusal = *line;
+  }
   if (print) *print = should_print;
   return std::nullopt;
+}
+
+std::string DescribeSignatureRefusal(const std::string& channel, size_t size,
+                                     const std::string& reason) {
+  return channel + ": " + std::to_string(size) + " bytes refused: " + reason;
 }
 
 }  // namespace simpartner

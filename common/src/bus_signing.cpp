@@ -131,13 +131,18 @@ void BusSigning::Tag(const std::string& channel, const uint8_t* data, size_t siz
 }
 
 std::vector<uint8_t> BusSigning::Sign(const std::string& channel, const void* data, size_t size) {
+  return Sign(channel, data, size, WallMicros());
+}
+
+std::vector<uint8_t> BusSigning::Sign(const std::string& channel, const void* data, size_t size,
+                                      int64_t now_us) {
   const auto* bytes = static_cast<const uint8_t*>(data);
   std::vector<uint8_t> out(bytes, bytes + size);
   out.resize(size + kSignatureBytes);
   int64_t timestamp;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    timestamp = std::max(WallMicros(), last_sent_ + 1);
+    timestamp = std::max(now_us, last_sent_ + 1);
     last_sent_ = timestamp;
   }
   uint8_t* trailer = out.data() + size;
@@ -163,23 +168,50 @@ BusSigning::Opened BusSigning::Open(const std::string& channel, const void* data
     return {message, "wrong signature (another key, or altered on the way)"};
   std::lock_guard<std::mutex> lock(mutex_);
   const auto known = links_.find(link);
-  if (known != links_.end() && timestamp <= known->second.timestamp)
-    return {message, "replayed: timestamp " + std::to_string(timestamp) +
-                         " us is not after the last of its sender, " +
-                         std::to_string(known->second.timestamp)};
-  if (known == links_.end() && std::llabs(timestamp - now_us) > kFreshnessSeconds * 1000000)
+  if (known != links_.end()) {
+    const std::string refusal = Admit(&known->second, timestamp);
+    if (refusal.empty()) known->second.used = ++uses_;
+    return {message, refusal};
+  }
+  if (std::llabs(timestamp - now_us) > kFreshnessSeconds * 1000000)
     return {message, "stale: a new sender's first message, " +
                          std::to_string((now_us - timestamp) / 1000000) +
                          " s from this host's clock (at most " +
                          std::to_string(kFreshnessSeconds) + " s: a replayed log?)"};
-  if (known == links_.end() && links_.size() >= kMaxLinks) {
+  if (links_.size() >= kMaxLinks) {
     const auto oldest = std::min_element(
         links_.begin(), links_.end(),
         [](const auto& a, const auto& b) { return a.second.used < b.second.used; });
     links_.erase(oldest);
   }
-  links_[link] = Link{timestamp, ++uses_};
+  // A new link: what came just before its first message may still come.
+  links_[link] = Link{timestamp, timestamp - kReplayWindowMicros, {timestamp}, ++uses_};
   return {message, ""};
+}
+
+std::string BusSigning::Admit(Link* link, int64_t timestamp) {
+  if (timestamp < link->floor)
+    return "replayed: timestamp " + std::to_string(timestamp) + " us is " +
+           std::to_string(link->newest - timestamp) +
+           " us before the newest of its sender, older than its replay window (the last " +
+           std::to_string(kReplayWindowMessages) + " messages within " +
+           std::to_string(kReplayWindowMicros) + " us)";
+  std::vector<int64_t>& recent = link->recent;
+  const auto at = std::lower_bound(recent.begin(), recent.end(), timestamp);
+  if (at != recent.end() && *at == timestamp)
+    return "replayed: timestamp " + std::to_string(timestamp) +
+           " us was accepted from its sender already";
+  recent.insert(at, timestamp);
+  if (timestamp > link->newest) {
+    link->newest = timestamp;
+    link->floor = std::max(link->floor, timestamp - kReplayWindowMicros);
+    recent.erase(recent.begin(), std::lower_bound(recent.begin(), recent.end(), link->floor));
+  }
+  if (recent.size() > kReplayWindowMessages) {  // forgotten: nothing at or below it again
+    link->floor = recent.front() + 1;
+    recent.erase(recent.begin());
+  }
+  return "";
 }
 
 BusSigning::Opened OpenMessage(BusSigning* signing, const std::string& channel, const void* data,

@@ -8,9 +8,11 @@ SimulationFollower::Verdict SimulationFollower::OnModel(int64_t id, const std::s
                                                         Clock::time_point now) {
   if (WasFollowed(id)) {
     if (id == followed_) followed_heard_ = now;
+    if (id == followed_ && !followed_sender_) followed_sender_ = sender;  // attached
     return Verdict::kKnown;
   }
-  if (followed_ == 0 || sender == followed_sender_ || FollowedIsGone(now)) {
+  const bool same_sender = followed_sender_ && sender == *followed_sender_;
+  if (followed_ == 0 || same_sender || FollowedIsGone(now)) {
     Follow(id, sender, now);
     return Verdict::kFollow;
   }
@@ -48,6 +50,11 @@ std::optional<int64_t> SimulationFollower::TakeSuccessor(Clock::time_point now) 
   const std::string sender = newest->second.sender;
   Follow(id, sender, now);
   return id;
+}
+
+void SimulationFollower::Attach(int64_t id, Clock::time_point now) {
+  Follow(id, "", now);
+  followed_sender_.reset();  // the first model of `id` names it
 }
 
 bool SimulationFollower::FollowedIsGone(Clock::time_point now) const {

@@ -288,17 +288,19 @@ std::optional<size_t> Receiver::OpenSigned(const lcm::ReceiveBuffer* buffer,
   const BusSigning::Opened opened = OpenMessage(options_.signing, channel, buffer->data,
                                                 static_cast<size_t>(buffer->data_size));
   if (opened.refusal.empty()) return opened.size;
-  uint64_t count = 0;
+  std::optional<std::string> line;
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     ChannelCounts& c = stats_.channels[channel];
     ++c.received;
-    count = ++c.unsigned_or_forged;
+    ++c.unsigned_or_forged;
+    // At most a line a second for all channels, with the count since the last.
+    line = signature_refusals_.CountSignatureRefusal(
+        channel,
+        DescribeSignatureRefusal(channel, static_cast<size_t>(buffer->data_size), opened.refusal),
+        Reporter::Clock::now());
   }
-  reporter_->SayLimited(channel + "/signature",
-                        channel + ": " + std::to_string(buffer->data_size) + " bytes refused: " +
-                            opened.refusal + "; not written (" + std::to_string(count) +
-                            " so far)");
+  if (line) reporter_->Say(*line + "; not written");
   return std::nullopt;
 }
 

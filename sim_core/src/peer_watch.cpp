@@ -37,7 +37,9 @@ std::optional<int64_t> PeekSimulationId(const std::string& channel, const void* 
   return static_cast<int64_t>(BigEndian64(bytes + 16));
 }
 
-PeerWatch::PeerWatch(lcm::LCM* lcm, BusSigning* signing) : lcm_(lcm), signing_(signing) {
+PeerWatch::PeerWatch(lcm::LCM* lcm, BusSigning* signing, BadMessageCounter* refused,
+                     RefusalReport report)
+    : lcm_(lcm), signing_(signing), refused_(refused), report_(std::move(report)) {
   // Not SIM_STATE: reading back its own 1 kHz state would wake the sim's
   // input wait every step (measured: ~190 steps a second then overran the
   // input budget). Every sim publishes SIM_STATUS at least once a second
@@ -58,10 +60,16 @@ void PeerWatch::AddOwnId(int64_t simulation_id) { own_ids_.insert(simulation_id)
 std::vector<OtherSimulation> PeerWatch::TakeNew() { return std::exchange(new_, {}); }
 
 void PeerWatch::OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
-  const BusSigning::Opened opened =
-      OpenMessage(signing_, channel, buffer->data, static_cast<size_t>(buffer->data_size));
-  if (!opened.refusal.empty()) return;  // not from a holder of the key
-  const std::optional<int64_t> id = PeekSimulationId(channel, buffer->data, opened.size);
+  std::string refusal;
+  bool print = false;
+  const std::optional<size_t> size =
+      OpenFromBus(channel, buffer->data, static_cast<size_t>(buffer->data_size), signing_,
+                  refused_, &refusal, &print);
+  if (!size) {  // not from a holder of the key
+    if (report_) report_(refusal, print);
+    return;
+  }
+  const std::optional<int64_t> id = PeekSimulationId(channel, buffer->data, *size);
   if (!id || own_ids_.count(*id) != 0) return;
   // Forged ids come without end: remember a bounded number (a forgotten
   // id heard again is new again; reports are rate-limited by the caller).

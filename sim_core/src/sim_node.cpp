@@ -86,7 +86,8 @@ SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd, BusSigning* signin
       signing_(signing),
       host_(HostName()),
       sender_(SenderName("simpartner-sim")),
-      peers_(lcm, signing) {
+      peers_(lcm, signing, &bad_message_counter_,
+             [this](const std::string& line, bool print) { ReportBadMessageText(line, print); }) {
   peers_.AddOwnId(sim->simulation_id());
   paused_ = sim->params().startPaused;
   speed_ = sim->params().speed;

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "../support/bus_listener.h"
 #include "../support/bus_url.h"
 #include "../support/processes.h"
 #include "../support/programs.h"
@@ -234,6 +235,91 @@ TEST_F(CmdTest, StatusNamesThePhysicsEngine) {
     EXPECT_EQ(r.status, kCmdOk) << r.err;
     EXPECT_TRUE(Contains(r.out, "simulation 77 on elsewhere" + printed)) << r.out;
   }
+}
+
+// Two sims on one bus: a control reaches only the sim the command is
+// attached to, the one whose SIM_STATUS it heard first or the one --sim
+// names, and the other keeps running (issue 25: one quit stopped two
+// sims). The sims send their model once a minute, so the command hears
+// none, as one started between two models does: before, its control then
+// carried simulation id 0, which every sim obeys.
+TEST_F(CmdTest, ControlReachesOnlyTheSimItIsAttachedTo) {
+  const std::string url = BusUrl(15);
+  test_support::BusListener bus(url);
+  std::vector<status_t> statuses;
+  bus.Keep(channels::kStatus, &statuses);
+  const std::vector<std::string> flags = {"--modelPeriod=60", "--allow-other-sims"};
+  SimProcess first(ShippedWorld("gen1_flat.xml"), url, (dir_ / "first.log").string(), flags);
+  ASSERT_TRUE(first.WaitUntilRunning(30)) << first.Log();
+  ASSERT_TRUE(bus.Until([&] { return !statuses.empty(); }, 5.0));
+  const int64_t first_id = statuses.front().simulation_id;
+  SimProcess second(ShippedWorld("gen1_flat.xml"), url, (dir_ / "second.log").string(), flags);
+  ASSERT_TRUE(second.WaitUntilRunning(30)) << second.Log();
+  int64_t second_id = 0;
+  ASSERT_TRUE(bus.Until([&] {
+    for (const status_t& s : statuses) if (s.simulation_id != first_id) second_id = s.simulation_id;
+    return second_id != 0;
+  }, 5.0));
+  auto cmd = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"--lcm-url", url});
+    return RunInProcess(args);
+  };
+  // The next two statuses of `id` from statuses[from] on, each in `run_state`.
+  auto two_from = [&](size_t from, int64_t id, int run_state) {
+    size_t seen = 0, matching = 0;
+    bus.Until([&] {
+      seen = matching = 0;
+      for (size_t k = from; k < statuses.size(); ++k) {
+        if (statuses[k].simulation_id != id) continue;
+        ++seen;
+        matching += statuses[k].run_state == run_state ? 1 : 0;
+      }
+      return seen >= 2;
+    }, 5.0);
+    return seen >= 2 && matching == seen;
+  };
+  auto next_two_are = [&](int64_t id, int run_state) {
+    return two_from(statuses.size(), id, run_state);
+  };
+
+  // No --sim: attached to whichever sim it heard first, named in the reply.
+  CmdResult r = cmd({"pause"});
+  ASSERT_EQ(r.status, kCmdOk) << r.err;
+  const bool first_paused = Contains(r.out, "simulation " + std::to_string(first_id) + " ");
+  ASSERT_TRUE(first_paused || Contains(r.out, "simulation " + std::to_string(second_id) + " "))
+      << r.out;
+  const int64_t paused_id = first_paused ? first_id : second_id;
+  const int64_t running_id = first_paused ? second_id : first_id;
+  // The statuses after the paused one were sent after the pause came.
+  size_t after_pause = 0;
+  ASSERT_TRUE(bus.Until([&] {
+    for (size_t k = 0; k < statuses.size(); ++k)
+      if (statuses[k].simulation_id == paused_id && statuses[k].run_state == status_t::RUN_PAUSED)
+        after_pause = k + 1;
+    return after_pause > 0;
+  }, 5.0));
+  EXPECT_TRUE(two_from(after_pause, running_id, status_t::RUN_RUNNING))
+      << "the other sim was paused too";
+  EXPECT_TRUE(two_from(after_pause, paused_id, status_t::RUN_PAUSED));
+
+  // --sim: that one quits, the other stays (paused) and still answers.
+  SimProcess& quitting = first_paused ? second : first;
+  SimProcess& staying = first_paused ? first : second;
+  r = cmd({"--sim", std::to_string(running_id), "quit"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_EQ(quitting.Wait(std::chrono::seconds(10)), 0);
+  EXPECT_TRUE(staying.running()) << staying.Log();
+  EXPECT_TRUE(next_two_are(paused_id, status_t::RUN_PAUSED));
+
+  // A simulation not on the bus: nothing sent, no answer, named.
+  r = cmd({"--sim", "42", "--timeout", "1", "resume"});
+  EXPECT_EQ(r.status, kCmdNoAnswer);
+  EXPECT_TRUE(Contains(r.err, "no SIM_STATUS of simulation 42 within 1 s on " + url)) << r.err;
+  EXPECT_TRUE(next_two_are(paused_id, status_t::RUN_PAUSED));
+
+  r = cmd({"--sim", std::to_string(paused_id), "quit"});
+  EXPECT_EQ(r.status, kCmdOk) << r.err;
+  EXPECT_EQ(staying.Wait(std::chrono::seconds(10)), 0);
 }
 
 TEST_F(CmdTest, UsageErrorsAndNoSim) {

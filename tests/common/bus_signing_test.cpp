@@ -67,6 +67,58 @@ TEST(BusSigning, AnotherKeyAnAlteredByteNoSignatureOrAnOldStreamAreRefused) {
   EXPECT_EQ(opened.refusal.rfind("stale: ", 0), 0u) << opened.refusal;
 }
 
+// A time [us] the replay-window tests date their messages at.
+constexpr int64_t kT = 1700000000000000;
+
+// kMessage signed by `sender` for "SIM_STATE", dated `when`.
+std::vector<uint8_t> SignedAt(BusSigning* sender, int64_t when) {
+  return sender->Sign("SIM_STATE", kMessage.data(), kMessage.size(), when);
+}
+
+// A reader of "SIM_STATE" at `now`: each call opens `bytes`, gives the refusal.
+auto OpenerAt(BusSigning* reader, int64_t now) {
+  return [reader, now](const std::vector<uint8_t>& bytes) {
+    return reader->Open("SIM_STATE", bytes.data(), bytes.size(), now).refusal;
+  };
+}
+
+// UDP multicast may deliver a link's messages out of order: one overtaken
+// by a later one of its sender is still accepted, once.
+TEST(BusSigning, AMessageOvertakenByALaterOneIsAcceptedOnce) {
+  BusSigning sender(KeyOf(7)), reader(KeyOf(7));
+  const auto first = SignedAt(&sender, kT);
+  const auto second = SignedAt(&sender, kT + 300);
+  const auto open = OpenerAt(&reader, kT + 1000);
+  EXPECT_EQ(open(second), "");
+  EXPECT_EQ(open(first), "");  // 300 us late
+  EXPECT_EQ(open(first), "replayed: timestamp 1700000000000000 us was accepted from its sender "
+                         "already");
+  EXPECT_EQ(open(second), "replayed: timestamp 1700000000000300 us was accepted from its sender "
+                          "already");
+}
+
+// Older than the window, by time (1 s) or by count (64 accepted since):
+// refused, though never read before.
+TEST(BusSigning, AMessageOlderThanTheReplayWindowIsRefused) {
+  BusSigning sender(KeyOf(7)), reader(KeyOf(7));
+  const auto early = SignedAt(&sender, kT);
+  const auto late = SignedAt(&sender, kT + 1500000);
+  const auto open = OpenerAt(&reader, kT + 1500000);
+  EXPECT_EQ(open(late), "");
+  EXPECT_EQ(open(early), "replayed: timestamp 1700000000000000 us is 1500000 us before the "
+                         "newest of its sender, older than its replay window (the last 64 "
+                         "messages within 1000000 us)");
+
+  BusSigning stream_sender(KeyOf(7)), stream_reader(KeyOf(7));
+  const auto held_back = SignedAt(&stream_sender, kT);
+  const auto read = OpenerAt(&stream_reader, kT);
+  for (int k = 1; k <= 65; ++k)  // 1 us apart
+    ASSERT_EQ(read(SignedAt(&stream_sender, kT + k)), "");
+  EXPECT_EQ(read(held_back).rfind("replayed: timestamp 1700000000000000 us is 65 us before", 0),
+            0u)
+      << read(held_back);
+}
+
 TEST(BusSigning, AReaderWithoutAKeyDropsTheSignatureUnread) {
   BusSigning sender(KeyOf(7));
   const auto signed_bytes = sender.Sign("SIM_STATE", kMessage.data(), kMessage.size());

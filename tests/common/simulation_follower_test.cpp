@@ -63,5 +63,18 @@ TEST_F(SimulationFollowerTest, ForgedIdsWithoutEndAreRememberedBoundedly) {
   EXPECT_EQ(follower_.followed(), 5);
 }
 
+// A client that heard a SIM_STATUS first is attached to its simulation:
+// another sim's model is another simulation, the attached one's model
+// names its sender, and a reset from that sender is followed.
+TEST_F(SimulationFollowerTest, AnAttachedSimulationIsFollowedBeforeItsModel) {
+  follower_.Attach(5, At(0));
+  EXPECT_EQ(follower_.followed(), 5);
+  EXPECT_EQ(follower_.OnModel(9, "sim@b:2", At(100)), Verdict::kOther);
+  EXPECT_EQ(follower_.OnModel(6, "", At(150)), Verdict::kOther);  // no sender is no match
+  EXPECT_EQ(follower_.OnModel(5, "sim@a:1", At(200)), Verdict::kKnown);
+  EXPECT_EQ(follower_.OnModel(7, "sim@a:1", At(300)), Verdict::kFollow);  // its reset
+  EXPECT_EQ(follower_.followed(), 7);
+}
+
 }  // namespace
 }  // namespace simpartner

@@ -24,24 +24,6 @@ constexpr int kStateQueue = 2000;
 // harmless for a stateless stream).
 constexpr auto kMaxDrainOverrun = std::chrono::milliseconds(30);
 
-// Decodes a whole buffer through the shared total decoder; on failure
-// returns what is wrong ("9 bytes refused as simpartner.state_t: ...").
-// With a key (`signing`), an unsigned, forged or replayed message is
-// refused first.
-template <class T>
-std::optional<std::string> Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel,
-                                  BusSigning* signing, T* out) {
-  const BusSigning::Opened opened =
-      OpenMessage(signing, channel, buffer->data, static_cast<size_t>(buffer->data_size));
-  if (!opened.refusal.empty())
-    return std::to_string(buffer->data_size) + " bytes refused: " + opened.refusal;
-  const size_t size = opened.size;
-  const auto failure = DecodeLcm(buffer->data, size, out);
-  if (!failure) return std::nullopt;
-  return std::to_string(size) + " bytes refused as simpartner." + T::getTypeName() + ": " +
-         failure->reason;
-}
-
 }  // namespace
 
 ViewerBus::ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Reporter report,
@@ -90,6 +72,28 @@ void ViewerBus::Note(const Verdict& verdict) {
     report_(verdict.problem->message + (count > 1 ? " (" + std::to_string(count) + " so far)" : ""));
 }
 
+template <class T>
+bool ViewerBus::Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel, T* out) {
+  const auto received = static_cast<size_t>(buffer->data_size);
+  const BusSigning::Opened opened = OpenMessage(signing_, channel, buffer->data, received);
+  if (!opened.refusal.empty()) {
+    // An unsigned, forged or replayed message: said at most once a second.
+    scene_->CountUndecodable(channel,
+                             std::to_string(received) + " bytes refused: " + opened.refusal);
+    if (const auto line = signature_refusals_.CountSignatureRefusal(
+            channel, DescribeSignatureRefusal(channel, received, opened.refusal), Clock::now()))
+      report_(*line + "; ignored");
+    return false;
+  }
+  if (const auto failure = DecodeLcm(buffer->data, opened.size, out)) {
+    scene_->CountUndecodable(channel, std::to_string(opened.size) + " bytes refused as simpartner." +
+                                          T::getTypeName() + ": " + failure->reason);
+    Note(Verdict{false, scene_->recent_problems().back(), false});
+    return false;
+  }
+  return true;
+}
+
 void ViewerBus::RequestModelIfNeeded() {
   if (!want_model_) return;
   const auto now = Clock::now();
@@ -105,11 +109,7 @@ void ViewerBus::RequestModelIfNeeded() {
 
 void ViewerBus::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   model_t model;
-  if (auto refusal = Decode(buffer, channel, signing_, &model)) {
-    scene_->CountUndecodable(channel, *refusal);
-    Note(Verdict{false, scene_->recent_problems().back(), false});
-    return;
-  }
+  if (!Decode(buffer, channel, &model)) return;
   const Verdict v = scene_->OfferModel(model);
   if (v.accepted) want_model_ = false;
   Note(v);
@@ -117,31 +117,19 @@ void ViewerBus::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& cha
 
 void ViewerBus::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   state_t state;
-  if (auto refusal = Decode(buffer, channel, signing_, &state)) {
-    scene_->CountUndecodable(channel, *refusal);
-    Note(Verdict{false, scene_->recent_problems().back(), false});
-    return;
-  }
+  if (!Decode(buffer, channel, &state)) return;
   Note(scene_->OfferState(std::move(state)));
 }
 
 void ViewerBus::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   status_t status;
-  if (auto refusal = Decode(buffer, channel, signing_, &status)) {
-    scene_->CountUndecodable(channel, *refusal);
-    Note(Verdict{false, scene_->recent_problems().back(), false});
-    return;
-  }
+  if (!Decode(buffer, channel, &status)) return;
   Note(scene_->OfferStatus(status));
 }
 
 void ViewerBus::OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   sensor_reading_t reading;
-  if (auto refusal = Decode(buffer, channel, signing_, &reading)) {
-    scene_->CountUndecodable(channel, *refusal);
-    Note(Verdict{false, scene_->recent_problems().back(), false});
-    return;
-  }
+  if (!Decode(buffer, channel, &reading)) return;
   Note(scene_->OfferSensorReading(reading));
 }
 

@@ -13,6 +13,7 @@
 // most a small multiple of the datagram's size.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -21,6 +22,7 @@
 #include <string>
 
 #include "simpartner/bus_signing.h"
+#include "simpartner/rate_limited_log.h"
 
 namespace simpartner {
 
@@ -65,6 +67,15 @@ std::optional<DecodeFailure> DecodeLcm(const void* data, size_t size, T* out) {
 std::string DescribeRefusal(const std::string& channel, const char* type_name, size_t size,
                             const DecodeFailure& failure);
 
+// The description of a message refused for its signature or freshness:
+// "SIM_COMMAND: 140 bytes refused: replayed: ...".
+std::string DescribeSignatureRefusal(const std::string& channel, size_t size,
+                                     const std::string& reason);
+
+// Refused signed messages are named at most this often per receiver (a
+// process has one), each line saying how many were refused since the last.
+inline constexpr std::chrono::seconds kSignatureReportPeriod{1};
+
 // Refused messages counted per channel, with the newest description of
 // each, for a process's status output. Not thread-safe: one per receiver.
 class BadMessageCounter {
@@ -73,6 +84,13 @@ class BadMessageCounter {
   // (the first of a channel, then one in every `print_every`), so a flood
   // does not become a flood of log lines.
   bool Count(const std::string& channel, const std::string& description);
+  // Records a message refused for its signature or freshness (bus_signing.h);
+  // returns the line to print now: `description` with how many were
+  // refused since the last such line, at most one a kSignatureReportPeriod
+  // (on any channel), else nothing.
+  std::optional<std::string> CountSignatureRefusal(const std::string& channel,
+                                                   const std::string& description,
+                                                   RateLimitedLog::Clock::time_point now);
   uint64_t total() const { return total_; }
   uint64_t count(const std::string& channel) const;
   const std::map<std::string, uint64_t>& per_channel() const { return counts_; }
@@ -86,6 +104,7 @@ class BadMessageCounter {
   std::map<std::string, uint64_t> counts_;
   uint64_t total_ = 0;
   std::string last_;
+  RateLimitedLog signature_lines_{kSignatureReportPeriod, "more refused"};
 };
 
 // Decodes `data` as T for `channel`; on failure counts it in `counter` and
@@ -106,7 +125,8 @@ std::optional<std::string> DecodeFromBus(const std::string& channel, const void*
 // signature must verify and be fresh (bus_signing.h); without, a signature
 // trailer is dropped unread. Returns the message's size, or counts the
 // refusal in `counter` and returns nothing with the description in
-// *refusal (`print` as in DecodeFromBus).
+// *refusal; *print says whether to print it now (CountSignatureRefusal:
+// at most a line a second, with the count since the last).
 std::optional<size_t> OpenFromBus(const std::string& channel, const void* data, size_t size,
                                   BusSigning* signing, BadMessageCounter* counter,
                                   std::string* refusal, bool* print = nullptr);

@@ -10,14 +10,21 @@
 //
 //   link id    8 bytes  random per publishing process: names its stream
 //   timestamp  8 bytes  [us] since the Unix epoch, strictly increasing per link
+//                       as sent (readers accept a little reordering)
 //   tag       16 bytes  HMAC-SHA-256(key, "SPS1" channel NUL message link timestamp),
 //                       the first 16 bytes (MAVLink keeps 6; 16 make a forgery
 //                       a 2^-128 guess)
 //   magic      4 bytes  "SPS1"
 //
-// A reader refuses a message whose tag is wrong, whose timestamp is not
-// after the last of its link (a replay), or, from a link it has not seen,
-// more than kFreshnessSeconds from its own clock (a replayed log). The
+// A reader refuses a message whose tag is wrong, whose timestamp it has
+// accepted from its link already or that is older than the link's replay
+// window (a replay), or, from a link it has not seen, more than
+// kFreshnessSeconds from its own clock (a replayed log). The replay
+// window is IPsec's and DTLS's (RFC 4303 3.4.3, RFC 6347 4.1.2.6) over
+// timestamps: UDP multicast may reorder datagrams, so a message older
+// than the newest of its link is still accepted once if it is at most
+// kReplayWindowMicros older and among the last kReplayWindowMessages
+// (the accepted ones are remembered, per link, that far back). The
 // stock LCM tools keep working: lcm-spy and lcm-logger decode the message
 // and ignore the trailing bytes. HMAC-SHA-256 is OpenSSL's (libcrypto: it
 // uses the CPU's SHA instructions, about 4 us for a 9 KB gen4 state, where
@@ -51,6 +58,11 @@ class BusSigning {
   using Key = std::array<uint8_t, 32>;
   static constexpr int64_t kFreshnessSeconds = 60;
   static constexpr size_t kMaxLinks = 4096;
+  // The replay window of a link: how much older than its newest message a
+  // message may be, and how many accepted timestamps are remembered (8
+  // bytes each: at most 2 MiB for kMaxLinks links).
+  static constexpr int64_t kReplayWindowMicros = 1000000;
+  static constexpr size_t kReplayWindowMessages = 64;
 
   // The key file named by SIMPARTNER_BUS_KEY, or nothing when the variable
   // is unset or empty. Throws BusKeyError naming the file and what is
@@ -68,6 +80,10 @@ class BusSigning {
 
   // `size` bytes of an encoded message, signed for `channel`.
   std::vector<uint8_t> Sign(const std::string& channel, const void* data, size_t size);
+  // The same, dated `now_us` (tests choose it); still after the last one
+  // this signer dated.
+  std::vector<uint8_t> Sign(const std::string& channel, const void* data, size_t size,
+                            int64_t now_us);
 
   // The message's size without its signature when it verifies and is
   // fresh; else why not ("no signature", "wrong signature", "replayed:
@@ -86,12 +102,19 @@ class BusSigning {
   uint64_t link_;
   std::mutex mutex_;  // a client publishes and reads on two threads
   int64_t last_sent_ = 0;
-  // link -> newest timestamp read, and when it was read (the oldest goes
-  // first when kMaxLinks are known).
+  // A link's replay window: every timestamp accepted at or above `floor`
+  // is in `recent`; nothing below `floor` is accepted. `used`: when it was
+  // last read (the least recently read link goes first when kMaxLinks are
+  // known).
   struct Link {
-    int64_t timestamp = 0;
+    int64_t newest = 0;
+    int64_t floor = 0;
+    std::vector<int64_t> recent;  // ascending, at most kReplayWindowMessages
     uint64_t used = 0;
   };
+  // Takes `timestamp` into `link`'s window: "" when it is new and within
+  // it, else why it is refused.
+  static std::string Admit(Link* link, int64_t timestamp);
   std::map<uint64_t, Link> links_;
   uint64_t uses_ = 0;
 };

@@ -40,6 +40,10 @@ class SimulationFollower {
       : silence_(silence) {}
 
   Verdict OnModel(int64_t id, const std::string& sender, Clock::time_point now);
+  // Follows `id` before its model is heard: a client attached to the sim
+  // whose SIM_STATUS or SIM_STATE it heard first, or to the one it was
+  // told. The first SIM_MODEL of `id` names its sender.
+  void Attach(int64_t id, Clock::time_point now);
   // A SIM_STATE or SIM_STATUS of `id` came.
   void Heard(int64_t id, Clock::time_point now);
   // The followed simulation said RUN_STOPPED (or was closed as silent).
@@ -48,7 +52,7 @@ class SimulationFollower {
   // heard since: that one (the newest), now followed; else nullopt.
   std::optional<int64_t> TakeSuccessor(Clock::time_point now);
 
-  // 0 before any model.
+  // 0 before any model (or Attach).
   int64_t followed() const { return followed_; }
   // The followed simulation or one followed before (its late messages
   // still belong to it).
@@ -65,7 +69,7 @@ class SimulationFollower {
 
   Clock::duration silence_;
   int64_t followed_ = 0;
-  std::string followed_sender_;
+  std::optional<std::string> followed_sender_;  // nothing while attached without a model
   Clock::time_point followed_heard_{};
   bool followed_ended_ = false;
   std::set<int64_t> followed_before_;

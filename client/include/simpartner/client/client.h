@@ -86,6 +86,12 @@ struct ClientOptions {
   // built for, and a sim refuses one meant for another simulation (two
   // systems on one bus). true: send 0, which any sim accepts.
   bool any_simulation = false;
+  // The simulation this client is attached to: only its models, states
+  // and statuses are taken (and those of its resets), and its id goes
+  // with every command and control. 0: the first simulation heard (a
+  // SIM_MODEL, SIM_STATUS or SIM_STATE). A followed simulation silent for
+  // 2.5 s is given up for a newer one (simulation_follower.h).
+  int64_t simulation_id = 0;
 };
 
 class Client {
@@ -132,8 +138,9 @@ class Client {
   std::optional<command_reply_t> TakeReply(int64_t request_id);
 
   // Run control (SIM_CONTROL), fire and forget. It carries the id of the
-  // newest SIM_MODEL heard (so it reaches a restarted sim before Relearn),
-  // or 0 before any model came or with any_simulation.
+  // simulation the client is attached to: the newest one followed (so it
+  // reaches a restarted sim before Relearn), even without a model; 0 only
+  // before any sim was heard, or with any_simulation.
   void Pause();
   void Resume();
   void Step(int64_t steps);
@@ -217,6 +224,11 @@ class Client {
   // state of the learned simulation. Requires mutex_ held.
   bool AcceptState(const state_t& state, const std::string& channel);
   void NoteSimulation(int64_t simulation_id);  // requires mutex_ held
+  // A SIM_STATE or SIM_STATUS of `simulation_id` came: attaches to it when
+  // it is the first sim heard; true when it is the attached one (or was,
+  // before a reset). Requires
+  // mutex_ held.
+  bool HeardFromAttached(int64_t simulation_id);
 
   ClientOptions options_;
   std::string sender_;

@@ -27,6 +27,7 @@
 #include <set>
 #include <string>
 
+#include "simpartner/bus_decode.h"
 #include "simpartner/bus_signing.h"
 #include "simpartner/logger/record_queue.h"
 #include "simpartner/logger/reporter.h"
@@ -234,6 +235,7 @@ class Receiver {
   std::chrono::steady_clock::time_point last_request_{};
   std::chrono::steady_clock::time_point last_waiting_check_{};  // Tick's NeedsModel
   mutable std::mutex stats_mutex_;
+  BadMessageCounter signature_refusals_;  // for its lines (guarded by stats_mutex_)
   ReceiverStats stats_;
 };
 

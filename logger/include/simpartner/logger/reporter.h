@@ -1,13 +1,14 @@
 // Lines for the person running the logger, from any thread, with a limit
 // on how often the same complaint repeats (a flood of bad messages must
-// not become a flood of output).
+// not become a flood of output: common/rate_limited_log.h).
 #pragma once
 
 #include <chrono>
-#include <map>
 #include <mutex>
 #include <ostream>
 #include <string>
+
+#include "simpartner/rate_limited_log.h"
 
 namespace simpartner::logger {
 
@@ -17,7 +18,7 @@ class Reporter {
   // Repeats of a limited line are held back for `limit_period`.
   Reporter(std::ostream* out, std::string program,
            Clock::duration limit_period = std::chrono::seconds(5))
-      : out_(out), program_(std::move(program)), limit_period_(limit_period) {}
+      : out_(out), program_(std::move(program)), limited_(limit_period) {}
 
   // "program: line"
   void Say(const std::string& line);
@@ -26,15 +27,10 @@ class Reporter {
   void SayLimited(const std::string& key, const std::string& line);
 
  private:
-  struct Limit {
-    Clock::time_point last{};
-    uint64_t held_back = 0;
-  };
   std::ostream* out_;
   std::string program_;
-  Clock::duration limit_period_;
   std::mutex mutex_;
-  std::map<std::string, Limit> limits_;
+  RateLimitedLog limited_;  // guarded by mutex_
 };
 
 }  // namespace simpartner::logger

@@ -11,11 +11,13 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "simpartner/bus_decode.h"
 #include "simpartner/bus_signing.h"
 
 namespace simpartner::sim {
@@ -37,11 +39,18 @@ class PeerWatch {
  public:
   static constexpr size_t kMaxRememberedIds = 4096;
 
+  // A message refused for its signature: its description, and whether to
+  // print it now (OpenFromBus: at most a line a second).
+  using RefusalReport = std::function<void(const std::string& line, bool print)>;
+
   // Subscribes to SIM_STATUS and SIM_MODEL on `lcm` (which must
   // outlive this) until destroyed.
   // `signing` (may be null) outlives the watch: with it, only signed
-  // messages count (a forged status names no other simulation).
-  explicit PeerWatch(lcm::LCM* lcm, BusSigning* signing = nullptr);
+  // messages count (a forged status names no other simulation); the others
+  // are counted in `refused` and passed to `report` (both may be null; the
+  // counter outlives the watch).
+  explicit PeerWatch(lcm::LCM* lcm, BusSigning* signing = nullptr,
+                     BadMessageCounter* refused = nullptr, RefusalReport report = {});
   ~PeerWatch();
   PeerWatch(const PeerWatch&) = delete;
   PeerWatch& operator=(const PeerWatch&) = delete;
@@ -58,6 +67,8 @@ class PeerWatch {
 
   lcm::LCM* lcm_;
   BusSigning* signing_;
+  BadMessageCounter* refused_;
+  RefusalReport report_;
   std::vector<lcm::Subscription*> subscriptions_;
   std::set<int64_t> own_ids_;
   std::set<int64_t> heard_ids_;

@@ -13,6 +13,7 @@
 #include <functional>
 #include <string>
 
+#include "simpartner/bus_decode.h"
 #include "simpartner/bus_signing.h"
 #include "simpartner/viewer/scene.h"
 
@@ -22,7 +23,9 @@ class ViewerBus {
  public:
   using Clock = std::chrono::steady_clock;
   // Problems go to `report` (stderr in the program), each kind described
-  // the first time and then every 1000th time, so a flood stays readable.
+  // the first time and then every 1000th time, so a flood stays readable;
+  // messages refused for their signature at most once a second
+  // (bus_decode.h, kSignatureReportPeriod).
   using Reporter = std::function<void(const std::string&)>;
 
   // lcm must be good(); lcm, scene and signing (null: an unsigned bus,
@@ -54,6 +57,10 @@ class ViewerBus {
   void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void Note(const Verdict& verdict);
+  // Opens (bus_signing.h) and decodes the whole buffer; false when it is
+  // refused, which is counted in the scene and reported.
+  template <class T>
+  bool Decode(const lcm::ReceiveBuffer* buffer, const std::string& channel, T* out);
 
   lcm::LCM& lcm_;
   std::string url_;
@@ -61,6 +68,7 @@ class ViewerBus {
   Reporter report_;
   std::string sender_;
   BusSigning* signing_;
+  BadMessageCounter signature_refusals_;
   bool want_model_ = true;
   Clock::time_point last_request_{};
   int64_t model_requests_ = 0;
