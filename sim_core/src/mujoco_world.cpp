@@ -468,10 +468,10 @@ void MujocoWorld::Prepare() {
   // mj_step1 without sensors and energy, in an order that knows the smooth
   // forces' acceleration (qacc_smooth) before the contacts are set up:
   // whether a contact will slide depends on what the motors ask of it.
+  // Kinematics, centres of mass and body velocities of this state are
+  // UpdateReadouts' of the last step (or of the construction).
   mj_checkPos(m_, d_);
   mj_checkVel(m_, d_);
-  mj_kinematics(m_, d_);
-  mj_comPos(m_, d_);
   mj_camlight(m_, d_);
   mj_tendon(m_, d_);
   mj_crb(m_, d_);
@@ -479,7 +479,6 @@ void MujocoWorld::Prepare() {
   mj_transmission(m_, d_);
   // mj_fwdVelocity less the constraints' reference (they are not made yet).
   mju_mulMatVec(d_->actuator_velocity, d_->actuator_moment, d_->qvel, m_->nu, m_->nv);
-  mj_comVel(m_, d_);
   mj_passive(m_, d_);
   mj_rne(m_, d_, 0, d_->qfrc_bias);
   mj_fwdActuation(m_, d_);
@@ -686,8 +685,8 @@ void MujocoWorld::Step() {
 }
 
 void MujocoWorld::UpdateReadouts() {
-  // Positions and velocities of the new state, for readouts and rays (the
-  // next step computes them again with its collision).
+  // Positions and velocities of the new state, for readouts and rays, and
+  // for the next step's Prepare.
   mj_kinematics(m_, d_);
   mj_comPos(m_, d_);
   mj_comVel(m_, d_);
