@@ -8,12 +8,16 @@
 //                ttl 0) and the incoming side polled, as the process runs
 //   ours QS20    bare, with ODE's iterative QuickStep (20 iterations)
 //                instead of dWorldStep: what our own faster stepper gives
+//   ours mj      Simulation::Step with --engine=mujoco (our MuJoCo engine:
+//                the model built in memory, our contact, motor and stop
+//                mappings, sim_core/.../mujoco_world.h)
+//   ours mj+pub  the same through SimNode, publishing as the process runs
 //   mujoco       the exported MJCF (simpartner-convert) through MuJoCo's C
 //                API with its defaults (Euler, pyramidal cone, Newton)
 //   mujoco acc   the same with settings at least as accurate as ours:
 //                implicit integrator, elliptic cone, Newton to 1e-10,
 //                noslip iterations (no creep of soft friction)
-// --only bare runs our bare stepping alone (for a profiler).
+// --only bare runs our bare ODE stepping alone (for a profiler).
 // Per setting: microseconds per step (whole run; this thread's CPU time,
 // and wall time), the CPU time's ratio to ours, the
 // summed vertical wheel contact force over the robot's weight (mean of the
@@ -97,9 +101,10 @@ void CommandWheels(sim::Simulation* sim, double speed) {
 }
 
 Figures RunOurs(const model::World& world, const Run& run, lcm::LCM* bus,
-                int quick_iterations = 0) {
+                const std::string& engine = "ode", int quick_iterations = 0) {
   Parameters params;
   params.stepsize = run.dt;
+  params.engine = engine;
   if (quick_iterations > 0) {
     params.stepper = "quick";
     params.quickStepIterations = quick_iterations;
@@ -284,8 +289,9 @@ int main(int argc, char** argv) {
   spec.program = "peer_bench";
   spec.summary =
       "WorkPartner gen3 and gen4 on flat ground, 1 ms steps: stand still, then drive straight\n"
-      "with the wheels at 1.5 rad/s, in our sim (bare Simulation::Step; SimNode publishing on\n"
-      "LCM) and in MuJoCo 2.2 on the exported MJCF (default settings; accurate settings).\n"
+      "with the wheels at 1.5 rad/s, in our sim on ODE and on our MuJoCo engine (bare\n"
+      "Simulation::Step; SimNode publishing on LCM) and in MuJoCo 2.2 on the exported MJCF\n"
+      "(default settings; accurate settings).\n"
       "Prints us/step, the ratio to ours, wheel load / weight, standing drift [mm], speed [m/s].";
   spec.options = {
       simpartner::Number("stand", "SECONDS", "standing time, at least 2 (default 20)"),
@@ -330,7 +336,9 @@ int main(int argc, char** argv) {
       Print(name, "ours", ours, ours_us);
       if (only != "bare") {
         Print(name, "ours+pub", RunOurs(*loaded.world, run, &bus), ours_us);
-        Print(name, "ours QS20", RunOurs(*loaded.world, run, nullptr, 20), ours_us);
+        Print(name, "ours QS20", RunOurs(*loaded.world, run, nullptr, "ode", 20), ours_us);
+        Print(name, "ours mj", RunOurs(*loaded.world, run, nullptr, "mujoco"), ours_us);
+        Print(name, "ours mj+pub", RunOurs(*loaded.world, run, &bus, "mujoco"), ours_us);
       }
     }
     if (only.empty() || only == "mujoco") {

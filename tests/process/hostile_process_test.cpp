@@ -4,7 +4,9 @@
 // Xvfb) at once. After each message every process must still run; after
 // all of them the sim still steps and takes a good command, the viewer
 // still draws the sim's newest state, and the logger has every step with
-// all of its rows.
+// all of its rows. The sim's part runs again on its own with the MuJoCo
+// engine (HostileSimTest): the logger and the viewer do not know which
+// engine runs, so they meet the corpus once.
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 #include <signal.h>
@@ -14,12 +16,15 @@
 #include <fstream>
 
 #include "../logger/logger_test_support.h"
+#include "../sim_core/test_worlds.h"
 #include "../support/bus_listener.h"
 #include "../support/bus_url.h"
+#include "../support/engines.h"
 #include "../support/hostile_corpus.h"
 #include "../support/processes.h"
 #include "../support/programs.h"
 #include "../support/sim_process.h"
+#include "../support/test_dir.h"
 #include "../support/text_file.h"
 #include "../support/wait.h"
 #include "simpartner/channels.h"
@@ -65,6 +70,63 @@ class Observer : public test_support::BusListener {
   std::vector<command_reply_t> replies;
 };
 
+// A process the corpus must not kill, and where it writes.
+struct Process {
+  const char* name;
+  ChildProcess* child;
+  std::filesystem::path log;
+};
+
+// Every corpus message three times on the bus, checking after each that
+// all of `processes` still run. *undecodable_for_sim: how many of the
+// datagrams the sim cannot decode on its channels (it counts them).
+void SendCorpus(Observer& bus, const std::vector<Process>& processes, int* undecodable_for_sim) {
+  *undecodable_for_sim = 0;
+  for (const test_support::HostileMessage& m : test_support::HostileCorpus(bus.simulation_id)) {
+    std::cout << "sending: " << m.name << " on " << m.channel << " (" << m.bytes.size() << " bytes)\n";
+    for (int repeat = 0; repeat < 3; ++repeat) {
+      bus.lcm().publish(m.channel, m.bytes.data(), static_cast<unsigned>(m.bytes.size()));
+      bus.Pump(0.01);
+    }
+    if (m.undecodable && (m.channel == channels::kCommand || m.channel == channels::kControl ||
+                          m.channel == channels::kModelRequest))
+      *undecodable_for_sim += 3;
+    bus.Pump(0.03);
+    for (const Process& p : processes)
+      ASSERT_TRUE(p.child->running()) << p.name << " died after '" << m.name << "' on " << m.channel
+                                      << ":\n" << ReadText(p.log);
+  }
+}
+
+// The sim after the corpus: still stepping at its pace, counted the
+// refusals, said why for one, takes a good command.
+void ExpectSimStillWorks(Observer& bus, int undecodable_for_sim, const std::filesystem::path& log) {
+  const int64_t step_after_corpus = bus.last_step;
+  bus.Pump(1.0);
+  EXPECT_GT(bus.last_step, step_after_corpus + 500) << "the sim stopped stepping";
+  ASSERT_TRUE(bus.Until([&] { return bus.has_status && bus.status.bad_messages >= undecodable_for_sim; }, 5))
+      << "bad_messages " << bus.status.bad_messages << " of " << undecodable_for_sim << "\n"
+      << ReadText(log);
+  EXPECT_EQ(bus.status.run_state, status_t::RUN_RUNNING);
+  EXPECT_GE(bus.status.target_speed, 1.0);  // the nonsense speeds were refused
+  command_t good{};
+  good.sender = "hostile-test";
+  good.request_id = 1;
+  good.target = "ArmMotor";
+  good.action = command_t::ACTION_SET;
+  good.apply_at_step = -1;
+  good.values = {1000, 1000, 1000, 0, 0, 0.5, 20, 0, 0};  // angle 0.5 rad, P = 20
+  good.num_values = 9;
+  bus.lcm().publish(channels::kCommand, &good);
+  ASSERT_TRUE(bus.Until([&] { return !bus.replies.empty(); }, 5));
+  EXPECT_TRUE(bus.replies.back().accepted) << bus.replies.back().reason;
+  const std::string sim_log = ReadText(log);
+  EXPECT_NE(sim_log.find("SIM_COMMAND: 48 bytes refused as simpartner.command_t: field 'sender' at "
+                         "byte 32: string length 0"),
+            std::string::npos)
+      << sim_log;
+}
+
 class HostileProcessTest : public logger::testing::ServerTest {
  protected:
   void SetUp() override {
@@ -101,58 +163,14 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
                       "viewer.log");
   bus.Pump(2.0);  // the viewer learns the model
 
-  struct Process {
-    const char* name;
-    ChildProcess* child;
-    std::string log;
-  };
-  const std::vector<Process> processes = {
-      {"simpartner-sim", sim.get(), "sim.log"},
-      {"simpartner-logger", logger.get(), "logger.log"},
-      {"simpartner-viewer", viewer.get(), "viewer.log"}};
-  const auto corpus = test_support::HostileCorpus(bus.simulation_id);
   int undecodable_for_sim = 0;
-  for (const test_support::HostileMessage& m : corpus) {
-    std::cout << "sending: " << m.name << " on " << m.channel << " (" << m.bytes.size() << " bytes)\n";
-    for (int repeat = 0; repeat < 3; ++repeat) {
-      bus.lcm().publish(m.channel, m.bytes.data(), static_cast<unsigned>(m.bytes.size()));
-      bus.Pump(0.01);
-    }
-    if (m.undecodable && (m.channel == channels::kCommand || m.channel == channels::kControl ||
-                          m.channel == channels::kModelRequest))
-      undecodable_for_sim += 3;
-    bus.Pump(0.03);
-    for (const Process& p : processes)
-      ASSERT_TRUE(p.child->running()) << p.name << " died after '" << m.name << "' on " << m.channel
-                                      << ":\n" << ReadText(dir_ / p.log);
-  }
-
-  // The sim: still stepping at its pace, counted the refusals, takes a
-  // good command.
+  ASSERT_NO_FATAL_FAILURE(SendCorpus(bus,
+                                     {{"simpartner-sim", sim.get(), dir_ / "sim.log"},
+                                      {"simpartner-logger", logger.get(), dir_ / "logger.log"},
+                                      {"simpartner-viewer", viewer.get(), dir_ / "viewer.log"}},
+                                     &undecodable_for_sim));
   const int64_t step_after_corpus = bus.last_step;
-  bus.Pump(1.0);
-  EXPECT_GT(bus.last_step, step_after_corpus + 500) << "the sim stopped stepping";
-  ASSERT_TRUE(bus.Until([&] { return bus.has_status && bus.status.bad_messages >= undecodable_for_sim; }, 5))
-      << "bad_messages " << bus.status.bad_messages << " of " << undecodable_for_sim << "\n"
-      << ReadText(dir_ / "sim.log");
-  EXPECT_EQ(bus.status.run_state, status_t::RUN_RUNNING);
-  EXPECT_GE(bus.status.target_speed, 1.0);  // the nonsense speeds were refused
-  command_t good{};
-  good.sender = "hostile-test";
-  good.request_id = 1;
-  good.target = "ArmMotor";
-  good.action = command_t::ACTION_SET;
-  good.apply_at_step = -1;
-  good.values = {1000, 1000, 1000, 0, 0, 0.5, 20, 0, 0};  // angle 0.5 rad, P = 20
-  good.num_values = 9;
-  bus.lcm().publish(channels::kCommand, &good);
-  ASSERT_TRUE(bus.Until([&] { return !bus.replies.empty(); }, 5));
-  EXPECT_TRUE(bus.replies.back().accepted) << bus.replies.back().reason;
-  const std::string sim_log = ReadText(dir_ / "sim.log");
-  EXPECT_NE(sim_log.find("SIM_COMMAND: 48 bytes refused as simpartner.command_t: field 'sender' at "
-                         "byte 32: string length 0"),
-            std::string::npos)
-      << sim_log;
+  ASSERT_NO_FATAL_FAILURE(ExpectSimStillWorks(bus, undecodable_for_sim, dir_ / "sim.log"));
 
   // The viewer: its screenshot, taken after the corpus, shows a state the
   // sim published after the corpus.
@@ -196,6 +214,32 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   EXPECT_EQ(logger->Wait(std::chrono::seconds(60)).value_or(-1), 0) << ReadText(dir_ / "logger.log");
   EXPECT_NE(ReadText(dir_ / "logger.log").find("refused as simpartner.state_t"), std::string::npos)
       << ReadText(dir_ / "logger.log");
+}
+
+// The sim's part on the MuJoCo engine, without a logger or viewer: the
+// corpus must not stop its stepping or its refusing (the ODE sim meets it
+// above, beside the logger and the viewer).
+class HostileSimTest : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = test_support::FreshTestDir("sp_hostile_sim_"); }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path dir_;
+};
+
+TEST_F(HostileSimTest, TheMujocoSimSurvivesTheCorpusAndKeepsWorking) {
+  const std::string url = test_support::BusUrl(1);
+  Observer bus(url);
+  ChildProcess sim(test_support::SimCommand(sim::testing::WriteArmWorld(dir_), url,
+                                            {"--statusPeriod=0.2", test_support::EngineFlag("mujoco")}),
+                   (dir_ / "sim.log").string());
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > 100; }, 20)) << ReadText(dir_ / "sim.log");
+  int undecodable_for_sim = 0;
+  ASSERT_NO_FATAL_FAILURE(
+      SendCorpus(bus, {{"simpartner-sim", &sim, dir_ / "sim.log"}}, &undecodable_for_sim));
+  ASSERT_NO_FATAL_FAILURE(ExpectSimStillWorks(bus, undecodable_for_sim, dir_ / "sim.log"));
+  EXPECT_TRUE(bus.Until([&] { return bus.status.engine == "mujoco"; }, 2)) << bus.status.engine;
+  sim.Signal(SIGTERM);
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(10)).value_or(-1), 0) << ReadText(dir_ / "sim.log");
 }
 
 }  // namespace

@@ -4,7 +4,10 @@
 // machine loaded on every core, and from another network namespace; the
 // same controller without lock-step gives different runs, so the
 // comparison can fail. A controller that stalls or dies is released (the
-// sim names it and runs on), and forged marks change nothing.
+// sim names it and runs on), and forged marks change nothing. The closed
+// loop's repeating at any speed and under load runs once per physics
+// engine (LockStepEngineTest); the rest is the sim's lock-step protocol,
+// whatever steps it, and runs with the default engine.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
@@ -29,6 +32,7 @@
 #include "../support/bus_listener.h"
 #include "../support/bus_url.h"
 #include "../support/encode.h"
+#include "../support/engines.h"
 #include "../support/netns.h"
 #include "../support/processes.h"
 #include "../support/programs.h"
@@ -113,7 +117,7 @@ class LockStepProcessTest : public ::testing::Test {
   void SetUp() override { dir_ = test_support::FreshTestDir("sp_lockstep_", 40); }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
-  // gen1 on flat ground, paused, at `speed`; drive_to_point with `period`
+  // gen1 on flat ground, paused, at `speed`, on engine_; drive_to_point with `period`
   // (0: without lock-step). `controller_host` runs the controller in a
   // network namespace (with the sim in `sim_host`) when a LAN is given.
   RunResult ClosedLoop(double speed, int period, const std::string& name,
@@ -122,7 +126,8 @@ class LockStepProcessTest : public ::testing::Test {
     if (lan) url.replace(url.find("ttl=0"), 5, "ttl=1");
     std::vector<std::string> sim_argv =
         SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
-                   {"--startPaused=1", "--speed=" + std::to_string(speed)});
+                   {"--startPaused=1", "--speed=" + std::to_string(speed),
+                    test_support::EngineFlag(engine_)});
     if (lan) sim_argv = lan->Exec("sim", sim_argv);
     std::unique_ptr<test_support::ScopedNetns> inside;
     if (lan) inside = std::make_unique<test_support::ScopedNetns>(lan->Namespace("sim"));
@@ -150,12 +155,39 @@ class LockStepProcessTest : public ::testing::Test {
 
   std::filesystem::path dir_;
   int next_bus_ = 0;
+  std::string engine_ = "ode";  // of ClosedLoop's sim
 };
 
-TEST_F(LockStepProcessTest, AClosedLoopRepeatsBitForBitAtAnySpeed) {
+// The closed loop on each engine: lock-step and publishing are shared, but
+// the states that must repeat bit for bit are the engine's.
+class LockStepEngineTest : public LockStepProcessTest,
+                           public ::testing::WithParamInterface<std::string> {
+ protected:
+  void SetUp() override {
+    LockStepProcessTest::SetUp();
+    engine_ = GetParam();
+    // An engine bug, not the test's: on MuJoCo gen1 never reaches the goal,
+    //   Expected: (fast.last_tick) < (kGivesUpAtTick), actual: 60010 vs 60000
+    //   tick 60010, t = 60.010 s: front at (1.5173, 0.5319), 2.132 m from the goal
+    // The wheel motors' first step (3 rad/s, 1000 N m) throws the robot
+    // off the ground (FrontChassis at 7.5 m/s, 6.4 m/s of it upwards, where
+    // friction allows 0.01 m/s in 1 ms), and it ends on its side. Unskip
+    // when the MuJoCo engine's wheel motors drive gen1 as ODE's do.
+    if (engine_ == "mujoco") GTEST_SKIP() << "MuJoCo wheel motors launch gen1 (engine bug)";
+  }
+};
+INSTANTIATE_TEST_SUITE_P(Engines, LockStepEngineTest, test_support::AllEngines(),
+                         test_support::EngineTestName);
+
+// drive_to_point gives up at 60 s of sim time (60000 ticks of 1 ms steps);
+// before that, the closed loop brought the robot within 0.2 m of the goal.
+constexpr int64_t kGivesUpAtTick = 60000;
+
+TEST_P(LockStepEngineTest, AClosedLoopRepeatsBitForBitAtAnySpeed) {
   const RunResult fast = ClosedLoop(0, 10, "fast");
   ASSERT_EQ(fast.status, 0) << fast.output;
   ASSERT_GT(fast.last_tick, 4000) << fast.output;
+  ASSERT_LT(fast.last_tick, kGivesUpAtTick) << "the goal was not reached\n" << fast.output;
   ASSERT_NE(fast.hash, 0u) << "a state went missing for the listener";
   const RunResult again = ClosedLoop(0, 10, "again");
   const RunResult real_time = ClosedLoop(1, 10, "real_time");
@@ -165,9 +197,10 @@ TEST_F(LockStepProcessTest, AClosedLoopRepeatsBitForBitAtAnySpeed) {
   EXPECT_EQ(real_time.hash, fast.hash);
 }
 
-TEST_F(LockStepProcessTest, AClosedLoopRepeatsOnAMachineLoadedOnEveryCore) {
+TEST_P(LockStepEngineTest, AClosedLoopRepeatsOnAMachineLoadedOnEveryCore) {
   const RunResult quiet = ClosedLoop(0, 1, "quiet");
   ASSERT_EQ(quiet.status, 0) << quiet.output;
+  ASSERT_LT(quiet.last_tick, kGivesUpAtTick) << "the goal was not reached\n" << quiet.output;
   std::vector<std::unique_ptr<ChildProcess>> busy;
   for (long core = 0; core < ::sysconf(_SC_NPROCESSORS_ONLN); ++core)
     busy.push_back(std::make_unique<ChildProcess>(
