@@ -166,14 +166,6 @@ class LockStepEngineTest : public LockStepProcessTest,
   void SetUp() override {
     LockStepProcessTest::SetUp();
     engine_ = GetParam();
-    // An engine bug, not the test's: on MuJoCo gen1 never reaches the goal,
-    //   Expected: (fast.last_tick) < (kGivesUpAtTick), actual: 60010 vs 60000
-    //   tick 60010, t = 60.010 s: front at (1.5173, 0.5319), 2.132 m from the goal
-    // The wheel motors' first step (3 rad/s, 1000 N m) throws the robot
-    // off the ground (FrontChassis at 7.5 m/s, 6.4 m/s of it upwards, where
-    // friction allows 0.01 m/s in 1 ms), and it ends on its side. Unskip
-    // when the MuJoCo engine's wheel motors drive gen1 as ODE's do.
-    if (engine_ == "mujoco") GTEST_SKIP() << "MuJoCo wheel motors launch gen1 (engine bug)";
   }
 };
 INSTANTIATE_TEST_SUITE_P(Engines, LockStepEngineTest, test_support::AllEngines(),
