@@ -318,17 +318,20 @@ void MujocoWorld::SetUpContacts() {
     }
     AppliedFriction applied;
     applied.contact = i;
-    const bool slides = Slides(contact, combined, &applied);
+    const Slide slide = combined.mu2 == combined.mu ? Slides(contact, combined, &applied)
+                                                    : SlidesBox(&contact, combined, &applied);
+    const bool slides = slide == Slide::kBothWays;
     const bool rolls = combined.rolling_friction > 0 && Rolls(contact, combined, slides, &applied);
     // Rows MuJoCo solves: none for what is applied (ApplyFriction).
     if (slides) contact.dim = 1;
     else if (rolls) contact.dim = 3;
-    if (slides || rolls) applied_.push_back(applied);
+    if (slide != Slide::kHolds || rolls) applied_.push_back(applied);
   }
 }
 
-bool MujocoWorld::Slides(const mjContact& contact, const model::SurfaceProperties& surface,
-                         AppliedFriction* sliding) const {
+MujocoWorld::Slide MujocoWorld::Slides(const mjContact& contact,
+                                       const model::SurfaceProperties& surface,
+                                       AppliedFriction* sliding) const {
   // The point's relative motion: Jacobian rows of geom1's body less
   // geom2's at the contact.
   const int nv = m_->nv;
@@ -340,27 +343,61 @@ bool MujocoWorld::Slides(const mjContact& contact, const model::SurfacePropertie
   Eigen::Vector3d slip = jac * qvel + params_.stepsize * (jac * qacc);
   slip -= slip.dot(normal) * normal;
   const double speed = slip.norm();
-  if (speed <= kSlipDirectionSpeed) return false;
-  // Coulomb's force on the ellipse of mu along the first direction and
-  // mu2 across, of most dissipation: -(mu^2 v1, mu2^2 v2) / |(mu v1, mu2 v2)|
-  // per newton of load, on geom1.
-  const Eigen::Vector3d along = V(contact.frame + 3), across = V(contact.frame + 6);
-  const double v1 = slip.dot(along), v2 = slip.dot(across);
-  const double norm = std::hypot(surface.mu * v1, surface.mu2 * v2);
-  if (norm == 0.0) return false;
-  sliding->force_per_newton =
-      -(surface.mu * surface.mu * v1 * along + surface.mu2 * surface.mu2 * v2 * across) / norm;
-  // It slides when that force, at the load the point had at the last step
-  // (a new point: none yet, so it holds), cannot stop that slip within the
-  // step: what it takes off is the force over the point's effective mass
-  // along the slip (with the holding servos' armature: a servo-held wheel
-  // resists a change of its spin).
+  if (speed <= kSlipDirectionSpeed) return Slide::kHolds;
+  // Coulomb's force: mu per newton of load against the slip, on geom1.
+  sliding->force_per_newton = -surface.mu * slip / speed;
+  // It slides when that force cannot stop that slip within the step
+  // (Brake): what it takes off is the force over the point's effective
+  // mass along the slip (with the holding servos' armature: a servo-held
+  // wheel resists a change of its spin).
   Eigen::VectorXd row = jac.transpose() * (slip / speed);
   Eigen::VectorXd solved(nv);
   mj_solveM(m_, d_, solved.data(), row.data(), 1);
-  const double brake = -sliding->force_per_newton.dot(slip / speed) * LastLoad(contact) *
-                       row.dot(solved) * params_.stepsize;
-  return speed > brake;
+  const double brake = Brake(contact, surface.mu, row.dot(solved));
+  return speed > brake ? Slide::kBothWays : Slide::kHolds;
+}
+
+MujocoWorld::Slide MujocoWorld::SlidesBox(mjContact* contact,
+                                          const model::SurfaceProperties& surface,
+                                          AppliedFriction* sliding) const {
+  // ODE's anisotropic friction (docs/contacts.md) bounds each direction on
+  // its own: mu N along the first (frame row 1), mu2 N across (row 2).
+  // Each direction slides when its bound at the last load cannot stop its
+  // slip within the step, and is then pushed back with the bound; the
+  // other holds as a friction row of its own coefficient, the sliding
+  // one's row given a negligible one (MuJoCo's cone then leaves it free).
+  const int nv = m_->nv;
+  const Eigen::MatrixXd jac = RelativeJacobian(*contact);
+  const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
+  const Eigen::Vector3d slip = jac * qvel + params_.stepsize * (jac * qacc);
+  const double mu[2] = {surface.mu, surface.mu2};
+  bool slides[2] = {false, false};
+  Eigen::Vector3d direction[2] = {V(contact->frame + 3), V(contact->frame + 6)};
+  for (int k = 0; k < 2; ++k) {
+    const double v = slip.dot(direction[k]);
+    if (std::abs(v) <= kSlipDirectionSpeed) continue;
+    Eigen::VectorXd row = jac.transpose() * direction[k];
+    Eigen::VectorXd solved(nv);
+    mj_solveM(m_, d_, solved.data(), row.data(), 1);
+    slides[k] = std::abs(v) > Brake(*contact, mu[k], row.dot(solved));
+    if (slides[k]) sliding->force_per_newton -= std::copysign(mu[k], v) * direction[k];
+  }
+  if (slides[0] && slides[1]) return Slide::kBothWays;
+  if (!slides[0] && !slides[1]) return Slide::kHolds;
+  // The holding direction first, with its coefficient; the sliding one
+  // second, free.
+  const int holds = slides[0] ? 1 : 0;
+  for (int k = 0; k < 3; ++k) {
+    contact->frame[3 + k] = direction[holds][k];
+    contact->frame[6 + k] = direction[1 - holds][k];
+  }
+  // Swapping the tangents turns the frame over: the normal stays, so the
+  // second tangent must change sign for a right-handed frame.
+  if (holds == 1)
+    for (int k = 0; k < 3; ++k) contact->frame[6 + k] = -contact->frame[6 + k];
+  contact->friction[0] = std::max(mu[holds], kLeastFriction);
+  contact->friction[1] = kLeastFriction;
+  return Slide::kOneWay;
 }
 
 bool MujocoWorld::Rolls(const mjContact& contact, const model::SurfaceProperties& surface,
@@ -386,8 +423,9 @@ bool MujocoWorld::Rolls(const mjContact& contact, const model::SurfaceProperties
   // Without friction rows the rolling rows go too: resist at most what
   // stops it.
   applied->stop_torque = speed / (row.dot(solved) * params_.stepsize);
-  return slides ||
-         speed > surface.rolling_friction * LastLoad(contact) * row.dot(solved) * params_.stepsize;
+  const std::optional<double> load = LastLoad(contact);
+  return slides || !load ||
+         speed > surface.rolling_friction * *load * row.dot(solved) * params_.stepsize;
 }
 
 Eigen::MatrixXd MujocoWorld::RelativeJacobian(const mjContact& contact, bool rotation) const {
@@ -403,9 +441,18 @@ Eigen::MatrixXd MujocoWorld::RelativeJacobian(const mjContact& contact, bool rot
   return jac1 - jac2;
 }
 
-double MujocoWorld::LastLoad(const mjContact& contact) const {
+double MujocoWorld::Brake(const mjContact& contact, double mu, double inverse_inertia) const {
+  // What mu N takes off a slip in one step, N the load of the point at the
+  // last step; for a new point, the ODE side's test: mu g h.
+  const std::optional<double> load = LastLoad(contact);
+  if (!load) return mu * gravity_ * params_.stepsize;
+  return mu * *load * inverse_inertia * params_.stepsize;
+}
+
+std::optional<double> MujocoWorld::LastLoad(const mjContact& contact) const {
   // The nearest point of the same pair at the last step (a few per pair).
-  double load = 0.0, nearest = INFINITY;
+  std::optional<double> load;
+  double nearest = INFINITY;
   const Eigen::Vector3d at = V(contact.pos);
   for (const LastLoad_& last : last_loads_) {
     if (last.geom1 != contact.geom1 || last.geom2 != contact.geom2) continue;
@@ -449,18 +496,25 @@ void MujocoWorld::ApplyFriction() {
   mj_fwdAcceleration(m_, d_);
 }
 
-void MujocoWorld::SetUpBounce() {
-  // ODE's bounce: a contact closing faster than the bounce velocity leaves
-  // at bounce times its closing speed (or faster, if the penetration
-  // needs it): the normal row's reference acceleration asks for that.
+void MujocoWorld::SetUpNormals() {
+  // ODE's contact asks the normal to separate, after the step, at the
+  // correcting velocity ERP depth / h, depth beyond the surface layer and
+  // the velocity at most contactMaxCorrectingVel; with bounce, a contact
+  // closing faster than the bounce velocity leaves at bounce times its
+  // closing speed if that is more. The normal row's reference
+  // acceleration asks the same: (target - v) / h, v its velocity now.
   const double h = params_.stepsize;
   for (int i = 0; i < d_->ncon; ++i) {
     const model::SurfaceProperties& surface = contact_surface_[static_cast<size_t>(i)];
     const int row = d_->contact[i].efc_address;
-    if (surface.bounce <= 0.0 || row < 0) continue;
+    if (row < 0) continue;
     const double v = d_->efc_vel[row];
-    if (v >= -surface.bounce_velocity) continue;
-    d_->efc_aref[row] = std::max(d_->efc_aref[row], (-surface.bounce * v - v) / h);
+    const double depth =
+        std::max(0.0, d_->efc_margin[row] - d_->efc_pos[row] - params_.contactSurfaceLayer);
+    double target = std::min(surface.soft_erp * depth / h, params_.contactMaxCorrectingVel);
+    if (surface.bounce > 0.0 && v < -surface.bounce_velocity)
+      target = std::max(target, -surface.bounce * v);
+    d_->efc_aref[row] = (target - v) / h;
   }
 }
 
@@ -488,7 +542,7 @@ void MujocoWorld::Prepare() {
   mj_makeConstraint(m_, d_);
   mj_projectConstraint(m_, d_);
   mj_referenceConstraint(m_, d_);
-  SetUpBounce();
+  SetUpNormals();
 }
 
 bool MujocoWorld::ServoHolds(int actuator) const {

@@ -26,11 +26,22 @@ std::string Velocity(double vx, double vy, double vz) {
          "</vz></translationalVelocity>";
 }
 
-Parameters StepSize(double h) {
+Parameters OnEngine(const std::string& engine, double h = 0.001) {
   Parameters params;
+  params.engine = engine;
   params.stepsize = h;
   return params;
 }
+
+// Every law here is the physics', not an engine's: each test runs on both.
+class ContactMaterial : public ::testing::TestWithParam<std::string> {
+ protected:
+  const std::string& engine() const { return GetParam(); }
+};
+INSTANTIATE_TEST_SUITE_P(Engines, ContactMaterial, ::testing::Values("ode", "mujoco"),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return info.param;
+                         });
 
 // ------------------------------------------------------------ friction
 
@@ -47,7 +58,7 @@ std::string SlidingBoxWorld(const std::string& material, double mass, double lx,
 
 // The thesis's friction (0.5 along the slip, 1.0 across it): a sliding box
 // feels mu N against its slip whatever way it slides, and goes straight on.
-TEST(ContactMaterial, SlidingBoxBrakesAtMuGWhateverTheHeading) {
+TEST_P(ContactMaterial, SlidingBoxBrakesAtMuGWhateverTheHeading) {
   constexpr double kV0 = 3.0, kMu = 0.5, kT = 0.3;
   const std::string floor =
       "<material name=\"floor\"><mu>0.5</mu><mu2>1.0</mu2>"
@@ -57,7 +68,8 @@ TEST(ContactMaterial, SlidingBoxBrakesAtMuGWhateverTheHeading) {
     SCOPED_TRACE("heading " + std::to_string(degrees) + " deg");
     const double heading = degrees * M_PI / 180.0;
     auto sim = MakeSim(SlidingBoxWorld(floor, 1, 1, 1, 1, kV0 * std::cos(heading),
-                                       kV0 * std::sin(heading)));
+                                       kV0 * std::sin(heading)),
+                       {}, OnEngine(engine()));
     for (int n = 0; n < 300; ++n) ASSERT_TRUE(sim->Step());
     const Eigen::Vector3d v = sim->engine().ReadBody(0).linear_velocity;
     EXPECT_NEAR(std::hypot(v.x(), v.z()), expected_speed, 0.01 * expected_speed);
@@ -67,9 +79,9 @@ TEST(ContactMaterial, SlidingBoxBrakesAtMuGWhateverTheHeading) {
 
 // A material that says mu2 = mu, or frictionDirection slip, is the
 // isotropic material of old files, step for step.
-TEST(ContactMaterial, ExplicitIsotropicMaterialIsBitIdenticalToTheOldForm) {
-  const auto run = [](const std::string& material) {
-    auto sim = MakeSim(SlidingBoxWorld(material, 1, 1, 1, 1, 2.0, 1.0));
+TEST_P(ContactMaterial, ExplicitIsotropicMaterialIsBitIdenticalToTheOldForm) {
+  const auto run = [this](const std::string& material) {
+    auto sim = MakeSim(SlidingBoxWorld(material, 1, 1, 1, 1, 2.0, 1.0), {}, OnEngine(engine()));
     for (int n = 0; n < 200; ++n) EXPECT_TRUE(sim->Step());
     return sim->engine().ReadBody(0);
   };
@@ -91,7 +103,7 @@ struct SlipFrameForces {
   Eigen::Vector3d final_velocity = Eigen::Vector3d::Zero();
 };
 
-SlipFrameForces PushSideways(double side_force, int steps) {
+SlipFrameForces PushSideways(const std::string& engine, double side_force, int steps) {
   // A thin 10 kg plate (1 x 0.02 x 1 m) so that the side force hardly
   // shifts the load between its corners; mu 0.2 along the slip, 0.6
   // across it.
@@ -103,7 +115,7 @@ SlipFrameForces PushSideways(double side_force, int steps) {
   // measures the friction law itself, so the world CFM is 1e-9 (0 would
   // leave the four corners' shares of the load undetermined; see
   // docs/contacts.md, "Known limits").
-  Parameters params;
+  Parameters params = OnEngine(engine);
   params.globalCFM = 1e-9;
   auto sim = MakeSim(SlidingBoxWorld(floor, 10, 1, 0.02, 1, 3.0, 0.0), {}, params);
   SlipFrameForces out;
@@ -137,12 +149,12 @@ SlipFrameForces PushSideways(double side_force, int steps) {
 // Below mu2 N the side push is held (the slip does not turn); above it the
 // friction across the slip is mu2 N and the box turns. Along the slip it is
 // mu N throughout. Tolerance 1 %.
-TEST(ContactMaterial, FrictionAlongTheSlipIsMuNAcrossItAtMostMu2N) {
+TEST_P(ContactMaterial, FrictionAlongTheSlipIsMuNAcrossItAtMostMu2N) {
   constexpr double kN = 10 * kG, kMu = 0.2, kMu2 = 0.6;
   {
     SCOPED_TRACE("side force 0.5 mu2 N: held");
     const double push = 0.5 * kMu2 * kN;  // 29.43 N
-    const SlipFrameForces f = PushSideways(push, 500);
+    const SlipFrameForces f = PushSideways(engine(), push, 500);
     EXPECT_NEAR(f.along_mean, -kMu * kN, 0.01 * kMu * kN);
     EXPECT_LT(f.along_worst, 0.01 * kMu * kN);
     // The push is along +z; the slip is along +x: "side" is -z.
@@ -156,7 +168,7 @@ TEST(ContactMaterial, FrictionAlongTheSlipIsMuNAcrossItAtMostMu2N) {
   {
     SCOPED_TRACE("side force 1.5 mu2 N: slides sideways");
     const double push = 1.5 * kMu2 * kN;  // 88.29 N
-    const SlipFrameForces f = PushSideways(push, 500);
+    const SlipFrameForces f = PushSideways(engine(), push, 500);
     EXPECT_NEAR(f.along_mean, -kMu * kN, 0.01 * kMu * kN);
     EXPECT_NEAR(std::abs(f.across_mean), kMu2 * kN, 0.01 * kMu2 * kN);
     EXPECT_LT(f.across_worst, 0.02 * kMu2 * kN);
@@ -198,11 +210,11 @@ std::string WheelOnSledWorld() {
          Vec("anchor", 0, 0.4, 0) + Vec("axis1", 0, 0, 1) + "</joint></world>";
 }
 
-TEST(ContactMaterial, RollingTyreDrivesWithMuNAndHoldsSidewaysWithMu2N) {
+TEST_P(ContactMaterial, RollingTyreDrivesWithMuNAndHoldsSidewaysWithMu2N) {
   constexpr double kN = 10 * kG, kMu = 0.8, kMu2 = 0.4;
   for (const double push : {0.75 * kMu2 * kN, 1.5 * kMu2 * kN}) {
     SCOPED_TRACE("side push " + std::to_string(push) + " N");
-    auto sim = MakeSim(WheelOnSledWorld());
+    auto sim = MakeSim(WheelOnSledWorld(), {}, OnEngine(engine()));
     const int sled = sim->flat().FindBody("", "Sled");
     const int axle = sim->flat().FindJoint("", "Axle");
     ASSERT_GE(sled, 0);
@@ -244,7 +256,7 @@ TEST(ContactMaterial, RollingTyreDrivesWithMuNAndHoldsSidewaysWithMu2N) {
 // brake the same way: what tells the two apart is a vehicle whose wheels
 // slide sideways, the validation's circles, tests/validate.) Before, a
 // rolling ground stopped the sim at its construction.
-TEST(ContactMaterial, GroundAsksForTheRollingDirectionOfTheWheelOnIt) {
+TEST_P(ContactMaterial, GroundAsksForTheRollingDirectionOfTheWheelOnIt) {
   constexpr double kN = 10 * kG, kMu = 0.3;
   for (const bool axle_along_z : {true, false}) {
     SCOPED_TRACE(axle_along_z ? "axle along z" : "axle along x");
@@ -273,7 +285,7 @@ TEST(ContactMaterial, GroundAsksForTheRollingDirectionOfTheWheelOnIt) {
         "</joint>"
         "<joint type=\"Hinge\" name=\"Axle\"><body1>Carrier</body1><body2>Wheel</body2>" +
         Vec("anchor", 0, 0.3, 0) + axis + "</joint></world>";
-    auto sim = MakeSim(world);
+    auto sim = MakeSim(world, {}, OnEngine(engine()));
     const int wheel = sim->flat().FindBody("", "Wheel");
     const int axle = sim->flat().FindJoint("", "Axle");
     ASSERT_GE(wheel, 0);
@@ -308,14 +320,14 @@ std::string BoxOnPlaneWorld(double stiffness, double damping, double mass, doubl
 }
 
 // A static contact is a spring: the box sinks m g / k at any step size.
-TEST(ContactMaterial, StaticSinkIsMgOverKAtEveryStepSize) {
+TEST_P(ContactMaterial, StaticSinkIsMgOverKAtEveryStepSize) {
   constexpr double kMass = 10, kSide = 0.5, kK = 1e6;
   const double c = 2.0 * std::sqrt(kK * kMass);  // critically damped: settles in ~0.02 s
   const double expected = kMass * kG / kK;         // 98.1 micrometres
   std::vector<double> sinks;
   for (const double h : {0.002, 0.001, 0.0005}) {
     SCOPED_TRACE("step " + std::to_string(h));
-    auto sim = MakeSim(BoxOnPlaneWorld(kK, c, kMass, kSide), {}, StepSize(h));
+    auto sim = MakeSim(BoxOnPlaneWorld(kK, c, kMass, kSide), {}, OnEngine(engine(), h));
     const int steps = static_cast<int>(std::lround(1.0 / h));
     for (int n = 0; n < steps; ++n) ASSERT_TRUE(sim->Step());
     const double sink = kSide / 2 - sim->engine().ReadBody(0).position.y();
@@ -329,7 +341,7 @@ TEST(ContactMaterial, StaticSinkIsMgOverKAtEveryStepSize) {
 
 // The same softness given per step (ODE's ERP/CFM) is another spring at
 // another step size: k = ERP / (h CFM). This is what stiffness replaces.
-TEST(ContactMaterial, PerStepSoftnessSinksDifferentlyAtEachStepSize) {
+TEST_P(ContactMaterial, PerStepSoftnessSinksDifferentlyAtEachStepSize) {
   const std::string world =
       "<world name=\"Sink\"><surface><a>0</a><b>1</b><c>0</c><d>0</d></surface>"
       "<material name=\"soft\"><softERP>0.1</softERP><softCFM>0.0001</softCFM></material>"
@@ -338,7 +350,7 @@ TEST(ContactMaterial, PerStepSoftnessSinksDifferentlyAtEachStepSize) {
   double sink[2];
   const double steps[2] = {0.002, 0.0005};
   for (int i = 0; i < 2; ++i) {
-    auto sim = MakeSim(world, {}, StepSize(steps[i]));
+    auto sim = MakeSim(world, {}, OnEngine(engine(), steps[i]));
     for (int n = 0; n < static_cast<int>(std::lround(1.0 / steps[i])); ++n) ASSERT_TRUE(sim->Step());
     sink[i] = 0.25 - sim->engine().ReadBody(0).position.y();
   }
@@ -355,8 +367,9 @@ struct Ringing {
   double damping_ratio = 0;  // from their excess over the static sink
 };
 
-Ringing Release(double k, double c, double mass, double side, double h) {
-  Parameters params = StepSize(h);
+Ringing Release(const std::string& engine, double k, double c, double mass, double side,
+                double h) {
+  Parameters params = OnEngine(engine, h);
   // ODE limits the speed at which a contact pushes out a penetration; a
   // spring-damper that rings must not meet that limit (docs/contacts.md).
   params.contactMaxCorrectingVel = 1e3;
@@ -392,14 +405,14 @@ Ringing Release(double k, double c, double mass, double side, double h) {
 // implicitly (backward Euler), which damps by about omega h / 2 more
 // (0.008 at 1 ms): the damping ratio is held to within omega h, the period
 // to within 1 %.
-TEST(ContactMaterial, ReleasedBoxRingsLikeItsMassSpringDamper) {
+TEST_P(ContactMaterial, ReleasedBoxRingsLikeItsMassSpringDamper) {
   constexpr double kMass = 10, kK = 2500, kZeta = 0.1;
   const double omega = std::sqrt(kK / kMass);
   const double c = 2 * kZeta * std::sqrt(kK * kMass);  // 31.6 N s/m
   const double period = 2 * M_PI / (omega * std::sqrt(1 - kZeta * kZeta));
   for (const double h : {0.001, 0.0005}) {
     SCOPED_TRACE("step " + std::to_string(h));
-    const Ringing r = Release(kK, c, kMass, 0.5, h);
+    const Ringing r = Release(engine(), kK, c, kMass, 0.5, h);
     EXPECT_NEAR(r.period, period, 0.01 * period);
     EXPECT_NEAR(r.damping_ratio, kZeta, omega * h);
     std::printf("step %.4f s: damped period %.4f s (%.4f), damping ratio %.4f (%.2f)\n", h,

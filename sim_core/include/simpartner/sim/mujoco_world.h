@@ -20,6 +20,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -110,8 +111,15 @@ class MujocoWorld : public PhysicsEngine {
     double stop_torque = INFINITY;  // [N m] what stops the roll within the step
     Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
   };
-  bool Slides(const mjContact_& contact, const model::SurfaceProperties& surface,
-              AppliedFriction* sliding) const;
+  enum class Slide { kHolds, kOneWay, kBothWays };
+  // Isotropic friction (Coulomb's cone): slides, or holds.
+  Slide Slides(const mjContact_& contact, const model::SurfaceProperties& surface,
+               AppliedFriction* sliding) const;
+  // Anisotropic friction (ODE's box, mu and mu2 apart): each direction
+  // slides or holds; one way, contact's frame and coefficients are set so
+  // that MuJoCo holds the other.
+  Slide SlidesBox(mjContact_* contact, const model::SurfaceProperties& surface,
+                  AppliedFriction* sliding) const;
   bool Rolls(const mjContact_& contact, const model::SurfaceProperties& surface, bool slides,
              AppliedFriction* applied) const;
   void ApplyFriction();
@@ -123,9 +131,12 @@ class MujocoWorld : public PhysicsEngine {
   // the force that takes) rather than push with its limit.
   bool ServoHolds(int actuator) const;
   // The load [N] of the point of the last step nearest to contact, of the
-  // same pair of geoms; 0 for a new one.
-  double LastLoad(const mjContact_& contact) const;
-  void SetUpBounce();
+  // same pair of geoms; none for a new one.
+  std::optional<double> LastLoad(const mjContact_& contact) const;
+  // The slip [m/s] friction of coefficient mu takes off contact's point in
+  // one step, its effective inverse mass along the slip inverse_inertia.
+  double Brake(const mjContact_& contact, double mu, double inverse_inertia) const;
+  void SetUpNormals();
   void SetUpMotors();
   void CollectForces();
   void CollectJointForces();
