@@ -204,6 +204,25 @@ TEST_P(BothEngines, MotorReachesItsVelocityAndPushesWithItsLimitBeyond) {
   EXPECT_NEAR(sim->engine().JointRate(0, 0), 0.0, 0.01);
 }
 
+// A linear motor: a 2 kg block on a slider along x reaches its velocity,
+// and its stop holds it at the end of its travel.
+TEST_P(BothEngines, ALinearMotorDrivesASliderToItsStop) {
+  const std::string world =
+      "<world><gravity><x>0</x><y>0</y><z>0</z></gravity>"
+      "<object type=\"Box\" name=\"Block\"><mass>2</mass>" + Vec("size", 0.2, 0.2, 0.2) +
+      Transform(0, 1, 0) + "</object><joint type=\"Slider\" name=\"Rail\"><body1>Block</body1>"
+      "<body2>world</body2>" + Vec("axis1", 1, 0, 0) + "</joint></world>";
+  auto sim = MakeSim(world, {}, Params());
+  sim->engine().SetStops(0, 0, -1.0, 0.3);
+  sim->engine().SetMotor(0, 0, 0.5, 100.0);
+  for (int n = 0; n < 100; ++n) ASSERT_TRUE(sim->Step());
+  EXPECT_NEAR(sim->engine().JointRate(0, 0), 0.5, 0.005);
+  EXPECT_NEAR(sim->engine().ReadBody(0).linear_velocity.x(), 0.5, 0.005);
+  for (int n = 0; n < 1000; ++n) ASSERT_TRUE(sim->Step());
+  EXPECT_NEAR(sim->engine().JointPosition(0, 0), 0.3, 0.005);
+  EXPECT_NEAR(sim->engine().ReadBody(0).position.x(), 0.3, 0.005);
+}
+
 TEST_P(BothEngines, StopsHoldAHingeWithinItsRange) {
   auto sim = MakeSim(FreeWheelWorld(), {}, Params());
   sim->engine().SetStops(0, 0, -0.2, 0.3);
@@ -277,6 +296,48 @@ TEST_P(BothEngines, ARayStopsAtAWallAndSkipsItsOwnBody) {
   EXPECT_NEAR(sim->engine().CastRay({0, 0, 0}, {1, 0, 0}, 20, -1), 0.5, 1e-9);
   EXPECT_DOUBLE_EQ(sim->engine().CastRay({0, 0, 0}, {-1, 0, 0}, 20, head), 20.0);
   EXPECT_DOUBLE_EQ(sim->engine().CastRay({0, 0, 0}, {1, 0, 0}, 3, head), 3.0);
+}
+
+// A heightfield where the files put it: a ray straight down meets it at
+// the height of its samples (scale s + offset, at its position) at every
+// grid node, and linearly in between along a row (both engines make
+// triangles of each cell, whose edges run along the rows and columns).
+TEST_P(BothEngines, ARayDownMeetsTheHeightfieldAtItsSamples) {
+  constexpr int kRows = 5, kColumns = 7;
+  constexpr double kWidth = 6, kDepth = 4, kScale = 0.1, kOffset = 0.2;
+  const Eigen::Vector3d at(1.0, 0.3, -0.5);
+  std::vector<double> samples;
+  std::string text;
+  for (int r = 0; r < kRows; ++r)
+    for (int c = 0; c < kColumns; ++c) {
+      samples.push_back((r * 3 + c * 5) % 4 + 0.5 * r);
+      text += std::to_string(samples.back()) + " ";
+    }
+  const std::string world =
+      "<world><heightfield rows=\"5\" columns=\"7\"><width>6</width><depth>4</depth>"
+      "<scale>0.1</scale><offset>0.2</offset>" + Vec("position", at.x(), at.y(), at.z()) +
+      "<samples>" + text + "</samples></heightfield>"
+      "<object type=\"Sphere\" name=\"Far\"><mass>1</mass><radius>0.1</radius>" +
+      Transform(50, 5, 50) + "</object></world>";
+  auto sim = MakeSim(world, {}, Params());
+  ASSERT_TRUE(sim->Step());
+  auto height = [&](int r, double c) {  // c may lie between columns
+    const int c0 = std::min(static_cast<int>(c), kColumns - 2);
+    const double f = c - c0;
+    const double s = samples[static_cast<size_t>(r * kColumns + c0)] * (1 - f) +
+                     samples[static_cast<size_t>(r * kColumns + c0 + 1)] * f;
+    return at.y() + kScale * s + kOffset;
+  };
+  // Inside the field: a ray exactly on its border may miss it in either
+  // engine.
+  for (int r = 1; r < kRows - 1; ++r) {
+    for (const double c : {0.5, 1.0, 2.5, 3.0, 4.25, 5.5}) {
+      const double x = at.x() - kWidth / 2 + c * kWidth / (kColumns - 1);
+      const double z = at.z() - kDepth / 2 + r * kDepth / (kRows - 1);
+      const double hit = sim->engine().CastRay({x, 10, z}, {0, -1, 0}, 20, -1);
+      EXPECT_NEAR(10 - hit, height(r, c), 1e-5) << "row " << r << ", column " << c;
+    }
+  }
 }
 
 // Two runs of the same inputs are identical to the bit.
