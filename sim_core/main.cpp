@@ -3,6 +3,7 @@
 
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/check.h"
+#include "simpartner/sim/engine.h"
 #include "simpartner/sim/sim_process.h"
 
 int main(int argc, char** argv) {
@@ -14,6 +15,9 @@ int main(int argc, char** argv) {
   try {
     const Parameters params = LoadParameters(command_line.parameter_sources());
     if (PrintParametersIfAsked(command_line, params, std::cout)) return 0;
+    for (const std::string& ignored : sim::ParametersTheEngineIgnores(params))
+      std::cerr << "simpartner-sim: note: engine=" << params.engine << " does not read " << ignored
+                << " (ODE's only; docs/engines.md)\n";
     model::World world = sim::LoadSimWorld(command_line, params);
     std::cout << model::DescribeWorld(world) << std::flush;
     if (command_line.Has("check")) return sim::CheckMessageSizes(world, params, std::cerr);

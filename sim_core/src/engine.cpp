@@ -2,6 +2,7 @@
 
 #include "simpartner/sim/mujoco_world.h"
 #include "simpartner/sim/ode_world.h"
+#include "simpartner/text.h"
 
 namespace simpartner::sim {
 namespace {
@@ -32,6 +33,24 @@ std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,
 std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parameters& params) {
   if (params.engine == "mujoco") return MujocoLimits(model, params);
   return {};
+}
+
+std::vector<std::string> ParametersTheEngineIgnores(const Parameters& params) {
+  if (params.engine != "mujoco") return {};
+  const Parameters defaults;
+  std::vector<std::string> out;
+  auto note = [&](const char* key, bool differs, const std::string& value) {
+    if (differs) out.push_back(std::string(key) + "=" + value);
+  };
+  note("stepper", params.stepper != defaults.stepper, params.stepper);
+  note("quickStepIterations", params.quickStepIterations != defaults.quickStepIterations,
+       std::to_string(params.quickStepIterations));
+  note("quickStepW", params.quickStepW != defaults.quickStepW, ShortestNumber(params.quickStepW));
+  note("autoDisableFlag", params.autoDisableFlag != defaults.autoDisableFlag,
+       params.autoDisableFlag ? "1" : "0");
+  note("maxContacts", params.maxContacts != defaults.maxContacts,
+       std::to_string(params.maxContacts));
+  return out;
 }
 
 }  // namespace simpartner::sim

@@ -472,6 +472,35 @@ TEST_F(SimProcessTest, BadParametersStopBeforeAnything) {
       << LogText();
 }
 
+// What MuJoCo cannot represent is refused at --check, named at its file
+// and line, and the sim does not start; ODE's settings MuJoCo does not
+// read are said. ODE runs the same world.
+TEST_F(SimProcessTest, TheMujocoEngineRefusesALoopOfBodiesAtItsLine) {
+  const std::string world = (dir_ / "loop.xml").string();
+  std::ofstream(world) << R"(<world name="Loop">
+  <object type="Body" name="A"><mass>1</mass><transformation><T00>1</T00><T01>0</T01><T02>0</T02><T03>0</T03><T10>0</T10><T11>1</T11><T12>0</T12><T13>1</T13><T20>0</T20><T21>0</T21><T22>1</T22><T23>0</T23></transformation></object>
+  <object type="Body" name="B"><mass>1</mass><transformation><T00>1</T00><T01>0</T01><T02>0</T02><T03>1</T03><T10>0</T10><T11>1</T11><T12>0</T12><T13>1</T13><T20>0</T20><T21>0</T21><T22>1</T22><T23>0</T23></transformation></object>
+  <joint type="Ball" name="AW"><body1>A</body1><body2>world</body2><anchor><x>0</x><y>2</y><z>0</z></anchor></joint>
+  <joint type="Ball" name="BW"><body1>B</body1><body2>world</body2><anchor><x>1</x><y>2</y><z>0</z></anchor></joint>
+  <joint type="Ball" name="AB"><body1>A</body1><body2>B</body2><anchor><x>0.5</x><y>1</y><z>0</z></anchor></joint>
+</world>
+)";
+  ChildProcess mujoco(BuiltCommand("simpartner-sim", {"--params", "/dev/null", "--check",
+                                                      "--engine=mujoco", "--stepper=quick",
+                                                      "--environment=" + world}),
+                      Log());
+  EXPECT_EQ(mujoco.Wait(std::chrono::seconds(10)), 2);
+  EXPECT_NE(LogText().find(world + ":6: joint: joint 'AB' closes a loop of bodies"),
+            std::string::npos)
+      << LogText();
+  EXPECT_NE(LogText().find("engine=mujoco does not read stepper=quick"), std::string::npos)
+      << LogText();
+  ChildProcess ode(BuiltCommand("simpartner-sim", {"--params", "/dev/null", "--check",
+                                                   "--environment=" + world}),
+                   Log());
+  EXPECT_EQ(ode.Wait(std::chrono::seconds(10)), 0) << LogText();
+}
+
 // Two systems side by side on one host: a bus each (another port) and
 // neither hears the other. One engine: the buses are the sims' own.
 TEST_F(SimProcessTest, TwoSimsOnTwoPortsDoNotSeeEachOther) {

@@ -108,4 +108,9 @@ std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,
 // represents everything the loader accepts.
 std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parameters& params);
 
+// The parameters params.engine does not read that differ from their
+// defaults, as "key=value" (ODE's stepper settings under MuJoCo), so that
+// a setting the run ignores is said, not silently dropped.
+std::vector<std::string> ParametersTheEngineIgnores(const Parameters& params);
+
 }  // namespace simpartner::sim
