@@ -18,15 +18,6 @@ constexpr double kPi = 3.14159265358979323846;
 // target velocity (99 %), and a load torque tau leaves a velocity error of
 // tau h / (kServoGain M).
 constexpr double kServoGain = 100.0;
-// Below this slip speed [m/s] a contact has no slip direction (ODE side:
-// kSlipDirectionSpeed).
-constexpr double kSlipDirectionSpeed = 1e-4;
-// A wheel whose axis is within this sine of the contact normal lies flat.
-constexpr double kMinRollingSine = 1e-3;
-// MuJoCo's cone needs a positive torsional friction where ODE has none,
-// and positive coefficients where one of ours is 0.
-constexpr double kTorsionalFriction = 1e-9;  // [m]
-constexpr double kLeastFriction = 1e-9;
 
 // MuJoCo's fatal errors (mju_error) would exit the process; they become an
 // exception of the thread that called MuJoCo, as ODE's do. Its warnings
@@ -132,27 +123,33 @@ void MujocoWorld::MapElements(const model::BodyTree& tree) {
   for (size_t b = 0; b < model_.bodies.size(); ++b)
     if (!model_.bodies[b].source->is_static)
       body_id_[b] = mj_name2id(m_, mjOBJ_BODY, MjcfBodyName(static_cast<int>(b)).c_str());
-  geoms_.assign(static_cast<size_t>(m_->ngeom), GeomInfo{});
+  MapGeoms();
+  MapJoints(tree);
+  contact_force_.assign(model_.bodies.size(), Eigen::Vector3d::Zero());
+  contact_torque_.assign(model_.bodies.size(), Eigen::Vector3d::Zero());
+  joint_forces_.assign(model_.joints.size(), JointReadout{});
+  warning_counts_.assign(mjNWARNING, 0);
+}
+
+void MujocoWorld::MapGeoms() {
   const model::World& world = *model_.world;
-  auto surface_of = [&](const model::FlatBody* flat, const std::string& material) {
-    const model::Material* found = nullptr;
-    if (flat != nullptr && flat->robot >= 0)
-      for (const model::Material& m : world.robots[static_cast<size_t>(flat->robot)].robot.materials)
-        if (m.name == material) found = &m;
-    if (found == nullptr && !material.empty()) found = world.FindMaterial(material);
-    return model::ResolveSurface(found, params_);
+  // A material by name as the ODE side finds it (the loader checked it).
+  auto surface_of = [&](const std::string& material) {
+    return model::ResolveSurface(material.empty() ? nullptr : world.FindMaterial(material),
+                                 params_);
   };
+  geoms_.assign(static_cast<size_t>(m_->ngeom), GeomInfo{});
   for (int g = 0; g < m_->ngeom; ++g) {
     const char* name = mj_id2name(m_, mjOBJ_GEOM, g);
     GeomInfo& info = geoms_[static_cast<size_t>(g)];
     if (std::strcmp(name, kMjcfPlane) == 0) {
-      info.surface = surface_of(nullptr, world.plane_material);
+      info.surface = surface_of(world.plane_material);
     } else if (std::strcmp(name, kMjcfField) == 0) {
-      info.surface = surface_of(nullptr, world.heightfield->material);
+      info.surface = surface_of(world.heightfield->material);
     } else {
       info.body = std::atoi(name + 1);
       const model::FlatBody& flat = model_.bodies[static_cast<size_t>(info.body)];
-      info.surface = surface_of(&flat, flat.source->material);
+      info.surface = surface_of(flat.source->material);
       const std::vector<model::Joint>& joints =
           flat.robot < 0 ? world.joints : world.robots[static_cast<size_t>(flat.robot)].robot.joints;
       if (const auto axis = model::SpinAxis(*flat.source, joints)) {
@@ -161,6 +158,9 @@ void MujocoWorld::MapElements(const model::BodyTree& tree) {
       }
     }
   }
+}
+
+void MujocoWorld::MapJoints(const model::BodyTree& tree) {
   joints_.assign(model_.joints.size(), JointMap{});
   motors_.assign(static_cast<size_t>(m_->nu), Motor{});
   for (size_t b = 0; b < tree.nodes.size(); ++b) {
@@ -183,10 +183,6 @@ void MujocoWorld::MapElements(const model::BodyTree& tree) {
           kServoGain * m_->dof_M0[map.dof[a]] / params_.stepsize;
     }
   }
-  contact_force_.assign(model_.bodies.size(), Eigen::Vector3d::Zero());
-  contact_torque_.assign(model_.bodies.size(), Eigen::Vector3d::Zero());
-  joint_forces_.assign(model_.joints.size(), JointReadout{});
-  warning_counts_.assign(mjNWARNING, 0);
 }
 
 void MujocoWorld::SetInitialVelocities() {
@@ -221,300 +217,6 @@ void MujocoWorld::SetInitialVelocities() {
     const bool hinge = joint.source->kind != model::JointKind::kSlider;
     for (int a = 0; a < map.axes; ++a)
       d_->qvel[map.dof[a]] = map.axis_sign * joint.axis[a].dot(hinge ? w : v);
-  }
-}
-
-void MujocoWorld::StepLaw(double erp, double cfm, double inverse_inertia, double solref[2],
-                          double solimp[5]) const {
-  // ODE: (A + CFM / h) f = -v / h - ERP r / h^2 - a0 for a row of inverse
-  // inertia A. MuJoCo: (A + R) f = aref - a0 with R = (1 - d) / d A and, in
-  // its direct form, aref = -(b / d) v - (k / d) r. So d = A / (A + CFM /
-  // h), b = d / h, k = d ERP / h^2, with MuJoCo's own estimate of A.
-  const double h = params_.stepsize;
-  const double a = std::max(inverse_inertia, 1e-12);
-  const double d = std::clamp(a / (a + cfm / h), 1e-4, 0.9999);
-  solref[0] = -d * erp / (h * h);
-  solref[1] = -d / h;
-  solimp[0] = solimp[1] = d;
-  solimp[2] = 0.001;
-  solimp[3] = 0.5;
-  solimp[4] = 2.0;
-}
-
-Eigen::Vector3d MujocoWorld::PointVelocity(int mj_body, const Eigen::Vector3d& point) const {
-  if (mj_body <= 0) return Eigen::Vector3d::Zero();
-  const mjtNum* cvel = d_->cvel + 6 * mj_body;  // [angular, linear] at the root's subtree com
-  const Eigen::Vector3d at = V(d_->subtree_com + 3 * m_->body_rootid[mj_body]);
-  return V(cvel + 3) + V(cvel).cross(point - at);
-}
-
-bool MujocoWorld::FrictionDirection(const mjContact& contact, Eigen::Vector3d* direction) const {
-  const GeomInfo& g1 = geoms_[static_cast<size_t>(contact.geom1)];
-  const GeomInfo& g2 = geoms_[static_cast<size_t>(contact.geom2)];
-  const Eigen::Vector3d normal = V(contact.frame);
-  const model::SurfaceProperties combined = model::CombineSurfaces(g1.surface, g2.surface);
-  if (combined.friction_direction == model::FrictionDirection::kRolling &&
-      g1.has_spin_axis != g2.has_spin_axis) {
-    // Perpendicular to the normal and to the wheel's spin axis.
-    const int geom = g1.has_spin_axis ? contact.geom1 : contact.geom2;
-    const GeomInfo& wheel = g1.has_spin_axis ? g1 : g2;
-    Eigen::Matrix3d r;
-    for (int row = 0; row < 3; ++row)
-      for (int col = 0; col < 3; ++col) r(row, col) = d_->geom_xmat[9 * geom + 3 * row + col];
-    const Eigen::Vector3d rolling = normal.cross(r * wheel.spin_axis);
-    if (rolling.norm() > kMinRollingSine) {
-      *direction = rolling.normalized();
-      return true;
-    }
-  }
-  // Along the slip of geom1 against geom2, when it slides.
-  const Eigen::Vector3d at = V(contact.pos);
-  Eigen::Vector3d slip = PointVelocity(m_->geom_bodyid[contact.geom1], at) -
-                         PointVelocity(m_->geom_bodyid[contact.geom2], at);
-  slip -= slip.dot(normal) * normal;
-  if (slip.norm() <= kSlipDirectionSpeed) return false;
-  *direction = slip.normalized();
-  return true;
-}
-
-void MujocoWorld::SetUpContacts() {
-  // Points per pair of geoms: a physical stiffness is shared among them,
-  // as the ODE side shares it.
-  std::vector<int> points(static_cast<size_t>(d_->ncon), 1);
-  for (int i = 0; i < d_->ncon; ++i)
-    for (int k = 0; k < d_->ncon; ++k)
-      if (k != i && d_->contact[k].geom1 == d_->contact[i].geom1 &&
-          d_->contact[k].geom2 == d_->contact[i].geom2)
-        ++points[static_cast<size_t>(i)];
-  contact_surface_.assign(static_cast<size_t>(d_->ncon), model::SurfaceProperties{});
-  applied_.clear();
-  for (int i = 0; i < d_->ncon; ++i) {
-    mjContact& contact = d_->contact[i];
-    const model::SurfaceProperties combined = model::CombineSurfaces(
-        geoms_[static_cast<size_t>(contact.geom1)].surface,
-        geoms_[static_cast<size_t>(contact.geom2)].surface);
-    contact_surface_[static_cast<size_t>(i)] = combined;
-    const double cfm =
-        combined.HasStiffness() ? combined.soft_cfm * points[static_cast<size_t>(i)] : combined.soft_cfm;
-    const double inverse_inertia = m_->body_invweight0[2 * m_->geom_bodyid[contact.geom1]] +
-                                   m_->body_invweight0[2 * m_->geom_bodyid[contact.geom2]];
-    StepLaw(combined.soft_erp, cfm, inverse_inertia, contact.solref, contact.solimp);
-    // MuJoCo's cone divides by each coefficient: none may be 0. A contact
-    // without friction has no friction rows.
-    contact.friction[0] = std::max(combined.mu, kLeastFriction);
-    contact.friction[1] = std::max(combined.mu2, kLeastFriction);
-    contact.friction[2] = kTorsionalFriction;
-    contact.friction[3] = contact.friction[4] = std::max(combined.rolling_friction, kLeastFriction);
-    contact.dim = combined.mu == 0 && combined.mu2 == 0 ? 1 : combined.rolling_friction > 0 ? 6 : 3;
-    if (contact.dim == 1) continue;
-    Eigen::Vector3d along;
-    if (combined.mu2 != combined.mu && FrictionDirection(contact, &along)) {
-      const Eigen::Vector3d normal = V(contact.frame);
-      const Eigen::Vector3d across = normal.cross(along);
-      for (int k = 0; k < 3; ++k) {
-        contact.frame[3 + k] = along[k];
-        contact.frame[6 + k] = across[k];
-      }
-    }
-    AppliedFriction applied;
-    applied.contact = i;
-    const Slide slide = combined.mu2 == combined.mu ? Slides(contact, combined, &applied)
-                                                    : SlidesBox(&contact, combined, &applied);
-    const bool slides = slide == Slide::kBothWays;
-    const bool rolls = combined.rolling_friction > 0 && Rolls(contact, combined, slides, &applied);
-    // Rows MuJoCo solves: none for what is applied (ApplyFriction).
-    if (slides) contact.dim = 1;
-    else if (rolls) contact.dim = 3;
-    if (slide != Slide::kHolds || rolls) applied_.push_back(applied);
-  }
-}
-
-MujocoWorld::Slide MujocoWorld::Slides(const mjContact& contact,
-                                       const model::SurfaceProperties& surface,
-                                       AppliedFriction* sliding) const {
-  // The point's relative motion: Jacobian rows of geom1's body less
-  // geom2's at the contact.
-  const int nv = m_->nv;
-  const Eigen::MatrixXd jac = RelativeJacobian(contact);
-  const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
-  const Eigen::Vector3d normal = V(contact.frame);
-  // The slip the step would end with if friction did nothing: the smooth
-  // forces' (motors, gravity, applied) acceleration added to today's.
-  Eigen::Vector3d slip = jac * qvel + params_.stepsize * (jac * qacc);
-  slip -= slip.dot(normal) * normal;
-  const double speed = slip.norm();
-  if (speed <= kSlipDirectionSpeed) return Slide::kHolds;
-  // Coulomb's force: mu per newton of load against the slip, on geom1.
-  sliding->force_per_newton = -surface.mu * slip / speed;
-  // It slides when that force cannot stop that slip within the step
-  // (Brake): what it takes off is the force over the point's effective
-  // mass along the slip (with the holding servos' armature: a servo-held
-  // wheel resists a change of its spin).
-  Eigen::VectorXd row = jac.transpose() * (slip / speed);
-  Eigen::VectorXd solved(nv);
-  mj_solveM(m_, d_, solved.data(), row.data(), 1);
-  const double brake = Brake(contact, surface.mu, row.dot(solved));
-  return speed > brake ? Slide::kBothWays : Slide::kHolds;
-}
-
-MujocoWorld::Slide MujocoWorld::SlidesBox(mjContact* contact,
-                                          const model::SurfaceProperties& surface,
-                                          AppliedFriction* sliding) const {
-  // ODE's anisotropic friction (docs/contacts.md) bounds each direction on
-  // its own: mu N along the first (frame row 1), mu2 N across (row 2).
-  // Each direction slides when its bound at the last load cannot stop its
-  // slip within the step, and is then pushed back with the bound; the
-  // other holds as a friction row of its own coefficient, the sliding
-  // one's row given a negligible one (MuJoCo's cone then leaves it free).
-  const int nv = m_->nv;
-  const Eigen::MatrixXd jac = RelativeJacobian(*contact);
-  const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
-  const Eigen::Vector3d slip = jac * qvel + params_.stepsize * (jac * qacc);
-  const double mu[2] = {surface.mu, surface.mu2};
-  bool slides[2] = {false, false};
-  Eigen::Vector3d direction[2] = {V(contact->frame + 3), V(contact->frame + 6)};
-  for (int k = 0; k < 2; ++k) {
-    const double v = slip.dot(direction[k]);
-    if (std::abs(v) <= kSlipDirectionSpeed) continue;
-    Eigen::VectorXd row = jac.transpose() * direction[k];
-    Eigen::VectorXd solved(nv);
-    mj_solveM(m_, d_, solved.data(), row.data(), 1);
-    slides[k] = std::abs(v) > Brake(*contact, mu[k], row.dot(solved));
-    if (slides[k]) sliding->force_per_newton -= std::copysign(mu[k], v) * direction[k];
-  }
-  if (slides[0] && slides[1]) return Slide::kBothWays;
-  if (!slides[0] && !slides[1]) return Slide::kHolds;
-  // The holding direction first, with its coefficient; the sliding one
-  // second, free.
-  const int holds = slides[0] ? 1 : 0;
-  for (int k = 0; k < 3; ++k) {
-    contact->frame[3 + k] = direction[holds][k];
-    contact->frame[6 + k] = direction[1 - holds][k];
-  }
-  // Swapping the tangents turns the frame over: the normal stays, so the
-  // second tangent must change sign for a right-handed frame.
-  if (holds == 1)
-    for (int k = 0; k < 3; ++k) contact->frame[6 + k] = -contact->frame[6 + k];
-  contact->friction[0] = std::max(mu[holds], kLeastFriction);
-  contact->friction[1] = kLeastFriction;
-  return Slide::kOneWay;
-}
-
-bool MujocoWorld::Rolls(const mjContact& contact, const model::SurfaceProperties& surface,
-                        bool slides, AppliedFriction* applied) const {
-  // ODE's rolling resistance holds the rolling when rho N can stop it
-  // within the step, and resists it with rho N otherwise; asked of MuJoCo's
-  // rolling rows, the second raised the normal force (a sphere rolling at
-  // 10 rad/s hopped). As for sliding: the turn the step would end with
-  // without resistance, and what rho N at the last load takes off it.
-  const int nv = m_->nv;
-  const Eigen::MatrixXd jac = RelativeJacobian(contact, /*rotation=*/true);
-  const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
-  const Eigen::Vector3d normal = V(contact.frame);
-  Eigen::Vector3d turn = jac * qvel + params_.stepsize * (jac * qacc);
-  turn -= turn.dot(normal) * normal;
-  const double speed = turn.norm();
-  if (speed <= kSlipDirectionSpeed) return false;
-  const Eigen::Vector3d axis = turn / speed;
-  Eigen::VectorXd row = jac.transpose() * axis;
-  Eigen::VectorXd solved(nv);
-  mj_solveM(m_, d_, solved.data(), row.data(), 1);
-  applied->torque_per_newton = -surface.rolling_friction * axis;
-  // Without friction rows the rolling rows go too: resist at most what
-  // stops it.
-  applied->stop_torque = speed / (row.dot(solved) * params_.stepsize);
-  const std::optional<double> load = LastLoad(contact);
-  return slides || !load ||
-         speed > surface.rolling_friction * *load * row.dot(solved) * params_.stepsize;
-}
-
-Eigen::MatrixXd MujocoWorld::RelativeJacobian(const mjContact& contact, bool rotation) const {
-  using RowMajor = Eigen::Matrix<mjtNum, 3, Eigen::Dynamic, Eigen::RowMajor>;
-  RowMajor jac1 = RowMajor::Zero(3, m_->nv), jac2 = RowMajor::Zero(3, m_->nv);
-  const int body1 = m_->geom_bodyid[contact.geom1], body2 = m_->geom_bodyid[contact.geom2];
-  if (body1 > 0)
-    mj_jac(m_, d_, rotation ? nullptr : jac1.data(), rotation ? jac1.data() : nullptr, contact.pos,
-           body1);
-  if (body2 > 0)
-    mj_jac(m_, d_, rotation ? nullptr : jac2.data(), rotation ? jac2.data() : nullptr, contact.pos,
-           body2);
-  return jac1 - jac2;
-}
-
-double MujocoWorld::Brake(const mjContact& contact, double mu, double inverse_inertia) const {
-  // What mu N takes off a slip in one step, N the load of the point at the
-  // last step; for a new point, the ODE side's test: mu g h.
-  const std::optional<double> load = LastLoad(contact);
-  if (!load) return mu * gravity_ * params_.stepsize;
-  return mu * *load * inverse_inertia * params_.stepsize;
-}
-
-std::optional<double> MujocoWorld::LastLoad(const mjContact& contact) const {
-  // The nearest point of the same pair at the last step (a few per pair).
-  std::optional<double> load;
-  double nearest = INFINITY;
-  const Eigen::Vector3d at = V(contact.pos);
-  for (const LastLoad_& last : last_loads_) {
-    if (last.geom1 != contact.geom1 || last.geom2 != contact.geom2) continue;
-    const double distance = (last.position - at).squaredNorm();
-    if (distance < nearest) {
-      nearest = distance;
-      load = last.load;
-    }
-  }
-  return load;
-}
-
-void MujocoWorld::ApplyFriction() {
-  // ODE's friction of a sliding contact is mu N against the slip, N what
-  // the normal needs. MuJoCo's contacts are not complementary: a friction
-  // row asking for more than its cone gives raises the normal force
-  // instead (a box sliding at 2 m/s took 38 times its weight and hopped).
-  // So a sliding contact goes into MuJoCo's solve without friction rows
-  // (and a rolling one without rolling rows); a first solve gives its load
-  // N, and mu N against the slip and rho N against the rolling are applied
-  // to both bodies before the solve that counts.
-  if (applied_.empty()) return;
-  mj_fwdConstraint(m_, d_);
-  mju_zero(d_->qfrc_applied, m_->nv);
-  for (AppliedFriction& a : applied_) {
-    const mjContact& contact = d_->contact[a.contact];
-    const double load = std::max(d_->efc_force[contact.efc_address], 0.0);
-    a.force = load * a.force_per_newton;  // on geom1
-    a.torque = load * a.torque_per_newton;
-    if (a.torque.norm() > a.stop_torque) a.torque *= a.stop_torque / a.torque.norm();
-    mjtNum point[3] = {contact.pos[0], contact.pos[1], contact.pos[2]};
-    for (int side = 0; side < 2; ++side) {
-      const int body = m_->geom_bodyid[side == 0 ? contact.geom1 : contact.geom2];
-      if (body == 0) continue;
-      const double sign = side == 0 ? 1.0 : -1.0;
-      const mjtNum force[3] = {sign * a.force.x(), sign * a.force.y(), sign * a.force.z()};
-      const mjtNum torque[3] = {sign * a.torque.x(), sign * a.torque.y(), sign * a.torque.z()};
-      mj_applyFT(m_, d_, force, torque, point, body, d_->qfrc_applied);
-    }
-  }
-  mj_fwdAcceleration(m_, d_);
-}
-
-void MujocoWorld::SetUpNormals() {
-  // ODE's contact asks the normal to separate, after the step, at the
-  // correcting velocity ERP depth / h, depth beyond the surface layer and
-  // the velocity at most contactMaxCorrectingVel; with bounce, a contact
-  // closing faster than the bounce velocity leaves at bounce times its
-  // closing speed if that is more. The normal row's reference
-  // acceleration asks the same: (target - v) / h, v its velocity now.
-  const double h = params_.stepsize;
-  for (int i = 0; i < d_->ncon; ++i) {
-    const model::SurfaceProperties& surface = contact_surface_[static_cast<size_t>(i)];
-    const int row = d_->contact[i].efc_address;
-    if (row < 0) continue;
-    const double v = d_->efc_vel[row];
-    const double depth =
-        std::max(0.0, d_->efc_margin[row] - d_->efc_pos[row] - params_.contactSurfaceLayer);
-    double target = std::min(surface.soft_erp * depth / h, params_.contactMaxCorrectingVel);
-    if (surface.bounce > 0.0 && v < -surface.bounce_velocity)
-      target = std::max(target, -surface.bounce * v);
-    d_->efc_aref[row] = (target - v) / h;
   }
 }
 

@@ -3,6 +3,7 @@
 // and what only this engine has to get right (its frame mapping, motors,
 // anisotropic friction, bounce, heightfield, refusals).
 #include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
 
 #include <cmath>
 
@@ -338,6 +339,19 @@ TEST_P(BothEngines, ARayDownMeetsTheHeightfieldAtItsSamples) {
       EXPECT_NEAR(10 - hit, height(r, c), 1e-5) << "row " << r << ", column " << c;
     }
   }
+}
+
+// MuJoCo's fatal errors would exit the process: once an engine is built
+// they throw an EngineError through MuJoCo's own C frames instead.
+TEST(MujocoEngine, AFatalMujocoErrorIsAnEngineErrorNotAnExit) {
+  auto sim = MakeSim(ParticleWorld(10, 0, 0), {}, Mujoco());
+  try {
+    mju_error("out of memory in a test");
+    FAIL() << "mju_error returned";
+  } catch (const EngineError& e) {
+    EXPECT_EQ(e.engine_message(), "out of memory in a test");
+  }
+  EXPECT_TRUE(sim->Step());  // thrown outside a step: the world is untouched
 }
 
 // Two runs of the same inputs are identical to the bit.

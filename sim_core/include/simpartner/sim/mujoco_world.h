@@ -14,7 +14,8 @@
 //     to a force limit) as a stiff velocity servo integrated implicitly,
 //     or the limit force itself when the servo would pass it;
 //   - stops: MuJoCo joint limits with the same per-step law as contacts.
-// MuJoCo's headers stay in sim_core/src/mujoco_world.cpp.
+// MuJoCo's headers stay in sim_core/src/mujoco_*.cpp (the world,
+// its contacts, its MJCF).
 #pragma once
 
 #include <Eigen/Dense>
@@ -94,6 +95,8 @@ class MujocoWorld : public PhysicsEngine {
 
   void Load(const std::string& xml);
   void MapElements(const model::BodyTree& tree);
+  void MapGeoms();
+  void MapJoints(const model::BodyTree& tree);
   void SetInitialVelocities();
   void FillHeightfield();
   // mj_step1 with our contact set-up between collision and constraints.
@@ -101,6 +104,12 @@ class MujocoWorld : public PhysicsEngine {
   // Kinematics and velocities of the state after a step.
   void UpdateReadouts();
   void SetUpContacts();
+  // A contact point's softness and coefficients from its pair's material
+  // (shared among `points` points when it has a physical stiffness).
+  void SetUpMaterial(const model::SurfaceProperties& combined, int points,
+                     mjContact_* contact) const;
+  // Its friction frame, and whether it slides or rolls (AppliedFriction).
+  void SetUpFriction(int index, const model::SurfaceProperties& combined);
   // Friction applied to a contact rather than solved by MuJoCo: sliding
   // (a slip one step of friction cannot stop), rolling resistance (a roll
   // it cannot stop). Per newton of load, on geom1; then as applied.
