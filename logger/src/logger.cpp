@@ -346,6 +346,9 @@ std::string Logger::StatusLine() const {
                    ? ", " + std::to_string(c.unsigned_or_forged) + " unsigned or forged"
                    : std::string()) +
               "]";
+  if (s.receiver.state_conflicts > 0)
+    line += "; " + std::to_string(s.receiver.state_conflicts) +
+            " conflicting SIM_STATEs (another sender forges states; the first of each step kept)";
   if (s.receiver.dropped_no_model > 0)
     line += "; dropped " + std::to_string(s.receiver.dropped_no_model) + " without a model";
   if (s.receiver.lost_spool_failed > 0)

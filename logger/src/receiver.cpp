@@ -601,6 +601,17 @@ std::string Receiver::CheckStepRate(const state_t& s, int64_t received_us, const
   return "";
 }
 
+void Receiver::CheckConflict(const state_t& s, const Record& record) {
+  const StateConflicts::Verdict verdict =
+      conflicts_.Check(s.simulation_id, s.step, record.payload, StateConflicts::Clock::now());
+  if (!verdict.conflict) return;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++stats_.state_conflicts;
+  }
+  if (verdict.line) reporter_->Say(*verdict.line);
+}
+
 void Receiver::Deliver(Record record, const state_t* decoded) {
   const auto model = models_.find(record.simulation_id);
   if (model == models_.end()) {
@@ -628,6 +639,7 @@ void Receiver::Deliver(Record record, const state_t* decoded) {
       Invalid(channels::kState, problem);
       return;
     }
+    CheckConflict(s, record);
     PushSilenceGap(s, shape);
     const int64_t step = s.step;
     {

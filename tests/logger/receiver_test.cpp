@@ -18,6 +18,7 @@
 #include "simpartner/command_t.hpp"
 #include "simpartner/logger/logger.h"
 #include "simpartner/logger/receiver.h"
+#include "simpartner/logger/state_conflicts.h"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "../support/encode.h"
@@ -444,6 +445,131 @@ TEST_F(ReceiverTest, AtTheSimsSpeedAStateALittleAheadIsRefused) {
   EXPECT_NE(out_.str().find("step = 5100 is 5000 steps after step 100"), std::string::npos)
       << out_.str();
   EXPECT_NE(out_.str().find("more than 2 x real time allows"), std::string::npos) << out_.str();
+}
+
+// The states of one step queued, in queue order, as body 0's x (a forged
+// state below says 99 there; the sim's say 0).
+std::vector<double> XsOfStep(const std::vector<Record>& records, int64_t step) {
+  std::vector<double> xs;
+  for (const Record& r : records) {
+    state_t s;
+    if (r.kind != RecordKind::kState) continue;
+    EXPECT_GE(s.decode(r.payload.data(), 0, static_cast<int>(r.payload.size())), 0);
+    if (s.step == step) xs.push_back(s.bodies[0].position[0]);
+  }
+  return xs;
+}
+
+size_t Occurrences(const std::string& text, const std::string& part) {
+  size_t n = 0;
+  for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+const char kConflictLine[] = "two different SIM_STATEs for one step";
+
+// Issue 25: without a key, a forged state for step 101 (x = 99) comes
+// while the sim is at step 100, within the step allowance; the sim's own
+// step 101 comes after it. The first stays first (the writer keeps the
+// first of a step); the second, different, is a conflict, counted and
+// named once with the simulation and the step.
+TEST_F(ReceiverTest, AForgedStateBeforeTheRealOneIsCountedAndNamed) {
+  Start();
+  Publish(channels::kModel, TwoBodyModel(5));
+  for (int step = 1; step <= 100; ++step) Publish(channels::kState, State(5, step));
+  state_t forged = State(5, 101);
+  forged.bodies[0].position[0] = 99;
+  Publish(channels::kState, forged);
+  for (int step = 101; step <= 103; ++step) Publish(channels::kState, State(5, step));
+  EXPECT_EQ(XsOfStep(Queued(), 101), (std::vector<double>{99, 0}));
+  EXPECT_EQ(receiver_->Stats().state_conflicts, 1u);
+  EXPECT_EQ(receiver_->Stats().BadMessages(), 0u);
+  const std::string text = out_.str();
+  EXPECT_EQ(Occurrences(text, kConflictLine), 1u) << text;
+  EXPECT_NE(text.find("bus simulation 5, step 101: two different SIM_STATEs for one step: another "
+                      "sender on the bus forges this simulation's states; the first was kept; "
+                      "with SIMPARTNER_BUS_KEY forged states are refused (docs/security.md)"),
+            std::string::npos) << text;
+}
+
+// The same state twice (a retransmit, a second path), and again with only
+// its publishing time changed: no conflict, nothing said.
+TEST_F(ReceiverTest, AnIdenticalStateAgainIsNoConflict) {
+  Start();
+  Publish(channels::kModel, TwoBodyModel(5));
+  state_t state = State(5, 1);
+  state.utime = 1000;
+  Publish(channels::kState, state);
+  Publish(channels::kState, state);
+  state.utime = 2000;
+  Publish(channels::kState, state);
+  EXPECT_EQ(XsOfStep(Queued(), 1).size(), 3u);
+  EXPECT_EQ(receiver_->Stats().state_conflicts, 0u);
+  EXPECT_EQ(out_.str().find(kConflictLine), std::string::npos) << out_.str();
+}
+
+// 50 forged states ahead (steps 101..150), then the sim's 50: 50
+// conflicts, counted, in one line (the reporter here limits nothing: the
+// conflicts' own limit of a line a second does).
+TEST_F(ReceiverTest, ManyConflictsWithinASecondGiveOneLine) {
+  Start();
+  Publish(channels::kModel, TwoBodyModel(5));
+  for (int step = 1; step <= 100; ++step) Publish(channels::kState, State(5, step));
+  for (int step = 101; step <= 150; ++step) {
+    state_t forged = State(5, step);
+    forged.bodies[0].position[0] = 99;
+    Publish(channels::kState, forged);
+  }
+  for (int step = 101; step <= 150; ++step) Publish(channels::kState, State(5, step));
+  EXPECT_EQ(receiver_->Stats().state_conflicts, 50u);
+  EXPECT_EQ(Occurrences(out_.str(), kConflictLine), 1u) << out_.str();
+}
+
+std::vector<uint8_t> EncodedState(int64_t step, double x) {
+  state_t s = State(5, step);
+  s.bodies[0].position[0] = x;
+  return Encode(s);
+}
+
+// The line a second later says how many were held back since, and the
+// total (the clock is the test's).
+TEST(StateConflictsTest, TheNextLineASecondLaterCountsTheOnesHeldBack) {
+  StateConflicts conflicts;
+  const StateConflicts::Clock::time_point t0{};
+  for (int step = 1; step <= 101; ++step) {
+    ASSERT_FALSE(conflicts.Check(5, step, EncodedState(step, 99), t0).conflict);
+  }
+  int lines = 0;
+  for (int step = 1; step <= 100; ++step) {
+    const auto verdict =
+        conflicts.Check(5, step, EncodedState(step, 0), t0 + std::chrono::milliseconds(5 * step));
+    EXPECT_TRUE(verdict.conflict);
+    if (verdict.line) ++lines;
+  }
+  EXPECT_EQ(lines, 1);
+  const auto later =
+      conflicts.Check(5, 101, EncodedState(101, 0), t0 + std::chrono::milliseconds(1500));
+  ASSERT_TRUE(later.line);
+  EXPECT_NE(later.line->find("step 101: two different SIM_STATEs"), std::string::npos) << *later.line;
+  EXPECT_NE(later.line->find("101 conflicting states so far (and 99 more conflicting states since "
+                             "the last report)"),
+            std::string::npos) << *later.line;
+  EXPECT_EQ(conflicts.count(), 101u);
+}
+
+// The memory keeps each simulation's highest 4096 steps: a forged state
+// 5,000 steps ahead is still remembered when the sim's own state of that
+// step comes, after 5,000 others; a step below the window is forgotten.
+TEST(StateConflictsTest, AStateFarAheadIsRememberedUntilItsStepComes) {
+  StateConflicts conflicts;
+  const StateConflicts::Clock::time_point t0{};
+  EXPECT_FALSE(conflicts.Check(5, 5001, EncodedState(5001, 99), t0).conflict);
+  for (int step = 1; step <= 5000; ++step) conflicts.Check(5, step, EncodedState(step, 0), t0);
+  EXPECT_TRUE(conflicts.Check(5, 5001, EncodedState(5001, 0), t0).conflict);
+  // The highest 4096 remain (906..5001): step 1 is gone, so a different
+  // state of it is not seen as a conflict.
+  EXPECT_FALSE(conflicts.Check(5, 1, EncodedState(1, 99), t0).conflict);
+  EXPECT_TRUE(conflicts.Check(5, 4999, EncodedState(4999, 99), t0).conflict);
 }
 
 TEST(StepAllowanceTest, TheSimsSpeedSetsTheFactor) {

@@ -31,6 +31,7 @@
 #include "simpartner/bus_signing.h"
 #include "simpartner/logger/record_queue.h"
 #include "simpartner/logger/reporter.h"
+#include "simpartner/logger/state_conflicts.h"
 #include "simpartner/model_t.hpp"
 #include "simpartner/sensor_reading_t.hpp"
 #include "simpartner/simulation_follower.h"
@@ -99,6 +100,7 @@ struct ReceiverStats {
   uint64_t simulations_reopened = 0;  // closed as silent, then heard again
   uint64_t model_requests = 0;
   uint64_t other_simulations = 0;  // other simulation ids heard on the bus, not logged
+  uint64_t state_conflicts = 0;    // two different SIM_STATEs for one step (state_conflicts.h)
   int64_t simulation_id = 0;       // the simulation followed (latest model)
   int64_t last_step = -1;          // its last state received
   int64_t last_publish_us = 0;     // and when the sim published it
@@ -155,6 +157,10 @@ class Receiver {
   std::optional<size_t> OpenSigned(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   // The step-number rule for a state that fits its model; "" if it passes.
   std::string CheckStepRate(const state_t& state, int64_t received_us, const ModelShape& shape);
+  // Counts and names (at most once a second) a state whose step came
+  // before with other contents; the record goes on as before (the first of
+  // a step is the one kept).
+  void CheckConflict(const state_t& state, const Record& record);
   Record MakeRecord(RecordKind kind, int64_t simulation_id, const lcm::ReceiveBuffer* buffer) const;
   // To the queue, or to the waiting list if the model is not known yet.
   // `decoded`: the state in the record, if the caller has decoded it.
@@ -234,6 +240,7 @@ class Receiver {
   uint64_t waiting_bytes_ = 0;
   std::chrono::steady_clock::time_point last_request_{};
   std::chrono::steady_clock::time_point last_waiting_check_{};  // Tick's NeedsModel
+  StateConflicts conflicts_;
   mutable std::mutex stats_mutex_;
   BadMessageCounter signature_refusals_;  // for its lines (guarded by stats_mutex_)
   ReceiverStats stats_;
