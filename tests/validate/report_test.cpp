@@ -76,6 +76,48 @@ TEST(ValidateReport, AFailedRunIsOneFailLineWithTheReason) {
   EXPECT_FALSE(r.Passed());
 }
 
+TEST(ValidateReport, LinesNameTheEngineWhenAsked) {
+  ExperimentResult r = Sample();
+  r.engine = "mujoco";
+  std::ostringstream plain, named;
+  PrintResult(r, plain);
+  PrintResult(r, named, true);
+  EXPECT_EQ(plain.str().find("mujoco"), std::string::npos) << plain.str();
+  std::istringstream lines(named.str());
+  int count = 0;
+  for (std::string line; std::getline(lines, line); ++count)
+    EXPECT_EQ(line.rfind("free_fall            mujoco error slope", 0) == 0 ||
+                  line.rfind("free_fall            mujoco radius", 0) == 0,
+              true)
+        << line;
+  EXPECT_EQ(count, 2);
+}
+
+TEST(ValidateReport, TalliesCountPassedExperimentsPerEngineInOrder) {
+  // Sample()'s first check passes, its second fails.
+  auto on = [](const char* engine, size_t checks) {
+    ExperimentResult r = Sample();
+    r.engine = engine;
+    r.checks.resize(checks);
+    return r;
+  };
+  const std::vector<ExperimentResult> results = {on("ode", 1),    on("mujoco", 1),
+                                                 on("ode", 1),    on("mujoco", 2),
+                                                 on("ode", 1),    on("mujoco", 1)};
+  const std::vector<EngineTally> tallies = TallyByEngine(results);
+  ASSERT_EQ(tallies.size(), 2u);
+  EXPECT_EQ(tallies[0].engine, "ode");
+  EXPECT_EQ(tallies[0].passed, 3);
+  EXPECT_EQ(tallies[0].run, 3);
+  EXPECT_EQ(tallies[1].engine, "mujoco");
+  EXPECT_EQ(tallies[1].passed, 2);
+  EXPECT_EQ(tallies[1].run, 3);
+  std::ostringstream out;
+  PrintTallies(tallies, out);
+  EXPECT_EQ(out.str(),
+            "3 of 3 experiments passed on ODE\n2 of 3 experiments passed on MuJoCo\n");
+}
+
 TEST(ValidateReport, WritesMarkdownAndAPngPerPlot) {
   TempDir dir;
   WriteReport(dir.path().string(), {Sample()}, "simpartner-validate --report x", Parameters());
@@ -160,10 +202,128 @@ TEST(ValidateCommandLine, ExitsOneWhenARunFails) {
   EXPECT_NE(out.find("0 of 1 experiments passed"), std::string::npos) << out;
 }
 
+// The lines of `text` that start with `prefix`.
+int LinesStartingWith(const std::string& text, const std::string& prefix) {
+  std::istringstream lines(text);
+  int count = 0;
+  for (std::string line; std::getline(lines, line);) count += line.rfind(prefix, 0) == 0 ? 1 : 0;
+  return count;
+}
+
+TEST(ValidateEngines, BothRunsEachCheckOnOdeThenMujoco) {
+  // SPEC 8's free fall: four step sizes at g 9.81 and one at g 50, five
+  // checks. Both engines integrate semi-implicitly (v += g dt, x += v dt),
+  // so both show the error slope g dt / 2 and pass.
+  std::string out, err;
+  const int status =
+      RunCli({"--only", "free_fall", "--engine", "both", "--params", "/dev/null"}, &out, &err);
+  EXPECT_EQ(status, 0) << out << err;
+  EXPECT_EQ(LinesStartingWith(out, "free_fall            ode    error slope, g "), 5) << out;
+  EXPECT_EQ(LinesStartingWith(out, "free_fall            mujoco error slope, g "), 5) << out;
+  EXPECT_LT(out.find("free_fall            ode"), out.find("free_fall            mujoco"));
+  EXPECT_NE(out.find("1 of 1 experiments passed on ODE\n1 of 1 experiments passed on MuJoCo\n"),
+            std::string::npos)
+      << out;
+}
+
+TEST(ValidateEngines, TheDefaultRunIsOdeAloneWithoutAnEngineColumn) {
+  std::string out, err;
+  ASSERT_EQ(RunCli({"--only", "free_fall_thrown", "--params", "/dev/null"}, &out, &err), 0)
+      << out << err;
+  EXPECT_EQ(LinesStartingWith(out, "free_fall_thrown     largest horizontal error"), 1) << out;
+  EXPECT_EQ(out.find("mujoco"), std::string::npos) << out;
+  EXPECT_EQ(out.find("MuJoCo"), std::string::npos) << out;
+  EXPECT_NE(out.find("1 of 1 experiments passed on ODE\n"), std::string::npos) << out;
+}
+
+TEST(ValidateEngines, TheParameterFormStillPicksTheEngine) {
+  std::string out, err;
+  ASSERT_EQ(RunCli({"--only", "free_fall_thrown", "--params", "/dev/null", "--engine=mujoco"},
+                   &out, &err),
+            0)
+      << out << err;
+  EXPECT_EQ(LinesStartingWith(out, "free_fall_thrown     largest horizontal error"), 1) << out;
+  EXPECT_NE(out.find("1 of 1 experiments passed on MuJoCo\n"), std::string::npos) << out;
+  ASSERT_EQ(RunCli({"--engine=mujoco", "--print-parameters", "--params", "/dev/null"}, &out, &err),
+            0);
+  EXPECT_NE(out.find("engine=mujoco"), std::string::npos) << out;
+}
+
+TEST(ValidateEngines, AnUnknownEngineIsAUsageError) {
+  std::string out, err;
+  EXPECT_EQ(RunCli({"--engine", "bullet", "--only", "free_fall"}, &out, &err), 2);
+  EXPECT_NE(err.find("--engine"), std::string::npos) << err;
+  EXPECT_NE(err.find("bullet"), std::string::npos) << err;
+}
+
+// models/ with a free_fall_thrown.xml whose particle flies as the shipped
+// one, beside two bodies hanging from the world and from each other: a
+// loop, which ODE runs and the MuJoCo engine refuses (it hangs bodies in
+// a tree).
+fs::path ModelsWithALoop(const fs::path& dir) {
+  fs::create_directories(dir / "worlds");
+  std::string world = ReadText(fs::path(SP_SOURCE_DIR) / "models/worlds/free_fall_thrown.xml");
+  const std::string end = "</world>";
+  const size_t at = world.rfind(end);
+  auto body = [](const char* name, int x) {
+    return std::string("<object type=\"Body\" name=\"") + name +
+           "\"><mass>1</mass><transformation><T00>1</T00><T01>0</T01><T02>0</T02><T03>" +
+           std::to_string(x) + "</T03><T10>0</T10><T11>1</T11><T12>0</T12><T13>1</T13>" +
+           "<T20>0</T20><T21>0</T21><T22>1</T22><T23>0</T23></transformation></object>\n";
+  };
+  auto joint = [](const char* name, const char* a, const char* b, double x, double y) {
+    return std::string("<joint type=\"Ball\" name=\"") + name + "\"><body1>" + a +
+           "</body1><body2>" + b + "</body2><anchor><x>" + std::to_string(x) + "</x><y>" +
+           std::to_string(y) + "</y><z>0</z></anchor></joint>\n";
+  };
+  world.insert(at, body("A", 0) + body("B", 1) + joint("AW", "A", "world", 0, 2) +
+                       joint("BW", "B", "world", 1, 2) + joint("AB", "A", "B", 0.5, 1));
+  std::ofstream(dir / "worlds/free_fall_thrown.xml") << world;
+  return dir;
+}
+
+TEST(ValidateEngines, ExitsOneWhenOnlyOneEngineFails) {
+  TempDir dir;
+  const fs::path models = ModelsWithALoop(dir.path() / "models");
+  std::string out, err;
+  const int status = RunCli({"--only", "free_fall_thrown", "--engine", "both", "--params",
+                             "/dev/null", "--models", models.string()},
+                            &out, &err);
+  EXPECT_EQ(status, 1) << out << err;
+  EXPECT_EQ(LinesStartingWith(out, "free_fall_thrown     ode    largest horizontal error"), 1)
+      << out;
+  EXPECT_EQ(LinesStartingWith(out, "free_fall_thrown     mujoco ERROR: "), 1) << out;
+  EXPECT_NE(out.find("closes a loop"), std::string::npos) << out;
+  EXPECT_NE(out.find("1 of 1 experiments passed on ODE\n0 of 1 experiments passed on MuJoCo\n"),
+            std::string::npos)
+      << out;
+  // ODE alone, from the same files, passes.
+  EXPECT_EQ(RunCli({"--only", "free_fall_thrown", "--params", "/dev/null", "--models",
+                    models.string()},
+                   &out, &err),
+            0)
+      << out << err;
+}
+
+TEST(ValidateEngines, ExitsOneWhenBothFail) {
+  // The thrown body flies at 14 m/s: a 5 m/s explosion bound faults the
+  // sim on either engine.
+  std::string out, err;
+  const int status = RunCli({"--only", "free_fall_thrown", "--engine", "both", "--params",
+                             "/dev/null", "--maxLinearVelocity=5"},
+                            &out, &err);
+  EXPECT_EQ(status, 1) << out << err;
+  EXPECT_EQ(LinesStartingWith(out, "free_fall_thrown     ode    ERROR: "), 1) << out;
+  EXPECT_EQ(LinesStartingWith(out, "free_fall_thrown     mujoco ERROR: "), 1) << out;
+  EXPECT_NE(out.find("0 of 1 experiments passed on ODE\n0 of 1 experiments passed on MuJoCo\n"),
+            std::string::npos)
+      << out;
+}
+
 TEST(ValidateCommandLine, HelpListsTheFlags) {
   std::string out, err;
   ASSERT_EQ(RunCli({"--help"}, &out, &err), 0);
-  for (const char* flag : {"--only", "--report", "--fast", "--list", "--models"})
+  for (const char* flag : {"--only", "--report", "--fast", "--list", "--models", "--engine"})
     EXPECT_NE(out.find(flag), std::string::npos) << flag;
 }
 

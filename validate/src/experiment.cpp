@@ -67,6 +67,7 @@ ExperimentResult RunExperiment(const Experiment& experiment, const Context& cont
   }
   result.name = experiment.name;
   result.title = experiment.title;
+  result.engine = context.params.engine;
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

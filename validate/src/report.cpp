@@ -1,5 +1,6 @@
 #include "simpartner/validate/report.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -33,16 +34,42 @@ std::string Cell(const std::string& text) {
 
 }  // namespace
 
-void PrintResult(const ExperimentResult& result, std::ostream& out) {
+void PrintResult(const ExperimentResult& result, std::ostream& out, bool name_engine) {
+  const std::string head =
+      Pad(result.name, 20) + (name_engine ? " " + Pad(result.engine, 6) : std::string());
   if (!result.error.empty()) {
-    out << Pad(result.name, 20) << " ERROR: " << result.error << "  FAIL\n";
+    out << head << " ERROR: " << result.error << "  FAIL\n";
     return;
   }
   for (const Check& c : result.checks) {
-    out << Pad(result.name, 20) << " " << Pad(c.label, 62) << " measured "
+    out << head << " " << Pad(c.label, 62) << " measured "
         << Pad(c.MeasuredText(), 16) << " target " << Pad(c.TargetText(), 16) << " tol "
         << Pad(c.ToleranceText(), 15) << " " << (c.pass ? "PASS" : "FAIL") << "\n";
   }
+}
+
+std::string EngineTitle(const std::string& engine) {
+  if (engine == "ode") return "ODE";
+  if (engine == "mujoco") return "MuJoCo";
+  return engine;
+}
+
+std::vector<EngineTally> TallyByEngine(const std::vector<ExperimentResult>& results) {
+  std::vector<EngineTally> tallies;
+  for (const ExperimentResult& r : results) {
+    auto it = std::find_if(tallies.begin(), tallies.end(),
+                           [&](const EngineTally& t) { return t.engine == r.engine; });
+    if (it == tallies.end()) it = tallies.insert(tallies.end(), EngineTally{r.engine, 0, 0});
+    it->passed += r.Passed() ? 1 : 0;
+    it->run += 1;
+  }
+  return tallies;
+}
+
+void PrintTallies(const std::vector<EngineTally>& tallies, std::ostream& out) {
+  for (const EngineTally& t : tallies)
+    out << t.passed << " of " << t.run << " experiments passed on " << EngineTitle(t.engine)
+        << "\n";
 }
 
 void WriteReport(const std::string& directory, const std::vector<ExperimentResult>& results,

@@ -17,7 +17,9 @@ namespace simpartner::validate {
 // What an experiment needs from the caller.
 struct Context {
   std::string models_dir;   // holds worlds/ and robots/
-  Parameters params;        // the run's parameters (defaults + parameters.txt + overrides)
+  // The run's parameters (defaults + parameters.txt + overrides);
+  // params.engine is the physics engine every SimRun of it uses.
+  Parameters params;
   // Called with a line of progress now and then during long runs; may be empty.
   std::function<void(const std::string&)> progress;
   // Shorter runs of the same experiments with the same tolerances (the
@@ -28,6 +30,7 @@ struct Context {
 struct ExperimentResult {
   std::string name;
   std::string title;
+  std::string engine;         // the physics engine it ran on: "ode", "mujoco"
   std::vector<Check> checks;
   std::vector<Plot> plots;
   // Markdown for the report: how it was run and what the figures mean;
@@ -54,9 +57,10 @@ struct Experiment {
 const std::vector<Experiment>& Experiments();
 const Experiment* FindExperiment(const std::string& name);
 
-// Runs one experiment: fills name, title and wall time, and turns an
-// exception (an explosion, a rejected command, a broken file) into a failed
-// result with the reason.
+// Runs one experiment on context.params.engine: fills name, title, engine
+// and wall time, and turns an exception (an explosion, a rejected command,
+// a broken file, an engine refusing the world) into a failed result with
+// the reason.
 ExperimentResult RunExperiment(const Experiment& experiment, const Context& context);
 
 // The experiments one by one (SPEC 8 order).

@@ -11,8 +11,23 @@
 namespace simpartner::validate {
 
 // "name  label  measured  target  tolerance  PASS|FAIL" for each check, or
-// "name  ERROR: reason" for a run that failed.
-void PrintResult(const ExperimentResult& result, std::ostream& out);
+// "name  ERROR: reason" for a run that failed; with name_engine,
+// "name  engine  ..." (a run on more than one engine).
+void PrintResult(const ExperimentResult& result, std::ostream& out, bool name_engine = false);
+
+// How the report names an engine: "ode" -> "ODE", "mujoco" -> "MuJoCo".
+std::string EngineTitle(const std::string& engine);
+
+// Passed and run experiments of one engine.
+struct EngineTally {
+  std::string engine;
+  int passed = 0;
+  int run = 0;
+};
+// One tally per engine of results, in the order the engines first appear.
+std::vector<EngineTally> TallyByEngine(const std::vector<ExperimentResult>& results);
+// "15 of 15 experiments passed on ODE", one line per engine.
+void PrintTallies(const std::vector<EngineTally>& tallies, std::ostream& out);
 
 // Writes directory/README.md and a PNG per plot (gnuplot). `command` is the
 // command line that produced it, shown in the report so it can be rerun.
