@@ -1,6 +1,7 @@
 #include "simpartner/validate/report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -59,9 +60,11 @@ std::vector<EngineTally> TallyByEngine(const std::vector<ExperimentResult>& resu
   for (const ExperimentResult& r : results) {
     auto it = std::find_if(tallies.begin(), tallies.end(),
                            [&](const EngineTally& t) { return t.engine == r.engine; });
-    if (it == tallies.end()) it = tallies.insert(tallies.end(), EngineTally{r.engine, 0, 0});
+    if (it == tallies.end()) it = tallies.insert(tallies.end(), EngineTally{r.engine, 0, 0, {}});
     it->passed += r.Passed() ? 1 : 0;
     it->run += 1;
+    it->stepping.steps += r.stepping.steps;
+    it->stepping.seconds += r.stepping.seconds;
   }
   return tallies;
 }
@@ -69,7 +72,15 @@ std::vector<EngineTally> TallyByEngine(const std::vector<ExperimentResult>& resu
 void PrintTallies(const std::vector<EngineTally>& tallies, std::ostream& out) {
   for (const EngineTally& t : tallies)
     out << t.passed << " of " << t.run << " experiments passed on " << EngineTitle(t.engine)
-        << "\n";
+        << " (mean " << MicrosecondsText(t.stepping.MicrosecondsPerStep()) << " µs per step)\n";
+}
+
+std::string MicrosecondsText(double microseconds) {
+  if (!std::isfinite(microseconds)) return "-";
+  char text[32];
+  const char* format = microseconds >= 100 ? "%.0f" : microseconds >= 10 ? "%.1f" : "%.2f";
+  std::snprintf(text, sizeof text, format, microseconds);
+  return text;
 }
 
 void WriteReport(const std::string& directory, const std::vector<ExperimentResult>& results,

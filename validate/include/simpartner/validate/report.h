@@ -18,16 +18,21 @@ void PrintResult(const ExperimentResult& result, std::ostream& out, bool name_en
 // How the report names an engine: "ode" -> "ODE", "mujoco" -> "MuJoCo".
 std::string EngineTitle(const std::string& engine);
 
-// Passed and run experiments of one engine.
+// Passed and run experiments of one engine, and their sim steps.
 struct EngineTally {
   std::string engine;
   int passed = 0;
   int run = 0;
+  StepTiming stepping;
 };
 // One tally per engine of results, in the order the engines first appear.
 std::vector<EngineTally> TallyByEngine(const std::vector<ExperimentResult>& results);
-// "15 of 15 experiments passed on ODE", one line per engine.
+// "15 of 15 experiments passed on ODE (mean 183 µs per step)", one line
+// per engine.
 void PrintTallies(const std::vector<EngineTally>& tallies, std::ostream& out);
+
+// A step's wall time for people: "183", "24.1", "0.35" (µs); "-" for NaN.
+std::string MicrosecondsText(double microseconds);
 
 // Writes directory/README.md and a PNG per plot (gnuplot). `command` is the
 // command line that produced it, shown in the report so it can be rerun.
