@@ -38,6 +38,7 @@ class TempDir {
 ExperimentResult Sample() {
   ExperimentResult r;
   r.name = "free_fall";
+  r.engine = "ode";
   r.title = "Free fall";
   r.checks.push_back(Relative("error slope", 0.004905, 0.004905, 0.01, "m/s"));
   r.checks.push_back(Relative("radius", 4.72, 4.01, 0.10, "m"));
@@ -131,8 +132,14 @@ TEST(ValidateReport, WritesMarkdownAndAPngPerPlot) {
   TempDir dir;
   WriteReport(dir.path().string(), {Sample()}, "simpartner-validate --report x", Parameters());
   const std::string page = ReadText(dir.path() / "README.md");
-  EXPECT_NE(page.find("| [free_fall](#free_fall) | error slope | 0.004905 m/s"), std::string::npos);
-  EXPECT_NE(page.find("**FAIL**"), std::string::npos);
+  EXPECT_NE(page.find("| [free_fall](#free_fall) | error slope | 0.004905 m/s | ±1 % | "
+                      "0.004905 m/s PASS |"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| [free_fall](#free_fall) | radius | 4.01 m | ±10 % | 4.72 m **FAIL** |"),
+            std::string::npos)
+      << page;
+  EXPECT_EQ(page.find("MuJoCo"), std::string::npos);
   EXPECT_NE(page.find("![error vs time](free_fall.png)"), std::string::npos);
   EXPECT_NE(page.find("Why it is so."), std::string::npos);
   EXPECT_NE(page.find("simpartner-validate --report x"), std::string::npos);
@@ -140,6 +147,60 @@ TEST(ValidateReport, WritesMarkdownAndAPngPerPlot) {
   const std::string png = ReadText(dir.path() / "free_fall.png");
   ASSERT_GT(png.size(), 1000u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+// The same experiment on ODE (both checks pass: 4.02 m is within 10 % of
+// 4.01 m) and on MuJoCo (4.72 m is not).
+std::vector<ExperimentResult> OnBothEngines() {
+  ExperimentResult ode = Sample();
+  ode.checks[1] = Relative("radius", 4.02, 4.01, 0.10, "m");
+  ode.stepping = StepTiming{2000, 0.001};  // 0.5 µs a step
+  ExperimentResult mujoco = Sample();
+  mujoco.engine = "mujoco";
+  mujoco.stepping = StepTiming{2000, 0.004};  // 2 µs
+  return {ode, mujoco};
+}
+
+TEST(ValidateReport, BothEnginesGetAColumnEachAndTheirOwnPlots) {
+  TempDir dir;
+  WriteReport(dir.path().string(), OnBothEngines(), "simpartner-validate --engine both",
+              Parameters());
+  const std::string page = ReadText(dir.path() / "README.md");
+  EXPECT_NE(page.find("Experiments passed: ODE 1 of 1, MuJoCo 0 of 1."), std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| experiment | ODE | µs per step | MuJoCo | µs per step |"),
+            std::string::npos);
+  EXPECT_NE(page.find("| [free_fall](#free_fall) | PASS | 0.50 | **FAIL** | 2.00 |"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| experiment | check | target | tolerance | ODE | MuJoCo |"),
+            std::string::npos);
+  EXPECT_NE(page.find("| [free_fall](#free_fall) | radius | 4.01 m | ±10 % | 4.02 m PASS | "
+                      "4.72 m **FAIL** |"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("![error vs time](free_fall.png)"), std::string::npos);
+  EXPECT_NE(page.find("![error vs time](free_fall_mujoco.png)"), std::string::npos);
+  EXPECT_EQ(ReadText(dir.path() / "free_fall_mujoco.png").substr(1, 3), "PNG");
+  EXPECT_EQ(ReadText(dir.path() / "free_fall.png").substr(1, 3), "PNG");
+}
+
+TEST(ValidateReport, ARunThatFailedOnOneEngineKeepsTheOthersFigures) {
+  std::vector<ExperimentResult> results = OnBothEngines();
+  results[1].checks.clear();
+  results[1].plots.clear();
+  results[1].error = "MuJoCo failed: a loop";
+  TempDir dir;
+  WriteReport(dir.path().string(), results, "cmd", Parameters());
+  const std::string page = ReadText(dir.path() / "README.md");
+  EXPECT_NE(page.find("| [free_fall](#free_fall) | the run: MuJoCo failed: a loop | | | - | "
+                      "**FAIL** |"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| [free_fall](#free_fall) | radius | 4.01 m | ±10 % | 4.02 m PASS | "
+                      "run failed **FAIL** |"),
+            std::string::npos)
+      << page;
 }
 
 TEST(ValidateReport, AnUnwritableDirectoryIsAnError) {

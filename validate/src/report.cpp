@@ -83,66 +83,193 @@ std::string MicrosecondsText(double microseconds) {
   return text;
 }
 
+namespace {
+
+// The results of one experiment, one per engine (null where that engine
+// did not run it), in the order the experiments ran.
+struct ExperimentRuns {
+  const ExperimentResult* first = nullptr;
+  std::vector<const ExperimentResult*> by_engine;
+};
+
+std::vector<ExperimentRuns> GroupByExperiment(const std::vector<ExperimentResult>& results,
+                                              const std::vector<EngineTally>& engines) {
+  std::vector<ExperimentRuns> groups;
+  for (const ExperimentResult& r : results) {
+    auto it = std::find_if(groups.begin(), groups.end(),
+                           [&](const ExperimentRuns& g) { return g.first->name == r.name; });
+    if (it == groups.end())
+      it = groups.insert(groups.end(), ExperimentRuns{&r, {engines.size(), nullptr}});
+    for (size_t e = 0; e < engines.size(); ++e)
+      if (engines[e].engine == r.engine) it->by_engine[e] = &r;
+  }
+  return groups;
+}
+
+// The check labels of an experiment on all its engines, each once, in order.
+std::vector<std::string> CheckLabels(const ExperimentRuns& runs) {
+  std::vector<std::string> labels;
+  for (const ExperimentResult* r : runs.by_engine)
+    if (r != nullptr)
+      for (const Check& c : r->checks)
+        if (std::find(labels.begin(), labels.end(), c.label) == labels.end())
+          labels.push_back(c.label);
+  return labels;
+}
+
+const Check* FindCheck(const ExperimentResult* r, const std::string& label) {
+  if (r == nullptr) return nullptr;
+  for (const Check& c : r->checks)
+    if (c.label == label) return &c;
+  return nullptr;
+}
+
+std::string Link(const std::string& name) { return "[" + name + "](#" + name + ")"; }
+
+std::string Verdict(bool pass) { return pass ? "PASS" : "**FAIL**"; }
+
+// "ODE 15 of 15, MuJoCo 7 of 15"
+std::string TallyText(const std::vector<EngineTally>& tallies) {
+  std::string text;
+  for (const EngineTally& t : tallies)
+    text += (text.empty() ? "" : ", ") + EngineTitle(t.engine) + " " + std::to_string(t.passed) +
+            " of " + std::to_string(t.run);
+  return text;
+}
+
+// An engine's plots are drawn as `name_<engine>.png`, ODE's (the
+// validated default's) under their own names.
+Plot OnEngine(Plot plot, const std::string& engine) {
+  if (engine == "ode") return plot;
+  const fs::path file(plot.file);
+  plot.file = file.stem().string() + "_" + engine + file.extension().string();
+  return plot;
+}
+
+void WriteHeader(std::ostream& out, const std::vector<ExperimentResult>& results,
+                 const std::vector<EngineTally>& tallies, const std::string& command,
+                 const Parameters& params) {
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+  double wall = 0.0;
+  for (const ExperimentResult& r : results) wall += r.wall_seconds;
+  out << "# SimPartner validation\n\n"
+      << "Written by `" << command << "` on " << date << " (experiments passed: "
+      << TallyText(tallies) << "; " << Seconds(wall)
+      << " of computing). Each experiment of SPEC 8, and two beyond the original, runs a "
+      << "shipped world from `models/worlds/` through the sim library exactly as "
+      << "`simpartner-sim` runs it (loader, `Simulation::Submit` with the step each command "
+      << "applies at, `Simulation::Step`), as fast as possible, with step " << params.stepsize
+      << " s (ODE: the " << params.stepper
+      << " stepper) unless an experiment says otherwise, on each engine with the same "
+      << "settings. Tolerances are the team's (issue 5), the same for every engine; where a "
+      << "target is physically wrong, the experiment's section says why, and the check still "
+      << "fails. µs per step is the wall time of `Simulation::Step` alone, the mean over all "
+      << "the experiment's steps.\n\n";
+}
+
+// Per experiment and engine: the verdict and the time of a step.
+void WriteSummary(std::ostream& out, const std::vector<ExperimentRuns>& groups,
+                  const std::vector<EngineTally>& tallies) {
+  out << "## Summary\n\nExperiments passed: " << TallyText(tallies) << ".\n\n| experiment |";
+  for (const EngineTally& t : tallies) out << " " << EngineTitle(t.engine) << " | µs per step |";
+  out << "\n|---|";
+  for (size_t e = 0; e < tallies.size(); ++e) out << "---|---:|";
+  out << "\n";
+  for (const ExperimentRuns& g : groups) {
+    out << "| " << Link(g.first->name) << " |";
+    for (const ExperimentResult* r : g.by_engine) {
+      if (r == nullptr) out << " - | - |";
+      else out << " " << Verdict(r->Passed()) << " | "
+               << MicrosecondsText(r->stepping.MicrosecondsPerStep()) << " |";
+    }
+    out << "\n";
+  }
+}
+
+// The figure and verdict of one check (or the failed run) on one engine.
+std::string CheckCell(const ExperimentResult* r, const std::string& label) {
+  if (r != nullptr && !r->error.empty()) return "run failed **FAIL**";
+  const Check* c = FindCheck(r, label);
+  if (c == nullptr) return "-";
+  return Cell(c->MeasuredText()) + " " + Verdict(c->pass);
+}
+
+// Per check: target, tolerance and, per engine, the figure and verdict.
+void WriteChecks(std::ostream& out, const std::vector<ExperimentRuns>& groups,
+                 const std::vector<EngineTally>& tallies) {
+  out << "\n## Checks\n\n| experiment | check | target | tolerance |";
+  for (const EngineTally& t : tallies) out << " " << EngineTitle(t.engine) << " |";
+  out << "\n|---|---|---|---|";
+  for (size_t e = 0; e < tallies.size(); ++e) out << "---|";
+  out << "\n";
+  for (const ExperimentRuns& g : groups) {
+    for (const ExperimentResult* failed : g.by_engine) {
+      if (failed == nullptr || failed->error.empty()) continue;
+      out << "| " << Link(g.first->name) << " | the run: " << Cell(failed->error) << " | | |";
+      for (const ExperimentResult* r : g.by_engine)
+        out << " " << (r == failed ? "**FAIL**" : "-") << " |";
+      out << "\n";
+    }
+    for (const std::string& label : CheckLabels(g)) {
+      const ExperimentResult* any = nullptr;
+      for (const ExperimentResult* r : g.by_engine)
+        if (any == nullptr && FindCheck(r, label) != nullptr) any = r;
+      const Check& c = *FindCheck(any, label);
+      out << "| " << Link(g.first->name) << " | " << Cell(label) << " | "
+          << Cell(c.TargetText()) << " | " << Cell(c.ToleranceText()) << " |";
+      for (const ExperimentResult* r : g.by_engine) out << " " << CheckCell(r, label) << " |";
+      out << "\n";
+    }
+  }
+}
+
+// An experiment's section: verdicts, notes and plots per engine.
+void WriteSection(std::ostream& out, const ExperimentRuns& g, size_t engines) {
+  const ExperimentResult& first = *g.first;
+  out << "\n<a id=\"" << first.name << "\"></a>\n## " << first.name << ": " << first.title
+      << "\n\n";
+  for (const ExperimentResult* r : g.by_engine) {
+    if (r == nullptr) continue;
+    out << (engines > 1 ? EngineTitle(r->engine) + ": " : std::string("Verdict: "))
+        << (r->Passed() ? "**PASS**" : "**FAIL**") << " (" << Seconds(r->sim_seconds)
+        << " simulated in " << Seconds(r->wall_seconds) << ", "
+        << MicrosecondsText(r->stepping.MicrosecondsPerStep()) << " µs per step; "
+        << "`simpartner-validate --only " << r->name << " --engine " << r->engine << "`).\n\n";
+  }
+  if (!first.notes.empty()) out << first.notes << "\n\n";
+  for (const ExperimentResult* r : g.by_engine) {
+    if (r == nullptr) continue;
+    if (engines > 1) out << "### On " << EngineTitle(r->engine) << "\n\n";
+    if (!r->error.empty()) out << "The run failed: `" << r->error << "`\n\n";
+    if (r != &first && !r->notes.empty() && r->notes != first.notes) out << r->notes << "\n\n";
+    for (const Plot& p : r->plots) {
+      const Plot drawn = OnEngine(p, r->engine);
+      out << "![" << drawn.title << "](" << drawn.file << ")\n\n";
+    }
+  }
+}
+
+}  // namespace
+
 void WriteReport(const std::string& directory, const std::vector<ExperimentResult>& results,
                  const std::string& command, const Parameters& params) {
   std::error_code error;
   fs::create_directories(directory, error);
   if (error) throw Error(directory + ": cannot create the report directory: " + error.message());
   for (const ExperimentResult& r : results)
-    for (const Plot& p : r.plots) DrawPlot(p, directory);
+    for (const Plot& p : r.plots) DrawPlot(OnEngine(p, r.engine), directory);
 
   const fs::path page = fs::path(directory) / "README.md";
   std::ofstream out(page);
   if (!out) throw Error(page.string() + ": cannot write the report");
-  const std::time_t now = std::time(nullptr);
-  char date[32];
-  std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
-  int passed = 0;
-  double wall = 0.0;
-  for (const ExperimentResult& r : results) {
-    passed += r.Passed() ? 1 : 0;
-    wall += r.wall_seconds;
-  }
-  out << "# SimPartner validation\n\n"
-      << "Written by `" << command << "` on " << date << " (" << passed << " of "
-      << results.size() << " experiments passed, " << Seconds(wall)
-      << " of computing). Each experiment of SPEC 8, and two beyond the original, runs a "
-      << "shipped world from `models/worlds/` through the sim library exactly as "
-      << "`simpartner-sim` runs it (loader, `Simulation::Submit` with the step each command "
-      << "applies at, `Simulation::Step`), as fast as possible, with step "
-      << params.stepsize << " s and the " << params.stepper
-      << " stepper unless an experiment says otherwise. Tolerances are the team's (issue 5); "
-      << "where a target is physically wrong, the experiment's section says why, and the "
-      << "check still fails.\n\n";
-  out << "## Summary\n\n| experiment | check | measured | target | tolerance | verdict |\n"
-      << "|---|---|---|---|---|---|\n";
-  for (const ExperimentResult& r : results) {
-    if (!r.error.empty()) {
-      out << "| [" << r.name << "](#" << r.name << ") | run failed: " << Cell(r.error)
-          << " | | | | **FAIL** |\n";
-      continue;
-    }
-    for (const Check& c : r.checks) {
-      out << "| [" << r.name << "](#" << r.name << ") | " << Cell(c.label) << " | "
-          << Cell(c.MeasuredText()) << " | " << Cell(c.TargetText()) << " | "
-          << Cell(c.ToleranceText()) << " | " << (c.pass ? "PASS" : "**FAIL**") << " |\n";
-    }
-  }
-  std::string failing;
-  for (const ExperimentResult& r : results)
-    if (!r.Passed()) failing += (failing.empty() ? "" : ", ") + ("[" + r.name + "](#" + r.name + ")");
-  if (!failing.empty())
-    out << "\nFailing: " << failing
-        << ". Each section says whether the simulation or the target is at fault.\n";
-  for (const ExperimentResult& r : results) {
-    out << "\n<a id=\"" << r.name << "\"></a>\n## " << r.name << ": " << r.title << "\n\n";
-    out << "Verdict: " << (r.Passed() ? "**PASS**" : "**FAIL**") << " (" << Seconds(r.sim_seconds)
-        << " simulated in " << Seconds(r.wall_seconds) << "; `simpartner-validate --only "
-        << r.name << "`).\n\n";
-    if (!r.error.empty()) out << "The run failed: `" << r.error << "`\n\n";
-    if (!r.notes.empty()) out << r.notes << "\n\n";
-    for (const Plot& p : r.plots) out << "![" << p.title << "](" << p.file << ")\n\n";
-  }
+  const std::vector<EngineTally> tallies = TallyByEngine(results);
+  const std::vector<ExperimentRuns> groups = GroupByExperiment(results, tallies);
+  WriteHeader(out, results, tallies, command, params);
+  WriteSummary(out, groups, tallies);
+  WriteChecks(out, groups, tallies);
+  for (const ExperimentRuns& g : groups) WriteSection(out, g, tallies.size());
   if (!out) throw Error(page.string() + ": writing the report failed");
 }
 
