@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "simpartner/validate/cli.h"
+#include "simpartner/validate/explanations.h"
 #include "simpartner/validate/report.h"
 #include "../support/text_file.h"
 
@@ -136,7 +137,8 @@ TEST(ValidateReport, WritesMarkdownAndAPngPerPlot) {
                       "0.004905 m/s PASS |"),
             std::string::npos)
       << page;
-  EXPECT_NE(page.find("| [free_fall](#free_fall) | radius | 4.01 m | ±10 % | 4.72 m **FAIL** |"),
+  EXPECT_NE(page.find("| [free_fall](#free_fall) | radius | 4.01 m | ±10 % | 4.72 m **FAIL** (not yet "
+                      "explained) |"),
             std::string::npos)
       << page;
   EXPECT_EQ(page.find("MuJoCo"), std::string::npos);
@@ -176,7 +178,7 @@ TEST(ValidateReport, BothEnginesGetAColumnEachAndTheirOwnPlots) {
   EXPECT_NE(page.find("| experiment | check | target | tolerance | ODE | MuJoCo |"),
             std::string::npos);
   EXPECT_NE(page.find("| [free_fall](#free_fall) | radius | 4.01 m | ±10 % | 4.02 m PASS | "
-                      "4.72 m **FAIL** |"),
+                      "4.72 m **FAIL** (not yet explained) |"),
             std::string::npos)
       << page;
   EXPECT_NE(page.find("![error vs time](free_fall.png)"), std::string::npos);
@@ -194,13 +196,82 @@ TEST(ValidateReport, ARunThatFailedOnOneEngineKeepsTheOthersFigures) {
   WriteReport(dir.path().string(), results, "cmd", Parameters());
   const std::string page = ReadText(dir.path() / "README.md");
   EXPECT_NE(page.find("| [free_fall](#free_fall) | the run: MuJoCo failed: a loop | | | - | "
-                      "**FAIL** |"),
+                      "**FAIL** (not yet explained) |"),
             std::string::npos)
       << page;
   EXPECT_NE(page.find("| [free_fall](#free_fall) | radius | 4.01 m | ±10 % | 4.02 m PASS | "
                       "run failed **FAIL** |"),
             std::string::npos)
       << page;
+}
+
+TEST(ValidateExplanations, TheShippedTableNamesKnownExperimentsAndEngines) {
+  EXPECT_EQ(ExplanationProblems(Explanations()), std::vector<std::string>{});
+  const std::vector<Explanation> bad = {
+      {"circle_equl", "radius", "mujoco", std::string(40, 'x')},
+      {"circle_equal", "radius", "bullet", "soft"}};
+  EXPECT_EQ(ExplanationProblems(bad),
+            (std::vector<std::string>{
+                "circle_equl / 'radius' / mujoco: no such experiment",
+                "circle_equal / 'radius' / bullet: no such engine",
+                "circle_equal / 'radius' / bullet: the cause 'soft' is too short to be one"}));
+}
+
+// One cause for the circle's thesis-friction checks on MuJoCo.
+const std::vector<Explanation>& CircleTable() {
+  static const std::vector<Explanation> table = {
+      {"circle_equal", "thesis friction", "mujoco", "Because of the friction cone, here."}};
+  return table;
+}
+
+// circle_equal's thesis-friction check passing on ODE and, on MuJoCo,
+// passing or failing; an isotropic check failing on MuJoCo.
+std::vector<ExperimentResult> CircleOnBothEngines(bool mujoco_passes) {
+  ExperimentResult ode;
+  ode.name = "circle_equal";
+  ode.engine = "ode";
+  ode.checks.push_back(Relative("radius, thesis friction", 4.0, 4.0, 0.01, "m"));
+  ode.checks.push_back(Relative("radius, isotropic mu 1", 1.0, 1.0, 0.01, "m"));
+  ExperimentResult mujoco = ode;
+  mujoco.engine = "mujoco";
+  mujoco.checks[0] = Relative("radius, thesis friction", mujoco_passes ? 4.0 : 4.5, 4.0, 0.01, "m");
+  mujoco.checks[1] = Relative("radius, isotropic mu 1", 2.0, 1.0, 0.01, "m");
+  return {ode, mujoco};
+}
+
+TEST(ValidateExplanations, AFailingCheckLinksToItsEnginesExplanation) {
+  const Explanation* why = &CircleTable().front();
+  EXPECT_EQ(Explain(CircleTable(), "circle_equal", "radius, thesis friction", "mujoco"), why);
+  EXPECT_EQ(Explain(CircleTable(), "circle_equal", "radius, thesis friction", "ode"), nullptr);
+  EXPECT_EQ(Explain(CircleTable(), "circle_equal", "radius, isotropic mu 1", "mujoco"), nullptr);
+  TempDir dir;
+  WriteReport(dir.path().string(), CircleOnBothEngines(false), "cmd", Parameters(),
+              CircleTable());
+  const std::string page = ReadText(dir.path() / "README.md");
+  EXPECT_NE(page.find("| 4 m PASS | 4.5 m **FAIL** ([why](#why-1)) |"), std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| 1 m PASS | 2 m **FAIL** (not yet explained) |"), std::string::npos)
+      << page;
+  EXPECT_NE(page.find("<a id=\"why-1\"></a>\n**1.** Because of the friction cone, here.\n\n"
+                      "- [circle_equal](#circle_equal) on MuJoCo, radius, thesis friction: 4.5 m "
+                      "against 4 m ±1 %\n"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("- [circle_equal](#circle_equal) on MuJoCo, radius, isotropic mu 1: 2 m "
+                      "against 1 m ±1 %\n"),
+            std::string::npos)
+      << page;
+}
+
+TEST(ValidateExplanations, NeverShowBesideAPass) {
+  std::vector<ExperimentResult> results = CircleOnBothEngines(true);
+  results[1].checks.pop_back();  // only the explained check, and it passes
+  TempDir dir;
+  WriteReport(dir.path().string(), results, "cmd", Parameters(), CircleTable());
+  const std::string page = ReadText(dir.path() / "README.md");
+  EXPECT_EQ(page.find("Why checks fail"), std::string::npos) << page;
+  EXPECT_EQ(page.find("friction cone"), std::string::npos);
+  EXPECT_EQ(page.find("**FAIL**"), std::string::npos);
 }
 
 TEST(ValidateReport, AnUnwritableDirectoryIsAnError) {

@@ -90,6 +90,10 @@ std::vector<ExperimentResult> RunAll(const std::vector<const Experiment*>& selec
             << ": slow experiment, progress follows" << std::endl;
       Context on = context;
       on.params.engine = engine;
+      if (several && context.progress)
+        on.progress = [&context, engine](const std::string& line) {
+          context.progress(line + " (" + EngineTitle(engine) + ")");
+        };
       results.push_back(RunExperiment(*e, on));
       PrintResult(results.back(), out, several);
       out.flush();

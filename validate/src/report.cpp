@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "simpartner/diagnostic.h"
+#include "simpartner/validate/explanations.h"
 
 namespace simpartner::validate {
 namespace {
@@ -188,17 +189,52 @@ void WriteSummary(std::ostream& out, const std::vector<ExperimentRuns>& groups,
   }
 }
 
+// The failing checks of a report, each with its explanation (or none),
+// numbered in the order the checks table meets them.
+struct Failure {
+  const ExperimentResult* run = nullptr;
+  const Check* check = nullptr;  // null: the run failed
+  const Explanation* why = nullptr;
+};
+
+class Failures {
+ public:
+  explicit Failures(const std::vector<Explanation>& table) : table_(table) {}
+  // " ([why](#why-2))" or " (not yet explained)", for a failure's cell.
+  std::string Add(const ExperimentResult* run, const Check* check) {
+    const Explanation* why = Explain(table_, run->name, check ? check->label : "", run->engine);
+    failures_.push_back(Failure{run, check, why});
+    if (why == nullptr) return " (not yet explained)";
+    return " ([why](#why-" + std::to_string(Number(why)) + "))";
+  }
+  const std::vector<Failure>& all() const { return failures_; }
+  // 1, 2, ... per explanation, in the order of their first failure.
+  int Number(const Explanation* why) {
+    const auto it = std::find(order_.begin(), order_.end(), why);
+    if (it != order_.end()) return static_cast<int>(it - order_.begin()) + 1;
+    order_.push_back(why);
+    return static_cast<int>(order_.size());
+  }
+  const std::vector<const Explanation*>& order() const { return order_; }
+
+ private:
+  const std::vector<Explanation>& table_;
+  std::vector<Failure> failures_;
+  std::vector<const Explanation*> order_;
+};
+
 // The figure and verdict of one check (or the failed run) on one engine.
-std::string CheckCell(const ExperimentResult* r, const std::string& label) {
+std::string CheckCell(const ExperimentResult* r, const std::string& label, Failures* failures) {
   if (r != nullptr && !r->error.empty()) return "run failed **FAIL**";
   const Check* c = FindCheck(r, label);
   if (c == nullptr) return "-";
-  return Cell(c->MeasuredText()) + " " + Verdict(c->pass);
+  const std::string cell = Cell(c->MeasuredText()) + " " + Verdict(c->pass);
+  return c->pass ? cell : cell + failures->Add(r, c);
 }
 
 // Per check: target, tolerance and, per engine, the figure and verdict.
 void WriteChecks(std::ostream& out, const std::vector<ExperimentRuns>& groups,
-                 const std::vector<EngineTally>& tallies) {
+                 const std::vector<EngineTally>& tallies, Failures* failures) {
   out << "\n## Checks\n\n| experiment | check | target | tolerance |";
   for (const EngineTally& t : tallies) out << " " << EngineTitle(t.engine) << " |";
   out << "\n|---|---|---|---|";
@@ -209,7 +245,7 @@ void WriteChecks(std::ostream& out, const std::vector<ExperimentRuns>& groups,
       if (failed == nullptr || failed->error.empty()) continue;
       out << "| " << Link(g.first->name) << " | the run: " << Cell(failed->error) << " | | |";
       for (const ExperimentResult* r : g.by_engine)
-        out << " " << (r == failed ? "**FAIL**" : "-") << " |";
+        out << " " << (r == failed ? "**FAIL**" + failures->Add(r, nullptr) : "-") << " |";
       out << "\n";
     }
     for (const std::string& label : CheckLabels(g)) {
@@ -219,9 +255,41 @@ void WriteChecks(std::ostream& out, const std::vector<ExperimentRuns>& groups,
       const Check& c = *FindCheck(any, label);
       out << "| " << Link(g.first->name) << " | " << Cell(label) << " | "
           << Cell(c.TargetText()) << " | " << Cell(c.ToleranceText()) << " |";
-      for (const ExperimentResult* r : g.by_engine) out << " " << CheckCell(r, label) << " |";
+      for (const ExperimentResult* r : g.by_engine)
+        out << " " << CheckCell(r, label, failures) << " |";
       out << "\n";
     }
+  }
+}
+
+std::string FailureText(const Failure& f) {
+  std::string text = Link(f.run->name) + " on " + EngineTitle(f.run->engine) + ", ";
+  if (f.check == nullptr) return text + "the run";
+  const std::string tolerance = f.check->ToleranceText();
+  return text + f.check->label + ": " + f.check->MeasuredText() + " against " +
+         f.check->TargetText() + (tolerance == "-" ? "" : " " + tolerance);
+}
+
+// Every failing check under its engine's explanation, then those without.
+void WriteWhy(std::ostream& out, const Failures& failures) {
+  if (failures.all().empty()) return;
+  out << "\n## Why checks fail\n\nFrom the engines' documented models "
+      << "(`validate/src/explanations.cpp`), never by a tolerance: each engine is held to the "
+      << "same targets.\n";
+  for (size_t k = 0; k < failures.order().size(); ++k) {
+    const Explanation* why = failures.order()[k];
+    out << "\n<a id=\"why-" << k + 1 << "\"></a>\n**" << k + 1 << ".** " << why->why
+        << "\n\n";
+    for (const Failure& f : failures.all())
+      if (f.why == why) out << "- " << FailureText(f) << "\n";
+  }
+  bool heading = false;
+  for (const Failure& f : failures.all()) {
+    if (f.why != nullptr) continue;
+    if (!heading) out << "\nNot yet explained (for an experiment's own target, its section "
+                         "says whether the target is at fault):\n\n";
+    heading = true;
+    out << "- " << FailureText(f) << "\n";
   }
 }
 
@@ -254,7 +322,8 @@ void WriteSection(std::ostream& out, const ExperimentRuns& g, size_t engines) {
 }  // namespace
 
 void WriteReport(const std::string& directory, const std::vector<ExperimentResult>& results,
-                 const std::string& command, const Parameters& params) {
+                 const std::string& command, const Parameters& params,
+                 const std::vector<Explanation>& explanations) {
   std::error_code error;
   fs::create_directories(directory, error);
   if (error) throw Error(directory + ": cannot create the report directory: " + error.message());
@@ -268,7 +337,9 @@ void WriteReport(const std::string& directory, const std::vector<ExperimentResul
   const std::vector<ExperimentRuns> groups = GroupByExperiment(results, tallies);
   WriteHeader(out, results, tallies, command, params);
   WriteSummary(out, groups, tallies);
-  WriteChecks(out, groups, tallies);
+  Failures failures(explanations);
+  WriteChecks(out, groups, tallies, &failures);
+  WriteWhy(out, failures);
   for (const ExperimentRuns& g : groups) WriteSection(out, g, tallies.size());
   if (!out) throw Error(page.string() + ": writing the report failed");
 }

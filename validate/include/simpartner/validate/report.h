@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "simpartner/validate/experiment.h"
+#include "simpartner/validate/explanations.h"
 
 namespace simpartner::validate {
 
@@ -36,9 +37,11 @@ std::string MicrosecondsText(double microseconds);
 
 // Writes directory/README.md and a PNG per plot (gnuplot). `command` is the
 // command line that produced it, shown in the report so it can be rerun.
-// Throws simpartner::Error when the directory cannot be written or a plot
-// cannot be drawn.
+// A failing check gets its explanation from `explanations`, or "not yet
+// explained". Throws simpartner::Error when the directory cannot be
+// written or a plot cannot be drawn.
 void WriteReport(const std::string& directory, const std::vector<ExperimentResult>& results,
-                 const std::string& command, const Parameters& params);
+                 const std::string& command, const Parameters& params,
+                 const std::vector<Explanation>& explanations = Explanations());
 
 }  // namespace simpartner::validate
