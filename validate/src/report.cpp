@@ -223,12 +223,17 @@ class Failures {
   std::vector<const Explanation*> order_;
 };
 
-// The figure and verdict of one check (or the failed run) on one engine.
-std::string CheckCell(const ExperimentResult* r, const std::string& label, Failures* failures) {
+// The figure and verdict of one check (or the failed run) on one engine;
+// its own target and tolerance too where they differ from the row's (a
+// target computed from the run: the steady state of the same vehicle).
+std::string CheckCell(const ExperimentResult* r, const Check& row, Failures* failures) {
   if (r != nullptr && !r->error.empty()) return "run failed **FAIL**";
-  const Check* c = FindCheck(r, label);
+  const Check* c = FindCheck(r, row.label);
   if (c == nullptr) return "-";
-  const std::string cell = Cell(c->MeasuredText()) + " " + Verdict(c->pass);
+  std::string cell = Cell(c->MeasuredText());
+  if (c->TargetText() != row.TargetText() || c->ToleranceText() != row.ToleranceText())
+    cell += " (target " + Cell(c->TargetText()) + " " + Cell(c->ToleranceText()) + ")";
+  cell += " " + Verdict(c->pass);
   return c->pass ? cell : cell + failures->Add(r, c);
 }
 
@@ -256,7 +261,7 @@ void WriteChecks(std::ostream& out, const std::vector<ExperimentRuns>& groups,
       out << "| " << Link(g.first->name) << " | " << Cell(label) << " | "
           << Cell(c.TargetText()) << " | " << Cell(c.ToleranceText()) << " |";
       for (const ExperimentResult* r : g.by_engine)
-        out << " " << CheckCell(r, label, failures) << " |";
+        out << " " << CheckCell(r, c, failures) << " |";
       out << "\n";
     }
   }
