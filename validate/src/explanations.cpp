@@ -8,12 +8,34 @@ namespace simpartner::validate {
 // (sim_core/include/simpartner/sim/mujoco_world.h), its sources'
 // comments, docs/engines.md, docs/contacts.md. Add one only when that
 // model explains the figure, and take it out when the engine changes the
-// model it rests on. Taken out so far: the thesis-friction circle on
+// model it rests on (docs/engines.md is the MuJoCo engine's; links are
+// relative to docs/validation/, where the report is kept). Taken out so
+// far: the thesis-friction circle on
 // MuJoCo (2bcdacc put anisotropic friction on Coulomb's ellipse, which
 // needs a sideways slip to push across; eff294b made it ODE's box and
 // the circle passes).
 const std::vector<Explanation>& Explanations() {
-  static const std::vector<Explanation> kExplanations = {};
+  static const std::vector<Explanation> kExplanations = {
+      {"circle_equal", "isotropic", "mujoco",
+       "Sliding friction applied with a load from a solve without friction "
+       "([docs/engines.md](../engines.md#validation-on-both-engines)). Scrubbing wheels slide "
+       "and hold in turn. A point that slides gets no friction rows in MuJoCo's solve: a "
+       "first solve without them gives its load N, and mu N against the slip is applied "
+       "before the solve that counts. ODE solves the load and the friction of every point "
+       "together, so on MuJoCo the skid-steer circle's steady state comes out wider."},
+      {"circle_differential", "held rim edges", "mujoco",
+       "The check's wheel model. It takes each gen1 wheel to stand on its two rim edges, as "
+       "ODE's cylinder-plane test puts the points, and splits the wheel's load between them "
+       "from its contact torque. MuJoCo's cylinder-plane collider puts its points elsewhere "
+       "([docs/engines.md](../engines.md#validation-on-both-engines)), so the split, and "
+       "the friction the held edges need, do not describe that run."},
+      {"pole_task", "pole speed", "mujoco",
+       "One contact point for a cylinder on a box. MuJoCo 2.2's convex collider gives the "
+       "pole one point on each cube, so it lies on two points and can roll about the line "
+       "through them; ODE's cylinder-box test gives it a line of points. MuJoCo's multi-point "
+       "option held the pole but made wheels bounce, and was not kept "
+       "([docs/engines.md](../engines.md#validation-on-both-engines))."},
+  };
   return kExplanations;
 }
 
