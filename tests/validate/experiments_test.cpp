@@ -59,6 +59,19 @@ TEST(Validation, FreeFallErrorSlopeIsGDtOverTwo) {
   EXPECT_TRUE(r.Passed());
 }
 
+TEST(Validation, StepTimeCoversEveryStepOfEveryRunAndNothingElse) {
+  const ExperimentResult r = RunNamed("free_fall");
+  // 10 s at dt 0.02, 0.01, 0.005 and 0.001 s with g 9.81, and at 0.001 s
+  // with g 50.
+  EXPECT_EQ(r.stepping.steps, 500 + 1000 + 2000 + 10000 + 10000);
+  EXPECT_GT(r.stepping.seconds, 0.0);
+  // The steps alone: less than the experiment's wall time, which also
+  // loads the worlds and analyses every step.
+  EXPECT_LT(r.stepping.seconds, r.wall_seconds);
+  EXPECT_GT(r.stepping.MicrosecondsPerStep(), 0.0);
+  EXPECT_TRUE(std::isnan(StepTiming{}.MicrosecondsPerStep()));
+}
+
 TEST(Validation, ThrownBodyKeepsItsHorizontalVelocity) {
   const ExperimentResult r = RunNamed("free_fall_thrown");
   EXPECT_LE(r.Measured("largest horizontal error"), 1e-9);

@@ -66,6 +66,42 @@ std::string ModelsDirectory(const CommandLine& command_line) {
   return dir;
 }
 
+// The engines --engine names (both: ODE, then MuJoCo), else the engine
+// parameter (ode unless parameters.txt says otherwise).
+std::vector<std::string> Engines(const CommandLine& command_line, const Parameters& params) {
+  if (!command_line.Has("engine")) return {params.engine};
+  const std::string engine = command_line.Text("engine");
+  if (engine == "both") return {"ode", "mujoco"};
+  return {engine};
+}
+
+// Runs each experiment on each engine in turn, printing its check lines
+// (naming the engine when there are several) as it finishes.
+std::vector<ExperimentResult> RunAll(const std::vector<const Experiment*>& selected,
+                                     const std::vector<std::string>& engines,
+                                     const Context& context, std::ostream& out,
+                                     std::ostream& err) {
+  const bool several = engines.size() > 1;
+  std::vector<ExperimentResult> results;
+  for (const Experiment* e : selected) {
+    for (const std::string& engine : engines) {
+      if (e->slow)
+        err << "  ... " << e->name << (several ? " on " + EngineTitle(engine) : "")
+            << ": slow experiment, progress follows" << std::endl;
+      Context on = context;
+      on.params.engine = engine;
+      if (several && context.progress)
+        on.progress = [&context, engine](const std::string& line) {
+          context.progress(line + " (" + EngineTitle(engine) + ")");
+        };
+      results.push_back(RunExperiment(*e, on));
+      PrintResult(results.back(), out, several);
+      out.flush();
+    }
+  }
+  return results;
+}
+
 }  // namespace
 
 CommandLineSpec ValidateCommandLine() {
@@ -74,12 +110,17 @@ CommandLineSpec ValidateCommandLine() {
   spec.summary =
       "Reruns the original's validation experiments (SPEC 8) and two more through the sim "
       "library, headless and as fast as possible, and compares each with its analytic or "
-      "real-robot target: one line per check (experiment, what, measured, target, tolerance, "
-      "PASS/FAIL); exit status 1 if any check fails.";
+      "real-robot target: one line per check (experiment, engine when there are several, what, "
+      "measured, target, tolerance, PASS/FAIL); exit status 1 if any check fails on any "
+      "engine it ran.";
   spec.options = {
       Text("only", "NAME[,NAME]", "run only these experiments (see --list); may be repeated"),
       Switch("fast", "skip the slow experiments (long gaits, test track)"),
       Switch("list", "list the experiments and exit"),
+      Text("engine", "ode|mujoco|both",
+           "physics engine to run every experiment on; both = each experiment on ODE, then on "
+           "MuJoCo (default: the engine parameter, ode)")
+          .Choices({"ode", "mujoco", "both"}),
       Text("report", "DIR", "write DIR/README.md with a plot per experiment (gnuplot)"),
       Text("models", "DIR",
            "directory holding worlds/ and robots/ (default: the shipped models/, found like "
@@ -96,8 +137,11 @@ int RunValidate(const std::vector<std::string>& args, std::ostream& out, std::os
   if (const auto done = ReadCommandLine(spec, args, out, err, &command_line)) return *done;
   Context context;
   std::vector<const Experiment*> selected;
+  std::vector<std::string> engines;
   try {
     context.params = LoadParameters(command_line.parameter_sources());
+    engines = Engines(command_line, context.params);
+    if (engines.size() == 1) context.params.engine = engines.front();
     if (PrintParametersIfAsked(command_line, context.params, out)) return 0;
     if (command_line.Has("list")) {
       for (const Experiment& e : Experiments())
@@ -114,16 +158,11 @@ int RunValidate(const std::vector<std::string>& args, std::ostream& out, std::os
   }
   context.progress = [&err](const std::string& line) { err << "  ... " << line << std::endl; };
 
-  std::vector<ExperimentResult> results;
-  int failed = 0;
-  for (const Experiment* e : selected) {
-    if (e->slow) err << "  ... " << e->name << ": slow experiment, progress follows" << std::endl;
-    results.push_back(RunExperiment(*e, context));
-    PrintResult(results.back(), out);
-    out.flush();
-    failed += results.back().Passed() ? 0 : 1;
-  }
-  out << (selected.size() - failed) << " of " << selected.size() << " experiments passed\n";
+  const std::vector<ExperimentResult> results = RunAll(selected, engines, context, out, err);
+  const std::vector<EngineTally> tallies = TallyByEngine(results);
+  PrintTallies(tallies, out);
+  bool failed = false;
+  for (const EngineTally& t : tallies) failed = failed || t.passed < t.run;
 
   const std::string report = command_line.Text("report");
   if (!report.empty()) {
@@ -137,7 +176,7 @@ int RunValidate(const std::vector<std::string>& args, std::ostream& out, std::os
       return 2;
     }
   }
-  return failed == 0 ? 0 : 1;
+  return failed ? 1 : 0;
 }
 
 }  // namespace simpartner::validate

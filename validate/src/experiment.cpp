@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <exception>
+#include <limits>
 
 #include "simpartner/diagnostic.h"
 
@@ -12,6 +13,11 @@ bool ExperimentResult::Passed() const {
   for (const Check& c : checks)
     if (!c.pass) return false;
   return true;
+}
+
+double StepTiming::MicrosecondsPerStep() const {
+  return steps > 0 ? seconds * 1e6 / static_cast<double>(steps)
+                   : std::numeric_limits<double>::quiet_NaN();
 }
 
 double ExperimentResult::Measured(const std::string& label) const {
@@ -57,6 +63,8 @@ ExperimentResult RunExperiment(const Experiment& experiment, const Context& cont
   Context own = context;
   if (context.progress)
     own.progress = [&](const std::string& line) { context.progress(experiment.name + ": " + line); };
+  StepTiming stepping;
+  own.step_timing = &stepping;
   const auto start = std::chrono::steady_clock::now();
   ExperimentResult result;
   try {
@@ -67,6 +75,8 @@ ExperimentResult RunExperiment(const Experiment& experiment, const Context& cont
   }
   result.name = experiment.name;
   result.title = experiment.title;
+  result.engine = context.params.engine;
+  result.stepping = stepping;
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -104,7 +104,14 @@ void SimRun::RunUntil(double t, const std::function<void()>& each_step) {
   auto last_report = Clock::now();
   while (sim_->step() < last) {
     HandOverDue();
-    if (!sim_->Step()) {
+    const auto step_start = Clock::now();
+    const bool stepped = sim_->Step();
+    if (context_.step_timing != nullptr) {
+      context_.step_timing->steps += 1;
+      context_.step_timing->seconds +=
+          std::chrono::duration<double>(Clock::now() - step_start).count();
+    }
+    if (!stepped) {
       std::string reasons;
       for (const warning_t& w : sim_->TakeWarnings())
         reasons += (reasons.empty() ? "" : "; ") + w.source + ": " + w.message;

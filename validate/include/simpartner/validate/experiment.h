@@ -4,6 +4,7 @@
 // compares what happened with the analytic or real-robot target.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -14,20 +15,35 @@
 
 namespace simpartner::validate {
 
+// Wall time of an experiment's sim steps: Simulation::Step alone, without
+// the analysis between the steps.
+struct StepTiming {
+  int64_t steps = 0;
+  double seconds = 0.0;
+  // Mean wall time of one step [µs]; NaN without steps.
+  double MicrosecondsPerStep() const;
+};
+
 // What an experiment needs from the caller.
 struct Context {
   std::string models_dir;   // holds worlds/ and robots/
-  Parameters params;        // the run's parameters (defaults + parameters.txt + overrides)
+  // The run's parameters (defaults + parameters.txt + overrides);
+  // params.engine is the physics engine every SimRun of it uses.
+  Parameters params;
   // Called with a line of progress now and then during long runs; may be empty.
   std::function<void(const std::string&)> progress;
   // Shorter runs of the same experiments with the same tolerances (the
   // unit tests): fewer laps, a shorter scan.
   bool quick = false;
+  // Where every SimRun of the experiment adds its steps' wall time; may be
+  // null (RunExperiment sets its own).
+  StepTiming* step_timing = nullptr;
 };
 
 struct ExperimentResult {
   std::string name;
   std::string title;
+  std::string engine;         // the physics engine it ran on: "ode", "mujoco"
   std::vector<Check> checks;
   std::vector<Plot> plots;
   // Markdown for the report: how it was run and what the figures mean;
@@ -35,6 +51,7 @@ struct ExperimentResult {
   std::string notes;
   double sim_seconds = 0.0;   // simulated time over all its runs
   double wall_seconds = 0.0;
+  StepTiming stepping;        // the sim steps alone, over all its runs
   std::string error;          // set when the run itself failed (exploded, bad file)
 
   bool Passed() const;
@@ -54,9 +71,10 @@ struct Experiment {
 const std::vector<Experiment>& Experiments();
 const Experiment* FindExperiment(const std::string& name);
 
-// Runs one experiment: fills name, title and wall time, and turns an
-// exception (an explosion, a rejected command, a broken file) into a failed
-// result with the reason.
+// Runs one experiment on context.params.engine: fills name, title, engine,
+// wall time and the steps' wall time, and turns an exception (an explosion, a rejected command,
+// a broken file, an engine refusing the world) into a failed result with
+// the reason.
 ExperimentResult RunExperiment(const Experiment& experiment, const Context& context);
 
 // The experiments one by one (SPEC 8 order).

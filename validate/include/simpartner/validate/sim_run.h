@@ -50,8 +50,9 @@ class SimRun {
   SequenceTimes PlaySequence(const std::string& file);
 
   // Steps until sim time t (to the nearest step), calling each_step after
-  // every step. Throws simpartner::Error with the sim's warnings when the
-  // simulation faults (explodes).
+  // every step, and adds each Simulation::Step's wall time (not
+  // each_step's) to the context's step_timing. Throws simpartner::Error
+  // with the sim's warnings when the simulation faults (explodes).
   void RunUntil(double t, const std::function<void()>& each_step = {});
 
   // Lookups that throw simpartner::Error naming the world when absent.
