@@ -1,5 +1,7 @@
 #include "simpartner/sim/engine.h"
 
+#include <cmath>
+
 #include "simpartner/sim/mujoco_world.h"
 #include "simpartner/sim/ode_world.h"
 #include "simpartner/text.h"
@@ -23,6 +25,17 @@ EngineError::EngineError(const std::string& engine, std::string engine_message, 
       engine_message_(std::move(engine_message)),
       during_(std::move(during)),
       bodies_(std::move(bodies)) {}
+
+void SetStopsOfTheFiles(const model::FlatModel& model, PhysicsEngine* engine) {
+  for (size_t j = 0; j < model.joints.size(); ++j) {
+    const model::FlatJoint& flat = model.joints[j];
+    for (int axis = 0; axis < flat.num_axes; ++axis) {
+      const double lo = flat.source->lo_stop[axis], hi = flat.source->hi_stop[axis];
+      if (std::isfinite(lo) || std::isfinite(hi))
+        engine->SetStops(static_cast<int>(j), axis, lo, hi);
+    }
+  }
+}
 
 std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,
                                           const Parameters& params) {

@@ -50,11 +50,12 @@ Eigen::Vector3d MujocoWorld::PointVelocity(int mj_body, const Eigen::Vector3d& p
   return V(cvel + 3) + V(cvel).cross(point - at);
 }
 
-bool MujocoWorld::FrictionDirection(const mjContact& contact, Eigen::Vector3d* direction) const {
+bool MujocoWorld::FrictionDirection(const mjContact& contact,
+                                    const model::SurfaceProperties& combined,
+                                    Eigen::Vector3d* direction) const {
   const GeomInfo& g1 = geoms_[static_cast<size_t>(contact.geom1)];
   const GeomInfo& g2 = geoms_[static_cast<size_t>(contact.geom2)];
   const Eigen::Vector3d normal = V(contact.frame);
-  const model::SurfaceProperties combined = model::CombineSurfaces(g1.surface, g2.surface);
   if (combined.friction_direction == model::FrictionDirection::kRolling &&
       g1.has_spin_axis != g2.has_spin_axis) {
     // Perpendicular to the normal and to the wheel's spin axis.
@@ -119,7 +120,7 @@ void MujocoWorld::SetUpMaterial(const model::SurfaceProperties& combined, int po
 void MujocoWorld::SetUpFriction(int index, const model::SurfaceProperties& combined) {
   mjContact& contact = d_->contact[index];
   Eigen::Vector3d along;
-  if (combined.mu2 != combined.mu && FrictionDirection(contact, &along)) {
+  if (combined.mu2 != combined.mu && FrictionDirection(contact, combined, &along)) {
     const Eigen::Vector3d normal = V(contact.frame);
     const Eigen::Vector3d across = normal.cross(along);
     for (int k = 0; k < 3; ++k) {

@@ -205,15 +205,12 @@ class EngineWriter {
   // controller or a command). Gains and limits are set per step.
   void WriteActuators(std::ostringstream& out) const {
     std::ostringstream list;
-    for (size_t j = 0; j < model_.joints.size(); ++j) {
-      const model::FlatJoint& joint = model_.joints[j];
-      const model::TreeNode* node = nullptr;
-      for (const model::TreeNode& n : tree_.nodes)
-        if (n.joint == static_cast<int>(j)) node = &n;
-      if (node == nullptr) continue;
+    for (const model::TreeNode& node : tree_.nodes) {
+      if (node.joint < 0) continue;  // a root, or welded: no joint of its own
+      const model::FlatJoint& joint = model_.joints[static_cast<size_t>(node.joint)];
       for (int a = 0; a < joint.num_axes; ++a)
-        list << "    <general name=\"" << MjcfActuatorName(static_cast<int>(j), a) << "\" joint=\""
-             << MjcfJointName(static_cast<int>(j), a)
+        list << "    <general name=\"" << MjcfActuatorName(node.joint, a) << "\" joint=\""
+             << MjcfJointName(node.joint, a)
              << "\" gaintype=\"fixed\" gainprm=\"1\" biastype=\"affine\" biasprm=\"0 0 0\" "
                 "ctrllimited=\"false\" forcelimited=\"true\" forcerange=\"-1 1\"/>\n";
     }

@@ -39,9 +39,12 @@ double Wrap(double angle) { return std::remainder(angle, 2 * kPi); }
 
 }  // namespace
 
-std::vector<Diagnostic> MujocoLimits(const model::FlatModel& model, const Parameters&) {
+namespace {
+
+// The joints of model that close a loop in tree, at their file and line.
+std::vector<Diagnostic> LoopsOf(const model::FlatModel& model, const model::BodyTree& tree) {
   std::vector<Diagnostic> out;
-  for (int j : model::BuildBodyTree(model).loop_joints) {
+  for (int j : tree.loop_joints) {
     const model::FlatJoint& joint = model.joints[static_cast<size_t>(j)];
     out.push_back(Diagnostic{joint.source->where.file, joint.source->where.line, "joint",
                              "joint '" + joint.name +
@@ -51,22 +54,22 @@ std::vector<Diagnostic> MujocoLimits(const model::FlatModel& model, const Parame
   return out;
 }
 
+}  // namespace
+
+std::vector<Diagnostic> MujocoLimits(const model::FlatModel& model, const Parameters&) {
+  return LoopsOf(model, model::BuildBodyTree(model));
+}
+
 MujocoWorld::MujocoWorld(const model::FlatModel& model, const Parameters& params)
     : model_(model), params_(params) {
   InstallMujocoHandlers();
-  const std::vector<Diagnostic> limits = MujocoLimits(model, params);
-  if (!limits.empty()) throw EngineError("MuJoCo", limits.front().Format(), "building", {});
   const model::BodyTree tree = model::BuildBodyTree(model);
+  const std::vector<Diagnostic> limits = LoopsOf(model, tree);
+  if (!limits.empty()) throw EngineError("MuJoCo", limits.front().Format(), "building", {});
   Load(EngineMjcf(model, tree, params));
   MapElements(tree);
   gravity_ = model.world->gravity.norm();
-  for (size_t j = 0; j < model.joints.size(); ++j) {
-    const model::FlatJoint& flat = model.joints[j];
-    for (int axis = 0; axis < flat.num_axes; ++axis) {
-      const double lo = flat.source->lo_stop[axis], hi = flat.source->hi_stop[axis];
-      if (std::isfinite(lo) || std::isfinite(hi)) SetStops(static_cast<int>(j), axis, lo, hi);
-    }
-  }
+  SetStopsOfTheFiles(model, this);
   SetInitialVelocities();
   UpdateReadouts();
 }
@@ -120,9 +123,12 @@ void MujocoWorld::FillHeightfield() {
 
 void MujocoWorld::MapElements(const model::BodyTree& tree) {
   body_id_.assign(model_.bodies.size(), 0);
-  for (size_t b = 0; b < model_.bodies.size(); ++b)
-    if (!model_.bodies[b].source->is_static)
-      body_id_[b] = mj_name2id(m_, mjOBJ_BODY, MjcfBodyName(static_cast<int>(b)).c_str());
+  flat_body_.assign(static_cast<size_t>(m_->nbody), -1);
+  for (size_t b = 0; b < model_.bodies.size(); ++b) {
+    if (model_.bodies[b].source->is_static) continue;
+    body_id_[b] = mj_name2id(m_, mjOBJ_BODY, MjcfBodyName(static_cast<int>(b)).c_str());
+    flat_body_[static_cast<size_t>(body_id_[b])] = static_cast<int>(b);
+  }
   MapGeoms();
   MapJoints(tree);
   contact_force_.assign(model_.bodies.size(), Eigen::Vector3d::Zero());
@@ -170,8 +176,9 @@ void MujocoWorld::MapJoints(const model::BodyTree& tree) {
     map.child = static_cast<int>(b);
     map.parent = node.parent;
     map.child_is_body1 = !node.joint_reversed;
-    map.axis_sign = node.joint_reversed ? -1.0 : 1.0;
     map.axes = model_.joints[static_cast<size_t>(node.joint)].num_axes;
+    // A ball joint has no axis but a MuJoCo joint, which holds its anchor.
+    map.mj_joint[0] = mj_name2id(m_, mjOBJ_JOINT, MjcfJointName(node.joint, 0).c_str());
     for (int a = 0; a < map.axes; ++a) {
       const int id = mj_name2id(m_, mjOBJ_JOINT, MjcfJointName(node.joint, a).c_str());
       map.mj_joint[a] = id;
@@ -216,7 +223,7 @@ void MujocoWorld::SetInitialVelocities() {
     }
     const bool hinge = joint.source->kind != model::JointKind::kSlider;
     for (int a = 0; a < map.axes; ++a)
-      d_->qvel[map.dof[a]] = map.axis_sign * joint.axis[a].dot(hinge ? w : v);
+      d_->qvel[map.dof[a]] = (map.child_is_body1 ? 1.0 : -1.0) * joint.axis[a].dot(hinge ? w : v);
   }
 }
 
@@ -297,9 +304,6 @@ void MujocoWorld::CollectForces() {
     contact_force_[b].setZero();
     contact_torque_[b].setZero();
   }
-  std::vector<int> flat_of(static_cast<size_t>(m_->nbody), -1);
-  for (size_t b = 0; b < body_id_.size(); ++b)
-    if (body_id_[b] > 0) flat_of[static_cast<size_t>(body_id_[b])] = static_cast<int>(b);
   last_loads_.clear();
   for (int i = 0; i < d_->ncon; ++i) {
     const mjContact& contact = d_->contact[i];
@@ -323,7 +327,7 @@ void MujocoWorld::CollectForces() {
     const int sides[2] = {contact.geom2, contact.geom1};
     for (int side = 0; side < 2; ++side) {
       const int mj_body = m_->geom_bodyid[sides[side]];
-      const int b = flat_of[static_cast<size_t>(mj_body)];
+      const int b = flat_body_[static_cast<size_t>(mj_body)];
       if (b < 0) continue;
       const double s = side == 0 ? 1.0 : -1.0;
       contact_force_[static_cast<size_t>(b)] += s * force;
@@ -496,7 +500,7 @@ JointReadout MujocoWorld::ReadJoint(int index) const {
     out.rate[a] = JointRate(index, a);
   }
   const model::FlatJoint& flat = model_.joints[static_cast<size_t>(index)];
-  const int first = mj_name2id(m_, mjOBJ_JOINT, MjcfJointName(index, 0).c_str());
+  const int first = map.mj_joint[0];
   if (first >= 0 && m_->jnt_type[first] != mjJNT_SLIDE) {
     out.anchor = V(d_->xanchor + 3 * first);
   } else if (flat.body1 >= 0 && body_id_[static_cast<size_t>(flat.body1)] > 0) {

@@ -317,12 +317,8 @@ void OdeWorld::Build() {
     joint->joint = id;
     dJointSetFeedback(id, &joint->feedback);
     joints_.push_back(std::move(joint));
-    for (int axis = 0; axis < flat.num_axes; ++axis) {
-      const double lo = flat.source->lo_stop[axis];
-      const double hi = flat.source->hi_stop[axis];
-      if (std::isfinite(lo) || std::isfinite(hi)) SetStops(static_cast<int>(j), axis, lo, hi);
-    }
   }
+  SetStopsOfTheFiles(model, this);
   contact_force_.assign(bodies_.size(), Eigen::Vector3d::Zero());
   contact_torque_.assign(bodies_.size(), Eigen::Vector3d::Zero());
   ray_ = dCreateRay(nullptr, 1.0);

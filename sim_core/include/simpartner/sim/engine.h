@@ -98,6 +98,10 @@ class PhysicsEngine {
                          double range, int exclude_body) = 0;
 };
 
+// Sets the stops the files give each joint axis (infinite: none) on a
+// newly built engine: both engines' constructors end with it.
+void SetStopsOfTheFiles(const model::FlatModel& model, PhysicsEngine* engine);
+
 // The engine params.engine names, built from model (which, and its World,
 // must outlive it). Throws EngineError when the engine refuses a part.
 std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,

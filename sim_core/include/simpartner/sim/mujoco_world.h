@@ -71,11 +71,11 @@ class MujocoWorld : public PhysicsEngine {
   struct JointMap {
     int child = -1, parent = -1;  // flat bodies; parent -1 = the world
     bool child_is_body1 = true;
-    // MuJoCo's axis is ours turned round when body1 is the parent, so its
-    // values (the child relative to the parent) count as ours (body1
-    // relative to body2).
-    double axis_sign = 1.0;
     int axes = 0;
+    // MuJoCo's joints, one per axis (a ball joint: one, no axis). MuJoCo's
+    // axis is ours turned round when body1 is the parent, so its values
+    // (the child relative to the parent) count as ours (body1 relative to
+    // body2).
     int mj_joint[2] = {-1, -1};
     int qpos[2] = {-1, -1};
     int dof[2] = {-1, -1};
@@ -154,7 +154,8 @@ class MujocoWorld : public PhysicsEngine {
   // The first friction direction of an anisotropic contact, as the ODE
   // side picks it: a wheel's rolling direction, else the slip; false when
   // it sticks (MuJoCo's own tangents stay).
-  bool FrictionDirection(const mjContact_& contact, Eigen::Vector3d* direction) const;
+  bool FrictionDirection(const mjContact_& contact, const model::SurfaceProperties& combined,
+                         Eigen::Vector3d* direction) const;
   void CheckWarnings();
   EngineError Fail(const std::string& message, const std::string& during);
   std::vector<std::string> SuspectBodies() const;
@@ -173,6 +174,7 @@ class MujocoWorld : public PhysicsEngine {
   std::vector<std::string> messages_;
   int contact_count_ = 0;
   std::vector<int> body_id_;       // flat body -> MuJoCo body (0 for static ones)
+  std::vector<int> flat_body_;     // MuJoCo body -> flat body (-1: the world)
   std::vector<JointMap> joints_;   // per flat joint
   std::vector<Motor> motors_;      // per MuJoCo actuator
   std::vector<GeomInfo> geoms_;    // per MuJoCo geom
