@@ -3,7 +3,11 @@
 //   bare      dSpaceCollide + dWorldStep/QuickStep + dJointGroupEmpty only
 //   sim       Simulation::Step (commands, controllers, step, health check)
 //   sim+enc   the same plus SIM_STATE filled and encoded (our part of publishing)
-//   sim+pub   the same plus SIM_STATE filled, encoded and published on LCM
+//   sync pub  the same plus SIM_STATE filled, encoded and published on LCM
+//             on the stepping thread
+//   sim+pub   the same as the sim publishes: filled and encoded, then
+//             published by its sending thread (bus_sender.h); the time
+//             runs until the last state is out
 //   signed    sim+pub with every SIM_STATE signed (SIMPARTNER_BUS_KEY), and
 //             "signing", its cost over sim+pub
 // for each world given (default: the WorkPartner worlds), each stepper
@@ -24,6 +28,7 @@
 #include "simpartner/channels.h"
 #include "simpartner/command_line.h"
 #include "simpartner/model/loader.h"
+#include "simpartner/sim/bus_sender.h"
 #include "simpartner/sim/mujoco_world.h"
 #include "simpartner/sim/ode_world.h"
 #include "simpartner/sim/simulation.h"
@@ -109,6 +114,8 @@ int main(int argc, char** argv) {
   spec.options = {
       simpartner::Integer("steps", "N", "steps per measurement (default 5000)"),
       simpartner::Text("lcm-url", "URL", "LCM URL for sim+pub (default udpm://239.255.76.67:7667?ttl=0)"),
+      simpartner::Text("engine", "E", "the engines measured: ode, mujoco or both (default both)")
+          .Choices({"ode", "mujoco", "both"}),
   };
   spec.positionals = {simpartner::Positional{"world.xml", 0, simpartner::kAnyCount}};
   simpartner::CommandLine args;
@@ -117,6 +124,7 @@ int main(int argc, char** argv) {
     return *done;
   const int steps = static_cast<int>(args.Integer("steps", 5000));
   const std::string url = args.Text("lcm-url", "udpm://239.255.76.67:7667?ttl=0");
+  const std::string engines = args.Text("engine", "both");
   std::vector<std::string> worlds = args.positional();
   if (worlds.empty()) {
     for (const char* w : {"gen1_flat.xml", "flat_ground_gen2.xml", "flat_ground.xml", "gen4_flat.xml"})
@@ -138,9 +146,9 @@ int main(int argc, char** argv) {
                               {"QuickStep 50", "ode", "quick", 50},
                               {"QuickStep 100", "ode", "quick", 100},
                               {"MuJoCo", "mujoco", "accurate", 20}};
-  std::printf("%-28s %-14s %6s %10s %10s %10s %10s %10s %8s %8s %9s %8s\n", "world", "stepper",
-              "bodies", "bare us", "sim us", "sim+enc us", "sim+pub us", "signed us", "sim/bare",
-              "pub/bare", "x realtime", "signing");
+  std::printf("%-28s %-14s %6s %10s %10s %10s %10s %10s %10s %8s %8s %9s %8s\n", "world",
+              "stepper", "bodies", "bare us", "sim us", "sim+enc us", "sync pub us", "sim+pub us",
+              "signed us", "sim/bare", "pub/bare", "x realtime", "signing");
   for (const std::string& path : worlds) {
     model::WorldLoadResult loaded = model::LoadWorldFile(path);
     if (!loaded.world) {
@@ -148,6 +156,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     for (const Setting& setting : settings) {
+      if (engines != "both" && engines != setting.engine) continue;
       Parameters params;
       params.engine = setting.engine;
       params.stepper = setting.stepper;
@@ -191,24 +200,39 @@ int main(int argc, char** argv) {
         }
         enc_us = MicrosPerStep(Clock::now() - start, steps);
       }
-      // Published as the sim does, unsigned and signed (bus_signing.h).
-      BusSigning signing(BusSigning::Key{});
-      double signed_us = 0;
-      for (BusSigning* signer : {static_cast<BusSigning*>(nullptr), &signing}) {
+      double sync_us = 0;
+      {
         sim::Simulation sim(*loaded.world, params, 1);
         state_t state;
         const auto start = Clock::now();
         for (int n = 0; n < steps; ++n) {
           faulted |= !sim.Step();
           sim.FillState(&state);
-          PublishSigned(&bus, channels::kState, state, signer);
+          PublishSigned(&bus, channels::kState, state, nullptr);
         }
+        sync_us = MicrosPerStep(Clock::now() - start, steps);
+      }
+      // Published as the sim does, unsigned and signed (bus_signing.h).
+      BusSigning signing(BusSigning::Key{});
+      double signed_us = 0;
+      for (BusSigning* signer : {static_cast<BusSigning*>(nullptr), &signing}) {
+        sim::Simulation sim(*loaded.world, params, 1);
+        sim::BusSender sender(&bus, signer);
+        state_t state;
+        const auto start = Clock::now();
+        for (int n = 0; n < steps; ++n) {
+          faulted |= !sim.Step();
+          sim.FillState(&state);
+          sender.Send(channels::kState, state);
+        }
+        sender.Flush();
         (signer ? signed_us : pub_us) = MicrosPerStep(Clock::now() - start, steps);
       }
       std::string name = std::filesystem::path(path).filename().string();
-      std::printf("%-28s %-14s %6zu %10.1f %10.1f %10.1f %10.1f %10.1f %8.3f %8.3f %9.1f"
+      std::printf("%-28s %-14s %6zu %10.1f %10.1f %10.1f %10.1f %10.1f %10.1f %8.3f %8.3f %9.1f"
                   " %+7.1f%%%s\n",
-                  name.c_str(), setting.name, bodies, bare_us, sim_us, enc_us, pub_us, signed_us,
+                  name.c_str(), setting.name, bodies, bare_us, sim_us, enc_us, sync_us, pub_us,
+                  signed_us,
                   sim_us / bare_us, pub_us / bare_us, params.stepsize * 1e6 / pub_us,
                   100.0 * (signed_us - pub_us) / pub_us, faulted ? "  FAULTED (unstable)" : "");
       std::fflush(stdout);

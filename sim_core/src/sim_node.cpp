@@ -84,6 +84,7 @@ SimNode::SimNode(Simulation* sim, lcm::LCM* lcm, int stop_fd, BusSigning* signin
       lcm_(lcm),
       stop_fd_(stop_fd),
       signing_(signing),
+      bus_sender_(lcm, signing),
       host_(HostName()),
       sender_(SenderName("simpartner-sim")),
       peers_(lcm, signing, &bad_message_counter_,
@@ -322,32 +323,37 @@ void SimNode::ReplyState() {
 
 template <class T>
 void SimNode::Publish(const char* channel, const T& message) {
-  if (PublishSigned(lcm_, channel, message, signing_) == 0) {
-    if (failed_sends_in_outage_ > 0) {
+  bus_sender_.Send(channel, message);
+}
+
+void SimNode::ReportSendOutcomes() {
+  for (const BusSender::Outcome& outcome : bus_sender_.TakeOutcomes()) {
+    if (outcome.sent) {
       Warn(warning_t::SEVERITY_INFO, "bus",
            "sending works again; " + std::to_string(failed_sends_in_outage_) +
                " messages could not be sent before (the first on " + first_failed_channel_ +
                ": " + first_send_error_ + ")");
       failed_sends_in_outage_ = 0;
+      continue;
     }
-    return;
-  }
-  // A link down (a cable, a veth set down, no route) makes every send fail:
-  // said on the first failure and then once a second, with the count, so
-  // that the stepping goes on at its rate and the log says what was lost.
-  const std::string cause = std::strerror(errno);
-  ++failed_sends_;
-  if (failed_sends_in_outage_++ == 0) {
-    first_failed_channel_ = channel;
-    first_send_error_ = cause;
-  }
-  const auto now = Clock::now();
-  if (failed_sends_in_outage_ == 1 || now - last_send_failure_report_ >= std::chrono::seconds(1)) {
-    last_send_failure_report_ = now;
-    Warn(warning_t::SEVERITY_ERROR, "bus",
-         std::string(channel) + ": send failed: " + cause + " (" +
-             std::to_string(failed_sends_in_outage_) + " failed since the last that went out, " +
-             std::to_string(failed_sends_) + " in all)");
+    // A link down (a cable, a veth set down, no route) makes every send
+    // fail: said on the first failure and then once a second, with the
+    // count, so that the stepping goes on at its rate and the log says
+    // what was lost.
+    ++failed_sends_;
+    if (failed_sends_in_outage_++ == 0) {
+      first_failed_channel_ = outcome.channel;
+      first_send_error_ = outcome.error;
+    }
+    const auto now = Clock::now();
+    if (failed_sends_in_outage_ == 1 ||
+        now - last_send_failure_report_ >= std::chrono::seconds(1)) {
+      last_send_failure_report_ = now;
+      Warn(warning_t::SEVERITY_ERROR, "bus",
+           outcome.channel + ": send failed: " + outcome.error + " (" +
+               std::to_string(failed_sends_in_outage_) + " failed since the last that went out, " +
+               std::to_string(failed_sends_) + " in all)");
+    }
   }
 }
 
@@ -372,6 +378,9 @@ void SimNode::ReportOtherSimulations() {
 }
 
 void SimNode::HandleIncoming(Clock::duration timeout) {
+  // About to wait: what this step published goes out now, not at the
+  // sending thread's next poll.
+  if (timeout > Clock::duration::zero()) bus_sender_.Kick();
   const int fd = lcm_->getFileno();
   auto remaining = timeout;
   const auto end = Clock::now() + timeout;
@@ -471,6 +480,7 @@ void SimNode::PublishReplies() {
 }
 
 void SimNode::PublishPending() {
+  ReportSendOutcomes();
   PublishReplies();
   for (const sensor_reading_t& reading : sim_->TakeSensorReadings())
     Publish(channels::kSensor, reading);
@@ -496,9 +506,8 @@ void SimNode::StepAndPublish() {
     return;
   }
   if (sim_->step() % sim_->params().stateEvery == 0 || lock_step_.IsTick(sim_->step())) {
-    state_t state;
-    sim_->FillState(&state);
-    Publish(channels::kState, state);
+    sim_->FillState(&state_);
+    Publish(channels::kState, state_);
   }
 }
 
@@ -693,6 +702,7 @@ int SimNode::Run() {
     PublishDue(&next_model, &next_status, model_period, status_period);
   }
   PublishStatus();  // RUN_STOPPED, with the fault among its warnings
+  bus_sender_.Flush();
   return exit_status;
 }
 

@@ -88,6 +88,7 @@ Simulation::Simulation(model::World world, Parameters params, int64_t simulation
 
 void Simulation::Build() {
   engine_.reset();
+  bodies_read_ = false;
   engine_ = MakeEngine(flat_, params_);
   controllers_.clear();
   for (const model::FlatActuator& a : flat_.actuators) {
@@ -344,6 +345,7 @@ void Simulation::ApplyPending(const Pending& pending) {
 
 bool Simulation::Step() {
   if (faulted_) return false;
+  bodies_read_ = false;
   // Commands due in this step, in the order they were sent.
   size_t due = 0;
   while (due < pending_.size() && pending_[due].step <= step_) ++due;
@@ -379,6 +381,7 @@ bool Simulation::Step() {
   ++step_;
   for (const std::string& message : engine_->last_messages())
     AddWarning(warning_t::SEVERITY_WARNING, engine_->name(), message);
+  ReadBodies();
   CheckHealth();
   if (faulted_) return false;
 
@@ -392,12 +395,19 @@ bool Simulation::Step() {
   return true;
 }
 
+void Simulation::ReadBodies() {
+  bodies_.resize(flat_.bodies.size());
+  for (size_t i = 0; i < flat_.bodies.size(); ++i)
+    bodies_[i] = engine_->ReadBody(static_cast<int>(i));
+  bodies_read_ = true;
+}
+
 void Simulation::CheckHealth() {
   std::vector<std::string> bad;
   std::string worst;
   for (size_t i = 0; i < flat_.bodies.size(); ++i) {
     if (flat_.bodies[i].source->is_static) continue;
-    const BodyReadout b = engine_->ReadBody(static_cast<int>(i));
+    const BodyReadout& b = bodies_[i];
     const bool finite = b.position.allFinite() && b.orientation.coeffs().allFinite() &&
                         b.linear_velocity.allFinite() && b.angular_velocity.allFinite();
     const double v = b.linear_velocity.norm();
@@ -512,7 +522,7 @@ void Simulation::FillState(state_t* s) const {
   s->num_bodies = static_cast<int32_t>(flat_.bodies.size());
   s->bodies.resize(flat_.bodies.size());
   for (size_t i = 0; i < flat_.bodies.size(); ++i) {
-    const BodyReadout b = engine_->ReadBody(static_cast<int>(i));
+    const BodyReadout b = bodies_read_ ? bodies_[i] : engine_->ReadBody(static_cast<int>(i));
     body_state_t& out = s->bodies[i];
     Copy3(b.position, out.position);
     CopyQuat(b.orientation, out.orientation);

@@ -3,9 +3,11 @@
 // SIM_COMMAND_REPLY, SIM_MODEL (at start, every modelPeriod and on request),
 // SIM_STATE_REPLY (on request, running or paused) and SIM_STATUS (every
 // statusPeriod and on every change), and obeys SIM_COMMAND and SIM_CONTROL.
-// Synchronous controllers join over SIM_SYNC (lock_step.h): at each of
-// their ticks the node waits for their answers before the next step. Undecodable messages are counted and
-// reported, never acted on.
+// Everything it publishes goes out, in order, through a sending thread
+// (bus_sender.h). Synchronous controllers join over SIM_SYNC
+// (lock_step.h): at each of their ticks the node waits for their answers
+// before the next step. Undecodable messages are counted and reported,
+// never acted on.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -18,9 +20,11 @@
 #include <string>
 
 #include "simpartner/bus_decode.h"
+#include "simpartner/sim/bus_sender.h"
 #include "simpartner/sim/lock_step.h"
 #include "simpartner/sim/peer_watch.h"
 #include "simpartner/sim/simulation.h"
+#include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 
 namespace simpartner::sim {
@@ -125,11 +129,13 @@ class SimNode {
   void CollectWarnings();
   // Another simulation heard on the bus: said at once, as an error.
   void ReportOtherSimulations();
-  // lcm publish with its result checked: a failed send is reported
-  // (channel and cause) on stderr and in SIM_STATUS, and so is the first
-  // send that works again.
+  // Queues `message` for the sending thread (bus_sender.h).
   template <class T>
   void Publish(const char* channel, const T& message);
+  // How the sending thread's sends went: a failed send is reported
+  // (channel and cause) on stderr and in SIM_STATUS, and so is the first
+  // send that works again.
+  void ReportSendOutcomes();
   // Reports on stderr and in the next SIM_STATUS.
   void Warn(int8_t severity, const std::string& source, const std::string& message);
   void Record(warning_t warning);  // on stderr and in the statuses
@@ -138,6 +144,8 @@ class SimNode {
   lcm::LCM* lcm_;
   int stop_fd_;
   BusSigning* signing_;
+  BusSender bus_sender_;  // every message goes out through it, in order
+  state_t state_;         // each step's SIM_STATE, filled in place
   std::string host_;
   std::string sender_;  // "simpartner-sim@host:pid", in SIM_MODEL
   PeerWatch peers_;

@@ -42,7 +42,12 @@ class Simulation {
   const model::FlatModel& flat() const { return flat_; }
   const model::World& world() const { return world_; }
   const Parameters& params() const { return params_; }
-  PhysicsEngine& engine() { return *engine_; }
+  // The engine itself (tests, benches): what it is told may change the
+  // bodies, so the readouts kept from the last step are read again.
+  PhysicsEngine& engine() {
+    bodies_read_ = false;
+    return *engine_;
+  }
   const ActuatorController& controller(int actuator) const {
     return controllers_[static_cast<size_t>(actuator)];
   }
@@ -91,6 +96,9 @@ class Simulation {
   void Build();
   command_reply_t Reply(const command_t& command, bool accepted, const std::string& reason) const;
   void ApplyPending(const Pending& pending);
+  // Every body's readout after a step, kept for the health check and
+  // FillState (reading a MuJoCo body's velocity is a transform).
+  void ReadBodies();
   void CheckHealth();
   void AddWarning(int8_t severity, const std::string& source, const std::string& message,
                   std::vector<std::string> bodies = {});
@@ -100,6 +108,8 @@ class Simulation {
   model::FlatModel flat_;
   int64_t simulation_id_;
   std::unique_ptr<PhysicsEngine> engine_;
+  std::vector<BodyReadout> bodies_;  // after the last step, when bodies_read_
+  bool bodies_read_ = false;
   std::vector<ActuatorController> controllers_;
   std::vector<SensorState> sensors_;
   std::vector<Pending> pending_;  // sorted by (step, sequence)
