@@ -142,7 +142,7 @@ TEST(Validation, CircleDifferentialSpeedsIsotropicAndMatchedSpeeds) {
   // edge nearer the vehicle's middle, which carries more than half their
   // load and can hold the rest within mu N (see the report). The vehicle
   // then rides the steering's circle.
-  EXPECT_NEAR(r.Measured("radius, isotropic mu 1, vs the steady state"), AxleCentres(0.2),
+  EXPECT_NEAR(r.Measured("radius, isotropic mu 1 (self-consistency"), AxleCentres(0.2),
               0.003 * AxleCentres(0.2));
   EXPECT_LT(r.Measured("friction the inner wheels' held rim edges need"), 1.0);
   // Outer wheels at (5.98 + 0.3) / (5.98 - 0.3) = 1.1056 m/s: no slip needed.

@@ -172,6 +172,11 @@ constexpr double kCircleDifferentialTolerance = 0.0003;
 // (see the notes).
 constexpr double kIsotropicEqualTolerance = 0.02;
 constexpr double kIsotropicDifferentialTolerance = 0.003;
+// Their target is built from the run's own wheel loads and rim-edge
+// shares, so the check says so: it shows the run agrees with the Coulomb
+// steady state of the loads it produced, not that the loads are right.
+constexpr const char* kSelfConsistent =
+    " (self-consistency: the steady state from this run's loads and edge shares)";
 
 // What the thesis's circles measure, for a rigid articulated vehicle whose
 // wheels roll without slipping: the axle centres ride a cot(alpha/2) about
@@ -244,8 +249,7 @@ ExperimentResult CircleEqualSpeeds(const Context& context) {
         RunCircle(context, Isotropic(mu), settle, duration, "gen1_circle_equal_speeds.xml");
     result.sim_seconds += run.sim_seconds;
     const double coulomb = CoulombRadius(run, mu, kAlpha, kSpeed, kSpeed);
-    result.checks.push_back(Relative("radius, isotropic mu " + FormatNumber(mu) +
-                                         ", vs the steady state of the same vehicle",
+    result.checks.push_back(Relative("radius, isotropic mu " + FormatNumber(mu) + kSelfConsistent,
                                      run.Radius(), coulomb, kIsotropicEqualTolerance, "m"));
     rows += CircleRow(Isotropic(mu).Describe(), "1 / 1 m/s", run,
                       "steady state, isotropic Coulomb: " + FormatNumber(coulomb));
@@ -277,13 +281,17 @@ ExperimentResult CircleEqualSpeeds(const Context& context) {
       FormatNumber(thesis.legs.radius) + " m for the mean of the wheels (" +
       FormatFixed((thesis.legs.radius / legs - 1.0) * 100.0, 2) + " %). Read instead with the "
       "first direction along each contact's sliding velocity (the sim's default, "
-      "`frictionDirection` slip), the same coefficients give 4.719 m, the isotropic mu 0.5 "
-      "result to the last digit (measured 2026-11-23 with that world's ground set to slip): in "
-      "a steady turn the force across a contact's slip stays below 0.5 of its load, so mu2 "
-      "never binds. Only the wheel-frame "
+      "`frictionDirection` slip), the same coefficients give 5.04573 m at the axle centres "
+      "(measured 2026-11-26 with that world's ground set to slip, in a copy of models/: "
+      "`simpartner-validate --only circle_equal --models COPY`): an anisotropic material keeps "
+      "mu2 = 1.0 across each contact's slip (Coulomb's cone, no friction across a fast slip, "
+      "is for isotropic materials; docs/contacts.md), which holds the slips from turning, and "
+      "the vehicle rides wider than with isotropic mu 0.5 (below). Until 2026-11-23, when "
+      "isotropic slides had the same grip across, both gave 4.719 m. Only the wheel-frame "
       "reading gives the thesis's circles.\n\n"
       "**Isotropic friction** (the same 0.5 or 1.0 both ways, along the slip) is a second "
-      "check, not the thesis's experiment: the last column solves the steady state of an "
+      "check, not the thesis's experiment, and a self-consistency check: the last column "
+      "solves the steady state of an "
       "ideal rigid vehicle, isotropic Coulomb friction (the force against each contact's "
       "slip, none across it), each wheel touching at its two rim edges 0.14 m apart, with "
       "each wheel's load and each edge's share of it as measured in the run (the turn moves "
@@ -320,7 +328,7 @@ ExperimentResult CircleDifferentialSpeeds(const Context& context) {
                                    thesis.WorstDeviation(), 0.0, 0.001, "m"));
   const SkidSteerVehicle ideal = IdealVehicle(isotropic, 1.0, kAlpha, 1.00, 1.10);
   const double coulomb = SkidSteerRadius(ideal);
-  result.checks.push_back(Relative("radius, isotropic mu 1, vs the steady state of the same vehicle",
+  result.checks.push_back(Relative(std::string("radius, isotropic mu 1") + kSelfConsistent,
                                    isotropic.Radius(), coulomb, kIsotropicDifferentialTolerance,
                                    "m"));
   // Why that steady state is the steering's circle: the inner wheels roll
