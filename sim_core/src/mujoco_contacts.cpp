@@ -83,7 +83,8 @@ bool MujocoWorld::FrictionDirection(const mjContact& contact,
 void MujocoWorld::SetUpContacts() {
   // Points per pair of geoms: a physical stiffness is shared among them,
   // as the ODE side shares it.
-  std::vector<int> points(static_cast<size_t>(d_->ncon), 1);
+  std::vector<int>& points = scratch_.points;
+  points.assign(static_cast<size_t>(d_->ncon), 1);
   for (int i = 0; i < d_->ncon; ++i)
     for (int k = 0; k < d_->ncon; ++k)
       if (k != i && d_->contact[k].geom1 == d_->contact[i].geom1 &&
@@ -146,7 +147,7 @@ MujocoWorld::Slide MujocoWorld::Slides(const mjContact& contact,
   // The point's relative motion: Jacobian rows of geom1's body less
   // geom2's at the contact.
   const int nv = m_->nv;
-  const Eigen::MatrixXd jac = RelativeJacobian(contact);
+  const Jacobian& jac = RelativeJacobian(contact);
   const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
   const Eigen::Vector3d normal = V(contact.frame);
   // The slip the step would end with if friction did nothing: the smooth
@@ -161,10 +162,7 @@ MujocoWorld::Slide MujocoWorld::Slides(const mjContact& contact,
   // (Brake): what it takes off is the force over the point's effective
   // mass along the slip (with the holding servos' armature: a servo-held
   // wheel resists a change of its spin).
-  Eigen::VectorXd row = jac.transpose() * (slip / speed);
-  Eigen::VectorXd solved(nv);
-  mj_solveM(m_, d_, solved.data(), row.data(), 1);
-  const double brake = Brake(contact, surface.mu, row.dot(solved));
+  const double brake = Brake(contact, surface.mu, InverseInertia(jac, slip / speed));
   return speed > brake ? Slide::kBothWays : Slide::kHolds;
 }
 
@@ -178,7 +176,7 @@ MujocoWorld::Slide MujocoWorld::SlidesBox(mjContact* contact,
   // other holds as a friction row of its own coefficient, the sliding
   // one's row given a negligible one (MuJoCo's cone then leaves it free).
   const int nv = m_->nv;
-  const Eigen::MatrixXd jac = RelativeJacobian(*contact);
+  const Jacobian& jac = RelativeJacobian(*contact);
   const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
   const Eigen::Vector3d slip = jac * qvel + params_.stepsize * (jac * qacc);
   const double mu[2] = {surface.mu, surface.mu2};
@@ -187,10 +185,7 @@ MujocoWorld::Slide MujocoWorld::SlidesBox(mjContact* contact,
   for (int k = 0; k < 2; ++k) {
     const double v = slip.dot(direction[k]);
     if (std::abs(v) <= kSlipDirectionSpeed) continue;
-    Eigen::VectorXd row = jac.transpose() * direction[k];
-    Eigen::VectorXd solved(nv);
-    mj_solveM(m_, d_, solved.data(), row.data(), 1);
-    slides[k] = std::abs(v) > Brake(*contact, mu[k], row.dot(solved));
+    slides[k] = std::abs(v) > Brake(*contact, mu[k], InverseInertia(jac, direction[k]));
     if (slides[k]) sliding->force_per_newton -= std::copysign(mu[k], v) * direction[k];
   }
   if (slides[0] && slides[1]) return Slide::kBothWays;
@@ -219,7 +214,7 @@ bool MujocoWorld::Rolls(const mjContact& contact, const model::SurfaceProperties
   // 10 rad/s hopped). As for sliding: the turn the step would end with
   // without resistance, and what rho N at the last load takes off it.
   const int nv = m_->nv;
-  const Eigen::MatrixXd jac = RelativeJacobian(contact, /*rotation=*/true);
+  const Jacobian& jac = RelativeJacobian(contact, /*rotation=*/true);
   const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
   const Eigen::Vector3d normal = V(contact.frame);
   Eigen::Vector3d turn = jac * qvel + params_.stepsize * (jac * qacc);
@@ -227,29 +222,42 @@ bool MujocoWorld::Rolls(const mjContact& contact, const model::SurfaceProperties
   const double speed = turn.norm();
   if (speed <= kSlipDirectionSpeed) return false;
   const Eigen::Vector3d axis = turn / speed;
-  Eigen::VectorXd row = jac.transpose() * axis;
-  Eigen::VectorXd solved(nv);
-  mj_solveM(m_, d_, solved.data(), row.data(), 1);
+  const double inverse_inertia = InverseInertia(jac, axis);
   applied->torque_per_newton = -surface.rolling_friction * axis;
   // Without friction rows the rolling rows go too: resist at most what
   // stops it.
-  applied->stop_torque = speed / (row.dot(solved) * params_.stepsize);
+  applied->stop_torque = speed / (inverse_inertia * params_.stepsize);
   const std::optional<double> load = LastLoad(contact);
   return slides || !load ||
-         speed > surface.rolling_friction * *load * row.dot(solved) * params_.stepsize;
+         speed > surface.rolling_friction * *load * inverse_inertia * params_.stepsize;
 }
 
-Eigen::MatrixXd MujocoWorld::RelativeJacobian(const mjContact& contact, bool rotation) const {
-  using RowMajor = Eigen::Matrix<mjtNum, 3, Eigen::Dynamic, Eigen::RowMajor>;
-  RowMajor jac1 = RowMajor::Zero(3, m_->nv), jac2 = RowMajor::Zero(3, m_->nv);
+const MujocoWorld::Jacobian& MujocoWorld::RelativeJacobian(const mjContact& contact,
+                                                           bool rotation) const {
+  Jacobian& jac1 = scratch_.jac1;
+  Jacobian& jac2 = scratch_.jac2;
+  jac1.resize(3, m_->nv);
+  jac2.resize(3, m_->nv);
   const int body1 = m_->geom_bodyid[contact.geom1], body2 = m_->geom_bodyid[contact.geom2];
   if (body1 > 0)
     mj_jac(m_, d_, rotation ? nullptr : jac1.data(), rotation ? jac1.data() : nullptr, contact.pos,
            body1);
+  else
+    jac1.setZero();
   if (body2 > 0)
     mj_jac(m_, d_, rotation ? nullptr : jac2.data(), rotation ? jac2.data() : nullptr, contact.pos,
            body2);
-  return jac1 - jac2;
+  else
+    jac2.setZero();
+  scratch_.jac.noalias() = jac1 - jac2;
+  return scratch_.jac;
+}
+
+double MujocoWorld::InverseInertia(const Jacobian& jac, const Eigen::Vector3d& direction) const {
+  scratch_.row.noalias() = jac.transpose() * direction;
+  scratch_.solved.resize(m_->nv);
+  mj_solveM(m_, d_, scratch_.solved.data(), scratch_.row.data(), 1);
+  return scratch_.row.dot(scratch_.solved);
 }
 
 double MujocoWorld::Brake(const mjContact& contact, double mu, double inverse_inertia) const {

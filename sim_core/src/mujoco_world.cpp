@@ -35,7 +35,11 @@ void InstallMujocoHandlers() {
 
 Eigen::Vector3d V(const mjtNum* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
 
-double Wrap(double angle) { return std::remainder(angle, 2 * kPi); }
+// Into [-pi, pi], as std::remainder puts it; an angle already there (the
+// usual case) skips the library call, with the same result.
+double Wrap(double angle) {
+  return std::abs(angle) <= kPi ? angle : std::remainder(angle, 2 * kPi);
+}
 
 }  // namespace
 
@@ -471,10 +475,14 @@ BodyReadout MujocoWorld::ReadBody(int index) const {
   out.position = V(d_->xpos + 3 * id);
   const mjtNum* q = d_->xquat + 4 * id;
   out.orientation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
-  mjtNum velocity[6];
-  mj_objectVelocity(m_, d_, mjOBJ_BODY, id, velocity, 0);
-  out.angular_velocity = V(velocity);
-  out.linear_velocity = V(velocity + 3);
+  // mj_objectVelocity(mjOBJ_BODY, world frame) without its call: cvel is
+  // the body's spatial velocity at its tree's centre of mass; the body's
+  // own centre of mass (xipos) moves at v + omega x (xipos - that centre).
+  const mjtNum* cvel = d_->cvel + 6 * id;
+  out.angular_velocity = V(cvel);
+  out.linear_velocity =
+      V(cvel + 3) + out.angular_velocity.cross(V(d_->xipos + 3 * id) -
+                                               V(d_->subtree_com + 3 * m_->body_rootid[id]));
   return out;
 }
 

@@ -134,8 +134,12 @@ class MujocoWorld : public PhysicsEngine {
   void ApplyFriction();
   // 3 x nv: the velocity (or with rotation, the angular velocity) of
   // contact's point on geom1's body relative to geom2's, per generalized
-  // velocity.
-  Eigen::MatrixXd RelativeJacobian(const mjContact_& contact, bool rotation = false) const;
+  // velocity. In scratch_, valid until the next call.
+  using Jacobian = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::RowMajor>;
+  const Jacobian& RelativeJacobian(const mjContact_& contact, bool rotation = false) const;
+  // The inverse inertia of contact's point along `direction` (J M^-1 J^T
+  // of the Jacobian `jac`, a unit direction).
+  double InverseInertia(const Jacobian& jac, const Eigen::Vector3d& direction) const;
   // The motor of actuator holds its velocity this step (its limit allows
   // the force that takes) rather than push with its limit.
   bool ServoHolds(int actuator) const;
@@ -190,6 +194,14 @@ class MujocoWorld : public PhysicsEngine {
   std::vector<LastLoad_> last_loads_;                       // the last step's contact points
   std::vector<int> warning_counts_;
   double gravity_ = 0.0;
+  // Working space of the contact set-up, sized once (nv): a step
+  // allocates nothing for its contacts.
+  struct Scratch {
+    Jacobian jac1, jac2, jac;
+    Eigen::VectorXd row, solved;
+    std::vector<int> points;  // per contact: points of its pair of geoms
+  };
+  mutable Scratch scratch_;
 };
 
 // What of model MuJoCo cannot represent, each naming the element with its
