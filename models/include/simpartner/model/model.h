@@ -45,6 +45,30 @@ enum class FrictionDirection {
 };
 const char* ToString(FrictionDirection direction);  // "slip", "rolling"
 
+// Soil under a ground geom (a surface or heightfield whose material has
+// <soil>, docs/soil.md): Bekker's pressure-sinkage law, Mohr-Coulomb shear
+// strength reached over Janosi and Hanamoto's shear deformation, and the
+// soil's rebound on unloading. Unlike the rest of this file, in the units
+// of the sources (Wong, Theory of Ground Vehicles, 4th ed., Table 2.3), so
+// that a library entry reads as its table does.
+struct SoilParameters {
+  std::string name;     // the library entry (or the material's name when inline)
+  std::string source;   // where the figures come from, as the library says
+  double n = 0.0;       // sinkage exponent [-], > 0
+  double k_c = 0.0;     // cohesive modulus of deformation [kN/m^(n+1)], >= 0
+  double k_phi = 0.0;   // frictional modulus of deformation [kN/m^(n+2)], >= 0
+  double cohesion = 0.0;        // c [kPa], >= 0
+  double friction_angle = 0.0;  // phi [deg], 0 <= phi < 90
+  double shear_modulus = 0.0;   // K, shear deformation modulus [m], > 0
+  // Pressure lost per metre the soil rebounds when a load comes off it:
+  // unloading and reloading above the deepest sinkage so far follow this
+  // line, not Bekker's curve [kPa/m], > 0.
+  double unloading_stiffness = 0.0;
+  // Pressure per unit sinkage rate while loading [kPa s/m], >= 0.
+  double viscosity = 0.0;
+  SourceLocation where;  // the <soil> element (or the library entry) it came from
+};
+
 struct Material {
   std::string name;
   double mu = 1.0;                 // Coulomb friction along the first direction
@@ -61,6 +85,7 @@ struct Material {
   std::optional<double> stiffness; // [N/m] of the whole contact of two geoms
   std::optional<double> damping;   // [N s/m] of the whole contact
   double rolling_friction = 0.0;   // [m]
+  std::optional<SoilParameters> soil;  // a ground of soft soil
   SourceLocation where;
 
   double Mu2() const { return mu2.value_or(mu); }
