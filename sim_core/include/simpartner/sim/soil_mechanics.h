@@ -1,0 +1,132 @@
+// Wheel-soil mechanics (issue 28, docs/soil.md): the stresses a rigid
+// wheel meets on soft soil, from the state of this step.
+//
+// Along the wheel's rim in its mid-plane, from where it enters the soil
+// (theta_f, ahead of the lowest point) to where it leaves it (theta_r,
+// behind), each element of the rim carries
+//   - a normal stress sigma, Bekker's p = (k_c / b + k_phi) z^n where the
+//     soil there is pressed deeper than ever before (loading), or on its
+//     unloading line p_max - k_u (z_max - z) where it was pressed deeper
+//     before (a rut: the wheel's rear, a second pass), never below 0;
+//   - a shear stress tau, Janosi and Hanamoto's (c + sigma tan phi)
+//     (1 - exp(-|j| / K)), j the shear displacement the rim point has
+//     built up since it entered the soil (Wong and Reece):
+//       j(theta) = r (theta_f - theta) - (v / omega) (sin theta_f - sin theta).
+// Summed over the loaded arc (the wheel's width b times r dtheta) they
+// are the soil's force on the wheel. The soil remembers how deep it was
+// pressed (SoilMemory), so ruts stay and a second pass meets soil already
+// compacted.
+//
+// Conventions: "up" is the soil surface's normal; "forward" is up x axle,
+// the direction a wheel spinning at a positive rate omega (about -axle)
+// rolls; theta is measured from the lowest point, positive forward.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <unordered_map>
+
+#include "simpartner/model/model.h"
+
+namespace simpartner::sim {
+
+// A soil's figures in SI units (N, m, Pa), from the files' units.
+struct Soil {
+  double n = 1.0;
+  double k_c = 0.0;                  // [N / m^(n+1)]
+  double k_phi = 0.0;                // [N / m^(n+2)]
+  double cohesion = 0.0;             // [Pa]
+  double tan_phi = 0.0;              // [-]
+  double shear_modulus = 0.01;       // K [m]
+  double unloading_stiffness = 0.0;  // [Pa / m]
+  double viscosity = 0.0;            // [Pa s / m]
+
+  static Soil From(const model::SoilParameters& parameters);
+  // Bekker's pressure [Pa] at sinkage z [m] under a plate of width b [m].
+  double Pressure(double z, double b) const;
+  // Janosi and Hanamoto's shear stress [Pa], its sign j's, at normal stress
+  // sigma [Pa] after shear displacement j [m].
+  double Shear(double sigma, double j) const;
+};
+
+// How deep the soil has been pressed, on a square grid of the ground
+// (coordinates along the surface): per cell, the deepest sinkage below the
+// untouched surface so far. Cells no wheel has touched are not stored.
+class SoilMemory {
+ public:
+  explicit SoilMemory(double cell_size = 0.002);
+  double cell_size() const { return cell_size_; }
+  // The deepest sinkage [m] at (u, w) so far; 0 where untouched.
+  double Deepest(double u, double w) const;
+  // Records sinkage z at (u, w) when it is deeper than the deepest so far.
+  void Press(double u, double w, double z);
+  size_t cells() const { return deepest_.size(); }
+
+ private:
+  int64_t Key(double u, double w) const;
+  double cell_size_;
+  std::unordered_map<int64_t, double> deepest_;
+};
+
+// The pressure [Pa] of soil pressed to z where it was pressed to z_max
+// before, under a plate of width b: Bekker's curve when z >= z_max, its
+// unloading line below, never negative.
+double PressureWithMemory(const Soil& soil, double z, double z_max, double b);
+
+// A rigid wheel and its motion, in world coordinates.
+struct WheelState {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axle = Eigen::Vector3d::UnitZ();  // unit
+  double radius = 0.3;                              // [m]
+  double width = 0.2;                               // [m] the tread, b
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          // of the centre [m/s]
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // [rad/s]
+};
+
+// A flat patch of untouched soil: its surface is the plane through
+// `origin` with normal `up` (unit). u and w, the memory's coordinates,
+// are along `u_axis` and up x u_axis.
+struct SoilSurface {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  Eigen::Vector3d u_axis = Eigen::Vector3d::UnitX();
+};
+
+// The soil's answer to a wheel, this step.
+struct WheelSoilForces {
+  bool touching = false;
+  // Sunk to its axle or deeper: the arc is cut at a quarter turn each way
+  // and the figures are those of a wheel sunk to its radius.
+  bool stuck = false;
+  double sinkage = 0.0;      // lowest rim point below the untouched surface [m]
+  double theta_front = 0.0;  // where the loaded arc begins [rad], >= 0
+  double theta_rear = 0.0;   // where it ends [rad], <= 0
+  double forward_speed = 0.0;  // v [m/s]
+  double spin = 0.0;           // omega [rad/s], positive rolling forward
+  double slip = 0.0;           // i: 1 - v / (r omega) driving, r omega / v - 1 braking
+  Eigen::Vector3d normal_force = Eigen::Vector3d::Zero();  // of the normal stresses [N]
+  Eigen::Vector3d shear_force = Eigen::Vector3d::Zero();   // of the shear stresses [N]
+  // The shear force the loaded arc could give at most, sum of
+  // (c + sigma tan phi) dA [N], and the loaded area [m^2].
+  double shear_strength = 0.0;
+  double contact_area = 0.0;
+  // Torque of the shear stresses about the axle [N m] (resisting a
+  // driven wheel's spin: negative along the spin's sense).
+  double shear_torque = 0.0;
+
+  Eigen::Vector3d Force() const { return normal_force + shear_force; }
+};
+
+// The stresses on `wheel` from `soil` under `surface`, pressed before as
+// `memory` says; `samples` points along the arc (midpoint rule). The
+// wheel's mid-plane is taken upright (its axle along the surface).
+WheelSoilForces WheelOnSoil(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
+                            const SoilMemory& memory, int samples = 64);
+
+// Records in `memory` how deep `wheel` presses the soil now (the arc's
+// points below the untouched surface), so that later steps see the rut.
+void PressWheel(const WheelState& wheel, const SoilSurface& surface, SoilMemory* memory,
+                int samples = 64);
+
+}  // namespace simpartner::sim

@@ -1,0 +1,205 @@
+// Wheel-soil mechanics against integrals computed here, apart from the
+// sim's code: Simpson's rule on 20,000 intervals of the stresses Bekker,
+// Janosi-Hanamoto and Wong-Reece give along a circular rim. The sim sums
+// 64 points (midpoint rule); the tolerances below are that sum's error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "simpartner/sim/soil_mechanics.h"
+
+namespace simpartner::sim {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRadius = 0.3, kWidth = 0.2;
+
+// Wong, Theory of Ground Vehicles (2008), Table 2.3 (n, k_c, k_phi, c, phi),
+// with K and an unloading stiffness of this test's choosing.
+model::SoilParameters Entry(double n, double kc, double kphi, double c, double phi) {
+  model::SoilParameters p;
+  p.n = n;
+  p.k_c = kc;
+  p.k_phi = kphi;
+  p.cohesion = c;
+  p.friction_angle = phi;
+  p.shear_modulus = 0.025;
+  p.unloading_stiffness = 20000;  // kPa/m
+  return p;
+}
+const model::SoilParameters kDrySand = Entry(1.1, 0.99, 1528.43, 1.04, 28);
+const model::SoilParameters kSandyLoam = Entry(0.7, 5.27, 1515.04, 1.72, 29);
+const model::SoilParameters kClayeySoil = Entry(0.5, 13.19, 692.15, 4.14, 13);
+const model::SoilParameters kSnow = Entry(1.6, 4.37, 196.72, 1.03, 19.7);
+
+double Simpson(const std::function<double(double)>& f, double a, double b, int intervals = 20000) {
+  const double h = (b - a) / intervals;
+  double sum = f(a) + f(b);
+  for (int k = 1; k < intervals; ++k) sum += f(a + k * h) * (k % 2 ? 4.0 : 2.0);
+  return sum * h / 3.0;
+}
+
+// Bekker's pressure [Pa] from the table's units.
+double Bekker(const model::SoilParameters& p, double z) {
+  return z > 0 ? (p.k_c * 1e3 / kWidth + p.k_phi * 1e3) * std::pow(z, p.n) : 0.0;
+}
+
+WheelState WheelSunk(double sinkage) {
+  WheelState wheel;
+  wheel.radius = kRadius;
+  wheel.width = kWidth;
+  wheel.centre = Eigen::Vector3d(0, kRadius - sinkage, 0);
+  return wheel;
+}
+
+class StandingWheel : public ::testing::TestWithParam<model::SoilParameters> {};
+
+// A wheel pressed straight down into untouched soil: both halves of the
+// arc load, and the load is b r times the integral of p cos(theta).
+TEST_P(StandingWheel, CarriesBekkersPressureOverItsArc) {
+  const model::SoilParameters& p = GetParam();
+  const Soil soil = Soil::From(p);
+  for (const double z0 : {0.005, 0.02, 0.06}) {
+    const double half = std::acos(1.0 - z0 / kRadius);
+    const double expected = kWidth * kRadius * Simpson([&](double t) {
+      return Bekker(p, z0 - kRadius * (1.0 - std::cos(t))) * std::cos(t);
+    }, -half, half);
+    const WheelSoilForces f = WheelOnSoil(soil, WheelSunk(z0), SoilSurface{}, SoilMemory{});
+    ASSERT_TRUE(f.touching);
+    EXPECT_NEAR(f.sinkage, z0, 1e-12);
+    // Midpoint sums of (theta_1 - theta)^n near the arc's ends err by
+    // about (1/64)^(n+1): 0.2 % at n = 0.5.
+    EXPECT_NEAR(f.normal_force.y(), expected, 0.003 * expected) << "n " << p.n << ", z " << z0;
+    // Symmetric: no horizontal force; still: no shear.
+    EXPECT_NEAR(f.normal_force.x(), 0.0, 1e-9 * expected);
+    EXPECT_NEAR(f.shear_force.norm(), 0.0, 1e-9 * expected);
+    EXPECT_NEAR(f.contact_area, kWidth * kRadius * 2 * half, 1e-9);
+    EXPECT_FALSE(f.stuck);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(WongTable23, StandingWheel,
+                         ::testing::Values(kDrySand, kSandyLoam, kClayeySoil, kSnow));
+
+TEST(SoilMemory, UnloadingFollowsItsLineAndReloadingReturnsToBekker) {
+  const Soil soil = Soil::From(kDrySand);
+  const double z_max = 0.03;
+  const double p_max = Bekker(kDrySand, z_max);
+  EXPECT_NEAR(PressureWithMemory(soil, z_max, z_max, kWidth), p_max, 1e-9 * p_max);
+  // 1 mm of rebound takes k_u * 1 mm off.
+  EXPECT_NEAR(PressureWithMemory(soil, z_max - 0.001, z_max, kWidth), p_max - 20000e3 * 0.001,
+              1e-9 * p_max);
+  // Far above: nothing (the rut's floor is at z_max - p_max / k_u).
+  EXPECT_EQ(PressureWithMemory(soil, z_max - 1.1 * p_max / 20000e3, z_max, kWidth), 0.0);
+  // Deeper than ever: Bekker again.
+  EXPECT_NEAR(PressureWithMemory(soil, 0.04, z_max, kWidth), Bekker(kDrySand, 0.04), 1e-6);
+
+  SoilMemory memory(0.002);
+  memory.Press(0.0101, 0.0, 0.02);
+  memory.Press(0.0119, 0.0, 0.01);  // the same 2 mm cell: the deeper stays
+  EXPECT_EQ(memory.Deepest(0.0105, 0.0015), 0.02);
+  EXPECT_EQ(memory.Deepest(0.0125, 0.0), 0.0);  // the next cell
+  EXPECT_EQ(memory.cells(), 1u);
+}
+
+// A wheel that has rolled at sinkage z0 up to here: the soil behind its
+// lowest point was pressed to z0 and rebounds under the rear of the arc.
+SoilMemory RolledTo(double z0, double cell) {
+  SoilMemory memory(cell);
+  for (double x = -0.4; x <= 1e-12; x += cell / 4) {
+    WheelState wheel = WheelSunk(z0);
+    wheel.centre.x() = x;
+    PressWheel(wheel, SoilSurface{}, &memory, 256);
+  }
+  return memory;
+}
+
+// Drawbar pull of a wheel rolling at slip i: b r times the integral of
+// tau cos(theta) - sigma sin(theta) (Wong's eq. for a rigid wheel), sigma
+// Bekker's at the front and on the unloading line behind, tau
+// Janosi-Hanamoto's with Wong and Reece's shear displacement.
+TEST(RollingWheel, DrawbarPullAgainstSlipIsWongsIntegral) {
+  const model::SoilParameters& p = kDrySand;
+  const Soil soil = Soil::From(p);
+  const double z0 = 0.03, k_u = 20000e3;
+  const SoilMemory memory = RolledTo(z0, 0.0005);
+  const double front = std::acos(1.0 - z0 / kRadius);
+  const double rear = -std::acos(1.0 - Bekker(p, z0) / (k_u * kRadius));
+  const double tan_phi = std::tan(p.friction_angle * kPi / 180);
+  for (const double slip : {0.05, 0.2, 0.4, 0.6}) {
+    const double omega = 2.0, v = (1.0 - slip) * kRadius * omega;
+    auto sigma = [&](double t) {
+      const double z = z0 - kRadius * (1.0 - std::cos(t));
+      return t >= 0 ? Bekker(p, z) : std::max(0.0, Bekker(p, z0) - k_u * (z0 - z));
+    };
+    auto tau = [&](double t) {
+      const double j = kRadius * ((front - t) - (1 - slip) * (std::sin(front) - std::sin(t)));
+      return (p.cohesion * 1e3 + sigma(t) * tan_phi) * (1 - std::exp(-j / p.shear_modulus));
+    };
+    const double pull = kWidth * kRadius * Simpson([&](double t) {
+      return tau(t) * std::cos(t) - sigma(t) * std::sin(t);
+    }, rear, front);
+    const double load = kWidth * kRadius * Simpson([&](double t) {
+      return sigma(t) * std::cos(t) + tau(t) * std::sin(t);
+    }, rear, front);
+    WheelState wheel = WheelSunk(z0);
+    wheel.velocity = Eigen::Vector3d(v, 0, 0);
+    wheel.angular_velocity = Eigen::Vector3d(0, 0, -omega);  // rolls toward +x
+    const WheelSoilForces f = WheelOnSoil(soil, wheel, SoilSurface{}, memory, 256);
+    EXPECT_NEAR(f.slip, slip, 1e-12);
+    EXPECT_NEAR(f.theta_front, front, 0.01) << slip;
+    EXPECT_NEAR(f.theta_rear, rear, 0.01) << slip;
+    const double scale = std::abs(load);
+    EXPECT_NEAR(f.Force().x(), pull, 0.01 * scale) << "slip " << slip;
+    EXPECT_NEAR(f.Force().y(), load, 0.01 * scale) << "slip " << slip;
+  }
+}
+
+// Issue 28 (f): a second pass over the same track sinks less. The first
+// wheel sank z0 into untouched soil; the track it leaves is flat along its
+// length with its floor at z0 - p(z0) / k_u (the rebound). A second wheel
+// with the same load meets the stiff reloading line down to z0 and fresh
+// soil (Bekker's curve) only below it, so it sinks into the track, but
+// less than the first sank into untouched soil (as Wong reports for
+// multi-pass: each pass adds less sinkage).
+TEST(RollingWheel, ASecondPassInTheRutSinksLess) {
+  for (const model::SoilParameters& p : {kDrySand, kSnow}) {
+    const Soil soil = Soil::From(p);
+    const double z0 = 0.04;
+    WheelState first = WheelSunk(z0);
+    first.velocity = Eigen::Vector3d(0.3, 0, 0);
+    first.angular_velocity = Eigen::Vector3d(0, 0, -1.0);
+    const SoilMemory rolled = RolledTo(z0, 0.0005);
+    const double load = WheelOnSoil(soil, first, SoilSurface{}, rolled, 256).Force().y();
+    // The second wheel rolls the track the first left behind.
+    auto second_load = [&](double z) {
+      WheelState second = WheelSunk(z);
+      second.centre.x() = -0.2;
+      second.velocity = first.velocity;
+      second.angular_velocity = first.angular_velocity;
+      return WheelOnSoil(soil, second, SoilSurface{}, rolled, 256).Force().y();
+    };
+    double lo = 0.0, hi = 2 * z0;
+    for (int k = 0; k < 60; ++k) ((second_load(0.5 * (lo + hi)) < load) ? lo : hi) = 0.5 * (lo + hi);
+    // The track's floor under the second wheel, from what the soil remembers.
+    const double pressed = rolled.Deepest(-0.2, 0.0);
+    EXPECT_NEAR(pressed, z0, 2e-6);  // the arc's samples miss its lowest point by half a step
+    const double floor = pressed - Bekker(p, pressed) / (p.unloading_stiffness * 1e3);
+    const double into_track = hi - floor;
+    EXPECT_GT(into_track, 0.0) << "n " << p.n;
+    EXPECT_LT(into_track, 0.25 * z0) << "n " << p.n << ": the second pass sinks " << into_track
+                                     << " m into the track, the first " << z0 << " m";
+  }
+}
+
+TEST(RollingWheel, AWheelSunkPastItsAxleIsStuckNotNaN) {
+  const Soil soil = Soil::From(kSnow);
+  const WheelSoilForces f = WheelOnSoil(soil, WheelSunk(1.5 * kRadius), SoilSurface{}, SoilMemory{});
+  EXPECT_TRUE(f.stuck);
+  EXPECT_TRUE(f.Force().allFinite());
+  EXPECT_NEAR(f.theta_front, kPi / 2, 0.03);
+}
+
+}  // namespace
+}  // namespace simpartner::sim
