@@ -1,5 +1,7 @@
 #include "simpartner/sim/ode_world.h"
 
+#include "ode_soil.h"
+
 #include <algorithm>
 #include <utility>
 #include <cmath>
@@ -197,6 +199,13 @@ void OdeWorld::Build() {
     const dGeomID plane =
         dCreatePlane(space_, world.plane[0], world.plane[1], world.plane[2], world.plane[3]);
     add_geom_info(plane, -1, -1, world.plane_material);
+    const model::Material* material =
+        world.plane_material.empty() ? nullptr : world.FindMaterial(world.plane_material);
+    if (material != nullptr && material->soil) {
+      soil_ = std::make_unique<OdeSoil>(params_);
+      soil_->AddGround(plane, *material->soil);
+      rigid_on_soil_said_.assign(model_.bodies.size(), false);
+    }
   }
   if (world.heightfield) {
     const model::Heightfield& h = *world.heightfield;
@@ -393,6 +402,7 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
   const dBodyID b2 = dGeomGetBody(o2);
   if (b1 == nullptr) return;  // static against static
   if (b1 != nullptr && b2 != nullptr && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
+  if (soil_ && soil_->IsGround(o2) && CollideWithSoil(o1, b1, o2)) return;
   const int n = dCollide(o1, o2, static_cast<int>(contact_buffer_.size()),
                          &contact_buffer_[0].geom, sizeof(dContact));
   if (n <= 0) return;
@@ -504,6 +514,41 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
   contact_count_ += n;
 }
 
+bool OdeWorld::CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2) {
+  const GeomInfo& g1 = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(o1)) - 1];
+  OdeSoil::WheelContact wheel;
+  if (!soil_->Contact(o1, b1, o2, &wheel)) {
+    // Only wheels sink: anything else meets the soil as rigid ground, and
+    // the run says so once per body.
+    const auto body = static_cast<size_t>(g1.body);
+    if (g1.body >= 0 && !rigid_on_soil_said_[body]) {
+      rigid_on_soil_said_[body] = true;
+      messages_.push_back("body '" + BodyName(body) +
+                          "' touches soil but is not a cylinder (a wheel): it meets the soil as "
+                          "rigid ground (docs/soil.md)");
+    }
+    return false;
+  }
+  if (!wheel.contact) return true;  // above the soil
+  dContact& contact = *wheel.contact;
+  const dJointID joint = dJointCreateContact(world_, contacts_, &contact);
+  dJointAttach(joint, b1, nullptr);
+  dJointFeedback* feedback = NextFeedback();
+  dJointSetFeedback(joint, feedback);
+  contact_records_.push_back(ContactRecord{g1.body, -1, feedback, o1, o2,
+                                           FromOde(contact.geom.pos), FromOde(contact.geom.normal)});
+  ++contact_count_;
+  // The soil's plain forces act at the wheel's centre (the geom's position).
+  const Eigen::Vector3d centre = FromOde(dGeomGetPosition(o1));
+  dBodyAddForceAtPos(b1, wheel.force.x(), wheel.force.y(), wheel.force.z(), centre.x(), centre.y(),
+                     centre.z());
+  dBodyAddTorque(b1, wheel.torque.x(), wheel.torque.y(), wheel.torque.z());
+  const Eigen::Vector3d com = FromOde(dBodyGetPosition(b1));
+  soil_pushes_.push_back(
+      SoilPush{g1.body, wheel.force, wheel.torque + (centre - com).cross(wheel.force)});
+  return true;
+}
+
 bool OdeWorld::FrictionDirection1(const model::SurfaceProperties& combined, dGeomID o1,
                                   const GeomInfo& g1, dGeomID o2, const GeomInfo& g2,
                                   const dContactGeom& contact, Eigen::Vector3d* direction) const {
@@ -560,6 +605,7 @@ void OdeWorld::Step() {
   if (!first_step_) messages_.clear();
   first_step_ = false;
   contact_records_.clear();
+  soil_pushes_.clear();
   feedback_used_ = 0;
   contact_count_ = 0;
   {
@@ -582,9 +628,14 @@ void OdeWorld::Step() {
       throw Fail(e, "step");
     }
   }
+  if (soil_) soil_->AfterStep();
   for (size_t i = 0; i < bodies_.size(); ++i) {
     contact_force_[i].setZero();
     contact_torque_[i].setZero();
+  }
+  for (const SoilPush& push : soil_pushes_) {
+    contact_force_[static_cast<size_t>(push.body)] += push.force;
+    contact_torque_[static_cast<size_t>(push.body)] += push.torque;
   }
   for (const ContactRecord& record : contact_records_) {
     if (record.body1 >= 0) {

@@ -146,7 +146,8 @@ WheelSoilForces WheelOnSoil(const Soil& soil, const WheelState& wheel, const Soi
     double s = PressureWithMemory(soil, z, z_max, b);
     const double sinking = -(wheel.velocity + wheel.angular_velocity.cross(point - wheel.centre))
                                 .dot(surface.up);
-    if (z >= z_max && sinking > 0.0 && s > 0.0) s += soil.viscosity * sinking;
+    // The soil's damping: on any loaded point, sinking or rising.
+    if (s > 0.0) s = std::max(0.0, s + soil.viscosity * sinking);
     theta[static_cast<size_t>(k)] = t;
     sigma[static_cast<size_t>(k)] = s;
     if (s > 0.0) {

@@ -5,45 +5,26 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 
 #include "simpartner/sim/soil_mechanics.h"
+#include "soil_closed_forms.h"
 
 namespace simpartner::sim {
 namespace {
 
+using testing::Simpson;
+using testing::WongEntry;
+
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRadius = 0.3, kWidth = 0.2;
 
-// Wong, Theory of Ground Vehicles (2008), Table 2.3 (n, k_c, k_phi, c, phi),
-// with K and an unloading stiffness of this test's choosing.
-model::SoilParameters Entry(double n, double kc, double kphi, double c, double phi) {
-  model::SoilParameters p;
-  p.n = n;
-  p.k_c = kc;
-  p.k_phi = kphi;
-  p.cohesion = c;
-  p.friction_angle = phi;
-  p.shear_modulus = 0.025;
-  p.unloading_stiffness = 20000;  // kPa/m
-  return p;
-}
-const model::SoilParameters kDrySand = Entry(1.1, 0.99, 1528.43, 1.04, 28);
-const model::SoilParameters kSandyLoam = Entry(0.7, 5.27, 1515.04, 1.72, 29);
-const model::SoilParameters kClayeySoil = Entry(0.5, 13.19, 692.15, 4.14, 13);
-const model::SoilParameters kSnow = Entry(1.6, 4.37, 196.72, 1.03, 19.7);
+const model::SoilParameters kDrySand = WongEntry(1.1, 0.99, 1528.43, 1.04, 28);
+const model::SoilParameters kSandyLoam = WongEntry(0.7, 5.27, 1515.04, 1.72, 29);
+const model::SoilParameters kClayeySoil = WongEntry(0.5, 13.19, 692.15, 4.14, 13);
+const model::SoilParameters kSnow = WongEntry(1.6, 4.37, 196.72, 1.03, 19.7);
 
-double Simpson(const std::function<double(double)>& f, double a, double b, int intervals = 20000) {
-  const double h = (b - a) / intervals;
-  double sum = f(a) + f(b);
-  for (int k = 1; k < intervals; ++k) sum += f(a + k * h) * (k % 2 ? 4.0 : 2.0);
-  return sum * h / 3.0;
-}
-
-// Bekker's pressure [Pa] from the table's units.
-double Bekker(const model::SoilParameters& p, double z) {
-  return z > 0 ? (p.k_c * 1e3 / kWidth + p.k_phi * 1e3) * std::pow(z, p.n) : 0.0;
-}
+// Bekker's pressure [Pa] under this wheel's width.
+double Bekker(const model::SoilParameters& p, double z) { return testing::Bekker(p, kWidth, z); }
 
 WheelState WheelSunk(double sinkage) {
   WheelState wheel;
@@ -62,9 +43,7 @@ TEST_P(StandingWheel, CarriesBekkersPressureOverItsArc) {
   const Soil soil = Soil::From(p);
   for (const double z0 : {0.005, 0.02, 0.06}) {
     const double half = std::acos(1.0 - z0 / kRadius);
-    const double expected = kWidth * kRadius * Simpson([&](double t) {
-      return Bekker(p, z0 - kRadius * (1.0 - std::cos(t))) * std::cos(t);
-    }, -half, half);
+    const double expected = testing::StandingLoad(p, kRadius, kWidth, z0);
     const WheelSoilForces f = WheelOnSoil(soil, WheelSunk(z0), SoilSurface{}, SoilMemory{});
     ASSERT_TRUE(f.touching);
     EXPECT_NEAR(f.sinkage, z0, 1e-12);

@@ -64,7 +64,7 @@ struct SoilParameters {
   // unloading and reloading above the deepest sinkage so far follow this
   // line, not Bekker's curve [kPa/m], > 0.
   double unloading_stiffness = 0.0;
-  // Pressure per unit sinkage rate while loading [kPa s/m], >= 0.
+  // Pressure per unit sinkage rate where the soil is loaded [kPa s/m], >= 0.
   double viscosity = 0.0;
   SourceLocation where;  // the <soil> element (or the library entry) it came from
 };

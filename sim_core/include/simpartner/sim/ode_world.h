@@ -43,6 +43,8 @@ class OdeError : public EngineError {
 // OdeWorld calls it, and it re-installs them if something replaced them.
 void InstallOdeHandlers();
 
+class OdeSoil;  // ode_soil.h: wheels on soft soil
+
 class OdeWorld : public PhysicsEngine {
  public:
   // model and its World must outlive this object. Throws OdeError when
@@ -179,6 +181,18 @@ class OdeWorld : public PhysicsEngine {
   std::vector<std::unique_ptr<dJointFeedback[]>> feedback_chunks_;
   size_t feedback_used_ = 0;
   std::vector<ContactRecord> contact_records_;
+  // Wheels on soil (null: no ground of soil). Their contact joints are
+  // in contact_records_; what the soil adds as plain forces, per body:
+  std::unique_ptr<OdeSoil> soil_;
+  struct SoilPush {
+    int body;
+    Eigen::Vector3d force, torque;  // torque about the centre of mass
+  };
+  std::vector<SoilPush> soil_pushes_;
+  std::vector<bool> rigid_on_soil_said_;  // per flat body: told it meets soil as rigid
+  // The soil's contact of wheel o1 (body b1) with ground o2; false when o1
+  // is no wheel (collided as rigid ground, said once per body).
+  bool CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2);
   std::vector<LastContact> last_contacts_;  // sorted by (geom1, geom2)
   void RecordLastContacts();
   // The last step's contact point of the pair nearest to position, or

@@ -7,7 +7,9 @@
 //   - a normal stress sigma, Bekker's p = (k_c / b + k_phi) z^n where the
 //     soil there is pressed deeper than ever before (loading), or on its
 //     unloading line p_max - k_u (z_max - z) where it was pressed deeper
-//     before (a rut: the wheel's rear, a second pass), never below 0;
+//     before (a rut: the wheel's rear, a second pass), never below 0,
+//     plus the soil's viscosity times the rate the point sinks (or minus,
+//     rising) where it is loaded;
 //   - a shear stress tau, Janosi and Hanamoto's (c + sigma tan phi)
 //     (1 - exp(-|j| / K)), j the shear displacement the rim point has
 //     built up since it entered the soil (Wong and Reece):

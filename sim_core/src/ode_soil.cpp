@@ -1,0 +1,139 @@
+#include "ode_soil.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace simpartner::sim {
+namespace {
+
+// Sinkage step [m] and spin step [rad/s] of the finite differences that
+// give the soil's stiffness and the shear's slope.
+constexpr double kSinkageStep = 1e-5;
+constexpr double kSpinStep = 1e-3;
+// The least stiffness [N/m] the normal row gets (at first touch Bekker's
+// is 0: the CFM would be infinite).
+constexpr double kLeastStiffness = 1.0;
+// The most compliance [m/(N s)] a friction row gets where the shear's
+// slope is flat.
+constexpr double kMostSlip = 1.0;
+
+Eigen::Vector3d FromOde(const dReal* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+
+void ToOde(const Eigen::Vector3d& v, dReal* out) {
+  out[0] = v.x();
+  out[1] = v.y();
+  out[2] = v.z();
+}
+
+// A unit vector along the surface: the memory's first coordinate.
+Eigen::Vector3d AlongSurface(const Eigen::Vector3d& up) {
+  const Eigen::Vector3d seed =
+      std::abs(up.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
+  return (seed - seed.dot(up) * up).normalized();
+}
+
+}  // namespace
+
+void OdeSoil::AddGround(dGeomID plane, const model::SoilParameters& soil) {
+  dVector4 p;
+  dGeomPlaneGetParams(plane, p);
+  Ground ground{Soil::From(soil), SoilSurface{}, SoilMemory{}};
+  ground.surface.up = Eigen::Vector3d(p[0], p[1], p[2]).normalized();
+  ground.surface.origin = ground.surface.up * p[3];
+  ground.surface.u_axis = AlongSurface(ground.surface.up);
+  grounds_.emplace(plane, std::move(ground));
+}
+
+WheelState OdeSoil::StateOf(dGeomID wheel, dBodyID body) const {
+  WheelState state;
+  dReal radius = 0, length = 0;
+  dGeomCylinderGetParams(wheel, &radius, &length);
+  state.radius = radius;
+  state.width = length;
+  state.centre = FromOde(dGeomGetPosition(wheel));
+  const dReal* r = dGeomGetRotation(wheel);  // 3 x 4, row-major: column 2 is the axis
+  state.axle = Eigen::Vector3d(r[2], r[6], r[10]).normalized();
+  dVector3 velocity;
+  dBodyGetPointVel(body, state.centre.x(), state.centre.y(), state.centre.z(), velocity);
+  state.velocity = FromOde(velocity);
+  state.angular_velocity = FromOde(dBodyGetAngularVel(body));
+  return state;
+}
+
+bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelContact* out) {
+  if (dGeomGetClass(wheel) != dCylinderClass) return false;
+  Ground& ground = grounds_.at(ground_geom);
+  const WheelState state = StateOf(wheel, body);
+  const WheelSoilForces now = WheelOnSoil(ground.soil, state, ground.surface, ground.memory);
+  last_[wheel] = now;
+  touched_.push_back(Touch{wheel, body, &ground});
+  if (!now.touching) return true;
+  const Eigen::Vector3d up = ground.surface.up;
+  const Eigen::Vector3d in_plane = up - up.dot(state.axle) * state.axle;
+  const Eigen::Vector3d wheel_up = in_plane.normalized();
+  const Eigen::Vector3d forward = wheel_up.cross(state.axle).normalized();
+
+  // Normal: the soil's force along up and its stiffness there.
+  WheelState deeper = state;
+  deeper.centre -= kSinkageStep * up;
+  const double load = now.Force().dot(up);
+  const double stiffness = std::max(
+      kLeastStiffness,
+      (WheelOnSoil(ground.soil, deeper, ground.surface, ground.memory).Force().dot(up) - load) /
+          kSinkageStep);
+
+  // First friction row: the shear's force along forward against the slip
+  // velocity v of the lowest rim point, and its slope.
+  const double slip_velocity = now.forward_speed - state.radius * now.spin;
+  WheelState spun = state;
+  spun.angular_velocity -= kSpinStep * state.axle;  // spin + kSpinStep: v falls by r kSpinStep
+  const double thrust = now.shear_force.dot(forward);
+  const double slope =
+      (WheelOnSoil(ground.soil, spun, ground.surface, ground.memory).shear_force.dot(forward) -
+       thrust) /
+      (-state.radius * kSpinStep);
+  const double slip1 = slope < -1.0 / kMostSlip ? -1.0 / slope : kMostSlip;
+
+  dContact contact{};
+  contact.geom.g1 = wheel;
+  contact.geom.g2 = ground_geom;
+  ToOde(state.centre - state.radius * wheel_up, contact.geom.pos);
+  ToOde(up, contact.geom.normal);
+  // ODE caps a contact's push-out velocity (contactMaxCorrectingVel), so
+  // the soil's force itself is a plain force; the row adds, implicitly,
+  // what further sinking in this step adds to it: depth 0 (no push-out)
+  // and CFM 1 / (h k) make it k times the step's sinking.
+  contact.geom.depth = 0.0;
+  // Without dContactApprox1 ODE's mu and mu2 are force bounds [N]: the
+  // soil's shear strength over the loaded arc, whatever the row's force.
+  contact.surface.mode = dContactSoftERP | dContactSoftCFM | dContactFDir1 | dContactMu2 |
+                         dContactSlip1 | dContactSlip2 | dContactMotion1;
+  contact.surface.mu = now.shear_strength;
+  contact.surface.mu2 = now.shear_strength;
+  contact.surface.soft_erp = 0.0;
+  contact.surface.soft_cfm = 1.0 / (params_.stepsize * stiffness);
+  contact.surface.slip1 = slip1;
+  contact.surface.motion1 = slip_velocity + slip1 * thrust;
+  contact.surface.slip2 = params_.contactSlip;
+  ToOde(forward, contact.fdir1);
+  out->contact = contact;
+
+  // Through the centre: the normal stresses and the shear's part along up.
+  out->force = now.normal_force + now.shear_force.dot(up) * up;
+  // The shear's torque about the axle beyond the row's r T at the rim.
+  out->torque = (now.shear_torque - state.radius * thrust) * state.axle;
+  return true;
+}
+
+void OdeSoil::AfterStep() {
+  for (const Touch& touch : touched_)
+    PressWheel(StateOf(touch.wheel, touch.body), touch.ground->surface, &touch.ground->memory);
+  touched_.clear();
+}
+
+const WheelSoilForces* OdeSoil::Last(dGeomID wheel) const {
+  const auto it = last_.find(wheel);
+  return it == last_.end() ? nullptr : &it->second;
+}
+
+}  // namespace simpartner::sim

@@ -1,0 +1,84 @@
+// Wheels on soft soil inside ODE's step (issue 28, docs/soil.md): for a
+// wheel (a cylinder geom) on a ground plane of soil, one contact joint
+// whose rows carry the soil's force of this state, linearized so that
+// ODE solves it implicitly with the rest of the step, and no rigid
+// contact. soil_mechanics.h gives the stresses; this file turns them into
+// ODE's terms:
+//   - the soil's force F at this sinkage is a plain force of the step (ODE
+//     caps a contact's push-out velocity, so a row cannot carry it), and
+//     the normal row adds what sinking further in the step adds, k times
+//     that sinking (depth 0, CFM 1 / (h k), k = dF/dz): backward in time
+//     while the wheel sinks;
+//   - the first friction row, along the wheel's rolling direction, is the
+//     soil's shear force as a function of the slip velocity v of the rim's
+//     lowest point, linearized there: T(v) = T0 + T' (v - v0) is ODE's
+//     row with motion1 = v0 + s T0 and slip1 s = -1 / T';
+//   - the second, across, holds with the soil's shear strength as its
+//     bound (no lateral shear deformation yet); both bounds are forces
+//     (no dContactApprox1), as the row's normal force is only the step's
+//     increment;
+//   - the shear's torque beyond what the row's force gives at the rim is
+//     added as a torque.
+// After the step the soil records how deep each wheel pressed it.
+#pragma once
+
+#include <ode/ode.h>
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "simpartner/model/model.h"
+#include "simpartner/parameters.h"
+#include "simpartner/sim/soil_mechanics.h"
+
+namespace simpartner::sim {
+
+class OdeSoil {
+ public:
+  explicit OdeSoil(const Parameters& params) : params_(params) {}
+
+  // A ground plane of soil.
+  void AddGround(dGeomID plane, const model::SoilParameters& soil);
+  bool IsGround(dGeomID geom) const { return grounds_.count(geom) > 0; }
+
+  // The contact of `wheel` (a geom of body `body`) with soil `ground`
+  // this step: nothing when the wheel is above it; false when `wheel` is
+  // not a cylinder (the soil model has only wheels: the caller collides it
+  // as rigid ground).
+  struct WheelContact {
+    std::optional<dContact> contact;       // to create and attach (body, 0)
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();   // add at the centre of mass
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // add to the body
+  };
+  bool Contact(dGeomID wheel, dBodyID body, dGeomID ground, WheelContact* out);
+
+  // Records the ruts of the wheels that touched soil in this step (after
+  // ODE's step: the new positions).
+  void AfterStep();
+
+  // The last evaluation of a wheel geom on soil (for readouts).
+  const WheelSoilForces* Last(dGeomID wheel) const;
+
+ private:
+  struct Ground {
+    Soil soil;
+    SoilSurface surface;
+    SoilMemory memory;
+  };
+  WheelState StateOf(dGeomID wheel, dBodyID body) const;
+
+  const Parameters& params_;
+  std::unordered_map<dGeomID, Ground> grounds_;
+  struct Touch {
+    dGeomID wheel;
+    dBodyID body;
+    Ground* ground;
+  };
+  std::vector<Touch> touched_;  // this step
+  std::unordered_map<dGeomID, WheelSoilForces> last_;
+};
+
+}  // namespace simpartner::sim
