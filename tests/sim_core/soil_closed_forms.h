@@ -48,3 +48,48 @@ inline model::SoilParameters WongEntry(double n, double kc, double kphi, double 
 }
 
 }  // namespace simpartner::sim::testing
+
+namespace simpartner::sim::testing {
+
+// A rigid wheel (radius r, width b) rolling steadily at slip i, sunk z0
+// below untouched soil; the track behind its lowest point was pressed to
+// z0 and rebounds along the unloading line. Wong's rigid-wheel integrals:
+// normal stress sigma (Bekker ahead of the lowest point, the unloading
+// line behind), shear tau (Janosi-Hanamoto, with Wong and Reece's shear
+// displacement j = r [(theta_f - theta) - (1 - i)(sin theta_f - sin theta)]).
+struct RollingWheelForces {
+  double load = 0;  // carried: b r int (sigma cos + tau sin) [N]
+  double pull = 0;  // drawbar pull: b r int (tau cos - sigma sin) [N]
+};
+
+inline RollingWheelForces RollingWheel(const model::SoilParameters& p, double r, double b,
+                                       double z0, double slip) {
+  const double k_u = p.unloading_stiffness * 1e3, tan_phi = std::tan(p.friction_angle * M_PI / 180);
+  const double front = std::acos(1.0 - z0 / r);
+  const double rear = -std::acos(std::max(-1.0, 1.0 - Bekker(p, b, z0) / (k_u * r)));
+  auto sigma = [&](double t) {
+    const double z = z0 - r * (1.0 - std::cos(t));
+    return t >= 0 ? Bekker(p, b, z) : std::max(0.0, Bekker(p, b, z0) - k_u * (z0 - z));
+  };
+  auto tau = [&](double t) {
+    const double j = r * ((front - t) - (1 - slip) * (std::sin(front) - std::sin(t)));
+    return (p.cohesion * 1e3 + sigma(t) * tan_phi) * (1 - std::exp(-j / p.shear_modulus));
+  };
+  RollingWheelForces out;
+  out.load = b * r * Simpson([&](double t) { return sigma(t) * std::cos(t) + tau(t) * std::sin(t); },
+                             rear, front);
+  out.pull = b * r * Simpson([&](double t) { return tau(t) * std::cos(t) - sigma(t) * std::sin(t); },
+                             rear, front);
+  return out;
+}
+
+// The sinkage at which that wheel carries `load` (bisection).
+inline double RollingSinkage(const model::SoilParameters& p, double r, double b, double slip,
+                             double load) {
+  double lo = 0.0, hi = r;
+  for (int k = 0; k < 50; ++k)
+    (RollingWheel(p, r, b, 0.5 * (lo + hi), slip).load < load ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace simpartner::sim::testing

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "soil_closed_forms.h"
 #include "test_worlds.h"
@@ -78,6 +79,102 @@ TEST(SoilContact, AWheelRestsAtBekkersSinkageAtAnyStep) {
     // 0.2 % of the sinkage at n + 1/2 = 1.6).
     EXPECT_NEAR(sinkage, expected, 0.005 * expected) << "step " << h;
     EXPECT_LT(drift.norm(), 1e-6) << "step " << h;
+  }
+}
+
+}  // namespace
+}  // namespace simpartner::sim
+
+namespace simpartner::sim {
+namespace {
+
+// The single-wheel rig of terramechanics: a sled on a rail along x (its
+// speed v held by the rail's motor), a carrier hung from it on a vertical
+// slider (free: the wheel carries the carrier's and its own weight, W =
+// 490.5 N), the wheel on an axle in the carrier spun at omega. The rail's
+// motor force is the wheel's drawbar pull.
+std::string RigWorld() {
+  return R"(<world name="Rig">)" + testing::Vec("gravity", 0, -kG, 0) +
+         R"(<surface material="sand"><a>0</a><b>1</b><c>0</c><d>0</d></surface>
+  <material name="sand"><mu>0.5</mu></material>
+  <object type="Box" name="Sled"><mass>5</mass>)" + testing::Vec("size", 0.2, 0.1, 0.2) +
+         Transform(0, 1.5, 0) + R"(</object>
+  <object type="Box" name="Carrier"><mass>40</mass>)" + testing::Vec("size", 0.05, 0.05, 0.05) +
+         Transform(0, kRadius, 0) + R"(</object>
+  <object type="Cylinder" name="Wheel"><mass>10</mass><radius>0.3</radius><length>0.2</length>)" +
+         Transform(0, kRadius, 0) + R"(</object>
+  <joint type="Slider" name="Rail"><body1>Sled</body1><body2>world</body2>)" +
+         testing::Vec("axis1", 1, 0, 0) + R"(</joint>
+  <joint type="Slider" name="Hanger"><body1>Carrier</body1><body2>Sled</body2>)" +
+         testing::Vec("axis1", 0, 1, 0) + R"(</joint>
+  <joint type="Hinge" name="Axle"><body1>Carrier</body1><body2>Wheel</body2>)" +
+         testing::Vec("anchor", 0, kRadius, 0) + testing::Vec("axis1", 0, 0, 1) + R"(</joint>
+</world>)";
+}
+
+struct RigResult {
+  double sinkage = 0, pull = 0;
+};
+
+// Lowered onto the sand over 1 s, then driven at slip i for 3 s; the last
+// second's mean.
+RigResult RunRig(const model::SoilParameters& soil, double slip, double omega,
+                 double stepsize = 0.001) {
+  model::World world = LoadInline(RigWorld());
+  world.materials.at(0).soil = soil;
+  Parameters params;
+  params.stepsize = stepsize;
+  Simulation sim(std::move(world), params, 1);
+  const int second = static_cast<int>(std::lround(1.0 / stepsize));
+  const int rail = sim.flat().FindJoint("", "Rail"), axle = sim.flat().FindJoint("", "Axle");
+  const int carrier = sim.flat().FindBody("", "Carrier"), wheel = sim.flat().FindBody("", "Wheel");
+  RigResult out;
+  int counted = 0;
+  for (int k = 0; k < 4 * second; ++k) {
+    const double lowering = k < second ? 1.0 - static_cast<double>(k) / second : 0.0;
+    sim.engine().AddForce(carrier, Eigen::Vector3d(0, 50 * kG * lowering, 0));
+    const bool driving = k >= second;
+    sim.engine().SetMotor(rail, 0, driving ? (1 - slip) * kRadius * omega : 0.0, 1e5);
+    // robot.dtd: a positive rate of body2 (the wheel) about the axle rolls
+    // toward +x.
+    sim.engine().SetMotor(axle, 0, driving ? omega : 0.0, 1e5);
+    EXPECT_TRUE(sim.Step()) << "step " << k;
+    if (::testing::Test::HasFailure()) return out;
+    if (k < 3 * second) continue;
+    out.sinkage += kRadius - sim.engine().ReadBody(wheel).position.y();
+    out.pull += sim.engine().ReadJoint(rail).force1.x();
+    ++counted;
+  }
+  out.sinkage /= counted;
+  out.pull /= counted;
+  return out;
+}
+
+// Issue 28 (c) and (d): drawbar pull and sinkage of the rig's wheel at
+// slip 0.05 to 0.6 against Wong's rigid-wheel integrals for the same load
+// (soil_closed_forms.h), and the same figures at 0.5 and 2 ms steps.
+// The sim sums 64 points of the arc and remembers the ruts in 2 mm cells:
+// within 0.5 % of the load for the pull, 0.5 % for the sinkage.
+TEST(SoilContact, DrawbarPullAgainstSlipIsJanosiHanamotosIntegral) {
+  model::SoilParameters soil = DrySand();
+  soil.viscosity = 0;  // Wong's integrals have none
+  constexpr double kLoad = 50 * kG;
+  for (const double slip : {0.05, 0.1, 0.3, 0.6}) {
+    const RigResult rig = RunRig(soil, slip, 1.0);
+    const double z = testing::RollingSinkage(soil, kRadius, kWidth, slip, kLoad);
+    const double pull = testing::RollingWheel(soil, kRadius, kWidth, z, slip).pull;
+    // The rail holds the sled back: its force on the sled is minus the pull.
+    EXPECT_NEAR(-rig.pull, pull, 0.005 * kLoad) << "slip " << slip;
+    EXPECT_NEAR(rig.sinkage, z, 0.005 * z) << "slip " << slip;
+    std::printf("slip %.2f: sinkage %.5f m (Wong %.5f), pull %.2f N (Wong %.2f)\n", slip,
+                rig.sinkage, z, -rig.pull, pull);
+  }
+  const RigResult at_1ms = RunRig(soil, 0.3, 1.0, 0.001);
+  for (const double h : {0.0005, 0.002}) {
+    const RigResult rig = RunRig(soil, 0.3, 1.0, h);
+    EXPECT_NEAR(rig.pull, at_1ms.pull, 0.005 * kLoad) << "step " << h;
+    EXPECT_NEAR(rig.sinkage, at_1ms.sinkage, 0.005 * at_1ms.sinkage) << "step " << h;
+    std::printf("step %.4f s, slip 0.3: sinkage %.5f m, pull %.2f N\n", h, rig.sinkage, -rig.pull);
   }
 }
 
