@@ -79,7 +79,8 @@ const SoilLibrary* SoilLibraries::Get(const std::string& world_file, const std::
           loaded.result = std::move(other);
           break;
         }
-        loaded.also_tried += (loaded.also_tried.empty() ? "" : ", ") + c.path + " (" + c.source + ")";
+        loaded.also_tried +=
+            (loaded.also_tried.empty() ? "" : ", ") + c.path + " (" + c.source + ")";
       }
     }
     diagnostics_->Append(loaded.result.diagnostics);

@@ -62,7 +62,8 @@ std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parame
   // SOIL-NOT-YET (issue 28): ODE refuses soil until its wheel-soil contact
   // lands; remove this line with it (and the test that expects it,
   // tests/sim_core/soil_refusal_test.cpp).
-  return SoilGrounds(*model.world, "soil is not simulated yet (the ODE engine treats it as rigid)");
+  return SoilGrounds(*model.world,
+                     "soil is not simulated yet (the ODE engine would run it as rigid ground)");
 }
 
 std::vector<std::string> ParametersTheEngineIgnores(const Parameters& params) {
