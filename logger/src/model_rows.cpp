@@ -35,7 +35,9 @@ void InsertMaterials(DbConnection* db, const model_t& model, uint32_t simulation
   if (model.materials.empty()) return;
   RowSink materials(db, InsertMethod::kMultiRowInsert, "", "Material",
                     "simulationID,busIndex,name,mu,mu2,frictionDirection,bounce,"
-                    "bounceVelocity,softERP,softCFM,stiffness,damping,rollingFriction");
+                    "bounceVelocity,softERP,softCFM,stiffness,damping,rollingFriction,soil,"
+                    "soilN,soilKc,soilKphi,soilCohesion,soilFrictionAngle,soilShearModulus,"
+                    "soilUnloadingStiffness,soilViscosity");
   constexpr double kNull = std::numeric_limits<double>::quiet_NaN();
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const material_t& m = model.materials[i];
@@ -55,6 +57,14 @@ void InsertMaterials(DbConnection* db, const model_t& model, uint32_t simulation
     materials.Double(physical ? m.stiffness : kNull);
     materials.Double(physical ? m.damping : kNull);
     materials.Double(m.rolling_friction);
+    // A material that is not a soil has NULL soil figures.
+    if (m.is_soil)
+      materials.Text(m.soil_name);
+    else
+      materials.Expression("NULL");
+    for (double figure : {m.soil_n, m.soil_kc, m.soil_kphi, m.soil_cohesion, m.soil_friction_angle,
+                          m.soil_shear_modulus, m.soil_unloading_stiffness, m.soil_viscosity})
+      materials.Double(m.is_soil ? figure : kNull);
     materials.EndRow();
   }
   materials.Finish();

@@ -145,8 +145,14 @@ std::string CheckModel(const model_t& m) {
           {mat.bounce, ".bounce"}, {mat.bounce_velocity, ".bounce_velocity"},
           {mat.soft_erp, ".soft_erp"}, {mat.soft_cfm, ".soft_cfm"},
           {mat.stiffness, ".stiffness"}, {mat.damping, ".damping"},
-          {mat.rolling_friction, ".rolling_friction"}})
+          {mat.rolling_friction, ".rolling_friction"}, {mat.soil_n, ".soil_n"},
+          {mat.soil_kc, ".soil_kc"}, {mat.soil_kphi, ".soil_kphi"},
+          {mat.soil_cohesion, ".soil_cohesion"}, {mat.soil_friction_angle, ".soil_friction_angle"},
+          {mat.soil_shear_modulus, ".soil_shear_modulus"},
+          {mat.soil_unloading_stiffness, ".soil_unloading_stiffness"},
+          {mat.soil_viscosity, ".soil_viscosity"}})
       if (!std::isfinite(value)) return f + field + " = " + FormatNumber(value);
+    if (!(p = CheckName(mat.soil_name, f + ".soil_name", kNameBytes)).empty()) return p;
     if (mat.friction_direction != material_t::FRICTION_SLIP &&
         mat.friction_direction != material_t::FRICTION_ROLLING)
       return f + ".friction_direction = " + std::to_string(mat.friction_direction) +

@@ -319,6 +319,23 @@ std::vector<Migration> BuildMigrations() {
                       " DEFAULT 'ode' COMMENT 'model_t.engine: ode or mujoco'"
                       " AFTER worldName"),
       }});
+  m.push_back(Migration{
+      9,
+      "Material.soil and its figures: the soil of a ground of soft soil (docs/soil.md), "
+      "NULL for other materials and in rows logged before",
+      {
+          std::string(
+              "ALTER TABLE Material"
+              " ADD COLUMN IF NOT EXISTS soil VARCHAR(255) NULL COMMENT 'material_t.soil_name: the soil library entry, or the material name when written out; NULL = not a soil',"
+              " ADD COLUMN IF NOT EXISTS soilN DOUBLE NULL COMMENT 'sinkage exponent [-]',"
+              " ADD COLUMN IF NOT EXISTS soilKc DOUBLE NULL COMMENT 'cohesive modulus of deformation [kN/m^(n+1)]',"
+              " ADD COLUMN IF NOT EXISTS soilKphi DOUBLE NULL COMMENT 'frictional modulus of deformation [kN/m^(n+2)]',"
+              " ADD COLUMN IF NOT EXISTS soilCohesion DOUBLE NULL COMMENT 'c [kPa]',"
+              " ADD COLUMN IF NOT EXISTS soilFrictionAngle DOUBLE NULL COMMENT 'phi [deg]',"
+              " ADD COLUMN IF NOT EXISTS soilShearModulus DOUBLE NULL COMMENT 'K, shear deformation modulus [m]',"
+              " ADD COLUMN IF NOT EXISTS soilUnloadingStiffness DOUBLE NULL COMMENT '[kPa/m]',"
+              " ADD COLUMN IF NOT EXISTS soilViscosity DOUBLE NULL COMMENT '[kPa s/m]'"),
+      }});
   return m;
 }
 

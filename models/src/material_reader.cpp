@@ -105,7 +105,8 @@ class MaterialReading {
 
 }  // namespace
 
-std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node) {
+std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node,
+                                     SoilLibraries* soils) {
   Material m;
   m.name = xml::Attribute(node, "name").value_or("");
   m.where = reader.Where(node);
@@ -113,7 +114,12 @@ std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node) {
   reading.ReadValues(&m);
   reading.CheckRanges(m);
   reading.CheckSoftness(m);
-  if (!reading.ok()) return std::nullopt;
+  bool soil_ok = true;
+  if (const xmlNode* soil = xml::Child(node, "soil"); soil != nullptr && soils != nullptr) {
+    m.soil = ReadSoil(reader, soil, m.name, soils);
+    soil_ok = m.soil.has_value();
+  }
+  if (!reading.ok() || !soil_ok) return std::nullopt;
   return m;
 }
 

@@ -160,4 +160,21 @@ void CheckPlacement(Reader& reader, const xmlNode* robot_node, const RobotInstan
   }
 }
 
+// A soil yields under a wheel; a body of soil would be a moving ground,
+// which nothing models.
+void CheckNoSoilOnBodies(Reader& reader, const std::vector<Body>& bodies, const char* element,
+                         const std::string& owner,
+                         const std::function<const Material*(const std::string&)>& material_of) {
+  for (const Body& b : bodies) {
+    const Material* m = b.material.empty() ? nullptr : material_of(b.material);
+    if (m == nullptr || !m->soil) continue;
+    reader.ErrorAt(b.where, element,
+                   std::string(element) + " '" + b.name + "'" +
+                       (owner.empty() ? "" : " of robot '" + owner + "'") + ": material '" +
+                       m->name + "' (" + m->where.file + ":" + std::to_string(m->where.line) +
+                       ") is a soil, and soil is only for a ground (the surface or the "
+                       "heightfield)");
+  }
+}
+
 }  // namespace simpartner::model::detail

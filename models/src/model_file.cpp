@@ -1,5 +1,7 @@
 // Reading a model file's bytes: regular files only, never more than
 // kMaxModelFileBytes, and the reason when it cannot be read.
+#include <filesystem>
+
 #include "parts.h"
 #include "simpartner/bounded_file.h"
 
@@ -19,6 +21,33 @@ bool ReadModelFile(const std::string& path, const FileReader& read, const char* 
                                      : std::string(e.what()));
   }
   return false;
+}
+
+bool CannotOpen(const DiagnosticList& diagnostics, const char* kind) {
+  return diagnostics.size() == 1 && diagnostics.items()[0].line == 0 &&
+         diagnostics.items()[0].message.rfind(std::string("cannot read ") + kind + " file", 0) ==
+             0;
+}
+
+std::string ResolveBeside(const std::string& from_file, const std::string& named) {
+  const std::filesystem::path path(named);
+  if (!path.is_relative()) return named;
+  return (std::filesystem::path(from_file).parent_path() / path).lexically_normal().string();
+}
+
+std::vector<DataCandidate> ShippedCopies(const std::string& named, const char* folder,
+                                         const std::string& skip) {
+  const std::filesystem::path path(named);
+  std::vector<DataCandidate> out;
+  if (!path.is_relative()) return out;
+  for (const DataRoot& root : DataRoots()) {
+    const std::string candidate =
+        (std::filesystem::path(root.directory) / folder / path.filename())
+            .lexically_normal()
+            .string();
+    if (candidate != skip) out.push_back(DataCandidate{candidate, root.source});
+  }
+  return out;
 }
 
 }  // namespace detail

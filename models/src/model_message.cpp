@@ -83,6 +83,19 @@ material_t MaterialMessage(const Material& material) {
   out.stiffness = material.stiffness.value_or(0.0);
   out.damping = material.damping.value_or(0.0);
   out.rolling_friction = material.rolling_friction;
+  out.is_soil = material.soil.has_value();
+  if (material.soil) {
+    const SoilParameters& soil = *material.soil;
+    out.soil_name = soil.name;
+    out.soil_n = soil.n;
+    out.soil_kc = soil.k_c;
+    out.soil_kphi = soil.k_phi;
+    out.soil_cohesion = soil.cohesion;
+    out.soil_friction_angle = soil.friction_angle;
+    out.soil_shear_modulus = soil.shear_modulus;
+    out.soil_unloading_stiffness = soil.unloading_stiffness;
+    out.soil_viscosity = soil.viscosity;
+  }
   return out;
 }
 

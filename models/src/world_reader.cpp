@@ -1,7 +1,6 @@
 // A world file: gravity, ground, collision space, materials, heightfield,
 // objects and their joints, the robots placed in it (each loaded from its
 // own file), then the materials every body names.
-#include <filesystem>
 #include <map>
 #include <set>
 
@@ -71,33 +70,21 @@ void ReadObjects(Reader& reader, const xmlNode* root, World* world) {
   detail::CheckMassRatios(reader, world->objects, world->joints, false);
 }
 
-// Whether loading failed only because the file could not be opened.
-bool CannotOpen(const DiagnosticList& diagnostics) {
-  return diagnostics.size() == 1 && diagnostics.items()[0].line == 0 &&
-         diagnostics.items()[0].message.rfind("cannot read robot file", 0) == 0;
-}
-
 // Loads a placed robot's file. A world copied away from models/worlds
-// still finds the shipped robots: a relative robot path's file name is
-// tried in each data root's models/robots/ too (*also_tried lists those
-// that were not there).
+// still finds the shipped robots (detail::ShippedCopies; *also_tried lists
+// those that were not there).
 RobotLoadResult LoadPlacedRobot(RobotInstance* instance, const FileReader& read,
                                 std::vector<std::string>* also_tried) {
   RobotLoadResult loaded = LoadRobotFile(instance->resolved_file, read);
-  const std::filesystem::path path(instance->file);
-  if (loaded.robot || !path.is_relative() || !CannotOpen(loaded.diagnostics)) return loaded;
-  for (const DataRoot& root : DataRoots()) {
-    const std::string candidate =
-        (std::filesystem::path(root.directory) / "models/robots" / path.filename())
-            .lexically_normal()
-            .string();
-    if (candidate == instance->resolved_file) continue;
-    RobotLoadResult other = LoadRobotFile(candidate, read);
-    if (!CannotOpen(other.diagnostics)) {
-      instance->resolved_file = candidate;
+  if (loaded.robot || !detail::CannotOpen(loaded.diagnostics, "robot")) return loaded;
+  for (const DataCandidate& candidate :
+       detail::ShippedCopies(instance->file, "models/robots", instance->resolved_file)) {
+    RobotLoadResult other = LoadRobotFile(candidate.path, read);
+    if (!detail::CannotOpen(other.diagnostics, "robot")) {
+      instance->resolved_file = candidate.path;
       return other;
     }
-    also_tried->push_back(candidate + " (" + root.source + ")");
+    also_tried->push_back(candidate.path + " (" + candidate.source + ")");
   }
   return loaded;
 }
@@ -118,16 +105,13 @@ void ReportUnloadedRobot(Reader& reader, const xmlNode* n, const RobotInstance& 
 // (pointing into the robot file), plus one line at the placing element.
 void ReadPlacedRobots(Reader& reader, const xmlNode* root, const FileReader& read, World* world,
                       DiagnosticList* diagnostics) {
-  const std::filesystem::path base = std::filesystem::path(reader.file()).parent_path();
   std::map<int, std::string> ports;
   for (const xmlNode* n : xml::Children(root, "robot")) {
     RobotInstance instance;
     instance.name = xml::Attribute(n, "name").value_or("");
     instance.file = xml::Attribute(n, "file").value_or("");
     instance.where = reader.Where(n);
-    const std::filesystem::path path(instance.file);
-    instance.resolved_file =
-        (path.is_relative() ? (base / path).lexically_normal() : path).string();
+    instance.resolved_file = detail::ResolveBeside(reader.file(), instance.file);
     if (const xmlNode* t = xml::Child(n, "transformation")) {
       if (const auto placement =
               reader.Transformation(t, "robot '" + instance.name + "' transformation"))
@@ -171,6 +155,9 @@ void CheckWorldMaterials(Reader& reader, const xmlNode* root, World* world) {
   };
   for (const RobotInstance& r : world->robots)
     detail::CheckRollingBodies(reader, r.robot.bodies, r.robot.joints, "body", declared_material);
+  detail::CheckNoSoilOnBodies(reader, world->objects, "object", "", world_material);
+  for (const RobotInstance& r : world->robots)
+    detail::CheckNoSoilOnBodies(reader, r.robot.bodies, "body", r.name, declared_material);
   if (!world->plane_material.empty() && !exists(world->plane_material))
     reader.Error(xml::Child(root, "surface"),
                  "surface material '" + world->plane_material + "' is not defined");
@@ -197,8 +184,9 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
   ReadGravity(reader, root, &world);
   ReadSurface(reader, root, &world);
   ReadCollisionSpace(root, &world);
+  detail::SoilLibraries soil_libraries(read, &result.diagnostics);
   for (const xmlNode* n : xml::Children(root, "material"))
-    if (auto m = detail::ReadMaterial(reader, n)) world.materials.push_back(*m);
+    if (auto m = detail::ReadMaterial(reader, n, &soil_libraries)) world.materials.push_back(*m);
   if (const xmlNode* h = xml::Child(root, "heightfield"))
     world.heightfield = detail::ReadHeightfield(reader, h);
   ReadObjects(reader, root, &world);

@@ -58,17 +58,25 @@ std::vector<Diagnostic> LoopsOf(const model::FlatModel& model, const model::Body
   return out;
 }
 
+// Loops of bodies and grounds of soil.
+std::vector<Diagnostic> LimitsOf(const model::FlatModel& model, const model::BodyTree& tree) {
+  std::vector<Diagnostic> out = LoopsOf(model, tree);
+  for (Diagnostic& d : SoilGrounds(*model.world, "the MuJoCo engine does not model soil"))
+    out.push_back(std::move(d));
+  return out;
+}
+
 }  // namespace
 
 std::vector<Diagnostic> MujocoLimits(const model::FlatModel& model, const Parameters&) {
-  return LoopsOf(model, model::BuildBodyTree(model));
+  return LimitsOf(model, model::BuildBodyTree(model));
 }
 
 MujocoWorld::MujocoWorld(const model::FlatModel& model, const Parameters& params)
     : model_(model), params_(params) {
   InstallMujocoHandlers();
   const model::BodyTree tree = model::BuildBodyTree(model);
-  const std::vector<Diagnostic> limits = LoopsOf(model, tree);
+  const std::vector<Diagnostic> limits = LimitsOf(model, tree);
   if (!limits.empty()) throw EngineError("MuJoCo", limits.front().Format(), "building", {});
   Load(EngineMjcf(model, tree, params));
   MapElements(tree);

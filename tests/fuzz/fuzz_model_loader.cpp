@@ -38,6 +38,18 @@ void CheckRanges(const std::vector<simpartner::model::Body>& bodies) {
   }
 }
 
+// Traps unless every soil is within its ranges (docs/soil.md).
+void CheckSoils(const std::vector<simpartner::model::Material>& materials) {
+  for (const simpartner::model::Material& m : materials) {
+    if (!m.soil) continue;
+    const simpartner::model::SoilParameters& s = *m.soil;
+    if (!(s.n > 0 && s.k_c >= 0 && s.k_phi >= 0 && s.k_c + s.k_phi > 0 && s.cohesion >= 0 &&
+          s.friction_angle >= 0 && s.friction_angle < 90 && s.shear_modulus > 0 &&
+          s.unloading_stiffness > 0 && s.viscosity >= 0))
+      __builtin_trap();
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -59,6 +71,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!world.world && world.diagnostics.empty()) __builtin_trap();
   if (world.world) {
     CheckRanges(world.world->objects);
+    CheckSoils(world.world->materials);
     (void)simpartner::model::DescribeWorld(*world.world);
   }
   return 0;

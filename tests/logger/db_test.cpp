@@ -130,14 +130,15 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   std::vector<std::string> notices;
   auto b = DbConnection::Open(server_->LoggerTarget("simpartner_b"), false);
   EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 8);
-  ASSERT_EQ(notices.size(), 6u);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 9);
+  ASSERT_EQ(notices.size(), 7u);
   EXPECT_NE(notices[0].find("applied schema migration 3 (LogGap.reason"), std::string::npos);
   EXPECT_NE(notices[1].find("applied schema migration 4 (Material"), std::string::npos);
   EXPECT_NE(notices[2].find("applied schema migration 5 (JointPose.continuousAngle"), std::string::npos);
   EXPECT_NE(notices[3].find("applied schema migration 6 (Command.meantForBusSimulationID"), std::string::npos);
   EXPECT_NE(notices[4].find("applied schema migration 7 (Simulation.tag"), std::string::npos);
   EXPECT_NE(notices[5].find("applied schema migration 8 (Simulation.engine"), std::string::npos);
+  EXPECT_NE(notices[6].find("applied schema migration 9 (Material.soil"), std::string::npos);
   // Simulations logged before migration 8 ran on ODE, the only engine then.
   EXPECT_EQ(QueryRows(old.get(), "SELECT busSimulationID, engine FROM Simulation"),
             (std::vector<std::string>{"5\tode"}));
@@ -169,7 +170,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   // Migrations cut short after adding their columns run again harmlessly.
   old->Execute("DELETE FROM SchemaVersion WHERE version >= 3", "");
   EXPECT_EQ(MigrateSchema(b.get(), nullptr), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 8);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 9);
 
   // A database from a newer logger is left alone.
   old->Execute("INSERT INTO SchemaVersion VALUES (99, 'from the future', NOW())", "");
@@ -178,7 +179,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
     FAIL() << "a newer schema was accepted";
   } catch (const DbError& e) {
     EXPECT_NE(std::string(e.what()).find("database 'simpartner_b' has schema version 99, newer than "
-                                         "this program's 8"),
+                                         "this program's 9"),
               std::string::npos) << e.what();
   }
 }
@@ -298,6 +299,30 @@ TEST_F(DbTest, MaterialsAreStoredWithTheirBodies) {
   EXPECT_EQ(QueryRows(db.get(), "SELECT b.name, b.material, m.name FROM Body b LEFT JOIN Material m "
                                 "USING (materialID) ORDER BY b.name"),
             (std::vector<std::string>{"Crate\t\tNULL", "Wheel\ttyre\ttyre"}));
+}
+
+// A ground of soil (docs/soil.md): its Material row carries the soil's
+// name and figures; a material that is no soil has NULL there.
+TEST_F(DbTest, ASoilIsStoredWithItsMaterial) {
+  const std::string world =
+      "<world name=\"Soil\"><surface material=\"sand\"><a>0</a><b>1</b><c>0</c><d>0</d>"
+      "</surface><material name=\"sand\"><mu>0.6</mu><soil><n>1.1</n><kc>0.99</kc>"
+      "<kphi>1528.43</kphi><cohesion>1.04</cohesion><frictionAngle>28</frictionAngle>"
+      "<shearModulus>0.025</shearModulus><unloadingStiffness>10000</unloadingStiffness>"
+      "<viscosity>0</viscosity></soil></material>"
+      "<material name=\"ice\"><mu>0.025</mu></material></world>";
+  auto sim = sim::testing::MakeSim(world);
+  sim->Reset(78);
+  const SimRun run = testing::MakeRun(sim.get(), 1);
+  auto writer = Writer();
+  writer->Write({run.ModelRecord()});
+  auto db = Admin();
+  EXPECT_EQ(QueryRows(db.get(), "SELECT name, soil, soilN, soilKc, soilKphi, soilCohesion, "
+                                "soilFrictionAngle, soilShearModulus, soilUnloadingStiffness, "
+                                "soilViscosity FROM Material ORDER BY name"),
+            (std::vector<std::string>{
+                "ice\tNULL\tNULL\tNULL\tNULL\tNULL\tNULL\tNULL\tNULL\tNULL",
+                "sand\tsand\t1.1\t0.99\t1528.43\t1.04\t28\t0.025\t10000\t0"}));
 }
 
 // Simulation.engine is what SIM_MODEL names; a model with no engine comes

@@ -67,7 +67,8 @@ TEST_F(InstalledSimTest, InstallsTheDataInTheSourceTreesLayout) {
        {"bin/simpartner-sim", "bin/simpartner-teleop-vpad", "share/simpartner/parameters.txt",
         "share/simpartner/models/worlds/flat_ground.xml",
         "share/simpartner/models/robots/workpartner_gen4.xml",
-        "share/simpartner/models/dtd/world.dtd", "share/simpartner/sequences/gen3_pole_task.xml",
+        "share/simpartner/models/dtd/world.dtd", "share/simpartner/models/soils/wong2008.xml",
+        "share/simpartner/models/dtd/soils.dtd", "share/simpartner/sequences/gen3_pole_task.xml",
         "share/simpartner/sequences/dtd/sequence_v2.dtd",
         "share/simpartner/teleop/mappings/workpartner_gen3.map",
         "share/java/simpartner_lcmtypes.jar"})

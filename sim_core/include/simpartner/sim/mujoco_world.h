@@ -205,7 +205,7 @@ class MujocoWorld : public PhysicsEngine {
 };
 
 // What of model MuJoCo cannot represent, each naming the element with its
-// file and line: joints that close a loop of bodies.
+// file and line: joints that close a loop of bodies, and a ground of soil.
 std::vector<Diagnostic> MujocoLimits(const model::FlatModel& model, const Parameters& params);
 
 }  // namespace simpartner::sim
