@@ -43,7 +43,8 @@ std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,
   return std::make_unique<OdeWorld>(model, params);
 }
 
-std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string& why) {
+std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string& why,
+                                    bool surface) {
   std::vector<Diagnostic> out;
   auto check = [&](const char* ground, const std::string& material_name) {
     const model::Material* m = material_name.empty() ? nullptr : world.FindMaterial(material_name);
@@ -52,18 +53,17 @@ std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string
                              std::string(ground) + " material '" + m->name + "' is a soil: " +
                                  why});
   };
-  if (world.has_plane) check("surface", world.plane_material);
+  if (world.has_plane && surface) check("surface", world.plane_material);
   if (world.heightfield) check("heightfield", world.heightfield->material);
   return out;
 }
 
 std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parameters& params) {
   if (params.engine == "mujoco") return MujocoLimits(model, params);
-  // SOIL-NOT-YET (issue 28): ODE refuses soil until its wheel-soil contact
-  // lands; remove this line with it (and the test that expects it,
-  // tests/sim_core/soil_refusal_test.cpp).
+  // ODE's wheel-soil contact (ode_soil.h) has a plane of soil only.
   return SoilGrounds(*model.world,
-                     "soil is not simulated yet (the ODE engine would run it as rigid ground)");
+                     "soil on a heightfield is not simulated yet (a surface of soil is)",
+                     /*surface=*/false);
 }
 
 std::vector<std::string> ParametersTheEngineIgnores(const Parameters& params) {

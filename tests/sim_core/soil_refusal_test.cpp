@@ -1,7 +1,6 @@
 // A ground of soil (docs/soil.md) and the engines: MuJoCo does not model
 // soil and refuses it at --check, at the <soil>'s file and line; ODE
-// refuses it too until its wheel-soil contact lands (the SOIL-NOT-YET line
-// in sim_core/src/engine.cpp; its test below goes with it).
+// models a surface of soil and refuses a heightfield of it.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -49,11 +48,15 @@ TEST(SoilAndEngines, MujocoRefusesSoilAtTheSoilsLine) {
   EXPECT_THROW(Simulation(world, Engine("mujoco"), 1), EngineError);
 }
 
-// SOIL-NOT-YET: remove with the line in engine.cpp.
-TEST(SoilAndEngines, OdeRefusesSoilUntilItIsSimulated) {
+TEST(SoilAndEngines, OdeTakesASurfaceOfSoilAndRefusesAHeightfieldOfIt) {
   const model::World world = LoadInline(kSoilWorld);
-  ExpectSoilRefused(EngineLimits(model::Flatten(world), Engine("ode")),
-                    "soil is not simulated yet");
+  const std::vector<Diagnostic> refused = EngineLimits(model::Flatten(world), Engine("ode"));
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_EQ(refused[0].line, 3);
+  EXPECT_NE(refused[0].message.find("heightfield material 'sand' is a soil: soil on a "
+                                    "heightfield is not simulated yet"),
+            std::string::npos)
+      << refused[0].message;
 }
 
 TEST(SoilAndEngines, AMaterialWithoutSoilIsNoneOfTheirConcern) {

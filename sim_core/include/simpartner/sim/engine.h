@@ -109,13 +109,16 @@ std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,
 
 // What of model params.engine cannot represent, one line each naming the
 // element, its file and line, and why (empty when all of it can). ODE
-// represents everything the loader accepts but soil, for now.
+// represents everything the loader accepts but a heightfield of soil, for
+// now.
 std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parameters& params);
 
-// One line per ground (the surface, the heightfield) whose material is a
-// soil, at the material's <soil>: "<ground> material '<name>' is a soil:
-// <why>", for an engine that refuses soil.
-std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string& why);
+// One line per ground (the surface unless `surface` is false, the
+// heightfield) whose material is a soil, at the material's <soil>:
+// "<ground> material '<name>' is a soil: <why>", for an engine that
+// refuses soil there.
+std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string& why,
+                                    bool surface = true);
 
 // The parameters params.engine does not read that differ from their
 // defaults, as "key=value" (ODE's stepper settings under MuJoCo), so that
