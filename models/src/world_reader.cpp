@@ -1,6 +1,7 @@
 // A world file: gravity, ground, collision space, materials, heightfield,
 // objects and their joints, the robots placed in it (each loaded from its
 // own file), then the materials every body names.
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -23,6 +24,30 @@ void ReadGravity(Reader& reader, const xmlNode* root, World* world) {
   if (gravity->norm() > 1e4)
     reader.Error(g, "gravity of magnitude " + FormatNumber(gravity->norm(), 10) +
                         " m/s^2 is not plausible (at most 10000)");
+}
+
+// The world origin's latitude, longitude [deg] and altitude [m].
+void ReadGeodeticOrigin(Reader& reader, const xmlNode* root, World* world) {
+  const xmlNode* g = xml::Child(root, "geodeticOrigin");
+  if (g == nullptr) return;
+  const auto latitude = reader.Number(xml::Child(g, "latitude"), "geodeticOrigin latitude");
+  const auto longitude = reader.Number(xml::Child(g, "longitude"), "geodeticOrigin longitude");
+  const auto altitude = reader.Number(xml::Child(g, "altitude"), "geodeticOrigin altitude");
+  if (!latitude || !longitude || !altitude) return;
+  if (std::abs(*latitude) >= 90.0)
+    reader.Error(xml::Child(g, "latitude"), "geodeticOrigin: latitude " +
+                                                FormatNumber(*latitude, 10) +
+                                                " deg is out of range (-90, 90)");
+  else if (std::abs(*longitude) > 180.0)
+    reader.Error(xml::Child(g, "longitude"), "geodeticOrigin: longitude " +
+                                                 FormatNumber(*longitude, 10) +
+                                                 " deg is out of range [-180, 180]");
+  else if (*altitude < -1e4 || *altitude > 1e5)
+    reader.Error(xml::Child(g, "altitude"), "geodeticOrigin: altitude " +
+                                                FormatNumber(*altitude, 10) +
+                                                " m is out of range [-10000, 100000]");
+  else
+    world->geodetic_origin = GeodeticOrigin{*latitude, *longitude, *altitude, reader.Where(g)};
 }
 
 // The plane a x + b y + c z = d, kept with a unit normal.
@@ -195,6 +220,7 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
   world.name = xml::Attribute(root, "name").value_or("");
   world.description = xml::Text(xml::Child(root, "description"));
   ReadGravity(reader, root, &world);
+  ReadGeodeticOrigin(reader, root, &world);
   ReadSurface(reader, root, &world);
   ReadCollisionSpace(root, &world);
   for (const xmlNode* n : xml::Children(root, "material"))

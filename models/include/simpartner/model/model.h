@@ -18,7 +18,8 @@ struct SourceLocation {
 
 enum class GeometryKind { kNone, kBox, kSphere, kCylinder, kCapsule };
 enum class JointKind { kFixed, kHinge, kSlider, kBall, kUniversal, kHinge2 };
-enum class SensorKind { kEcho, kPosition, kScanner, kVelocity, kForceTorque };
+enum class SensorKind { kEcho, kPosition, kScanner, kVelocity, kForceTorque,
+                        kImu, kGnss, kEncoder, kLidar, kContact };
 enum class ActuatorKind { kJointVelocity, kAngle, kLinearMotor };
 enum class CollisionSpaceKind { kSimple, kHash, kQuadTree };
 
@@ -116,6 +117,9 @@ struct Sensor {
   int rays = 11;
   double half_span = 0.1;
   double range = 10.0;
+  // Imu, Gnss, Encoder, Lidar, Contact: one value per parameter of
+  // SensorParameterSpecs(kind) (sensor_parameters.h), in its order.
+  std::vector<double> parameters;
   SourceLocation where;
 };
 
@@ -180,6 +184,14 @@ struct Heightfield {
   double HeightAt(double x, double z) const;
 };
 
+// Where the world's origin is on the Earth (WGS-84), for GNSS sensors.
+struct GeodeticOrigin {
+  double latitude = 0.0;           // [deg] north positive
+  double longitude = 0.0;          // [deg] east positive
+  double altitude = 0.0;           // [m] above the ellipsoid
+  SourceLocation where;
+};
+
 struct World {
   std::string name;
   std::string file;
@@ -194,6 +206,7 @@ struct World {
   std::vector<Body> objects;
   std::vector<Joint> joints;
   std::vector<RobotInstance> robots;
+  std::optional<GeodeticOrigin> geodetic_origin;  // absent: GNSS refers to 0 N 0 E, 0 m
 
   // Unit vector opposite to gravity (+y when there is no gravity).
   Eigen::Vector3d Up() const;

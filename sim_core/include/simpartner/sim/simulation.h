@@ -19,6 +19,7 @@
 #include "simpartner/sim/controllers.h"
 #include "simpartner/model/flat_model.h"
 #include "simpartner/sim/engine.h"
+#include "simpartner/sim/sensor_readings.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/warning_t.hpp"
 
@@ -85,6 +86,8 @@ class Simulation {
     double range = 10.0;
     std::string echo_text;
     int64_t period_steps = 0;     // 0 = on request only
+    bool imu = false;             // keeps imu_memory up to date every step
+    ImuMemory imu_memory;
   };
 
   static size_t PendingBytes(const Pending& pending);
@@ -92,6 +95,11 @@ class Simulation {
   command_reply_t Reply(const command_t& command, bool accepted, const std::string& reason) const;
   void ApplyPending(const Pending& pending);
   void CheckHealth();
+  // A reading of an Imu, Gnss, Encoder, Lidar or Contact sensor.
+  std::vector<double> ReadNewSensor(int index, const BodyReadout& body,
+                                    const Eigen::Isometry3d& mount);
+  void RememberImuVelocities();
+  void WalkImuBiases();
   void AddWarning(int8_t severity, const std::string& source, const std::string& message,
                   std::vector<std::string> bodies = {});
 
@@ -111,6 +119,7 @@ class Simulation {
   std::vector<sensor_reading_t> readings_;
   std::vector<int> read_requests_;
   std::vector<warning_t> warnings_;
+  SensorNoise noise_;
 };
 
 // Human-readable name of a body for messages: "robot/body" or "body".
