@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "simpartner/model/sensor_parameters.h"
 #include "simpartner/sim/geodetic.h"
@@ -82,10 +81,9 @@ std::vector<double> ReadGnss(const SensorInput& in) {
   const double cover = Param(in, gp::kCoverHeight);
   if (cover > 0.0 &&
       in.engine->CastRay(point, frame.up, cover, in.sensor->body) < cover) {
-    // Geometry above the antenna within coverHeight: no fix.
-    std::vector<double> values(10, std::numeric_limits<double>::quiet_NaN());
-    values[0] = 0.0;
-    return values;
+    // Geometry above the antenna within coverHeight: no fix, and zeros
+    // (finite: every reader on the bus refuses non-finite values).
+    return std::vector<double>(10, 0.0);
   }
   const Eigen::Vector3d v = PointVelocity(in.body, point);
   const Eigen::Vector3d enu(
