@@ -203,7 +203,11 @@ void CheckNewSensor(Reader& reader, const xmlNode* node, const std::string& what
                            " rad is above highestElevation " +
                            FormatNumber(p[lidar_param::kHighestElevation], 10) + " rad");
   const double rays = p[lidar_param::kRays] * p[lidar_param::kLayers];
-  if (sensor.rate * rays > kMaxScannerRaysPerSecond)
+  if (rays > kMaxReadingValues)
+    reader.Error(node, what + ": rays x layers = " + FormatNumber(rays, 10) +
+                           " is more than the " + FormatNumber(kMaxReadingValues, 10) +
+                           " values a reading carries (sensor_reading_t)");
+  else if (sensor.rate * rays > kMaxScannerRaysPerSecond)
     reader.Error(node, what + ": rate " + FormatNumber(sensor.rate, 10) + " Hz x " +
                            FormatNumber(rays, 10) + " rays (rays x layers) = " +
                            FormatNumber(sensor.rate * rays, 10) + " rays/s is more than the " +

@@ -29,25 +29,22 @@ void ReadGravity(Reader& reader, const xmlNode* root, World* world) {
 // The world origin's latitude, longitude [deg] and altitude [m].
 void ReadGeodeticOrigin(Reader& reader, const xmlNode* root, World* world) {
   const xmlNode* g = xml::Child(root, "geodeticOrigin");
-  if (g == nullptr) return;
-  const auto latitude = reader.Number(xml::Child(g, "latitude"), "geodeticOrigin latitude");
-  const auto longitude = reader.Number(xml::Child(g, "longitude"), "geodeticOrigin longitude");
-  const auto altitude = reader.Number(xml::Child(g, "altitude"), "geodeticOrigin altitude");
-  if (!latitude || !longitude || !altitude) return;
-  if (std::abs(*latitude) >= 90.0)
-    reader.Error(xml::Child(g, "latitude"), "geodeticOrigin: latitude " +
-                                                FormatNumber(*latitude, 10) +
-                                                " deg is out of range (-90, 90)");
-  else if (std::abs(*longitude) > 180.0)
-    reader.Error(xml::Child(g, "longitude"), "geodeticOrigin: longitude " +
-                                                 FormatNumber(*longitude, 10) +
-                                                 " deg is out of range [-180, 180]");
-  else if (*altitude < -1e4 || *altitude > 1e5)
-    reader.Error(xml::Child(g, "altitude"), "geodeticOrigin: altitude " +
-                                                FormatNumber(*altitude, 10) +
-                                                " m is out of range [-10000, 100000]");
+  const auto v = reader.Vector(g, "latitude", "longitude", "altitude", "geodeticOrigin");
+  if (!v) return;
+  const double latitude = v->x(), longitude = v->y(), altitude = v->z();
+  auto refuse = [&](const char* field, double value, const char* unit, const char* range) {
+    reader.Error(xml::Child(g, field), std::string("geodeticOrigin: ") + field + " " +
+                                           FormatNumber(value, 10) + " " + unit +
+                                           " is out of range " + range);
+  };
+  if (std::abs(latitude) >= 90.0)
+    refuse("latitude", latitude, "deg", "(-90, 90)");
+  else if (std::abs(longitude) > 180.0)
+    refuse("longitude", longitude, "deg", "[-180, 180]");
+  else if (altitude < -1e4 || altitude > 1e5)
+    refuse("altitude", altitude, "m", "[-10000, 100000]");
   else
-    world->geodetic_origin = GeodeticOrigin{*latitude, *longitude, *altitude, reader.Where(g)};
+    world->geodetic_origin = GeodeticOrigin{latitude, longitude, altitude, reader.Where(g)};
 }
 
 // The plane a x + b y + c z = d, kept with a unit normal.

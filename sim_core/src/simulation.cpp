@@ -421,6 +421,9 @@ bool Simulation::Step() {
   }
   for (int s : read_requests_) readings_.push_back(ReadSensor(s));
   read_requests_.clear();
+  if (readings_.size() > kMaxUntakenReadings)
+    readings_.erase(readings_.begin(),
+                    readings_.end() - static_cast<std::ptrdiff_t>(kMaxUntakenReadings / 2));
   return true;
 }
 

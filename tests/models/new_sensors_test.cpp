@@ -152,6 +152,9 @@ TEST(NewSensors, BadParametersAreRefusedAtTheirLine) {
   ExpectRefused(R"(<sensor type="Lidar" name="Flood"><bodyRef>Top</bodyRef><rate>1000</rate>
     <parameter name="layers">64</parameter><parameter name="rays">1000</parameter></sensor>)",
                 "name=\"Flood\"", "rays/s is more than the 200000 rays/s");
+  ExpectRefused(R"(<sensor type="Lidar" name="Huge"><bodyRef>Top</bodyRef><rate>0.001</rate>
+    <parameter name="layers">1000</parameter><parameter name="rays">1000</parameter></sensor>)",
+                "name=\"Huge\"", "rays x layers = 1000000 is more than the 100000 values");
   ExpectRefused(R"(<sensor type="Imu" name="I"><bodyRef>Top</bodyRef><rate>100</rate>
     <parameter name="rays">4</parameter></sensor>)",
                 "\"rays\"", "Imu sensors have no parameter 'rays'");

@@ -435,6 +435,19 @@ TEST_P(Sensors, ShippedSensorsLeaveTheTrajectoryBitForBit) {
       ASSERT_EQ(sa.bodies[i].position[k], sb.bodies[i].position[k]) << "body " << i;
 }
 
+// A program that steps without taking the readings keeps a bounded number
+// of them, the newest.
+TEST_P(Sensors, UntakenReadingsAreBounded) {
+  const std::string imu =
+      "<sensor type=\"Imu\" name=\"Imu\"><bodyRef>Box</bodyRef><rate>1000</rate></sensor>";
+  auto sim = Sim(World(0, false), BoxRobot(imu, 0, 1, 0), Params());
+  for (int n = 0; n < 10000; ++n) ASSERT_TRUE(sim->Step());
+  const std::vector<sensor_reading_t> readings = sim->TakeSensorReadings();
+  EXPECT_LE(readings.size(), Simulation::kMaxUntakenReadings);
+  EXPECT_GE(readings.size(), Simulation::kMaxUntakenReadings / 2);
+  EXPECT_EQ(readings.back().step, 10000);
+}
+
 TEST_P(Sensors, RateZeroIsRefusedForASamplingSensor) {
   auto sim = Sim(World(0, false), BoxRobot(std::string(kImu100) + "</sensor>", 0, 1, 0), Params());
   const auto reply = sim->Submit(Command("Imu", command_t::ACTION_SENSOR_PARAMS, {0}));

@@ -104,6 +104,9 @@ struct Joint {
 // loss beside the states; 10000 Hz x 10000 rays once put 44 MB/s on the
 // bus and halved the sim's speed. Checked in robot files and in commands.
 inline constexpr double kMaxScannerRaysPerSecond = 200000;
+// The most values one reading carries (sensor_reading_t.num_values): a
+// Lidar's rays x layers.
+inline constexpr double kMaxReadingValues = 100000;
 
 struct Sensor {
   std::string name;

@@ -30,6 +30,9 @@ class Simulation {
   // Bounds of the queue of accepted commands waiting for their step.
   static constexpr size_t kMaxPendingCommands = 10000;
   static constexpr size_t kMaxPendingBytes = 16u << 20;
+  // Readings nobody takes (a program stepping a Simulation without
+  // publishing) are kept up to this many; beyond it the older half goes.
+  static constexpr size_t kMaxUntakenReadings = 8192;
 
   Simulation(model::World world, Parameters params, int64_t simulation_id);
   Simulation(const Simulation&) = delete;
