@@ -244,9 +244,6 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
         if (values[0] < 0 || values[0] > 10000)
           return reject(what + ": values[0] (rate) = " + FormatNumber(values[0], 10) +
                         " Hz is out of range [0, 10000]");
-        if (model::NeedsRate(sensor.source->kind) && values[0] == 0)
-          return reject(what + ": values[0] (rate) = 0: this sensor samples at its rate, "
-                               "which must be above 0 Hz");
         if (lidar) {
           const std::vector<double>& p = sensor.source->parameters;
           const double rays = p[model::lidar_param::kRays] * p[model::lidar_param::kLayers];
@@ -553,7 +550,9 @@ std::vector<double> Simulation::ReadNewSensor(int index, const BodyReadout& body
   in.noise = &noise_;
   in.index = index;
   in.step = step_;
-  in.rate = state.rate;
+  // Its noise is that of sampling at its rate; with publishing off (rate
+  // 0, on request only), at the rate its file gives.
+  in.rate = state.rate > 0 ? state.rate : sensor.source->rate;
   in.body = body;
   in.mount = mount;
   switch (sensor.source->kind) {

@@ -448,11 +448,22 @@ TEST_P(Sensors, UntakenReadingsAreBounded) {
   EXPECT_EQ(readings.back().step, 10000);
 }
 
-TEST_P(Sensors, RateZeroIsRefusedForASamplingSensor) {
-  auto sim = Sim(World(0, false), BoxRobot(std::string(kImu100) + "</sensor>", 0, 1, 0), Params());
-  const auto reply = sim->Submit(Command("Imu", command_t::ACTION_SENSOR_PARAMS, {0}));
-  ASSERT_TRUE(reply);
-  EXPECT_NE(reply->reason.find("must be above 0 Hz"), std::string::npos) << reply->reason;
+// Rate 0 (SENSOR_PARAMS) stops the readings at a rate; a READ still gets
+// one, with the noise of the file's rate.
+TEST_P(Sensors, RateZeroReadsOnRequestOnly) {
+  const std::string robot = BoxRobot(
+      std::string(kImu100) + ParameterXml({{"accelNoiseDensity", 0.002}}) + "</sensor>", 0, 1, 0);
+  auto sim = Sim(World(0, false), robot, Params(0.01, 9));
+  ASSERT_FALSE(sim->Submit(Command("Imu", command_t::ACTION_SENSOR_PARAMS, {0})));
+  EXPECT_TRUE(Readings(sim.get(), 100, "Imu").empty());
+  std::vector<std::vector<double>> requested;
+  for (int n = 0; n < 10000; ++n) {
+    ASSERT_FALSE(sim->Submit(Command("Imu", command_t::ACTION_READ, {})));
+    const auto r = Readings(sim.get(), 1, "Imu");
+    requested.insert(requested.end(), r.begin(), r.end());
+  }
+  ASSERT_EQ(requested.size(), 10000u);
+  ExpectNormal(Of(requested, 0), 0.0, 0.002 * std::sqrt(100.0), requested.size(), "ax");
 }
 
 }  // namespace
