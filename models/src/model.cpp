@@ -36,6 +36,11 @@ const char* ToString(SensorKind kind) {
     case SensorKind::kScanner: return "Scanner";
     case SensorKind::kVelocity: return "Velocity";
     case SensorKind::kForceTorque: return "ForceTorque";
+    case SensorKind::kImu: return "Imu";
+    case SensorKind::kGnss: return "Gnss";
+    case SensorKind::kEncoder: return "Encoder";
+    case SensorKind::kLidar: return "Lidar";
+    case SensorKind::kContact: return "Contact";
   }
   return "?";
 }

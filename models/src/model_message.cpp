@@ -17,17 +17,6 @@ int8_t ToLcm(ActuatorKind kind) {
   return actuator_t::KIND_JOINT_VELOCITY;
 }
 
-int8_t ToLcm(SensorKind kind) {
-  switch (kind) {
-    case SensorKind::kEcho: return sensor_t::KIND_ECHO;
-    case SensorKind::kPosition: return sensor_t::KIND_POSITION;
-    case SensorKind::kScanner: return sensor_t::KIND_SCANNER;
-    case SensorKind::kVelocity: return sensor_t::KIND_VELOCITY;
-    case SensorKind::kForceTorque: return sensor_t::KIND_FORCE_TORQUE;
-  }
-  return sensor_t::KIND_ECHO;
-}
-
 body_t BodyMessage(const Body& b, int16_t robot, const Eigen::Isometry3d& placement, int32_t id) {
   body_t body{};
   body.id = id;
@@ -97,6 +86,33 @@ material_t MaterialMessage(const Material& material) {
     out.soil_viscosity = soil.viscosity;
   }
   return out;
+}
+
+int8_t ToLcm(SensorKind kind) {
+  switch (kind) {
+    case SensorKind::kEcho: return sensor_t::KIND_ECHO;
+    case SensorKind::kPosition: return sensor_t::KIND_POSITION;
+    case SensorKind::kScanner: return sensor_t::KIND_SCANNER;
+    case SensorKind::kVelocity: return sensor_t::KIND_VELOCITY;
+    case SensorKind::kForceTorque: return sensor_t::KIND_FORCE_TORQUE;
+    case SensorKind::kImu: return sensor_t::KIND_IMU;
+    case SensorKind::kGnss: return sensor_t::KIND_GNSS;
+    case SensorKind::kEncoder: return sensor_t::KIND_ENCODER;
+    case SensorKind::kLidar: return sensor_t::KIND_LIDAR;
+    case SensorKind::kContact: return sensor_t::KIND_CONTACT;
+  }
+  return sensor_t::KIND_ECHO;
+}
+
+std::vector<double> SensorParamsMessage(const Sensor& sensor, const World& world) {
+  if (sensor.kind == SensorKind::kScanner)
+    return {static_cast<double>(sensor.rays), sensor.half_span, sensor.range};
+  std::vector<double> params = sensor.parameters;
+  if (sensor.kind == SensorKind::kGnss) {
+    const GeodeticOrigin origin = world.geodetic_origin.value_or(GeodeticOrigin{});
+    params.insert(params.end(), {origin.latitude, origin.longitude, origin.altitude});
+  }
+  return params;
 }
 
 model_t ModelMessageFromWorld(const World& world) {
@@ -181,8 +197,7 @@ model_t ModelMessageFromWorld(const World& world) {
       sensor.joint = s.joint.empty() ? -1 : joint_index(s.joint);
       sensor.port = s.port;
       sensor.rate = s.rate;
-      if (s.kind == SensorKind::kScanner)
-        sensor.params = {static_cast<double>(s.rays), s.half_span, s.range};
+      sensor.params = SensorParamsMessage(s, world);
       sensor.num_params = static_cast<int32_t>(sensor.params.size());
       m.sensors.push_back(sensor);
     }

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "parts.h"
+#include "simpartner/model/sensor_parameters.h"
 #include "simpartner/text.h"
 
 namespace simpartner::model {
@@ -37,6 +38,11 @@ SensorKind ParseSensorKind(const std::string& type) {
   if (type == "Scanner") return SensorKind::kScanner;
   if (type == "Velocity") return SensorKind::kVelocity;
   if (type == "ForceTorque") return SensorKind::kForceTorque;
+  if (type == "Imu") return SensorKind::kImu;
+  if (type == "Gnss") return SensorKind::kGnss;
+  if (type == "Encoder") return SensorKind::kEncoder;
+  if (type == "Lidar") return SensorKind::kLidar;
+  if (type == "Contact") return SensorKind::kContact;
   return SensorKind::kEcho;
 }
 
@@ -54,15 +60,17 @@ struct DeclaredNames {
   std::set<std::string> joints;
 };
 
-// What a sensor measures: a joint (force/torque, at the joint's second
-// body) or a body (every other kind).
+// What a sensor measures: a joint (force/torque and encoder, at the
+// joint's second body) or a body (every other kind).
 void ReadSensorTarget(Reader& reader, const xmlNode* node, const Robot& robot,
                       const DeclaredNames& declared, const std::string& what, Sensor* sensor) {
   const xmlNode* body_ref = xml::Child(node, "bodyRef");
   const xmlNode* joint_ref = xml::Child(node, "jointRef");
-  if (sensor->kind == SensorKind::kForceTorque) {
+  if (MeasuresJoint(sensor->kind)) {
     if (joint_ref == nullptr) {
-      reader.Error(node, what + ": a ForceTorque sensor measures a joint: it needs <jointRef>");
+      const char* article = sensor->kind == SensorKind::kEncoder ? "an " : "a ";
+      reader.Error(node, what + ": " + article + ToString(sensor->kind) +
+                             " sensor measures a joint: it needs <jointRef>");
       return;
     }
     sensor->joint = xml::Text(joint_ref);
@@ -70,6 +78,10 @@ void ReadSensorTarget(Reader& reader, const xmlNode* node, const Robot& robot,
     if (joint == nullptr && declared.joints.count(sensor->joint) == 0) {
       reader.Error(joint_ref, what + ": '" + sensor->joint + "' is not a joint of robot '" +
                                   robot.model_name + "'");
+    } else if (joint != nullptr && sensor->kind == SensorKind::kEncoder &&
+               joint->kind != JointKind::kHinge) {
+      reader.Error(joint_ref, what + ": an Encoder counts the turns of a Hinge; '" +
+                                  sensor->joint + "' is a " + ToString(joint->kind) + " joint");
     } else if (joint != nullptr) {
       sensor->body = joint->body2;
     }
@@ -124,11 +136,39 @@ void SetScannerParameter(Reader& reader, const xmlNode* p, const std::string& na
   }
 }
 
+// One parameter of a kind with a table (sensor_parameters.h), checked
+// against its range.
+void SetTableParameter(Reader& reader, const xmlNode* p, int index, double value,
+                       const std::string& what, Sensor* sensor) {
+  const SensorParameterSpec& spec = SensorParameterSpecs(sensor->kind)[static_cast<size_t>(index)];
+  const std::string unit = *spec.unit ? std::string(" ") + spec.unit : "";
+  const bool below = spec.min_open ? value <= spec.min : value < spec.min;
+  if (below || value > spec.max) {
+    reader.Error(p, what + ": " + spec.name + " " + FormatNumber(value, 10) + unit +
+                        " is out of range " + (spec.min_open ? "(" : "[") +
+                        FormatNumber(spec.min, 10) + ", " + FormatNumber(spec.max, 10) + "]");
+  } else if (spec.whole && value != std::floor(value)) {
+    reader.Error(p, what + ": " + spec.name + " must be a whole number, got " +
+                        FormatNumber(value, 10));
+  } else {
+    sensor->parameters[static_cast<size_t>(index)] = value;
+  }
+}
+
 void ReadSensorParameters(Reader& reader, const xmlNode* node, const std::string& what,
                           Sensor* sensor) {
   std::set<std::string> seen;
+  sensor->parameters = DefaultSensorParameters(sensor->kind);
   for (const xmlNode* p : xml::Children(node, "parameter")) {
     const std::string name = xml::Attribute(p, "name").value_or("");
+    const int index = SensorParameterIndex(sensor->kind, name);
+    if (index >= 0) {
+      if (!seen.insert(name).second)
+        reader.Error(p, what + ": parameter '" + name + "' is given twice");
+      else if (const auto value = reader.Number(p, what + " parameter " + name))
+        SetTableParameter(reader, p, index, *value, what, sensor);
+      continue;
+    }
     if (sensor->kind != SensorKind::kScanner) {
       reader.Error(p, what + ": " + ToString(sensor->kind) + " sensors have no parameter '" +
                           name + "'");
@@ -143,6 +183,38 @@ void ReadSensorParameters(Reader& reader, const xmlNode* node, const std::string
   }
 }
 
+// The checks of a new kind across its parameters and rate.
+void CheckNewSensor(Reader& reader, const xmlNode* node, const std::string& what,
+                    const Sensor& sensor) {
+  if (!NeedsRate(sensor.kind)) return;
+  if (sensor.rate <= 0.0)
+    reader.Error(xml::Child(node, "rate") ? xml::Child(node, "rate") : node,
+                 what + ": a " + ToString(sensor.kind) +
+                     " sensor samples at its <rate>, which must be above 0 Hz");
+  if (sensor.kind != SensorKind::kLidar) return;
+  const std::vector<double>& p = sensor.parameters;
+  if (p[lidar_param::kMinRange] >= p[lidar_param::kRange])
+    reader.Error(node, what + ": minRange " + FormatNumber(p[lidar_param::kMinRange], 10) +
+                           " m is not below range " + FormatNumber(p[lidar_param::kRange], 10) +
+                           " m");
+  if (p[lidar_param::kLowestElevation] > p[lidar_param::kHighestElevation])
+    reader.Error(node, what + ": lowestElevation " +
+                           FormatNumber(p[lidar_param::kLowestElevation], 10) +
+                           " rad is above highestElevation " +
+                           FormatNumber(p[lidar_param::kHighestElevation], 10) + " rad");
+  const double rays = p[lidar_param::kRays] * p[lidar_param::kLayers];
+  if (rays > kMaxReadingValues)
+    reader.Error(node, what + ": rays x layers = " + FormatNumber(rays, 10) +
+                           " is more than the " + FormatNumber(kMaxReadingValues, 10) +
+                           " values a reading carries (sensor_reading_t)");
+  else if (sensor.rate * rays > kMaxScannerRaysPerSecond)
+    reader.Error(node, what + ": rate " + FormatNumber(sensor.rate, 10) + " Hz x " +
+                           FormatNumber(rays, 10) + " rays (rays x layers) = " +
+                           FormatNumber(sensor.rate * rays, 10) + " rays/s is more than the " +
+                           FormatNumber(kMaxScannerRaysPerSecond, 10) +
+                           " rays/s a scanner may cast (models/.../model.h says why)");
+}
+
 std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robot& robot,
                                  const DeclaredNames& declared) {
   Sensor sensor;
@@ -155,6 +227,7 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
   ReadSensorTarget(reader, node, robot, declared, what, &sensor);
   ReadSensorMountAndRate(reader, node, what, &sensor);
   ReadSensorParameters(reader, node, what, &sensor);
+  if (reader.ErrorCount() == errors_before) CheckNewSensor(reader, node, what, sensor);
   if (sensor.kind == SensorKind::kScanner && sensor.rate * sensor.rays > kMaxScannerRaysPerSecond)
     reader.Error(node, what + ": rate " + FormatNumber(sensor.rate, 10) + " Hz x " +
                            std::to_string(sensor.rays) + " rays = " +

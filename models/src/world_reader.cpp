@@ -1,6 +1,7 @@
 // A world file: gravity, ground, collision space, materials, heightfield,
 // objects and their joints, the robots placed in it (each loaded from its
 // own file), then the materials every body names.
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -22,6 +23,27 @@ void ReadGravity(Reader& reader, const xmlNode* root, World* world) {
   if (gravity->norm() > 1e4)
     reader.Error(g, "gravity of magnitude " + FormatNumber(gravity->norm(), 10) +
                         " m/s^2 is not plausible (at most 10000)");
+}
+
+// The world origin's latitude, longitude [deg] and altitude [m].
+void ReadGeodeticOrigin(Reader& reader, const xmlNode* root, World* world) {
+  const xmlNode* g = xml::Child(root, "geodeticOrigin");
+  const auto v = reader.Vector(g, "latitude", "longitude", "altitude", "geodeticOrigin");
+  if (!v) return;
+  const double latitude = v->x(), longitude = v->y(), altitude = v->z();
+  auto refuse = [&](const char* field, double value, const char* unit, const char* range) {
+    reader.Error(xml::Child(g, field), std::string("geodeticOrigin: ") + field + " " +
+                                           FormatNumber(value, 10) + " " + unit +
+                                           " is out of range " + range);
+  };
+  if (std::abs(latitude) >= 90.0)
+    refuse("latitude", latitude, "deg", "(-90, 90)");
+  else if (std::abs(longitude) > 180.0)
+    refuse("longitude", longitude, "deg", "[-180, 180]");
+  else if (altitude < -1e4 || altitude > 1e5)
+    refuse("altitude", altitude, "m", "[-10000, 100000]");
+  else
+    world->geodetic_origin = GeodeticOrigin{latitude, longitude, altitude, reader.Where(g)};
 }
 
 // The plane a x + b y + c z = d, kept with a unit normal.
@@ -182,6 +204,7 @@ WorldLoadResult ParseWorld(const std::string& xml, const std::string& file_name,
   world.name = xml::Attribute(root, "name").value_or("");
   world.description = xml::Text(xml::Child(root, "description"));
   ReadGravity(reader, root, &world);
+  ReadGeodeticOrigin(reader, root, &world);
   ReadSurface(reader, root, &world);
   ReadCollisionSpace(root, &world);
   detail::SoilLibraries soil_libraries(read, &result.diagnostics);

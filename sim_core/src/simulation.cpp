@@ -7,6 +7,7 @@
 
 #include "simpartner/check.h"
 #include "simpartner/model/model_message.h"
+#include "simpartner/model/sensor_parameters.h"
 #include "simpartner/sensor_t.hpp"
 #include "simpartner/text.h"
 #include "simpartner/sender.h"
@@ -50,17 +51,6 @@ int8_t ToLcm(model::JointKind kind) {
   return joint_t::KIND_FIXED;
 }
 
-int8_t ToLcm(model::SensorKind kind) {
-  switch (kind) {
-    case model::SensorKind::kEcho: return sensor_t::KIND_ECHO;
-    case model::SensorKind::kPosition: return sensor_t::KIND_POSITION;
-    case model::SensorKind::kScanner: return sensor_t::KIND_SCANNER;
-    case model::SensorKind::kVelocity: return sensor_t::KIND_VELOCITY;
-    case model::SensorKind::kForceTorque: return sensor_t::KIND_FORCE_TORQUE;
-  }
-  return sensor_t::KIND_ECHO;
-}
-
 int8_t ToLcm(model::ActuatorKind kind) {
   switch (kind) {
     case model::ActuatorKind::kJointVelocity: return actuator_t::KIND_JOINT_VELOCITY;
@@ -81,7 +71,10 @@ std::string QualifiedBodyName(const model::FlatModel& model, int body) {
 }
 
 Simulation::Simulation(model::World world, Parameters params, int64_t simulation_id)
-    : world_(std::move(world)), params_(std::move(params)), simulation_id_(simulation_id) {
+    : world_(std::move(world)),
+      params_(std::move(params)),
+      simulation_id_(simulation_id),
+      noise_(static_cast<uint64_t>(params_.sensorSeed)) {
   flat_ = model::Flatten(world_);
   Build();
 }
@@ -105,12 +98,35 @@ void Simulation::Build() {
     state.period_steps =
         state.rate > 0 ? std::max<int64_t>(1, std::llround(1.0 / (state.rate * params_.stepsize)))
                        : 0;
+    state.imu = s.source->kind == model::SensorKind::kImu;
     sensors_.push_back(state);
   }
   pending_.clear();
   pending_bytes_ = 0;
   step_ = 0;
   faulted_ = false;
+  RememberImuVelocities();
+}
+
+// An IMU's acceleration is the change of its mount point's velocity over
+// a step: remember the velocity before each step.
+void Simulation::RememberImuVelocities() {
+  for (size_t s = 0; s < sensors_.size(); ++s) {
+    if (!sensors_[s].imu) continue;
+    const model::FlatSensor& sensor = flat_.sensors[s];
+    const BodyReadout body = engine_->ReadBody(sensor.body);
+    const Eigen::Vector3d point =
+        body.position + body.orientation * sensor.source->mount.translation();
+    sensors_[s].imu_memory.previous_velocity = PointVelocity(body, point);
+  }
+}
+
+void Simulation::WalkImuBiases() {
+  for (size_t s = 0; s < sensors_.size(); ++s) {
+    if (sensors_[s].imu)
+      WalkImuBias(*flat_.sensors[s].source, noise_, static_cast<int>(s), step_, params_.stepsize,
+                  &sensors_[s].imu_memory);
+  }
 }
 
 void Simulation::Reset(int64_t simulation_id) {
@@ -216,6 +232,7 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
         break;
       case command_t::ACTION_SENSOR_PARAMS: {
         const bool scanner = sensor.source->kind == model::SensorKind::kScanner;
+        const bool lidar = sensor.source->kind == model::SensorKind::kLidar;
         if (values.size() != 1 && !(scanner && values.size() == 4))
           return reject(what + ": expected 1 value (rate)" +
                         std::string(scanner ? " or 4 (rate, rays, halfSpan, range)" : "") +
@@ -228,6 +245,16 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
         if (values[0] < 0 || values[0] > 10000)
           return reject(what + ": values[0] (rate) = " + FormatNumber(values[0], 10) +
                         " Hz is out of range [0, 10000]");
+        if (lidar) {
+          const std::vector<double>& p = sensor.source->parameters;
+          const double rays = p[model::lidar_param::kRays] * p[model::lidar_param::kLayers];
+          if (values[0] * rays > model::kMaxScannerRaysPerSecond)
+            return reject(what + ": rate " + FormatNumber(values[0], 10) + " Hz x " +
+                          FormatNumber(rays, 10) + " rays = " + FormatNumber(values[0] * rays, 10) +
+                          " rays/s is more than the " +
+                          FormatNumber(model::kMaxScannerRaysPerSecond, 10) +
+                          " rays/s a scanner may cast (the bus carries a double per ray)");
+        }
         if (values.size() == 4) {
           if (values[1] < 1 || values[1] > 10000 || values[1] != std::floor(values[1]))
             return reject(what + ": values[1] (rays) = " + FormatNumber(values[1], 10) +
@@ -367,6 +394,7 @@ bool Simulation::Step() {
     for (int k = 0; k < axes; ++k) engine_->SetMotor(joint, k, out.velocity[k], out.max_force[k]);
   }
 
+  RememberImuVelocities();
   try {
     engine_->Step();
   } catch (const EngineError& e) {
@@ -379,6 +407,7 @@ bool Simulation::Step() {
     return false;
   }
   ++step_;
+  WalkImuBiases();
   for (const std::string& message : engine_->last_messages())
     AddWarning(warning_t::SEVERITY_WARNING, engine_->name(), message);
   ReadBodies();
@@ -392,6 +421,9 @@ bool Simulation::Step() {
   }
   for (int s : read_requests_) readings_.push_back(ReadSensor(s));
   read_requests_.clear();
+  if (readings_.size() > kMaxUntakenReadings)
+    readings_.erase(readings_.begin(),
+                    readings_.end() - static_cast<std::ptrdiff_t>(kMaxUntakenReadings / 2));
   return true;
 }
 
@@ -461,7 +493,7 @@ sensor_reading_t Simulation::ReadSensor(int index) {
   r.sim_time = time();
   r.sensor = index;
   r.name = sensor.name;
-  r.kind = ToLcm(sensor.source->kind);
+  r.kind = model::ToLcm(sensor.source->kind);
   Eigen::Isometry3d mount_world = Eigen::Isometry3d::Identity();
   BodyReadout body;
   if (sensor.body >= 0) {
@@ -509,9 +541,38 @@ sensor_reading_t Simulation::ReadSensor(int index) {
       }
       break;
     }
+    default:
+      r.values = ReadNewSensor(index, body, mount_world);
+      break;
   }
   r.num_values = static_cast<int32_t>(r.values.size());
   return r;
+}
+
+std::vector<double> Simulation::ReadNewSensor(int index, const BodyReadout& body,
+                                              const Eigen::Isometry3d& mount) {
+  const model::FlatSensor& sensor = flat_.sensors[static_cast<size_t>(index)];
+  const SensorState& state = sensors_[static_cast<size_t>(index)];
+  SensorInput in;
+  in.engine = engine_.get();
+  in.sensor = &sensor;
+  in.world = &world_;
+  in.noise = &noise_;
+  in.index = index;
+  in.step = step_;
+  // Its noise is that of sampling at its rate; with publishing off (rate
+  // 0, on request only), at the rate its file gives.
+  in.rate = state.rate > 0 ? state.rate : sensor.source->rate;
+  in.body = body;
+  in.mount = mount;
+  switch (sensor.source->kind) {
+    case model::SensorKind::kImu: return ReadImu(in, state.imu_memory, params_.stepsize);
+    case model::SensorKind::kGnss: return ReadGnss(in);
+    case model::SensorKind::kEncoder: return ReadEncoder(in);
+    case model::SensorKind::kLidar: return ReadLidar(in);
+    case model::SensorKind::kContact: return ReadContact(in);
+    default: return {};
+  }
 }
 
 void Simulation::FillState(state_t* s) const {
@@ -643,7 +704,7 @@ void Simulation::FillModel(model_t* m) const {
     out.id = static_cast<int32_t>(s);
     out.name = fs.name;
     out.robot = static_cast<int16_t>(fs.robot);
-    out.kind = ToLcm(fs.source->kind);
+    out.kind = model::ToLcm(fs.source->kind);
     out.body = fs.body;
     out.joint = fs.joint;
     out.port = fs.source->port;
@@ -652,6 +713,8 @@ void Simulation::FillModel(model_t* m) const {
     out.rate = state.rate;
     if (fs.source->kind == model::SensorKind::kScanner)
       out.params = {static_cast<double>(state.rays), state.half_span, state.range};
+    else
+      out.params = model::SensorParamsMessage(*fs.source, world_);
     out.num_params = static_cast<int32_t>(out.params.size());
     m->sensors.push_back(out);
   }

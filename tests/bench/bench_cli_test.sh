@@ -23,6 +23,7 @@ cases=(
   "peer_bench|MuJoCo 2.2|--stnad 3|--stand"
   "multi_host_bench|Needs root|--rte 5|--rate"
   "lockstep_bench|What lock-step costs|--tikcs 5|--ticks"
+  "sensor_bench|without its field sensors|--rouns 5|--rounds"
 )
 listed=" "
 for c in "${cases[@]}"; do

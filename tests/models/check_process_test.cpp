@@ -95,6 +95,17 @@ TEST(CheckProcess, BrokenRobotIsReportedInBothFiles) {
       << "stderr:\n" << run.err;
 }
 
+// Issue 27: a sensor parameter out of range stops --check at its line.
+TEST(CheckProcess, BadSensorParameterIsRefusedAtItsLine) {
+  const fs::path world = kSource / "tests/models/broken/robot_imu_negative_noise.xml";
+  const fs::path robot = kSource / "tests/models/broken/robots/imu_negative_noise.xml";
+  const SimRun run = RunSim(Check(world));
+  EXPECT_EQ(run.status, 2) << "stderr:\n" << run.err;
+  EXPECT_TRUE(HasLine(run.err, robot.string() + ":32: parameter: sensor 'Imu': gyroNoiseDensity "
+                                                "-0.001 rad/s/sqrt(Hz) is out of range [0, 10]"))
+      << "stderr:\n" << run.err;
+}
+
 TEST(CheckProcess, GoodWorldExitsZeroWithTheSummary) {
   const fs::path world = kSource / "models/worlds/flat_ground.xml";
   const SimRun run = RunSim(Check(world));

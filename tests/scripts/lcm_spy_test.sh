@@ -53,13 +53,14 @@ spy_pid=$!
 
 spy=$(wait_window "LCM Spy" 60) || fail "no 'LCM Spy' window within 60 s"
 # No window manager: every window is at 0,0. The rows are SIM_MODEL,
-# SIM_STATE, SIM_STATUS, once each has come; SIM_STATE's is at y 43. On a
+# SIM_SENSOR (the shipped gen3's IMU, GNSS, encoders and lidar), SIM_STATE,
+# SIM_STATUS, once each has come, 16 pixels apart; SIM_STATE's is at y 59. On a
 # loaded machine a row can come late, so a click that opened nothing is
 # tried again (4 times).
 view=
 for _ in 1 2 3 4; do
   sleep 3
-  xdotool mousemove --window "$spy" 40 43 click --repeat 2 --delay 100 1
+  xdotool mousemove --window "$spy" 40 59 click --repeat 2 --delay 100 1
   view=$(wait_window "SIM_STATE" 8) && break
 done
 [[ -n $view ]] || fail "a double click on SIM_STATE opened no per-field view"

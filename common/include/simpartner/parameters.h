@@ -70,6 +70,7 @@ struct Parameters {
   double maxLinearVelocity = 1000.0;
   double maxAngularVelocity = 10000.0;
   double lockStepTimeout = 5.0;
+  int sensorSeed = 0;
 
   // Transport.
   std::string lcmUrl = kDefaultLcmUrl;
@@ -154,6 +155,9 @@ struct Parameters {
     v.Double("lockStepTimeout", lockStepTimeout, 0.01, 3600.0,
              "[s] wall time the sim waits for a synchronous (lock-step) controller's "
              "answer to a tick before it releases it and runs on without it");
+    v.Int("sensorSeed", sensorSeed, 0, 2147483647,
+          "seed of the sensors' noise: the same seed gives the same readings, bit for "
+          "bit, at any speed (docs/sensors.md)");
 
     v.Section(parameter_sections::kTransport);
     v.String("lcmUrl", lcmUrl,

@@ -18,7 +18,8 @@ struct SourceLocation {
 
 enum class GeometryKind { kNone, kBox, kSphere, kCylinder, kCapsule };
 enum class JointKind { kFixed, kHinge, kSlider, kBall, kUniversal, kHinge2 };
-enum class SensorKind { kEcho, kPosition, kScanner, kVelocity, kForceTorque };
+enum class SensorKind { kEcho, kPosition, kScanner, kVelocity, kForceTorque,
+                        kImu, kGnss, kEncoder, kLidar, kContact };
 enum class ActuatorKind { kJointVelocity, kAngle, kLinearMotor };
 enum class CollisionSpaceKind { kSimple, kHash, kQuadTree };
 
@@ -128,6 +129,9 @@ struct Joint {
 // loss beside the states; 10000 Hz x 10000 rays once put 44 MB/s on the
 // bus and halved the sim's speed. Checked in robot files and in commands.
 inline constexpr double kMaxScannerRaysPerSecond = 200000;
+// The most values one reading carries (sensor_reading_t.num_values): a
+// Lidar's rays x layers.
+inline constexpr double kMaxReadingValues = 100000;
 
 struct Sensor {
   std::string name;
@@ -141,6 +145,9 @@ struct Sensor {
   int rays = 11;
   double half_span = 0.1;
   double range = 10.0;
+  // Imu, Gnss, Encoder, Lidar, Contact: one value per parameter of
+  // SensorParameterSpecs(kind) (sensor_parameters.h), in its order.
+  std::vector<double> parameters;
   SourceLocation where;
 };
 
@@ -205,6 +212,14 @@ struct Heightfield {
   double HeightAt(double x, double z) const;
 };
 
+// Where the world's origin is on the Earth (WGS-84), for GNSS sensors.
+struct GeodeticOrigin {
+  double latitude = 0.0;           // [deg] north positive
+  double longitude = 0.0;          // [deg] east positive
+  double altitude = 0.0;           // [m] above the ellipsoid
+  SourceLocation where;
+};
+
 struct World {
   std::string name;
   std::string file;
@@ -219,6 +234,7 @@ struct World {
   std::vector<Body> objects;
   std::vector<Joint> joints;
   std::vector<RobotInstance> robots;
+  std::optional<GeodeticOrigin> geodetic_origin;  // absent: GNSS refers to 0 N 0 E, 0 m
 
   // Unit vector opposite to gravity (+y when there is no gravity).
   Eigen::Vector3d Up() const;

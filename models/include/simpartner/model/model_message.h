@@ -7,6 +7,8 @@
 // parameters) is left empty.
 #pragma once
 
+#include <vector>
+
 #include "simpartner/model/model.h"
 #include "simpartner/model_t.hpp"
 
@@ -15,6 +17,14 @@ namespace simpartner::model {
 // A material as SIM_MODEL carries it: mu2 = mu when isotropic, stiffness
 // and damping 0 when the softness is given per step.
 material_t MaterialMessage(const Material& material);
+
+// sensor_t.KIND_* of a kind.
+int8_t ToLcm(SensorKind kind);
+// sensor_t.params of a sensor as its file gives it: the Scanner's rays,
+// halfSpan, range; a new kind's parameters in SensorParameterSpecs order,
+// a Gnss's followed by the world's geodetic origin (latitude, longitude
+// [deg], altitude [m]).
+std::vector<double> SensorParamsMessage(const Sensor& sensor, const World& world);
 
 // World objects and joints first, then each robot's bodies, joints,
 // actuators and sensors in file order, as the sim numbers them.

@@ -19,6 +19,7 @@
 #include "simpartner/sim/controllers.h"
 #include "simpartner/model/flat_model.h"
 #include "simpartner/sim/engine.h"
+#include "simpartner/sim/sensor_readings.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/warning_t.hpp"
 
@@ -29,6 +30,9 @@ class Simulation {
   // Bounds of the queue of accepted commands waiting for their step.
   static constexpr size_t kMaxPendingCommands = 10000;
   static constexpr size_t kMaxPendingBytes = 16u << 20;
+  // Readings nobody takes (a program stepping a Simulation without
+  // publishing) are kept up to this many; beyond it the older half goes.
+  static constexpr size_t kMaxUntakenReadings = 8192;
 
   Simulation(model::World world, Parameters params, int64_t simulation_id);
   Simulation(const Simulation&) = delete;
@@ -90,6 +94,8 @@ class Simulation {
     double range = 10.0;
     std::string echo_text;
     int64_t period_steps = 0;     // 0 = on request only
+    bool imu = false;             // keeps imu_memory up to date every step
+    ImuMemory imu_memory;
   };
 
   static size_t PendingBytes(const Pending& pending);
@@ -100,6 +106,11 @@ class Simulation {
   // FillState (reading a MuJoCo body's velocity is a transform).
   void ReadBodies();
   void CheckHealth();
+  // A reading of an Imu, Gnss, Encoder, Lidar or Contact sensor.
+  std::vector<double> ReadNewSensor(int index, const BodyReadout& body,
+                                    const Eigen::Isometry3d& mount);
+  void RememberImuVelocities();
+  void WalkImuBiases();
   void AddWarning(int8_t severity, const std::string& source, const std::string& message,
                   std::vector<std::string> bodies = {});
 
@@ -121,6 +132,7 @@ class Simulation {
   std::vector<sensor_reading_t> readings_;
   std::vector<int> read_requests_;
   std::vector<warning_t> warnings_;
+  SensorNoise noise_;
 };
 
 // Human-readable name of a body for messages: "robot/body" or "body".
