@@ -262,6 +262,9 @@ MjcfExport Writer::Run() {
       not_carried_.push_back("material '" + m.name +
                              "': frictionDirection rolling (MuJoCo orients contact friction "
                              "itself)");
+    if (m.soil)
+      not_carried_.push_back("material '" + m.name + "': soil '" + m.soil->name +
+                             "' (MuJoCo has no soil model: the ground is rigid in the MJCF)");
   };
   for (const model::Material& m : world_.materials) note_material(m);
   for (const model::RobotInstance& r : world_.robots)

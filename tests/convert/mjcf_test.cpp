@@ -214,3 +214,29 @@ TEST(MjcfExport, RobotFileAloneExports) {
 
 }  // namespace
 }  // namespace simpartner::convert
+
+namespace simpartner::convert {
+namespace {
+
+// MuJoCo has no soil: the export says so in its header instead of
+// dropping it silently.
+TEST(MjcfExport, ASoilGroundIsSaidToBeRigidInTheMjcf) {
+  const std::string xml =
+      "<world name=\"Sand\">\n"
+      "  <surface material=\"sand\"><a>0</a><b>1</b><c>0</c><d>0</d></surface>\n"
+      "  <material name=\"sand\"><soil><n>1.1</n><kc>0.99</kc><kphi>1528.43</kphi>"
+      "<cohesion>1.04</cohesion><frictionAngle>28</frictionAngle><shearModulus>0.025"
+      "</shearModulus><unloadingStiffness>10000</unloadingStiffness><viscosity>0</viscosity>"
+      "</soil></material>\n"
+      "</world>\n";
+  model::WorldLoadResult loaded = model::ParseWorld(xml, "sand.xml");
+  ASSERT_TRUE(loaded.world) << loaded.diagnostics.Format();
+  const MjcfExport exported = ExportMjcf(*loaded.world, Parameters{});
+  const std::string header = exported.xml.substr(0, exported.xml.find("-->"));
+  EXPECT_NE(header.find("material 'sand': soil 'sand' (MuJoCo has no soil model"),
+            std::string::npos)
+      << header;
+}
+
+}  // namespace
+}  // namespace simpartner::convert
