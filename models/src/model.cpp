@@ -36,6 +36,7 @@ const char* ToString(SensorKind kind) {
     case SensorKind::kScanner: return "Scanner";
     case SensorKind::kVelocity: return "Velocity";
     case SensorKind::kForceTorque: return "ForceTorque";
+    case SensorKind::kCamera: return "Camera";
   }
   return "?";
 }
@@ -62,6 +63,15 @@ const char* ToString(FrictionDirection direction) {
   switch (direction) {
     case FrictionDirection::kSlip: return "slip";
     case FrictionDirection::kRolling: return "rolling";
+  }
+  return "?";
+}
+
+const char* ToString(CameraDepth depth) {
+  switch (depth) {
+    case CameraDepth::kNone: return "none";
+    case CameraDepth::kMetres: return "metres";
+    case CameraDepth::kMillimetres: return "millimetres";
   }
   return "?";
 }

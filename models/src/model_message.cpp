@@ -24,9 +24,22 @@ int8_t ToLcm(SensorKind kind) {
     case SensorKind::kScanner: return sensor_t::KIND_SCANNER;
     case SensorKind::kVelocity: return sensor_t::KIND_VELOCITY;
     case SensorKind::kForceTorque: return sensor_t::KIND_FORCE_TORQUE;
+    case SensorKind::kCamera: return sensor_t::KIND_CAMERA;
   }
   return sensor_t::KIND_ECHO;
 }
+
+}  // namespace
+
+std::vector<double> CameraParams(const CameraSettings& camera) {
+  const double depth = camera.depth == CameraDepth::kMetres        ? 1
+                       : camera.depth == CameraDepth::kMillimetres ? 2
+                                                                  : 0;
+  return {static_cast<double>(camera.width), static_cast<double>(camera.height), camera.fov,
+          camera.near, camera.far, depth};
+}
+
+namespace {
 
 body_t BodyMessage(const Body& b, int16_t robot, const Eigen::Isometry3d& placement, int32_t id) {
   body_t body{};
@@ -167,9 +180,16 @@ model_t ModelMessageFromWorld(const World& world) {
       sensor.body = s.body.empty() ? -1 : body_index(s.body);
       sensor.joint = s.joint.empty() ? -1 : joint_index(s.joint);
       sensor.port = s.port;
+      const Eigen::Quaterniond mount(s.mount.linear());
+      for (int k = 0; k < 3; ++k) sensor.position[k] = s.mount.translation()[k];
+      sensor.orientation[0] = mount.w();
+      sensor.orientation[1] = mount.x();
+      sensor.orientation[2] = mount.y();
+      sensor.orientation[3] = mount.z();
       sensor.rate = s.rate;
       if (s.kind == SensorKind::kScanner)
         sensor.params = {static_cast<double>(s.rays), s.half_span, s.range};
+      if (s.kind == SensorKind::kCamera) sensor.params = CameraParams(s.camera);
       sensor.num_params = static_cast<int32_t>(sensor.params.size());
       m.sensors.push_back(sensor);
     }

@@ -57,6 +57,7 @@ int8_t ToLcm(model::SensorKind kind) {
     case model::SensorKind::kScanner: return sensor_t::KIND_SCANNER;
     case model::SensorKind::kVelocity: return sensor_t::KIND_VELOCITY;
     case model::SensorKind::kForceTorque: return sensor_t::KIND_FORCE_TORQUE;
+    case model::SensorKind::kCamera: return sensor_t::KIND_CAMERA;
   }
   return sensor_t::KIND_ECHO;
 }
@@ -101,9 +102,10 @@ void Simulation::Build() {
     state.rays = s.source->rays;
     state.half_span = s.source->half_span;
     state.range = s.source->range;
+    // A camera's rate is simpartner-camera's to keep: the sim reads nothing.
+    const bool read_here = state.rate > 0 && s.source->kind != model::SensorKind::kCamera;
     state.period_steps =
-        state.rate > 0 ? std::max<int64_t>(1, std::llround(1.0 / (state.rate * params_.stepsize)))
-                       : 0;
+        read_here ? std::max<int64_t>(1, std::llround(1.0 / (state.rate * params_.stepsize))) : 0;
     sensors_.push_back(state);
   }
   pending_.clear();
@@ -206,6 +208,9 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
     const model::FlatSensor& sensor = flat_.sensors[static_cast<size_t>(pending.sensor)];
     pending.command.target = sensor.name;
     const std::string what = "sensor '" + sensor.name + "' (" + ToString(sensor.source->kind) + ")";
+    if (sensor.source->kind == model::SensorKind::kCamera)
+      return reject(what + ": simpartner-camera renders it (image_t on SIM_IMAGE); the sim "
+                           "takes no command for a camera");
     switch (command.action) {
       case command_t::ACTION_READ:
         break;
@@ -485,6 +490,8 @@ sensor_reading_t Simulation::ReadSensor(int index) {
                   j.torque2.x(), j.torque2.y(), j.torque2.z()};
       break;
     }
+    case model::SensorKind::kCamera:
+      break;  // never asked for: its commands are refused, it has no period
     case model::SensorKind::kScanner: {
       // Rays around the sensor's z axis in its z-x plane, evenly from
       // -halfSpan to +halfSpan.
@@ -642,6 +649,8 @@ void Simulation::FillModel(model_t* m) const {
     out.rate = state.rate;
     if (fs.source->kind == model::SensorKind::kScanner)
       out.params = {static_cast<double>(state.rays), state.half_span, state.range};
+    if (fs.source->kind == model::SensorKind::kCamera)
+      out.params = model::CameraParams(fs.source->camera);
     out.num_params = static_cast<int32_t>(out.params.size());
     m->sensors.push_back(out);
   }

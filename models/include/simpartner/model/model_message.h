@@ -7,6 +7,8 @@
 // parameters) is left empty.
 #pragma once
 
+#include <vector>
+
 #include "simpartner/model/model.h"
 #include "simpartner/model_t.hpp"
 
@@ -15,6 +17,10 @@ namespace simpartner::model {
 // A material as SIM_MODEL carries it: mu2 = mu when isotropic, stiffness
 // and damping 0 when the softness is given per step.
 material_t MaterialMessage(const Material& material);
+
+// A camera's sensor_t.params: width, height, fov, near, far, depth (0 none,
+// 1 metres, 2 millimetres), as lcmtypes/sensor_t.lcm states.
+std::vector<double> CameraParams(const CameraSettings& camera);
 
 // World objects and joints first, then each robot's bodies, joints,
 // actuators and sensors in file order, as the sim numbers them.
