@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "simpartner/bus_signing.h"
+#include "simpartner/bus_url.h"
 #include "simpartner/camera/camera_sensor.h"
 #include "simpartner/camera/offscreen.h"
 #include "simpartner/channels.h"
@@ -82,8 +83,10 @@ class CameraProcess {
   }
 
  private:
+  // With the large receive buffer (bus_url.h): every state can be due, and
+  // the socket also hears the images, its own and other cameras'.
   static std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url) {
-    auto lcm = std::make_unique<lcm::LCM>(url);
+    auto lcm = std::make_unique<lcm::LCM>(WithReceiveBuffer(url));
     if (!lcm->good()) throw std::runtime_error("cannot open LCM at '" + url + "'");
     return lcm;
   }

@@ -110,7 +110,7 @@ enum class CameraDepth { kNone, kMetres, kMillimetres };
 const char* ToString(CameraDepth depth);  // the XML words: "none", "metres", "millimetres"
 
 // The largest camera image side [pixels]: what every OpenGL driver we run
-// on can render offscreen (GL_MAX_RENDERBUFFER_SIZE is 8192 on llvmpipe
+// on can render offscreen (GL_MAX_RENDERBUFFER_SIZE is 16384 on llvmpipe
 // and at least 4096 on desktop GPUs); simpartner-camera also checks the
 // driver's own limit when it starts.
 inline constexpr int kMaxCameraSide = 4096;
