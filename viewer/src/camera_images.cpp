@@ -26,7 +26,7 @@ void CameraImages::Offer(const void* data, size_t size) {
   }
   if (shown_.empty() || image.name != shown_ || image.format != image_t::FORMAT_RGB8) return;
   if (static_cast<int64_t>(image.width) * image.height * 3 != image.num_bytes) {
-    if (refused_.Count(channels::kImage, "bad size"))
+    if (bad_sizes_.Count(channels::kImage, "bad size"))
       report_(std::string(channels::kImage) + ": image '" + image.name + "' is " +
               std::to_string(image.width) + "x" + std::to_string(image.height) + " but has " +
               std::to_string(image.num_bytes) + " bytes of RGB8; ignored");

@@ -586,7 +586,8 @@ void Renderer::DrawInset(const Inset& inset, int width, int height) {
   glEnd();
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
   glBindTexture(GL_TEXTURE_2D, font_texture_);
-  DrawText(inset.label, x0, y0 - kCellHeight * kHudScale - 4, kHudScale, {1, 1, 1});
+  // At the font's own size, so that the label fits over the inset.
+  DrawText(inset.label, x0, y0 - kCellHeight - 3, 1.0f, {1, 1, 1});
   glDisable(GL_TEXTURE_2D);
   glBindTexture(GL_TEXTURE_2D, 0);
 }

@@ -43,7 +43,8 @@ class CameraImages {
   BusSigning* signing_;
   Reporter report_;
   std::string shown_;
-  BadMessageCounter refused_;
+  BadMessageCounter refused_;    // that do not decode or open
+  BadMessageCounter bad_sizes_;  // decoded, but the bytes do not fit the size
   std::optional<image_t> newest_;
   int64_t version_ = 0;
 };
