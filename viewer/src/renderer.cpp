@@ -35,6 +35,20 @@ void SetColor(const Color& c, float alpha = 1.0f) { glColor4f(c[0], c[1], c[2], 
 
 void Vertex(const Eigen::Vector3d& p) { glVertex3d(p.x(), p.y(), p.z()); }
 
+// Binds `texture` (left bound) and loads it with bytes of `format`
+// (GL_ALPHA, GL_RGB), clamped at its edges.
+void LoadTexture(GLuint texture, GLint filter, GLenum format, int width, int height,
+                 const void* pixels) {
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(format), width, height, 0, format,
+               GL_UNSIGNED_BYTE, pixels);
+}
+
 // Compiles a mesh (with its colours if it has them) into a display list.
 unsigned CompileMesh(const Mesh& mesh) {
   if (mesh.positions.empty()) return 0;
@@ -181,14 +195,8 @@ Renderer::Renderer() {
   font_width_ = atlas.width;
   font_height_ = atlas.height;
   glGenTextures(1, &font_texture_);
-  glBindTexture(GL_TEXTURE_2D, font_texture_);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, atlas.width, atlas.height, 0, GL_ALPHA,
-               GL_UNSIGNED_BYTE, atlas.coverage.data());
+  LoadTexture(font_texture_, GL_NEAREST, GL_ALPHA, atlas.width, atlas.height,
+              atlas.coverage.data());
 
   glBindTexture(GL_TEXTURE_2D, 0);
 }
@@ -564,14 +572,7 @@ void Renderer::DrawInset(const Inset& inset, int width, int height) {
   const float w = inset.width * scale, h = inset.height * scale;
   const float x0 = width - w - kMargin, y0 = height - h - kMargin;
   if (inset_texture_ == 0) glGenTextures(1, &inset_texture_);
-  glBindTexture(GL_TEXTURE_2D, inset_texture_);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, inset.width, inset.height, 0, GL_RGB, GL_UNSIGNED_BYTE,
-               inset.rgb);
+  LoadTexture(inset_texture_, GL_LINEAR, GL_RGB, inset.width, inset.height, inset.rgb);
   glEnable(GL_TEXTURE_2D);
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
   glBegin(GL_QUADS);  // the image's first row at the top
