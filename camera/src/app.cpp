@@ -76,6 +76,7 @@ class CameraProcess {
       SDL_PumpEvents();  // the hidden window's X events, so none pile up
       bus_.Drain(now + std::chrono::milliseconds(50));
       bus_.RequestModelIfNeeded();
+      FollowModel();  // a model without states yet (a paused sim) is announced too
     }
     PrintSummary();
     SaveFrames();
@@ -106,7 +107,7 @@ class CameraProcess {
 
   // A new model (the first, or a restarted sim): its cameras, from scratch.
   void FollowModel() {
-    if (scene_.model_generation() == seen_generation_) return;
+    if (!scene_.has_model() || scene_.model_generation() == seen_generation_) return;
     seen_generation_ = scene_.model_generation();
     if (!cameras_.empty()) PrintSummary();
     cameras_.clear();
