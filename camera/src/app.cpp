@@ -111,6 +111,7 @@ class CameraProcess {
     seen_generation_ = scene_.model_generation();
     if (!cameras_.empty()) PrintSummary();
     cameras_.clear();
+    cameras_simulation_ = scene_.simulation_id();
     std::vector<std::string> problems;
     for (CameraSensor& c : CamerasOfModel(scene_.model(), &problems)) {
       if (std::max(c.width, c.height) > offscreen_.max_side()) {
@@ -172,7 +173,7 @@ class CameraProcess {
   void PrintSummary() {
     for (const CameraRun& c : cameras_) {
       out_ << "simpartner-camera: camera '" << c.sensor.name << "' of simulation "
-           << scene_.simulation_id() << ": " << c.rendered << " frames rendered of "
+           << cameras_simulation_ << ": " << c.rendered << " frames rendered of "
            << c.schedule.due() << " due; latency mean "
            << FormatFixed(c.rendered > 0 ? c.latency_sum_ms / c.rendered : 0, 1) << " ms, max "
            << FormatFixed(c.latency_max_ms, 1) << " ms" << std::endl;
@@ -209,6 +210,7 @@ class CameraProcess {
   viewer::ViewerBus bus_;
   int64_t seen_generation_ = 0;
   std::vector<CameraRun> cameras_;
+  int64_t cameras_simulation_ = 0;  // the simulation cameras_ belong to
 };
 
 }  // namespace

@@ -3,7 +3,8 @@
 // ball flies across a camera's view; every image must show it where the
 // SIM_STATE of the image's own step has it (the pinhole projection,
 // computed here from the states' poses), and a ball moving about 3 pixels a
-// step tells the step apart from its neighbours.
+// step tells the step apart from its neighbours. Then the sim restarts,
+// and the camera renders the new simulation.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -140,6 +141,21 @@ TEST(CameraProcess, EachImageShowsTheStateOfItsStep) {
   ASSERT_TRUE(bus.Until([&] { return sim.Wait(std::chrono::milliseconds(0)).has_value(); }, 30))
       << sim.Log();
   bus.Until([] { return false; }, 0.5);  // the last images
+  const std::vector<image_t> first = images;
+  const std::map<int64_t, state_t> first_states = states;
+  const model_t first_model = model;
+
+  // The sim restarts (a new simulation): the camera follows it.
+  test_support::SimProcess again((dir / "world.xml").string(), url, (dir / "sim2.log").string(),
+                                 {"--stepsize=0.01", "--duration=0.3"});
+  ASSERT_TRUE(bus.Until([&] { return again.Wait(std::chrono::milliseconds(0)).has_value(); }, 30))
+      << again.Log();
+  bus.Until([] { return false; }, 0.5);
+  ASSERT_NE(model.simulation_id, first_model.simulation_id);
+  int of_second = 0;
+  for (size_t k = first.size(); k < images.size(); ++k)
+    of_second += images[k].simulation_id == model.simulation_id;
+  EXPECT_GE(of_second, 5) << "0.3 s at 20 Hz: 6 frames due";
   camera.Signal(SIGTERM);
   ASSERT_EQ(camera.Wait(std::chrono::seconds(10)), 0);
   const std::string log = test_support::ReadText(dir / "camera.log");
@@ -147,7 +163,7 @@ TEST(CameraProcess, EachImageShowsTheStateOfItsStep) {
   EXPECT_NE(log.find("camera 'Eye' of simulation"), std::string::npos) << log;
 
   int rig = -1, ball = -1;
-  for (const body_t& b : model.bodies) {
+  for (const body_t& b : first_model.bodies) {
     if (b.name == "Base") rig = b.id;
     if (b.name == "Ball") ball = b.id;
   }
@@ -155,7 +171,7 @@ TEST(CameraProcess, EachImageShowsTheStateOfItsStep) {
   ASSERT_GE(ball, 0);
 
   int checked = 0;
-  for (const image_t& image : images) {
+  for (const image_t& image : first) {
     ASSERT_EQ(image.format, image_t::FORMAT_RGB8);  // no depth asked for
     ASSERT_EQ(image.width, kWidth);
     ASSERT_EQ(image.height, kHeight);
@@ -164,11 +180,11 @@ TEST(CameraProcess, EachImageShowsTheStateOfItsStep) {
     EXPECT_EQ(image.robot, "Rig");
     // The first state of each period of 5 steps (the first image: the
     // first state the camera heard after the model).
-    if (&image != &images.front()) {
+    if (&image != &first.front()) {
       EXPECT_EQ(image.step % kPeriodSteps, 0) << "image of step " << image.step;
     }
-    ASSERT_TRUE(states.count(image.step)) << "no state of step " << image.step;
-    const state_t& s = states.at(image.step);
+    ASSERT_TRUE(first_states.count(image.step)) << "no state of step " << image.step;
+    const state_t& s = first_states.at(image.step);
     EXPECT_DOUBLE_EQ(image.sim_time, s.sim_time);
     EXPECT_EQ(image.simulation_id, s.simulation_id);
     const Eigen::Vector2d expected = Projected(s, rig, ball);
@@ -183,11 +199,11 @@ TEST(CameraProcess, EachImageShowsTheStateOfItsStep) {
     EXPECT_NEAR(centroid->y(), expected.y(), 1.0) << "step " << image.step;
     // The test can tell the neighbouring steps apart.
     for (int64_t other : {image.step - 1, image.step + 1}) {
-      if (states.count(other) == 0) continue;
-      EXPECT_GT((Projected(states.at(other), rig, ball) - expected).norm(), 2.0);
+      if (first_states.count(other) == 0) continue;
+      EXPECT_GT((Projected(first_states.at(other), rig, ball) - expected).norm(), 2.0);
     }
   }
-  EXPECT_GE(checked, 8) << images.size() << " images; " << log;
+  EXPECT_GE(checked, 8) << first.size() << " images; " << log;
   if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 
