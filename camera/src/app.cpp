@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -30,6 +31,15 @@ namespace simpartner::camera {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// A camera's name as a file name: the name comes from the bus, so
+// anything but letters, digits, '-' and '_' (a '/', a leading '.')
+// becomes '_'.
+std::string SafeFileName(std::string name) {
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '_';
+  return name;
+}
 
 // What one camera has done since its model came.
 struct CameraRun {
@@ -188,7 +198,7 @@ class CameraProcess {
     std::filesystem::create_directories(options_.save_dir);
     for (const CameraRun& c : cameras_) {
       if (c.last.pixels.empty()) continue;
-      const std::string path = options_.save_dir + "/" + c.sensor.name + ".png";
+      const std::string path = options_.save_dir + "/" + SafeFileName(c.sensor.name) + ".png";
       try {
         viewer::WritePng(path, c.last);
         out_ << "simpartner-camera: wrote " << path << std::endl;

@@ -11,7 +11,8 @@ namespace simpartner::camera {
 struct CameraOptions {
   std::string lcm_url;
   double quit_after = 0;  // [s] exit after this long (0 = never); prints frame figures
-  std::string save_dir;   // write each camera's last frame here as PNG when it exits ("" = none)
+  std::string save_dir;   // write each camera's last frame here as NAME.png when it exits ("" = none;
+                          // characters other than letters, digits, - and _ in NAME become _)
 };
 
 CommandLineSpec CameraCommandLine();
