@@ -6,9 +6,9 @@
 #include <unistd.h>
 
 #include <fstream>
-#include <sstream>
 #include <string>
 
+#include "process_cpu.h"
 #include "simpartner/logger/private_server.h"
 
 namespace simpartner::bench {
@@ -24,17 +24,9 @@ inline double CpuSeconds() {
 // CPU time the private server has used so far [s] (utime + stime from /proc).
 inline double ServerCpuSeconds(const logger::PrivateServer& server) {
   std::ifstream pid_file(server.dir() + "/mariadbd.pid");
-  std::string pid;
+  pid_t pid = 0;
   pid_file >> pid;
-  std::ifstream stat("/proc/" + pid + "/stat");
-  std::string text;
-  std::getline(stat, text);
-  std::stringstream fields(text.substr(text.rfind(')') + 2));
-  std::string f;
-  double ticks = 0;
-  for (int i = 3; i <= 15 && fields >> f; ++i)
-    if (i == 14 || i == 15) ticks += std::stod(f);
-  return ticks / static_cast<double>(::sysconf(_SC_CLK_TCK));
+  return ProcessCpuSeconds(pid);
 }
 
 }  // namespace simpartner::bench

@@ -31,33 +31,19 @@
 #include "simpartner/control_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/viewer/xvfb.h"
+#include "process_cpu.h"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 using simpartner::ChildProcess;
+using simpartner::bench::ProcessCpuSeconds;
 
 std::string ReadFile(const std::filesystem::path& path) {
   std::ifstream in(path);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-// utime + stime of a process [s], from /proc/PID/stat; -1 if it is gone.
-double CpuSeconds(pid_t pid) {
-  const std::string stat = ReadFile("/proc/" + std::to_string(pid) + "/stat");
-  const size_t close = stat.rfind(')');
-  if (close == std::string::npos) return -1;
-  std::istringstream fields(stat.substr(close + 2));
-  std::string field;
-  double utime = 0, stime = 0;
-  // Fields after "(comm)": state is field 3; utime 14, stime 15.
-  for (int k = 3; k <= 15 && fields >> field; ++k) {
-    if (k == 14) utime = std::atof(field.c_str());
-    if (k == 15) stime = std::atof(field.c_str());
-  }
-  return (utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
 }
 
 // The gen3 copy of the test track: same terrain, gen3 in place of gen4.
@@ -133,13 +119,13 @@ RunFigures RunViewer(const std::string& url, const std::filesystem::path& dir, i
   const double warmup = 2.0;
   status->Pump(warmup);
   status->Reset();
-  const double viewer_cpu0 = CpuSeconds(viewer.pid()), x_cpu0 = CpuSeconds(xvfb);
+  const double viewer_cpu0 = ProcessCpuSeconds(viewer.pid()), x_cpu0 = ProcessCpuSeconds(xvfb);
   const auto t0 = Clock::now();
   status->Pump(seconds - warmup - 0.5);
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
   RunFigures f;
-  f.viewer_cores = (CpuSeconds(viewer.pid()) - viewer_cpu0) / wall;
-  f.xserver_cores = (CpuSeconds(xvfb) - x_cpu0) / wall;
+  f.viewer_cores = (ProcessCpuSeconds(viewer.pid()) - viewer_cpu0) / wall;
+  f.xserver_cores = (ProcessCpuSeconds(xvfb) - x_cpu0) / wall;
   f.sim_factor = status->MeanFactor();
   f.sim_fell_behind = status->behind();
   if (viewer.Wait(std::chrono::seconds(30)).value_or(-1) != 0) {
@@ -211,12 +197,12 @@ int main(int argc, char** argv) {
   // The sim alone, for comparison.
   status.Pump(1.0);
   status.Reset();
-  const double sim_cpu0 = CpuSeconds(sim.pid());
+  const double sim_cpu0 = ProcessCpuSeconds(sim.pid());
   const auto t0 = Clock::now();
   status.Pump(4.0);
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
   std::printf("%-22s %8s %14s %14s %12.3f %12d   (sim %.2f cores)\n", "no viewer", "-", "-", "-",
-              status.MeanFactor(), status.behind(), (CpuSeconds(sim.pid()) - sim_cpu0) / wall);
+              status.MeanFactor(), status.behind(), (ProcessCpuSeconds(sim.pid()) - sim_cpu0) / wall);
 
   simpartner::control_t quit{};
   quit.action = simpartner::control_t::ACTION_QUIT;

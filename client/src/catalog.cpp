@@ -44,6 +44,7 @@ std::string Target::kind_name() const {
     case sensor_t::KIND_SCANNER: return "scanner";
     case sensor_t::KIND_VELOCITY: return "velocity";
     case sensor_t::KIND_FORCE_TORQUE: return "force/torque";
+    case sensor_t::KIND_CAMERA: return "camera";
     default: return "sensor kind " + std::to_string(lcm_kind);
   }
 }

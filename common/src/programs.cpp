@@ -24,6 +24,7 @@ bool IsExecutable(const fs::path& path) {
 const std::vector<ProgramPlace>& Programs() {
   static const std::vector<ProgramPlace> kPrograms = {
       {"simpartner-sim", "sim_core"},       {"simpartner-viewer", "viewer"},
+      {"simpartner-camera", "camera"},
       {"simpartner-logger", "logger"},      {"simpartner-query", "logger"},
       {"simpartner-sequencer", "sequencer"}, {"simpartner-teleop", "teleop"},
       {"simpartner-teleop-vpad", "teleop"}, {"simpartner-cmd", "client"},

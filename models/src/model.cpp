@@ -41,6 +41,7 @@ const char* ToString(SensorKind kind) {
     case SensorKind::kEncoder: return "Encoder";
     case SensorKind::kLidar: return "Lidar";
     case SensorKind::kContact: return "Contact";
+    case SensorKind::kCamera: return "Camera";
   }
   return "?";
 }
@@ -67,6 +68,15 @@ const char* ToString(FrictionDirection direction) {
   switch (direction) {
     case FrictionDirection::kSlip: return "slip";
     case FrictionDirection::kRolling: return "rolling";
+  }
+  return "?";
+}
+
+const char* ToString(CameraDepth depth) {
+  switch (depth) {
+    case CameraDepth::kNone: return "none";
+    case CameraDepth::kMetres: return "metres";
+    case CameraDepth::kMillimetres: return "millimetres";
   }
   return "?";
 }

@@ -17,6 +17,18 @@ int8_t ToLcm(ActuatorKind kind) {
   return actuator_t::KIND_JOINT_VELOCITY;
 }
 
+}  // namespace
+
+std::vector<double> CameraParams(const CameraSettings& camera) {
+  const double depth = camera.depth == CameraDepth::kMetres        ? 1
+                       : camera.depth == CameraDepth::kMillimetres ? 2
+                                                                  : 0;
+  return {static_cast<double>(camera.width), static_cast<double>(camera.height), camera.fov,
+          camera.near, camera.far, depth};
+}
+
+namespace {
+
 body_t BodyMessage(const Body& b, int16_t robot, const Eigen::Isometry3d& placement, int32_t id) {
   body_t body{};
   body.id = id;
@@ -100,6 +112,7 @@ int8_t ToLcm(SensorKind kind) {
     case SensorKind::kEncoder: return sensor_t::KIND_ENCODER;
     case SensorKind::kLidar: return sensor_t::KIND_LIDAR;
     case SensorKind::kContact: return sensor_t::KIND_CONTACT;
+    case SensorKind::kCamera: return sensor_t::KIND_CAMERA;
   }
   return sensor_t::KIND_ECHO;
 }
@@ -107,6 +120,7 @@ int8_t ToLcm(SensorKind kind) {
 std::vector<double> SensorParamsMessage(const Sensor& sensor, const World& world) {
   if (sensor.kind == SensorKind::kScanner)
     return {static_cast<double>(sensor.rays), sensor.half_span, sensor.range};
+  if (sensor.kind == SensorKind::kCamera) return CameraParams(sensor.camera);
   std::vector<double> params = sensor.parameters;
   if (sensor.kind == SensorKind::kGnss) {
     const GeodeticOrigin origin = world.geodetic_origin.value_or(GeodeticOrigin{});
@@ -196,6 +210,12 @@ model_t ModelMessageFromWorld(const World& world) {
       sensor.body = s.body.empty() ? -1 : body_index(s.body);
       sensor.joint = s.joint.empty() ? -1 : joint_index(s.joint);
       sensor.port = s.port;
+      const Eigen::Quaterniond mount(s.mount.linear());
+      for (int k = 0; k < 3; ++k) sensor.position[k] = s.mount.translation()[k];
+      sensor.orientation[0] = mount.w();
+      sensor.orientation[1] = mount.x();
+      sensor.orientation[2] = mount.y();
+      sensor.orientation[3] = mount.z();
       sensor.rate = s.rate;
       sensor.params = SensorParamsMessage(s, world);
       sensor.num_params = static_cast<int32_t>(sensor.params.size());

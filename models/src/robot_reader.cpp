@@ -43,6 +43,7 @@ SensorKind ParseSensorKind(const std::string& type) {
   if (type == "Encoder") return SensorKind::kEncoder;
   if (type == "Lidar") return SensorKind::kLidar;
   if (type == "Contact") return SensorKind::kContact;
+  if (type == "Camera") return SensorKind::kCamera;
   return SensorKind::kEcho;
 }
 
@@ -155,6 +156,80 @@ void SetTableParameter(Reader& reader, const xmlNode* p, int index, double value
   }
 }
 
+// Whether a sensor of this kind has the <parameter> called `name` (the
+// DTD allows every kind's names on every sensor).
+bool TakesParameter(SensorKind kind, const std::string& name) {
+  static const std::set<std::string> kScanner{"rays", "halfSpan", "range"};
+  static const std::set<std::string> kCamera{"width", "height", "fov", "near", "far", "depth"};
+  if (kind == SensorKind::kScanner) return kScanner.count(name) > 0;
+  if (kind == SensorKind::kCamera) return kCamera.count(name) > 0;
+  return false;
+}
+
+std::optional<CameraDepth> ParseCameraDepth(const std::string& text) {
+  for (CameraDepth d : {CameraDepth::kNone, CameraDepth::kMetres, CameraDepth::kMillimetres})
+    if (text == ToString(d)) return d;
+  return std::nullopt;
+}
+
+// One camera <parameter>: the image side in whole pixels up to what can be
+// rendered, a field of view short of 180 degrees, a positive near distance.
+void SetCameraParameter(Reader& reader, const xmlNode* p, const std::string& name,
+                        const std::string& what, CameraSettings* camera) {
+  if (name == "depth") {
+    const std::string text = Trim(xml::Text(p));
+    if (const auto depth = ParseCameraDepth(text))
+      camera->depth = *depth;
+    else
+      reader.Error(p, what + ": depth '" + text + "' is not one of none, metres, millimetres");
+    return;
+  }
+  const auto value = reader.Number(p, what + " parameter " + name);
+  if (!value) return;
+  const double v = *value;
+  if (name == "width" || name == "height") {
+    if (v < 1 || v > kMaxCameraSide || v != std::floor(v))
+      reader.Error(p, what + ": " + name + " must be a whole number of pixels from 1 to " +
+                          std::to_string(kMaxCameraSide) + " (the largest image rendered), got " +
+                          FormatNumber(v, 10));
+    else
+      (name == "width" ? camera->width : camera->height) = static_cast<int>(v);
+  } else if (name == "fov") {
+    if (v <= 0.0 || v >= M_PI)
+      reader.Error(p, what + ": fov " + FormatNumber(v, 10) + " rad (" +
+                          FormatNumber(v * 180 / M_PI, 6) +
+                          " deg) is out of range: a horizontal field of view is above 0 and below "
+                          "pi rad (180 deg)");
+    else
+      camera->fov = v;
+  } else if (name == "near" || name == "far") {
+    if (v <= 0.0 || v > 1e6)
+      reader.Error(p, what + ": " + name + " " + FormatNumber(v, 10) +
+                          " m is out of range (0, 1e6]");
+    else
+      (name == "near" ? camera->near : camera->far) = v;
+  }
+}
+
+// What a camera's parameters say together: far beyond near, a frame rate,
+// and no more pixels a second than the bus carries.
+void CheckCamera(Reader& reader, const xmlNode* node, const std::string& what,
+                 const Sensor& sensor) {
+  const CameraSettings& c = sensor.camera;
+  if (c.far <= c.near)
+    reader.Error(node, what + ": far " + FormatNumber(c.far, 10) + " m is not beyond near " +
+                           FormatNumber(c.near, 10) + " m");
+  if (sensor.rate <= 0.0)
+    reader.Error(node, what + ": a Camera needs a <rate> above 0 Hz (frames a second of sim time)");
+  const double pixels = sensor.rate * c.width * c.height;
+  if (pixels > kMaxCameraPixelsPerSecond)
+    reader.Error(node, what + ": rate " + FormatNumber(sensor.rate, 10) + " Hz x " +
+                           std::to_string(c.width) + " x " + std::to_string(c.height) +
+                           " pixels = " + FormatNumber(pixels, 10) + " pixels/s is more than the " +
+                           FormatNumber(kMaxCameraPixelsPerSecond, 10) +
+                           " pixels/s a camera may send (models/.../model.h says why)");
+}
+
 void ReadSensorParameters(Reader& reader, const xmlNode* node, const std::string& what,
                           Sensor* sensor) {
   std::set<std::string> seen;
@@ -169,7 +244,7 @@ void ReadSensorParameters(Reader& reader, const xmlNode* node, const std::string
         SetTableParameter(reader, p, index, *value, what, sensor);
       continue;
     }
-    if (sensor->kind != SensorKind::kScanner) {
+    if (!TakesParameter(sensor->kind, name)) {
       reader.Error(p, what + ": " + ToString(sensor->kind) + " sensors have no parameter '" +
                           name + "'");
       continue;
@@ -178,7 +253,9 @@ void ReadSensorParameters(Reader& reader, const xmlNode* node, const std::string
       reader.Error(p, what + ": parameter '" + name + "' is given twice");
       continue;
     }
-    if (const auto value = reader.Number(p, what + " parameter " + name))
+    if (sensor->kind == SensorKind::kCamera)
+      SetCameraParameter(reader, p, name, what, &sensor->camera);
+    else if (const auto value = reader.Number(p, what + " parameter " + name))
       SetScannerParameter(reader, p, name, *value, what, sensor);
   }
 }
@@ -234,6 +311,7 @@ std::optional<Sensor> ReadSensor(Reader& reader, const xmlNode* node, const Robo
                            FormatNumber(sensor.rate * sensor.rays, 10) +
                            " rays/s is more than the " + FormatNumber(kMaxScannerRaysPerSecond, 10) +
                            " rays/s a scanner may cast (models/.../model.h says why)");
+  if (sensor.kind == SensorKind::kCamera) CheckCamera(reader, node, what, sensor);
   if (reader.ErrorCount() != errors_before) return std::nullopt;
   return sensor;
 }

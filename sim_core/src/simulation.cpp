@@ -95,9 +95,10 @@ void Simulation::Build() {
     state.rays = s.source->rays;
     state.half_span = s.source->half_span;
     state.range = s.source->range;
+    // A camera's rate is simpartner-camera's to keep: the sim reads nothing.
+    const bool read_here = state.rate > 0 && s.source->kind != model::SensorKind::kCamera;
     state.period_steps =
-        state.rate > 0 ? std::max<int64_t>(1, std::llround(1.0 / (state.rate * params_.stepsize)))
-                       : 0;
+        read_here ? std::max<int64_t>(1, std::llround(1.0 / (state.rate * params_.stepsize))) : 0;
     state.imu = s.source->kind == model::SensorKind::kImu;
     sensors_.push_back(state);
   }
@@ -223,6 +224,9 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
     const model::FlatSensor& sensor = flat_.sensors[static_cast<size_t>(pending.sensor)];
     pending.command.target = sensor.name;
     const std::string what = "sensor '" + sensor.name + "' (" + ToString(sensor.source->kind) + ")";
+    if (sensor.source->kind == model::SensorKind::kCamera)
+      return reject(what + ": simpartner-camera renders it (image_t on SIM_IMAGE); the sim "
+                           "takes no command for a camera");
     switch (command.action) {
       case command_t::ACTION_READ:
         break;
@@ -527,6 +531,8 @@ sensor_reading_t Simulation::ReadSensor(int index) {
                   j.torque2.x(), j.torque2.y(), j.torque2.z()};
       break;
     }
+    case model::SensorKind::kCamera:
+      break;  // never asked for: its commands are refused, it has no period
     case model::SensorKind::kScanner: {
       // Rays around the sensor's z axis in its z-x plane, evenly from
       // -halfSpan to +halfSpan.

@@ -19,6 +19,7 @@ cases=(
   "logger_bench|Figures of the database logger|--skp 1|--skip"
   "logged_read_bench|is read back from a|--datdir x|--datadir"
   "viewer_bench|How fast simpartner-viewer draws|--widht 640|--width"
+  "camera_bench|What simpartner-camera keeps up with|--widht 640|--width"
   "flood_bench|floods|--rat 5|--rate"
   "peer_bench|MuJoCo 2.2|--stnad 3|--stand"
   "multi_host_bench|Needs root|--rte 5|--rate"

@@ -18,6 +18,7 @@
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
+#include "simpartner/image_t.hpp"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/model_t.hpp"
 #include "simpartner/sensor_reading_t.hpp"
@@ -48,6 +49,7 @@ std::optional<DecodeFailure> DecodeForChannel(const std::string& channel, const 
           {channels::kStateRequest, [](const Bytes& b) { state_request_t m; return DecodeLcm(b.data(), b.size(), &m); }},
           {channels::kSync, [](const Bytes& b) { sync_t m; return DecodeLcm(b.data(), b.size(), &m); }},
           {channels::kSyncReply, [](const Bytes& b) { sync_reply_t m; return DecodeLcm(b.data(), b.size(), &m); }},
+          {channels::kImage, [](const Bytes& b) { image_t m; return DecodeLcm(b.data(), b.size(), &m); }},
       };
   return decoders.at(channel)(bytes);
 }
@@ -60,7 +62,7 @@ TEST(HostileCorpus, CoversEveryChannelWithAtLeastThirtyMessages) {
   for (const char* channel : {channels::kCommand, channels::kCommandReply, channels::kControl,
                               channels::kModel, channels::kModelRequest, channels::kSensor,
                               channels::kState, channels::kStatus, channels::kStateRequest,
-                              channels::kSync, channels::kSyncReply})
+                              channels::kSync, channels::kSyncReply, channels::kImage})
     EXPECT_GE(per_channel[channel], 2) << channel;
 }
 

@@ -1,7 +1,7 @@
 // The hostile corpus (tests/support/hostile_corpus.h: every channel, every
 // message type) sent on real LCM multicast to a running simpartner-sim,
-// simpartner-logger (real private MariaDB) and simpartner-viewer (own
-// Xvfb) at once. After each message every process must still run; after
+// simpartner-logger (real private MariaDB), simpartner-viewer and
+// simpartner-camera (own Xvfb) at once. After each message every process must still run; after
 // all of them the sim still steps and takes a good command, the viewer
 // still draws the sim's newest state, and the logger has every step with
 // all of its rows. The sim's part runs again on its own with the MuJoCo
@@ -161,13 +161,20 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
                                                             "640", "--height", "360", "--screenshot", shot,
                                                             "--after", "12"})),
                       "viewer.log");
-  bus.Pump(2.0);  // the viewer learns the model
+  // simpartner-camera on the same display meets the corpus too (the arm
+  // has no camera: it follows the bus and refuses what does not fit).
+  auto camera = Start(test_support::OnDisplay(xvfb.display(),
+                                              BuiltCommand("simpartner-camera",
+                                                           {"--params", "/dev/null", "--lcm-url", url_})),
+                      "camera.log");
+  bus.Pump(2.0);  // the viewer and the camera learn the model
 
   int undecodable_for_sim = 0;
   ASSERT_NO_FATAL_FAILURE(SendCorpus(bus,
                                      {{"simpartner-sim", sim.get(), dir_ / "sim.log"},
                                       {"simpartner-logger", logger.get(), dir_ / "logger.log"},
-                                      {"simpartner-viewer", viewer.get(), dir_ / "viewer.log"}},
+                                      {"simpartner-viewer", viewer.get(), dir_ / "viewer.log"},
+                                      {"simpartner-camera", camera.get(), dir_ / "camera.log"}},
                                      &undecodable_for_sim));
   const int64_t step_after_corpus = bus.last_step;
   ASSERT_NO_FATAL_FAILURE(ExpectSimStillWorks(bus, undecodable_for_sim, dir_ / "sim.log"));
@@ -184,6 +191,12 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   ASSERT_NE(at, std::string::npos) << viewer_log;
   EXPECT_GT(std::atoll(viewer_log.c_str() + at + 7), step_after_corpus) << viewer_log;
   EXPECT_NE(viewer_log.find("refused as simpartner.state_t"), std::string::npos) << viewer_log;
+  camera->Signal(SIGTERM);
+  ASSERT_EQ(camera->Wait(std::chrono::seconds(30)).value_or(-1), 0) << ReadText(dir_ / "camera.log");
+  const std::string camera_log = ReadText(dir_ / "camera.log");
+  EXPECT_NE(camera_log.find("refused as simpartner.state_t"), std::string::npos) << camera_log;
+  EXPECT_NE(camera_log.find(": 0 cameras\n"), std::string::npos)
+      << camera_log;
 
   // The logger: the sim quits; every step it made is in the database once,
   // with a row for each of its 3 bodies and 2 joints, and nothing forged.

@@ -12,6 +12,7 @@ source "$(dirname "$0")/../support/checks.sh"
 cases=(
   "sim_core/simpartner-sim|stepsize= contactMu= speed= environment= lcmUrl=|dbname= logInterval=|--chek|--check"
   "viewer/simpartner-viewer|lcmUrl=|stepsize= dbname= speed= environment=|--widht=800|--width"
+  "camera/simpartner-camera|lcmUrl=|stepsize= dbname= speed= environment=|--quit-aftr=1|--quit-after"
   "logger/simpartner-logger|dbname= logInterval= lcmUrl=|stepsize= contactMu= speed=|--spol=x|--spool"
   "logger/simpartner-query|dbname= dbserver=|stepsize= lcmUrl= speed=|--bdy=x|--body"
   "validate/simpartner-validate|stepsize= contactMu= environment=|dbname= lcmUrl= statusPeriod=|--lst|--list"

@@ -8,6 +8,7 @@
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
+#include "simpartner/image_t.hpp"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/model_t.hpp"
 #include "simpartner/sensor_reading_t.hpp"
@@ -91,6 +92,15 @@ RawMessage ModelHead(int64_t simulation_id, int32_t host_length) {
   // heightfield: present, rows, columns, width, depth, scale, offset,
   // thickness, position[3], material
   m.I8(1).I32(2).I32(2).F64(1).F64(1).F64(1).F64(0).F64(1).F64(0).F64(0).F64(0).Str("");
+  return m;
+}
+
+// image_t up to its size, with `name_length` given raw.
+RawMessage ImageHead(int64_t simulation_id, int32_t name_length) {
+  RawMessage m(image_t::getHash());
+  m.I64(1).I64(simulation_id).I64(5).F64(0.005).I32(0);
+  if (name_length == 1) m.Str("");
+  else m.StrLength(name_length);
   return m;
 }
 
@@ -271,6 +281,27 @@ std::vector<HostileMessage> HostileCorpus(int64_t simulation_id) {
     m.I64(1).I64(5).StrLength(-1);
     bad("sync_reply_t reason length -1", kSyncReply, m.bytes());
     bad("empty datagram on SIM_SYNC_REPLY", kSyncReply, {});
+  }
+
+  // --- SIM_IMAGE: image_t
+  bad("image_t name length 0", channels::kImage, ImageHead(simulation_id, 0).bytes());
+  bad("image_t num_bytes -1", channels::kImage,
+      ImageHead(simulation_id, 1).Str("R").I32(2).I32(2).I8(0).I32(-1).bytes());
+  bad("image_t num_bytes 2^31-1", channels::kImage,
+      ImageHead(simulation_id, 1).Str("R").I32(2).I32(2).I8(0).I32(kHugeCount).bytes());
+  bad("image_t num_bytes 67108865 (bound 67108864)", channels::kImage,
+      ImageHead(simulation_id, 1).Str("R").I32(4096).I32(4096).I8(0).I32(67108865).bytes());
+  bad("empty datagram on SIM_IMAGE", channels::kImage, {});
+  {
+    image_t image{};
+    image.simulation_id = simulation_id;
+    image.name = "HeadCamera";
+    image.robot = "WorkPartner";
+    image.width = 640;
+    image.height = 480;
+    image.data.assign(12, 0);  // not 640 x 480 x 3
+    image.num_bytes = 12;
+    nonsense("image_t 640x480 RGB8 with 12 bytes", channels::kImage, Encode(image));
   }
 
   // --- SIM_STATE: state_t

@@ -18,6 +18,8 @@
 
 #include "simpartner/control_t.hpp"
 #include "simpartner/viewer/bus.h"
+#include "simpartner/viewer/camera_images.h"
+#include "simpartner/viewer/gl_window.h"
 #include "simpartner/viewer/hud_text.h"
 #include "simpartner/viewer/keys.h"
 #include "simpartner/viewer/line_of_sight.h"
@@ -45,51 +47,6 @@ double ProcessCpuSeconds() {
          1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
-// SDL and its window and GL context, released in reverse order.
-class Window {
- public:
-  Window(int width, int height, bool vsync) {
-    if (SDL_Init(SDL_INIT_VIDEO) != 0)
-      throw std::runtime_error(std::string("SDL cannot start video (is DISPLAY set?): ") +
-                               SDL_GetError());
-    sdl_started_ = true;
-    // GL 2.1 compatibility: the fixed-function calls the renderer uses.
-    SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 2);
-    SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 1);
-    SDL_GL_SetAttribute(SDL_GL_DOUBLEBUFFER, 1);
-    SDL_GL_SetAttribute(SDL_GL_DEPTH_SIZE, 24);
-    window_ = SDL_CreateWindow("SimPartner viewer", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
-                               width, height, SDL_WINDOW_OPENGL | SDL_WINDOW_RESIZABLE);
-    if (window_ == nullptr)
-      throw std::runtime_error(std::string("SDL cannot open a ") + std::to_string(width) + "x" +
-                               std::to_string(height) + " OpenGL window: " + SDL_GetError());
-    context_ = SDL_GL_CreateContext(window_);
-    if (context_ == nullptr)
-      throw std::runtime_error(std::string("no OpenGL 2.1 context: ") + SDL_GetError());
-    // Vsync where the driver has it; the frame cap covers the rest.
-    SDL_GL_SetSwapInterval(vsync ? 1 : 0);
-  }
-  ~Window() {
-    if (context_ != nullptr) SDL_GL_DeleteContext(context_);
-    if (window_ != nullptr) SDL_DestroyWindow(window_);
-    if (sdl_started_) SDL_Quit();
-  }
-  Window(const Window&) = delete;
-  Window& operator=(const Window&) = delete;
-
-  SDL_Window* get() const { return window_; }
-  std::pair<int, int> DrawableSize() const {
-    int w = 0, h = 0;
-    SDL_GL_GetDrawableSize(window_, &w, &h);
-    return {std::max(w, 1), std::max(h, 1)};
-  }
-
- private:
-  bool sdl_started_ = false;
-  SDL_Window* window_ = nullptr;
-  SDL_GLContext context_ = nullptr;
-};
-
 class Viewer {
  public:
   Viewer(const ViewerOptions& options, std::ostream& out, std::ostream& err)
@@ -97,11 +54,13 @@ class Viewer {
         out_(out),
         err_(err),
         toggles_(options.toggles),
-        window_(options.width, options.height, options.max_fps > 0),
+        window_("SimPartner viewer", options.width, options.height, options.max_fps > 0),
         lcm_(OpenLcm(options.lcm_url)),
         signing_(BusSigning::FromEnvironment()),
         bus_(lcm_.get(), options.lcm_url, &scene_, [this](const std::string& m) { Warn(m); },
-             signing_ ? &*signing_ : nullptr) {
+             signing_ ? &*signing_ : nullptr),
+        images_(lcm_.get(), signing_ ? &*signing_ : nullptr,
+                [this](const std::string& m) { Warn(m); }, options.camera_image) {
     out_ << "simpartner-viewer: OpenGL " << Text(GL_VERSION) << " on " << Text(GL_RENDERER)
          << ", listening on " << bus_.url() << std::endl;
     renderer_ = std::make_unique<Renderer>();
@@ -143,7 +102,8 @@ class Viewer {
       // counts (--fps 0, --frames) draw every frame.
       const bool every_frame = options_.max_fps == 0 || options_.after_frames > 0;
       const bool redraw = dirty_ || every_frame || !held_.empty() ||
-                          scene_.version() != drawn_version_ || ScreenshotDue(frame_start) ||
+                          scene_.version() != drawn_version_ ||
+                          images_.version() != drawn_images_version_ || ScreenshotDue(frame_start) ||
                           pending_key_screenshot_ || frame_start - last_draw >= std::chrono::seconds(1);
       if (!redraw) {
         WaitForNextFrame(frame_start);
@@ -151,6 +111,7 @@ class Viewer {
       }
       dirty_ = false;
       drawn_version_ = scene_.version();
+      drawn_images_version_ = images_.version();
       last_draw = frame_start;
       const auto [width, height] = window_.DrawableSize();
       // Following, a wall between the robot and the eye is looked past.
@@ -283,6 +244,9 @@ class Viewer {
       case KeyAction::kToggleFollow: toggles_.follow = !toggles_.follow; break;
       case KeyAction::kResetCamera: ResetCamera(); break;
       case KeyAction::kScreenshot: pending_key_screenshot_ = true; break;
+      case KeyAction::kNextCameraImage:
+        if (scene_.has_model()) images_.ShowNext(scene_.model());
+        break;
       default: break;
     }
   }
@@ -309,6 +273,9 @@ class Viewer {
       hud.key_help = KeyHelpLines();
       hud.key_help.insert(hud.key_help.begin(), {"SimPartner viewer: keys", ""});
     }
+    if (const image_t* image = images_.Newest(scene_.simulation_id()))
+      hud.inset = Inset{image->width, image->height, image->data.data(),
+                        "camera " + image->name + ", step " + std::to_string(image->step)};
     if (!toggles_.hud) return hud;
     if (!scene_.has_model()) {
       hud.top.push_back({"waiting for SIM_MODEL on " + bus_.url() + " (asked " +
@@ -423,11 +390,12 @@ class Viewer {
   std::ostream& out_;
   std::ostream& err_;
   Toggles toggles_;
-  Window window_;
+  GlWindow window_;
   Scene scene_;
   std::unique_ptr<lcm::LCM> lcm_;
   std::optional<BusSigning> signing_;  // SIMPARTNER_BUS_KEY
   ViewerBus bus_;
+  CameraImages images_;  // the inset's camera image
   std::unique_ptr<Renderer> renderer_;
   Camera camera_;
   int64_t seen_generation_ = 0;
@@ -435,6 +403,7 @@ class Viewer {
   bool quit_ = false;
   bool dirty_ = true;
   int64_t drawn_version_ = -1;
+  int64_t drawn_images_version_ = -1;
   bool pending_key_screenshot_ = false;
   Clock::time_point start_;
   int64_t frames_ = 0;

@@ -27,12 +27,12 @@ constexpr auto kMaxDrainOverrun = std::chrono::milliseconds(30);
 }  // namespace
 
 ViewerBus::ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Reporter report,
-                     BusSigning* signing)
+                     BusSigning* signing, const std::string& program)
     : lcm_(*lcm),
       url_(url),
       scene_(scene),
       report_(std::move(report)),
-      sender_(SenderName("viewer")),
+      sender_(SenderName(program)),
       signing_(signing) {
   lcm_.subscribe(channels::kModel, &ViewerBus::OnModel, this)->setQueueCapacity(4);
   lcm_.subscribe(channels::kState, &ViewerBus::OnState, this)->setQueueCapacity(kStateQueue);
@@ -118,7 +118,9 @@ void ViewerBus::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& cha
 void ViewerBus::OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   state_t state;
   if (!Decode(buffer, channel, &state)) return;
-  Note(scene_->OfferState(std::move(state)));
+  const Verdict verdict = scene_->OfferState(std::move(state));
+  Note(verdict);
+  if (verdict.accepted && state_listener_) state_listener_(*scene_->state());
 }
 
 void ViewerBus::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel) {

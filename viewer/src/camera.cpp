@@ -54,6 +54,16 @@ Eigen::Matrix4d Camera::Projection(double aspect) const {
   return p;
 }
 
+Viewpoint Camera::ToViewpoint(double aspect) const {
+  Viewpoint v;
+  v.view = View();
+  v.projection = Projection(aspect);
+  v.eye = Eye();
+  v.looked_at = target;
+  v.distance = distance;
+  return v;
+}
+
 std::optional<Eigen::Vector2d> Camera::Project(const Eigen::Vector3d& p, int width,
                                                int height) const {
   const Eigen::Vector4d clip =

@@ -26,6 +26,7 @@ constexpr Binding kBindings[] = {
     {SDLK_f, KeyAction::kToggleFollow},
     {SDLK_HOME, KeyAction::kResetCamera},
     {SDLK_p, KeyAction::kScreenshot},
+    {SDLK_i, KeyAction::kNextCameraImage},
     {SDLK_UP, KeyAction::kFlyForward},
     {SDLK_DOWN, KeyAction::kFlyBack},
     {SDLK_LEFT, KeyAction::kFlyLeft},
@@ -74,6 +75,7 @@ std::vector<std::string> KeyHelpLines() {
       "g                   ground grid on/off",
       "u                   HUD line on/off",
       "p                   save a screenshot (viewer-<time>.png)",
+      "i                   next camera's image in the corner, then none (simpartner-camera)",
       "h or F1             this list",
       "Esc                 quit the viewer (the sim runs on)",
   };

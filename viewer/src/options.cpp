@@ -85,6 +85,9 @@ CommandLineSpec ViewerCommandLine() {
              "lower the viewer's CPU priority by this much, 0 to 19 (default 5): on a machine "
              "without a GPU drawing takes about a core, and the sim keeping real time matters more")
           .Range(0, 19),
+      Text("camera-image", "NAME",
+           "show the colour image of camera sensor NAME (published by simpartner-camera on "
+           "SIM_IMAGE) in the bottom-right corner; key i shows the next camera's"),
       Number("scanner-poll", "HZ",
              "ask every scanner for a reading this many times per second (default 0: only draw "
              "readings the sim publishes at the sensor's rate)")
@@ -107,6 +110,7 @@ ViewerOptions MakeViewerOptions(const CommandLine& command_line, const Parameter
   o.scanner_poll_hz = command_line.Number("scanner-poll", o.scanner_poll_hz);
   o.nice = static_cast<int>(command_line.Number("nice", o.nice));
   o.screenshot = command_line.Text("screenshot");
+  o.camera_image = command_line.Text("camera-image");
   const bool timed = o.after_seconds > 0 || o.after_frames > 0;
   if (o.screenshot.empty() && timed)
     diagnostics.Add(kCommandLine, 0, o.after_frames > 0 ? "--frames" : "--after",

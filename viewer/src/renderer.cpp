@@ -35,6 +35,20 @@ void SetColor(const Color& c, float alpha = 1.0f) { glColor4f(c[0], c[1], c[2], 
 
 void Vertex(const Eigen::Vector3d& p) { glVertex3d(p.x(), p.y(), p.z()); }
 
+// Binds `texture` (left bound) and loads it with bytes of `format`
+// (GL_ALPHA, GL_RGB), clamped at its edges.
+void LoadTexture(GLuint texture, GLint filter, GLenum format, int width, int height,
+                 const void* pixels) {
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(format), width, height, 0, format,
+               GL_UNSIGNED_BYTE, pixels);
+}
+
 // Compiles a mesh (with its colours if it has them) into a display list.
 unsigned CompileMesh(const Mesh& mesh) {
   if (mesh.positions.empty()) return 0;
@@ -181,14 +195,8 @@ Renderer::Renderer() {
   font_width_ = atlas.width;
   font_height_ = atlas.height;
   glGenTextures(1, &font_texture_);
-  glBindTexture(GL_TEXTURE_2D, font_texture_);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, atlas.width, atlas.height, 0, GL_ALPHA,
-               GL_UNSIGNED_BYTE, atlas.coverage.data());
+  LoadTexture(font_texture_, GL_NEAREST, GL_ALPHA, atlas.width, atlas.height,
+              atlas.coverage.data());
 
   glBindTexture(GL_TEXTURE_2D, 0);
 }
@@ -196,6 +204,7 @@ Renderer::Renderer() {
 Renderer::~Renderer() {
   ReleaseModel();
   if (font_texture_ != 0) glDeleteTextures(1, &font_texture_);
+  if (inset_texture_ != 0) glDeleteTextures(1, &inset_texture_);
 }
 
 void Renderer::ReleaseModel() {
@@ -222,6 +231,12 @@ void Renderer::RebuildModel(const Scene& scene) {
 
 void Renderer::Draw(const Scene& scene, const Camera& camera, const Toggles& toggles,
                     const Hud& hud, int width, int height) {
+  Draw(scene, camera.ToViewpoint(static_cast<double>(width) / height), toggles, hud, width,
+       height);
+}
+
+void Renderer::Draw(const Scene& scene, const Viewpoint& viewpoint, const Toggles& toggles,
+                    const Hud& hud, int width, int height) {
   if (scene.model_generation() != model_generation_) RebuildModel(scene);
   glViewport(0, 0, width, height);
   const Color sky = SkyColor();
@@ -229,11 +244,9 @@ void Renderer::Draw(const Scene& scene, const Camera& camera, const Toggles& tog
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
   glMatrixMode(GL_PROJECTION);
-  const Eigen::Matrix4d projection = camera.Projection(static_cast<double>(width) / height);
-  glLoadMatrixd(projection.data());
+  glLoadMatrixd(viewpoint.projection.data());
   glMatrixMode(GL_MODELVIEW);
-  const Eigen::Matrix4d view = camera.View();
-  glLoadMatrixd(view.data());
+  glLoadMatrixd(viewpoint.view.data());
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
@@ -244,8 +257,10 @@ void Renderer::Draw(const Scene& scene, const Camera& camera, const Toggles& tog
   // a dimmer fill from the left), so the faces turned to the viewer always
   // differ in shade, from any side.
   const Eigen::Vector3d up = scene.Up();
-  const Eigen::Vector3d toward_eye = camera.EyeDirection();
-  const Eigen::Vector3d right = up.cross(toward_eye).normalized();
+  const Eigen::Vector3d toward_eye = (viewpoint.eye - viewpoint.looked_at).normalized();
+  // A camera looking straight along up takes its right from any horizontal.
+  Eigen::Vector3d right = up.cross(toward_eye);
+  right = right.norm() > 1e-6 ? right.normalized() : up.unitOrthogonal();
   sun_ = (0.75 * up + 0.55 * right + 0.35 * toward_eye).normalized();
   fill_ = (0.2 * up - 0.7 * right + 0.4 * toward_eye).normalized();
   const Eigen::Vector3d& sun = sun_;
@@ -274,9 +289,9 @@ void Renderer::Draw(const Scene& scene, const Camera& camera, const Toggles& tog
   glEnable(GL_COLOR_MATERIAL);
 
   if (scene.has_model()) {
-    DrawGround(scene, camera, toggles);
+    DrawGround(scene, viewpoint, toggles);
     DrawBodies(scene, toggles);
-    DrawOverlays(scene, camera, toggles);
+    DrawOverlays(scene, viewpoint, toggles);
   } else {
     bodies_drawn_ = 0;
     if (toggles.grid) {
@@ -284,13 +299,13 @@ void Renderer::Draw(const Scene& scene, const Camera& camera, const Toggles& tog
       glDisable(GL_LIGHTING);
       SetColor(kGridColor);
       const double plane[4] = {0, 1, 0, 0};
-      DrawLines(PlaneGrid(plane, camera.target, 20, 1));
+      DrawLines(PlaneGrid(plane, viewpoint.looked_at, 20, 1));
     }
   }
   DrawHud(hud, width, height);
 }
 
-void Renderer::DrawGround(const Scene& scene, const Camera& camera, const Toggles& toggles) {
+void Renderer::DrawGround(const Scene& scene, const Viewpoint& viewpoint, const Toggles& toggles) {
   const model_t& m = scene.model();
   const Eigen::Vector3d up = scene.Up();
   // The heightfield first, then the plane, so that the part of the plane
@@ -308,12 +323,12 @@ void Renderer::DrawGround(const Scene& scene, const Camera& camera, const Toggle
   if (m.has_plane) {
     // A square around the point looked at, large enough to reach the
     // horizon of any sensible view.
-    const double half = std::max(200.0, 20 * camera.distance);
+    const double half = std::max(200.0, 20 * viewpoint.distance);
     glEnable(GL_LIGHTING);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1, 1);  // grid lines and bodies resting on it win the depth test
     SetColor(kPlaneColor);
-    DrawMesh(PlaneMesh(m.plane, camera.target, half));
+    DrawMesh(PlaneMesh(m.plane, viewpoint.looked_at, half));
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
   if (!toggles.grid) return;
@@ -334,14 +349,14 @@ void Renderer::DrawGround(const Scene& scene, const Camera& camera, const Toggle
     glFogf(GL_FOG_END, static_cast<float>(kPlaneGridHalf));
     glFogfv(GL_FOG_COLOR, lit);
     SetColor(kGridColor);
-    DrawLines(PlaneGrid(m.plane, camera.target, kPlaneGridHalf, 1.0));
+    DrawLines(PlaneGrid(m.plane, viewpoint.looked_at, kPlaneGridHalf, 1.0));
     glDisable(GL_FOG);
   } else if (!heightfield_) {
     // No ground at all (free fall worlds): grid lines through the origin
     // across up, for scale.
     const double plane[4] = {up.x(), up.y(), up.z(), 0};
     SetColor(kGridColor);
-    DrawLines(PlaneGrid(plane, camera.target, 30, 1.0));
+    DrawLines(PlaneGrid(plane, viewpoint.looked_at, 30, 1.0));
   }
   if (heightfield_ && !toggles.wireframe && !heightfield_grid_.positions.empty()) {
     SetColor(kFieldGridColor);
@@ -375,10 +390,11 @@ void Renderer::DrawBodies(const Scene& scene, const Toggles& toggles) {
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 }
 
-void Renderer::DrawOverlays(const Scene& scene, const Camera& camera, const Toggles& toggles) {
+void Renderer::DrawOverlays(const Scene& scene, const Viewpoint& viewpoint,
+                            const Toggles& toggles) {
   const model_t& m = scene.model();
   const state_t* s = scene.state();
-  const Eigen::Vector3d eye = camera.Eye();
+  const Eigen::Vector3d eye = viewpoint.eye;
   glDisable(GL_LIGHTING);
   glLineWidth(2);
   if (toggles.body_frames) {
@@ -513,6 +529,7 @@ void Renderer::DrawHud(const Hud& hud, int width, int height) {
       y += kHudLineHeight;
     }
   };
+  if (hud.inset) DrawInset(*hud.inset, width, height);
   if (!hud.top.empty()) lines_panel(hud.top, 0);
   if (!hud.bottom.empty())
     lines_panel(hud.bottom, height - hud.bottom.size() * kHudLineHeight - 6);
@@ -547,19 +564,67 @@ void Renderer::DrawHud(const Hud& hud, int width, int height) {
   glEnable(GL_DEPTH_TEST);
 }
 
-RgbImage Renderer::ReadPixels(int width, int height) const {
+void Renderer::DrawInset(const Inset& inset, int width, int height) {
+  if (inset.width <= 0 || inset.height <= 0 || inset.rgb == nullptr) return;
+  // A third of the window's width at most, never enlarged, in the corner.
+  constexpr float kMargin = 8;
+  const float scale = std::min(1.0f, width / 3.0f / inset.width);
+  const float w = inset.width * scale, h = inset.height * scale;
+  const float x0 = width - w - kMargin, y0 = height - h - kMargin;
+  if (inset_texture_ == 0) glGenTextures(1, &inset_texture_);
+  LoadTexture(inset_texture_, GL_LINEAR, GL_RGB, inset.width, inset.height, inset.rgb);
+  glEnable(GL_TEXTURE_2D);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+  glBegin(GL_QUADS);  // the image's first row at the top
+  glTexCoord2f(0, 0);
+  glVertex2f(x0, y0);
+  glTexCoord2f(1, 0);
+  glVertex2f(x0 + w, y0);
+  glTexCoord2f(1, 1);
+  glVertex2f(x0 + w, y0 + h);
+  glTexCoord2f(0, 1);
+  glVertex2f(x0, y0 + h);
+  glEnd();
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+  glBindTexture(GL_TEXTURE_2D, font_texture_);
+  // At the font's own size, so that the label fits over the inset.
+  DrawText(inset.label, x0, y0 - kCellHeight - 3, 1.0f, {1, 1, 1});
+  glDisable(GL_TEXTURE_2D);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+namespace {
+
+// glReadPixels of the current read buffer, rows turned top to bottom.
+template <class T>
+std::vector<T> ReadRows(int width, int height, GLenum format, GLenum type, int per_pixel) {
+  const size_t row = static_cast<size_t>(width) * per_pixel;
+  std::vector<T> bottom_up(row * height);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, format, type, bottom_up.data());
+  std::vector<T> rows(bottom_up.size());
+  for (int y = 0; y < height; ++y)
+    std::copy_n(bottom_up.data() + (height - 1 - y) * row, row, rows.data() + y * row);
+  return rows;
+}
+
+}  // namespace
+
+RgbImage ReadRgb(int width, int height) {
   RgbImage image;
   image.width = width;
   image.height = height;
-  std::vector<uint8_t> bottom_up(static_cast<size_t>(width) * height * 3);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadBuffer(GL_BACK);
-  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, bottom_up.data());
-  image.pixels.resize(bottom_up.size());
-  const size_t row = static_cast<size_t>(width) * 3;
-  for (int y = 0; y < height; ++y)
-    std::copy_n(bottom_up.data() + (height - 1 - y) * row, row, image.pixels.data() + y * row);
+  image.pixels = ReadRows<uint8_t>(width, height, GL_RGB, GL_UNSIGNED_BYTE, 3);
   return image;
+}
+
+std::vector<float> ReadDepth(int width, int height) {
+  return ReadRows<float>(width, height, GL_DEPTH_COMPONENT, GL_FLOAT, 1);
+}
+
+RgbImage Renderer::ReadPixels(int width, int height) const {
+  glReadBuffer(GL_BACK);
+  return ReadRgb(width, height);
 }
 
 }  // namespace simpartner::viewer

@@ -15,5 +15,6 @@ inline constexpr const char* kControl = "SIM_CONTROL";              // control_t
 inline constexpr const char* kStatus = "SIM_STATUS";                // status_t
 inline constexpr const char* kSync = "SIM_SYNC";                    // sync_t
 inline constexpr const char* kSyncReply = "SIM_SYNC_REPLY";         // sync_reply_t
+inline constexpr const char* kImage = "SIM_IMAGE";                  // image_t (simpartner-camera)
 
 }  // namespace simpartner::channels

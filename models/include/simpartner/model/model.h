@@ -19,7 +19,7 @@ struct SourceLocation {
 enum class GeometryKind { kNone, kBox, kSphere, kCylinder, kCapsule };
 enum class JointKind { kFixed, kHinge, kSlider, kBall, kUniversal, kHinge2 };
 enum class SensorKind { kEcho, kPosition, kScanner, kVelocity, kForceTorque,
-                        kImu, kGnss, kEncoder, kLidar, kContact };
+                        kImu, kGnss, kEncoder, kLidar, kContact, kCamera };
 enum class ActuatorKind { kJointVelocity, kAngle, kLinearMotor };
 enum class CollisionSpaceKind { kSimple, kHash, kQuadTree };
 
@@ -133,6 +133,31 @@ inline constexpr double kMaxScannerRaysPerSecond = 200000;
 // Lidar's rays x layers.
 inline constexpr double kMaxReadingValues = 100000;
 
+// What a Camera puts beside its colour image (simpartner-camera renders
+// it; the sim only announces the camera in SIM_MODEL).
+enum class CameraDepth { kNone, kMetres, kMillimetres };
+const char* ToString(CameraDepth depth);  // the XML words: "none", "metres", "millimetres"
+
+// The largest camera image side [pixels]: what every OpenGL driver we run
+// on can render offscreen (GL_MAX_RENDERBUFFER_SIZE is 16384 on llvmpipe
+// and at least 4096 on desktop GPUs); simpartner-camera also checks the
+// driver's own limit when it starts.
+inline constexpr int kMaxCameraSide = 4096;
+// Like the scanner's bound: a camera's images go over LCM multicast beside
+// the states, and every pixel costs 3 bytes of colour plus 2 or 4 of depth.
+// 2e7 pixels/s (640 x 480 at 60 Hz, 1280 x 720 at 20 Hz) is 140 MB/s with
+// float depth, about what one local multicast group carries without loss.
+inline constexpr double kMaxCameraPixelsPerSecond = 2e7;
+
+struct CameraSettings {
+  int width = 640;                  // [pixels]
+  int height = 480;                 // [pixels]
+  double fov = 1.0471975511965976;  // [rad] horizontal field of view, (0, pi)
+  double near = 0.05;               // [m] nearest distance drawn
+  double far = 100.0;               // [m] farthest distance drawn
+  CameraDepth depth = CameraDepth::kNone;
+};
+
 struct Sensor {
   std::string name;
   SensorKind kind = SensorKind::kEcho;
@@ -148,6 +173,7 @@ struct Sensor {
   // Imu, Gnss, Encoder, Lidar, Contact: one value per parameter of
   // SensorParameterSpecs(kind) (sensor_parameters.h), in its order.
   std::vector<double> parameters;
+  CameraSettings camera;           // Camera only
   SourceLocation where;
 };
 

@@ -25,6 +25,9 @@ int8_t ToLcm(SensorKind kind);
 // a Gnss's followed by the world's geodetic origin (latitude, longitude
 // [deg], altitude [m]).
 std::vector<double> SensorParamsMessage(const Sensor& sensor, const World& world);
+// A camera's sensor_t.params: width, height, fov, near, far, depth (0 none,
+// 1 metres, 2 millimetres), as lcmtypes/sensor_t.lcm states.
+std::vector<double> CameraParams(const CameraSettings& camera);
 
 // World objects and joints first, then each robot's bodies, joints,
 // actuators and sensors in file order, as the sim numbers them.

@@ -1,4 +1,4 @@
-// The viewer on the LCM bus: decodes SIM_MODEL, SIM_STATE, SIM_STATUS and
+// The viewer (and simpartner-camera) on the LCM bus: decodes SIM_MODEL, SIM_STATE, SIM_STATUS and
 // SIM_SENSOR into a Scene, asks for the model (SIM_MODEL_REQUEST) when it
 // has none or sees another simulation, and sends SIM_CONTROL and scanner
 // read requests. Drain() handles everything that has arrived without
@@ -28,10 +28,15 @@ class ViewerBus {
   // (bus_decode.h, kSignatureReportPeriod).
   using Reporter = std::function<void(const std::string&)>;
 
+  // Called with each state the scene accepted, while it is the scene's
+  // newest (simpartner-camera renders the due ones from it).
+  using StateListener = std::function<void(const state_t&)>;
+
   // lcm must be good(); lcm, scene and signing (null: an unsigned bus,
-  // bus_signing.h) outlive the bus.
+  // bus_signing.h) outlive the bus. `program` names the sender
+  // ("viewer@host:pid").
   ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Reporter report,
-            BusSigning* signing = nullptr);
+            BusSigning* signing = nullptr, const std::string& program = "viewer");
   ViewerBus(const ViewerBus&) = delete;
   ViewerBus& operator=(const ViewerBus&) = delete;
 
@@ -46,6 +51,8 @@ class ViewerBus {
   void SendControl(int8_t action, int64_t steps = 0, double speed = 0);
   // Asks every scanner of the model for a reading (command_t::ACTION_READ).
   void RequestScans();
+
+  void SetStateListener(StateListener listener) { state_listener_ = std::move(listener); }
 
   const std::string& url() const { return url_; }
   const std::string& sender() const { return sender_; }
@@ -66,6 +73,7 @@ class ViewerBus {
   std::string url_;
   Scene* scene_;
   Reporter report_;
+  StateListener state_listener_;
   std::string sender_;
   BusSigning* signing_;
   BadMessageCounter signature_refusals_;

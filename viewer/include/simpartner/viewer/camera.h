@@ -10,6 +10,16 @@
 
 namespace simpartner::viewer {
 
+// What the renderer needs of a point of view: the viewer's orbit camera
+// and a camera sensor on a body (simpartner-camera) both make one.
+struct Viewpoint {
+  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();        // world to eye, column-major
+  Eigen::Matrix4d projection = Eigen::Matrix4d::Identity();  // eye to clip, column-major
+  Eigen::Vector3d eye = Eigen::Vector3d::Zero();
+  Eigen::Vector3d looked_at = Eigen::Vector3d::UnitX();  // centre of the ground drawn around it
+  double distance = 1.0;  // [m] eye to looked_at: the ground reaches 20 times as far
+};
+
 struct Camera {
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
   double yaw = 0.0;        // [rad] about up; 0: the eye is on the +forward side of the target
@@ -32,6 +42,7 @@ struct Camera {
   // Column-major 4x4 matrices as glLoadMatrixd takes them.
   Eigen::Matrix4d View() const;
   Eigen::Matrix4d Projection(double aspect) const;
+  Viewpoint ToViewpoint(double aspect) const;
 
   // Pixel (x right, y down from the top-left corner, pixel centres at +0.5)
   // where world point p appears in a width x height image; nullopt when p

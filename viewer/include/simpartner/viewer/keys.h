@@ -27,6 +27,7 @@ enum class KeyAction {
   kToggleFollow,
   kResetCamera,
   kScreenshot,     // viewer-<time>.png in the working directory
+  kNextCameraImage,  // the inset shows the next camera's image (SIM_IMAGE), then none
   // Free flight (held keys); shift flies faster.
   kFlyForward,
   kFlyBack,

@@ -9,21 +9,9 @@
 
 #include "simpartner/command_line.h"
 #include "simpartner/viewer/camera.h"
+#include "simpartner/viewer/toggles.h"
 
 namespace simpartner::viewer {
-
-// What is drawn; each has a key that toggles it (see keys.h).
-struct Toggles {
-  bool wireframe = false;
-  bool body_frames = false;
-  bool contact_forces = false;
-  bool joint_forces = false;
-  bool scanner_rays = true;
-  bool grid = true;
-  bool hud = true;
-  bool key_help = false;
-  bool follow = true;  // camera follows robot 0
-};
 
 // An explicit camera: target, yaw and pitch [deg], distance [m].
 struct CameraSpec {
@@ -44,6 +32,7 @@ struct ViewerOptions {
   double quit_after = 0;     // [s] exit after this long (0 = never); prints frame figures
   std::optional<CameraSpec> camera;  // fixed start camera (turns follow off)
   Toggles toggles;
+  std::string camera_image;  // camera sensor whose image (SIM_IMAGE) the inset shows ("" = none)
   double scanner_poll_hz = 0;  // ask scanners for readings this often (0 = only listen)
   int nice = 5;                // lower the viewer's CPU priority by this much (0..19)
 };

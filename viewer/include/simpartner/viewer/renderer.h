@@ -8,12 +8,13 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "simpartner/viewer/camera.h"
 #include "simpartner/viewer/mesh.h"
-#include "simpartner/viewer/options.h"
+#include "simpartner/viewer/toggles.h"
 #include "simpartner/viewer/png_image.h"
 #include "simpartner/viewer/scene.h"
 
@@ -26,11 +27,20 @@ struct HudLine {
   Color3 color{1, 1, 1};
 };
 
-// The text overlays of one frame.
+// A camera's image shown in the bottom-right corner, with a label above.
+struct Inset {
+  int width = 0;
+  int height = 0;
+  const uint8_t* rgb = nullptr;  // width * height * 3 bytes, rows top to bottom
+  std::string label;
+};
+
+// The overlays of one frame.
 struct Hud {
   std::vector<HudLine> top;     // status line, warnings
   std::vector<HudLine> bottom;  // hints
   std::vector<std::string> key_help;  // shown in a box when not empty
+  std::optional<Inset> inset;
 };
 
 // Colour (RGB 0..1) a body is drawn in: robots in WorkPartner yellow with
@@ -43,6 +53,12 @@ Color3 SkyColor();
 // Scale of the force arrows [m per N].
 inline constexpr double kForceArrowScale = 1.0 / 1000.0;
 
+// The current read buffer (the window's or a framebuffer object's), rows
+// top to bottom: colour, and depth as the depth buffer holds it (0 at the
+// near plane, 1 at the far plane and where nothing was drawn).
+RgbImage ReadRgb(int width, int height);
+std::vector<float> ReadDepth(int width, int height);
+
 class Renderer {
  public:
   Renderer();
@@ -52,17 +68,20 @@ class Renderer {
 
   void Draw(const Scene& scene, const Camera& camera, const Toggles& toggles, const Hud& hud,
             int width, int height);
-  // The frame just drawn (call before swapping buffers).
+  void Draw(const Scene& scene, const Viewpoint& viewpoint, const Toggles& toggles,
+            const Hud& hud, int width, int height);
+  // The frame just drawn in the window (call before swapping buffers).
   RgbImage ReadPixels(int width, int height) const;
   int bodies_drawn() const { return bodies_drawn_; }
 
  private:
   void RebuildModel(const Scene& scene);
   void ReleaseModel();
-  void DrawGround(const Scene& scene, const Camera& camera, const Toggles& toggles);
+  void DrawGround(const Scene& scene, const Viewpoint& viewpoint, const Toggles& toggles);
   void DrawBodies(const Scene& scene, const Toggles& toggles);
-  void DrawOverlays(const Scene& scene, const Camera& camera, const Toggles& toggles);
+  void DrawOverlays(const Scene& scene, const Viewpoint& viewpoint, const Toggles& toggles);
   void DrawHud(const Hud& hud, int width, int height);
+  void DrawInset(const Inset& inset, int width, int height);
   void DrawText(const std::string& text, float x, float y, float scale, const Color3& color,
                 float alpha = 1.0f);
 
@@ -73,6 +92,7 @@ class Renderer {
   std::unique_ptr<BufferMesh> heightfield_;
   Lines heightfield_grid_;
   unsigned font_texture_ = 0;
+  unsigned inset_texture_ = 0;
   int font_width_ = 0;
   int font_height_ = 0;
   int bodies_drawn_ = 0;
