@@ -8,6 +8,7 @@
 #include "simpartner/actuator_t.hpp"
 #include "simpartner/client/errors.h"
 #include "simpartner/command_t.hpp"
+#include "simpartner/sensor_kinds.h"
 #include "simpartner/sensor_t.hpp"
 
 namespace simpartner::client {
@@ -38,15 +39,8 @@ std::string Target::kind_name() const {
       default: return "actuator kind " + std::to_string(lcm_kind);
     }
   }
-  switch (lcm_kind) {
-    case sensor_t::KIND_ECHO: return "echo";
-    case sensor_t::KIND_POSITION: return "position";
-    case sensor_t::KIND_SCANNER: return "scanner";
-    case sensor_t::KIND_VELOCITY: return "velocity";
-    case sensor_t::KIND_FORCE_TORQUE: return "force/torque";
-    case sensor_t::KIND_CAMERA: return "camera";
-    default: return "sensor kind " + std::to_string(lcm_kind);
-  }
+  const SensorKindSpelling& kind = SpellSensorKind(lcm_kind);
+  return kind.kind < 0 ? "sensor kind " + std::to_string(lcm_kind) : kind.word;
 }
 
 CommandTargetShape Target::shape() const {

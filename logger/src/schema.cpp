@@ -102,7 +102,7 @@ std::vector<Migration> BuildMigrations() {
                       " robotID INT UNSIGNED NULL,"
                       " busIndex INT NOT NULL COMMENT 'index in model_t.sensors',"
                       " name VARCHAR(255) NOT NULL,"
-                      " type VARCHAR(16) NOT NULL COMMENT 'ECHO, POSITION, SCANNER, VELOCITY, FORCE_TORQUE',"
+                      " type VARCHAR(16) NOT NULL COMMENT 'ECHO, POSITION, SCANNER, VELOCITY, FORCE_TORQUE, IMU, GNSS, ENCODER, LIDAR, CONTACT, CAMERA',"
                       " bodyID INT UNSIGNED NULL,"
                       " jointID INT UNSIGNED NULL,"
                       " port INT NOT NULL COMMENT 'legacy TCP port, 0 if none',"

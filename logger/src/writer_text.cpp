@@ -4,6 +4,7 @@
 
 #include "simpartner/logger/receiver.h"
 #include "simpartner/logger/sql_text.h"
+#include "simpartner/sensor_kinds.h"
 
 namespace simpartner::logger {
 
@@ -30,16 +31,7 @@ const char* JointName(int8_t kind) {
   return "UNKNOWN";
 }
 
-const char* SensorName(int8_t kind) {
-  switch (kind) {
-    case 0: return "ECHO";
-    case 1: return "POSITION";
-    case 2: return "SCANNER";
-    case 3: return "VELOCITY";
-    case 4: return "FORCE_TORQUE";
-  }
-  return "UNKNOWN";
-}
+const char* SensorName(int8_t kind) { return SpellSensorKind(kind).database; }
 
 const char* ActuatorName(int8_t kind) {
   switch (kind) {

@@ -10,22 +10,11 @@
 #include "simpartner/data_paths.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/model/model_message.h"
+#include "simpartner/sensor_kinds.h"
 #include "simpartner/sensor_t.hpp"
 
 namespace simpartner::sequencer {
 namespace {
-
-// How many values a reading of this sensor has (scanner: its rays).
-int ReadingSize(const sensor_t& sensor) {
-  switch (sensor.kind) {
-    case sensor_t::KIND_POSITION: return 7;
-    case sensor_t::KIND_VELOCITY: return 6;
-    case sensor_t::KIND_FORCE_TORQUE: return 6;
-    case sensor_t::KIND_SCANNER:
-      return sensor.num_params > 0 ? static_cast<int>(sensor.params[0]) : 11;
-    default: return 0;  // echo: text only
-  }
-}
 
 std::string Qualified(const std::string& robot, const std::string& name) {
   return robot.empty() ? name : robot + "/" + name;
