@@ -51,6 +51,8 @@ int FormCount(const Layout& layout, int places) {
 
 std::vector<int> AcceptedValueCounts(const CommandTargetShape& target, int action) {
   if (target.is_sensor) {
+    // simpartner-camera renders a camera; the sim takes no command for it.
+    if (target.kind == sensor_t::KIND_CAMERA) return {};
     switch (action) {
       case command_t::ACTION_READ: return {0};
       case command_t::ACTION_SET:
@@ -130,6 +132,8 @@ std::string DescribeValueForms(const CommandTargetShape& target, int action) {
 
 std::string CheckValueCount(const CommandTargetShape& target, int action, int count) {
   const std::vector<int> counts = AcceptedValueCounts(target, action);
+  if (counts.empty() && target.is_sensor && target.kind == sensor_t::KIND_CAMERA)
+    return "a camera takes no command: simpartner-camera renders it (images on SIM_IMAGE)";
   if (counts.empty())
     return std::string("action '") + ActionName(action) + "' does not apply to " +
            (target.is_sensor ? "this sensor" : "an actuator");
