@@ -251,6 +251,8 @@ std::string Catalog::DescribeValueForms(const Target& target) const {
     if (!out.empty()) out += "; ";
     out += std::string(ActionName(action)) + ": " + forms;
   }
+  if (out.empty() && target.is_sensor())  // a camera: no command at all
+    out = CheckValueCount(shape, command_t::ACTION_READ, 0);
   return out;
 }
 
