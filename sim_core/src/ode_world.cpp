@@ -1,6 +1,7 @@
 #include "simpartner/sim/ode_world.h"
 
 #include "ode_soil.h"
+#include "ray_heightfield.h"
 
 #include <algorithm>
 #include <utility>
@@ -220,6 +221,9 @@ void OdeWorld::Build() {
     dMatrix3 rotation;
     ToOde(r, rotation);
     dGeomSetRotation(field, rotation);
+    heightfield_geom_ = field;
+    heightfield_pose_.linear() = r;
+    heightfield_pose_.translation() = h.position;
     add_geom_info(field, -1, -1, h.material);
   }
 
@@ -854,6 +858,15 @@ double OdeWorld::CastRayUnguarded(const Eigen::Vector3d& origin, const Eigen::Ve
         const dGeomID other = a == self->ray_ ? b : a;
         const GeomInfo& info = self->geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(other)) - 1];
         if (info.owner_body >= 0 && info.owner_body == self->ray_exclude_body_) return;
+        if (other == self->heightfield_geom_) {
+          // ODE's ray test takes every cell in the ray's bounding box.
+          dVector3 start, dir;
+          dGeomRayGet(self->ray_, start, dir);
+          self->ray_hit_ = std::min(
+              self->ray_hit_, RayHeightfield(*self->model_.world->heightfield, self->heightfield_pose_,
+                                             FromOde(start), FromOde(dir), self->ray_hit_));
+          return;
+        }
         dContactGeom hit;
         if (dCollide(self->ray_, other, 1, &hit, sizeof(dContactGeom)) > 0)
           self->ray_hit_ = std::min(self->ray_hit_, static_cast<double>(hit.depth));

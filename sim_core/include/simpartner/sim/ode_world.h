@@ -184,6 +184,10 @@ class OdeWorld : public PhysicsEngine {
   // Wheels on soil (null: no ground of soil). Their contact joints are
   // in contact_records_; what the soil adds as plain forces, per body:
   std::unique_ptr<OdeSoil> soil_;
+  // The heightfield's geom (null: none) and its pose, for rays
+  // (ray_heightfield.h).
+  dGeomID heightfield_geom_ = nullptr;
+  Eigen::Isometry3d heightfield_pose_ = Eigen::Isometry3d::Identity();
   struct SoilPush {
     int body;
     Eigen::Vector3d force, torque;  // torque about the centre of mass
