@@ -97,10 +97,12 @@ double Soil::Shear(double sigma, double j) const {
 
 SoilMemory::SoilMemory(double cell_size) : cell_size_(cell_size) {}
 
-int64_t SoilMemory::Key(double u, double w) const {
-  const auto iu = static_cast<int64_t>(std::floor(u / cell_size_));
-  const auto iw = static_cast<int64_t>(std::floor(w / cell_size_));
-  return (iu << 32) ^ (iw & 0xffffffffLL);
+uint64_t SoilMemory::Key(double u, double w) const {
+  // Two's complement cell indices, 32 bits each (shifting a negative
+  // signed value is undefined).
+  const auto iu = static_cast<uint64_t>(static_cast<int64_t>(std::floor(u / cell_size_)));
+  const auto iw = static_cast<uint64_t>(static_cast<int64_t>(std::floor(w / cell_size_)));
+  return (iu << 32) ^ (iw & 0xffffffffULL);
 }
 
 double SoilMemory::Deepest(double u, double w) const {

@@ -5,9 +5,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
+#include <string>
 
 #include "simpartner/sim/soil_mechanics.h"
 #include "soil_closed_forms.h"
+
+namespace simpartner::model {
+// How gtest names a soil in a test's parameters.
+inline void PrintTo(const SoilParameters& soil, std::ostream* out) {
+  *out << "n " << soil.n << ", k_c " << soil.k_c << ", k_phi " << soil.k_phi;
+}
+}  // namespace simpartner::model
 
 namespace simpartner::sim {
 namespace {
@@ -58,8 +67,13 @@ TEST_P(StandingWheel, CarriesBekkersPressureOverItsArc) {
   }
 }
 
+std::string SoilName(const ::testing::TestParamInfo<model::SoilParameters>& info) {
+  static const char* const kNames[] = {"dry_sand", "sandy_loam", "clayey_soil", "snow"};
+  return kNames[info.index];
+}
+
 INSTANTIATE_TEST_SUITE_P(WongTable23, StandingWheel,
-                         ::testing::Values(kDrySand, kSandyLoam, kClayeySoil, kSnow));
+                         ::testing::Values(kDrySand, kSandyLoam, kClayeySoil, kSnow), SoilName);
 
 TEST(SoilMemory, UnloadingFollowsItsLineAndReloadingReturnsToBekker) {
   const Soil soil = Soil::From(kDrySand);

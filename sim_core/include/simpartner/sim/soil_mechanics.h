@@ -66,9 +66,9 @@ class SoilMemory {
   size_t cells() const { return deepest_.size(); }
 
  private:
-  int64_t Key(double u, double w) const;
+  uint64_t Key(double u, double w) const;
   double cell_size_;
-  std::unordered_map<int64_t, double> deepest_;
+  std::unordered_map<uint64_t, double> deepest_;
 };
 
 // The pressure [Pa] of soil pressed to z where it was pressed to z_max
