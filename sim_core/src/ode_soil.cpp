@@ -1,5 +1,7 @@
 #include "ode_soil.h"
 
+#include "ode_convert.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -16,14 +18,6 @@ constexpr double kLeastStiffness = 1.0;
 // The most compliance [m/(N s)] a friction row gets where the shear's
 // slope is flat.
 constexpr double kMostSlip = 1.0;
-
-Eigen::Vector3d FromOde(const dReal* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
-
-void ToOde(const Eigen::Vector3d& v, dReal* out) {
-  out[0] = v.x();
-  out[1] = v.y();
-  out[2] = v.z();
-}
 
 // A unit vector along the surface: the memory's first coordinate.
 Eigen::Vector3d AlongSurface(const Eigen::Vector3d& up) {
@@ -97,8 +91,8 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   dContact contact{};
   contact.geom.g1 = wheel;
   contact.geom.g2 = ground_geom;
-  ToOde(state.centre - state.radius * wheel_up, contact.geom.pos);
-  ToOde(up, contact.geom.normal);
+  ToOdeVector(state.centre - state.radius * wheel_up, contact.geom.pos);
+  ToOdeVector(up, contact.geom.normal);
   // ODE caps a contact's push-out velocity (contactMaxCorrectingVel), so
   // the soil's force itself is a plain force; the row adds, implicitly,
   // what further sinking in this step adds to it: depth 0 (no push-out)
@@ -115,7 +109,7 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   contact.surface.slip1 = slip1;
   contact.surface.motion1 = slip_velocity + slip1 * thrust;
   contact.surface.slip2 = params_.contactSlip;
-  ToOde(forward, contact.fdir1);
+  ToOdeVector(forward, contact.fdir1);
   out->contact = contact;
 
   // Through the centre: the normal stresses and the shear's part along up.

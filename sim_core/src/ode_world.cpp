@@ -1,5 +1,6 @@
 #include "simpartner/sim/ode_world.h"
 
+#include "ode_convert.h"
 #include "ode_soil.h"
 #include "ray_heightfield.h"
 
@@ -75,15 +76,6 @@ class MessageSinkScope {
   MessageSinkScope& operator=(const MessageSinkScope&) = delete;
 };
 
-
-void ToOde(const Eigen::Matrix3d& r, dMatrix3 out) {
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) out[i * 4 + j] = r(i, j);
-    out[i * 4 + 3] = 0.0;
-  }
-}
-
-Eigen::Vector3d FromOde(const dReal* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
 
 }  // namespace
 
