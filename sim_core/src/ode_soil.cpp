@@ -8,10 +8,8 @@
 namespace simpartner::sim {
 namespace {
 
-// Sinkage step [m] and spin step [rad/s] of the finite differences that
-// give the soil's stiffness and the shear's slope.
-constexpr double kSinkageStep = 1e-5;
-constexpr double kSpinStep = 1e-3;
+// Points along the loaded arc (soil_mechanics.h).
+constexpr int kArcSamples = 64;
 // The least stiffness [N/m] the normal row gets (at first touch Bekker's
 // is 0: the CFM would be infinite).
 constexpr double kLeastStiffness = 1.0;
@@ -58,35 +56,25 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   if (dGeomGetClass(wheel) != dCylinderClass) return false;
   Ground& ground = grounds_.at(ground_geom);
   const WheelState state = StateOf(wheel, body);
-  const WheelSoilForces now = WheelOnSoil(ground.soil, state, ground.surface, ground.memory);
+  WheelSoilSlopes slopes;
+  // The soil keeps this state's rut as it answers it.
+  const WheelSoilForces now =
+      PressWheelOnSoil(ground.soil, state, ground.surface, &ground.memory, kArcSamples, &slopes);
   last_[wheel] = now;
-  touched_.push_back(Touch{wheel, body, &ground});
   if (!now.touching) return true;
   const Eigen::Vector3d up = ground.surface.up;
   const Eigen::Vector3d in_plane = up - up.dot(state.axle) * state.axle;
   const Eigen::Vector3d wheel_up = in_plane.normalized();
   const Eigen::Vector3d forward = wheel_up.cross(state.axle).normalized();
 
-  // Normal: the soil's force along up and its stiffness there.
-  WheelState deeper = state;
-  deeper.centre -= kSinkageStep * up;
-  const double load = now.Force().dot(up);
-  const double stiffness = std::max(
-      kLeastStiffness,
-      (WheelOnSoil(ground.soil, deeper, ground.surface, ground.memory).Force().dot(up) - load) /
-          kSinkageStep);
-
+  // Normal: the soil's stiffness against sinking further.
+  const double stiffness = std::max(kLeastStiffness, slopes.stiffness);
   // First friction row: the shear's force along forward against the slip
   // velocity v of the lowest rim point, and its slope.
   const double slip_velocity = now.forward_speed - state.radius * now.spin;
-  WheelState spun = state;
-  spun.angular_velocity -= kSpinStep * state.axle;  // spin + kSpinStep: v falls by r kSpinStep
   const double thrust = now.shear_force.dot(forward);
-  const double slope =
-      (WheelOnSoil(ground.soil, spun, ground.surface, ground.memory).shear_force.dot(forward) -
-       thrust) /
-      (-state.radius * kSpinStep);
-  const double slip1 = slope < -1.0 / kMostSlip ? -1.0 / slope : kMostSlip;
+  const double slip1 =
+      slopes.thrust_slope < -1.0 / kMostSlip ? -1.0 / slopes.thrust_slope : kMostSlip;
 
   dContact contact{};
   contact.geom.g1 = wheel;
@@ -117,12 +105,6 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   // The shear's torque about the axle beyond the row's r T at the rim.
   out->torque = (now.shear_torque - state.radius * thrust) * state.axle;
   return true;
-}
-
-void OdeSoil::AfterStep() {
-  for (const Touch& touch : touched_)
-    PressWheel(StateOf(touch.wheel, touch.body), touch.ground->surface, &touch.ground->memory);
-  touched_.clear();
 }
 
 const WheelSoilForces* OdeSoil::Last(dGeomID wheel) const {

@@ -19,7 +19,8 @@
 //     increment;
 //   - the shear's torque beyond what the row's force gives at the rim is
 //     added as a torque.
-// After the step the soil records how deep each wheel pressed it.
+// The soil records how deep each wheel presses it as it answers it, so
+// every state's rut stays (soil_mechanics.h: PressWheelOnSoil).
 #pragma once
 
 #include <ode/ode.h>
@@ -55,10 +56,6 @@ class OdeSoil {
   };
   bool Contact(dGeomID wheel, dBodyID body, dGeomID ground, WheelContact* out);
 
-  // Records the ruts of the wheels that touched soil in this step (after
-  // ODE's step: the new positions).
-  void AfterStep();
-
   // The last evaluation of a wheel geom on soil (for readouts).
   const WheelSoilForces* Last(dGeomID wheel) const;
 
@@ -72,12 +69,6 @@ class OdeSoil {
 
   const Parameters& params_;
   std::unordered_map<dGeomID, Ground> grounds_;
-  struct Touch {
-    dGeomID wheel;
-    dBodyID body;
-    Ground* ground;
-  };
-  std::vector<Touch> touched_;  // this step
   std::unordered_map<dGeomID, WheelSoilForces> last_;
 };
 

@@ -624,7 +624,6 @@ void OdeWorld::Step() {
       throw Fail(e, "step");
     }
   }
-  if (soil_) soil_->AfterStep();
   for (size_t i = 0; i < bodies_.size(); ++i) {
     contact_force_[i].setZero();
     contact_torque_[i].setZero();

@@ -42,10 +42,36 @@ Eigen::Vector2d GroundCoordinates(const SoilSurface& surface, const Eigen::Vecto
   return {d.dot(surface.u_axis), d.dot(surface.up.cross(surface.u_axis))};
 }
 
-// The rim point at theta.
-Eigen::Vector3d RimPoint(const WheelState& wheel, const WheelFrame& frame, double theta) {
-  return wheel.centre + wheel.radius * (-std::cos(theta) * frame.up + std::sin(theta) * frame.forward);
+// The rim point at the angle whose cosine and sine these are.
+Eigen::Vector3d RimPoint(const WheelState& wheel, const WheelFrame& frame, double cos_theta,
+                         double sin_theta) {
+  return wheel.centre + wheel.radius * (-cos_theta * frame.up + sin_theta * frame.forward);
 }
+
+// The midpoints of `samples` equal parts of [-half, half], with their
+// cosines and sines by rotation (two calls to the library, not two per
+// point: the sum's error grows by about 1e-16 a point).
+struct ArcAngles {
+  ArcAngles(double half, double step)
+      : theta(-half + 0.5 * step),
+        cos_theta(std::cos(theta)),
+        sin_theta(std::sin(theta)),
+        step_(step),
+        cos_step_(std::cos(step)),
+        sin_step_(std::sin(step)) {}
+  void Next() {
+    const double c = cos_theta * cos_step_ - sin_theta * sin_step_;
+    sin_theta = sin_theta * cos_step_ + cos_theta * sin_step_;
+    cos_theta = c;
+    theta += step_;
+    ++k;
+  }
+  double theta, cos_theta, sin_theta;
+  int k = 0;
+
+ private:
+  double step_, cos_step_, sin_step_;
+};
 
 // The arc of the rim below the untouched surface: [-theta_max, theta_max].
 double ArcHalfAngle(double sinkage, double radius, bool* stuck) {
@@ -54,12 +80,12 @@ double ArcHalfAngle(double sinkage, double radius, bool* stuck) {
   return std::acos(1.0 - depth / radius);
 }
 
-// Wong and Reece's shear displacement of the rim point at theta, which
-// entered the soil at theta_front.
+// Wong and Reece's shear displacement of the rim point at theta (sine
+// sin_theta), which entered the soil at theta_front (sine sin_front).
 double ShearDisplacement(const Soil& soil, double radius, double v, double omega,
-                         double theta_front, double theta) {
+                         double theta_front, double sin_front, double theta, double sin_theta) {
   if (std::abs(omega) > kStillSpin)
-    return radius * (theta_front - theta) - (v / omega) * (std::sin(theta_front) - std::sin(theta));
+    return radius * (theta_front - theta) - (v / omega) * (sin_front - sin_theta);
   if (std::abs(v) > kStillSpeed) return -std::copysign(kSlidFar * soil.shear_modulus, v);
   return 0.0;
 }
@@ -116,14 +142,75 @@ void SoilMemory::Press(double u, double w, double z) {
   deepest = std::max(deepest, z);
 }
 
+double SoilMemory::PathPress::Press(double u, double w, double z) {
+  const uint64_t key = memory_->Key(u, w);
+  if (!in_cell_ || key != key_) {
+    in_cell_ = true;
+    key_ = key;
+    const auto it = memory_->deepest_.find(key);
+    deepest_ = it == memory_->deepest_.end() ? nullptr : &it->second;
+    before_ = deepest_ ? *deepest_ : 0.0;
+  }
+  if (z > 0.0) {
+    // References into an unordered_map stay valid as it grows.
+    if (!deepest_) deepest_ = &memory_->deepest_[key];
+    *deepest_ = std::max(*deepest_, z);
+  }
+  return before_;
+}
+
 double PressureWithMemory(const Soil& soil, double z, double z_max, double b) {
   if (z >= z_max) return soil.Pressure(z, b);
   return std::max(0.0, soil.Pressure(z_max, b) - soil.unloading_stiffness * (z_max - z));
 }
 
-WheelSoilForces WheelOnSoil(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
-                            const SoilMemory& memory, int samples) {
+namespace {
+
+// The spin step [rad/s] of the difference that gives the shear's slope.
+constexpr double kSpinStep = 1e-3;
+
+// One point of the arc: its angle, and the normal stress there and its
+// slope against sinkage.
+struct ArcSample {
+  double theta, cos_theta, sin_theta;
+  double sigma;   // [Pa]
+  double dsigma;  // d sigma / dz [Pa/m]
+};
+
+// The soil's memory as an evaluation sees it: read only, or pressed by
+// the rim as it goes.
+struct ArcMemory {
+  const SoilMemory& read;
+  SoilMemory::PathPress* pressed = nullptr;
+};
+
+// The normal stress at `point` of the rim, and its slope against sinkage.
+// With `press`, the memory records the point (ArcMemory).
+void NormalStress(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
+                  const ArcMemory& memory, const Eigen::Vector3d& point, ArcSample* sample) {
+  const double z = -HeightAbove(surface, point);
+  const Eigen::Vector2d at = GroundCoordinates(surface, point);
+  const double z_max =
+      memory.pressed ? memory.pressed->Press(at.x(), at.y(), z) : memory.read.Deepest(at.x(), at.y());
+  double s = PressureWithMemory(soil, z, z_max, wheel.width);
+  double ds = 0.0;
+  if (s > 0.0) {
+    ds = z >= z_max ? soil.n * s / z : soil.unloading_stiffness;
+    const double sinking = -(wheel.velocity + wheel.angular_velocity.cross(point - wheel.centre))
+                                .dot(surface.up);
+    // The soil's damping: on any loaded point, sinking or rising.
+    s = std::max(0.0, s + soil.viscosity * sinking);
+    if (s == 0.0) ds = 0.0;
+  }
+  sample->sigma = s;
+  sample->dsigma = ds;
+}
+
+// The soil's answer to `wheel` (soil_mechanics.h: WheelOnSoil).
+WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
+                         const ArcMemory& memory, int samples, WheelSoilSlopes* slopes) {
   WheelSoilForces out;
+  if (slopes) *slopes = WheelSoilSlopes{};
   const WheelFrame frame = FrameOf(wheel, surface);
   if (!frame.valid) return out;
   const double r = wheel.radius, b = wheel.width;
@@ -136,43 +223,68 @@ WheelSoilForces WheelOnSoil(const Soil& soil, const WheelState& wheel, const Soi
 
   // Normal stresses first: where the arc is loaded decides theta_front.
   const double step = 2.0 * half / samples;
-  std::vector<double> theta(static_cast<size_t>(samples)), sigma(static_cast<size_t>(samples));
+  std::vector<ArcSample> arc(static_cast<size_t>(samples));
   out.theta_front = -half;
   out.theta_rear = half;
-  for (int k = 0; k < samples; ++k) {
-    const double t = -half + (k + 0.5) * step;
-    const Eigen::Vector3d point = RimPoint(wheel, frame, t);
-    const double z = -HeightAbove(surface, point);
-    const Eigen::Vector2d at = GroundCoordinates(surface, point);
-    const double z_max = memory.Deepest(at.x(), at.y());
-    double s = PressureWithMemory(soil, z, z_max, b);
-    const double sinking = -(wheel.velocity + wheel.angular_velocity.cross(point - wheel.centre))
-                                .dot(surface.up);
-    // The soil's damping: on any loaded point, sinking or rising.
-    if (s > 0.0) s = std::max(0.0, s + soil.viscosity * sinking);
-    theta[static_cast<size_t>(k)] = t;
-    sigma[static_cast<size_t>(k)] = s;
-    if (s > 0.0) {
-      out.theta_front = std::max(out.theta_front, t + 0.5 * step);
-      out.theta_rear = std::min(out.theta_rear, t - 0.5 * step);
+  ArcAngles angles(half, step);
+  for (ArcSample& a : arc) {
+    a.theta = angles.theta;
+    a.cos_theta = angles.cos_theta;
+    a.sin_theta = angles.sin_theta;
+    angles.Next();
+    const Eigen::Vector3d point = RimPoint(wheel, frame, a.cos_theta, a.sin_theta);
+    NormalStress(soil, wheel, surface, memory, point, &a);
+    if (a.sigma > 0.0) {
+      out.theta_front = std::max(out.theta_front, a.theta + 0.5 * step);
+      out.theta_rear = std::min(out.theta_rear, a.theta - 0.5 * step);
     }
   }
   const double area = b * r * step;
-  for (int k = 0; k < samples; ++k) {
-    const double s = sigma[static_cast<size_t>(k)], t = theta[static_cast<size_t>(k)];
-    if (s <= 0.0) continue;
-    const Eigen::Vector3d inward = std::cos(t) * frame.up - std::sin(t) * frame.forward;
-    const Eigen::Vector3d tangent = std::cos(t) * frame.forward + std::sin(t) * frame.up;
-    const double j = ShearDisplacement(soil, r, out.forward_speed, out.spin, out.theta_front, t);
-    const double tau = soil.Shear(s, j);
-    out.normal_force += s * area * inward;
+  const double faster_spin = out.spin + kSpinStep;
+  const double sin_front = std::sin(out.theta_front);
+  double thrust = 0.0, faster_thrust = 0.0, stiffness = 0.0;
+  for (const ArcSample& a : arc) {
+    if (a.sigma <= 0.0) continue;
+    const Eigen::Vector3d inward = a.cos_theta * frame.up - a.sin_theta * frame.forward;
+    const Eigen::Vector3d tangent = a.cos_theta * frame.forward + a.sin_theta * frame.up;
+    const double j = ShearDisplacement(soil, r, out.forward_speed, out.spin, out.theta_front,
+                                       sin_front, a.theta, a.sin_theta);
+    const double tau = soil.Shear(a.sigma, j);
+    out.normal_force += a.sigma * area * inward;
     out.shear_force += tau * area * tangent;
     out.shear_torque += r * tau * area;
-    out.shear_strength += (soil.cohesion + s * soil.tan_phi) * area;
+    out.shear_strength += (soil.cohesion + a.sigma * soil.tan_phi) * area;
     out.contact_area += area;
+    if (!slopes) continue;
+    thrust += tau * area * a.cos_theta;
+    const double j_faster = ShearDisplacement(soil, r, out.forward_speed, faster_spin,
+                                              out.theta_front, sin_front, a.theta, a.sin_theta);
+    faster_thrust += soil.Shear(a.sigma, j_faster) * area * a.cos_theta;
+    // tau's share: strength (c + sigma tan phi) times the same factor of j.
+    const double strength = soil.cohesion + a.sigma * soil.tan_phi;
+    const double dtau = strength > 0.0 ? tau * soil.tan_phi / strength : 0.0;
+    stiffness += a.dsigma * area * (inward.dot(surface.up) + dtau * tangent.dot(surface.up));
   }
   out.touching = out.contact_area > 0.0;
+  if (slopes) {
+    slopes->stiffness = stiffness;
+    slopes->thrust_slope = (faster_thrust - thrust) / (-r * kSpinStep);
+  }
   return out;
+}
+
+}  // namespace
+
+WheelSoilForces WheelOnSoil(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
+                            const SoilMemory& memory, int samples, WheelSoilSlopes* slopes) {
+  return Evaluate(soil, wheel, surface, ArcMemory{memory}, samples, slopes);
+}
+
+WheelSoilForces PressWheelOnSoil(const Soil& soil, const WheelState& wheel,
+                                 const SoilSurface& surface, SoilMemory* memory, int samples,
+                                 WheelSoilSlopes* slopes) {
+  SoilMemory::PathPress press(memory);
+  return Evaluate(soil, wheel, surface, ArcMemory{*memory, &press}, samples, slopes);
 }
 
 void PressWheel(const WheelState& wheel, const SoilSurface& surface, SoilMemory* memory,
@@ -184,10 +296,11 @@ void PressWheel(const WheelState& wheel, const SoilSurface& surface, SoilMemory*
   bool stuck = false;
   const double half = ArcHalfAngle(sinkage, wheel.radius, &stuck);
   const double step = 2.0 * half / samples;
-  for (int k = 0; k < samples; ++k) {
-    const Eigen::Vector3d point = RimPoint(wheel, frame, -half + (k + 0.5) * step);
+  SoilMemory::PathPress press(memory);
+  for (ArcAngles angles(half, step); angles.k < samples; angles.Next()) {
+    const Eigen::Vector3d point = RimPoint(wheel, frame, angles.cos_theta, angles.sin_theta);
     const Eigen::Vector2d at = GroundCoordinates(surface, point);
-    memory->Press(at.x(), at.y(), -HeightAbove(surface, point));
+    press.Press(at.x(), at.y(), -HeightAbove(surface, point));
   }
 }
 

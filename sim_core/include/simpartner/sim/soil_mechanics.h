@@ -65,6 +65,24 @@ class SoilMemory {
   void Press(double u, double w, double z);
   size_t cells() const { return deepest_.size(); }
 
+  // Pressing along a path (a rim's points, in order): each point reads
+  // what its cell held before the path, however many of the path's points
+  // fall in that cell, and the cell keeps the deepest of them. One lookup
+  // per cell.
+  class PathPress {
+   public:
+    explicit PathPress(SoilMemory* memory) : memory_(memory) {}
+    // Records z at (u, w); returns the cell's deepest before the path.
+    double Press(double u, double w, double z);
+
+   private:
+    SoilMemory* memory_;
+    bool in_cell_ = false;
+    uint64_t key_ = 0;
+    double before_ = 0.0;
+    double* deepest_ = nullptr;  // the cell's entry, once it has one
+  };
+
  private:
   uint64_t Key(double u, double w) const;
   double cell_size_;
@@ -120,11 +138,35 @@ struct WheelSoilForces {
   Eigen::Vector3d Force() const { return normal_force + shear_force; }
 };
 
+// How the soil's answer changes with the wheel's motion, for a contact
+// that solves it implicitly (ode_soil.h).
+struct WheelSoilSlopes {
+  // d(F . up) / d(sinkage) [N/m]: the stresses' slope as the wheel sinks
+  // further, on the same arc (where the soil is loaded: Bekker's slope,
+  // or the unloading line's in a rut).
+  double stiffness = 0.0;
+  // d(shear force . forward) / d(slip velocity) [N s/m], the slip
+  // velocity v - r omega of the lowest rim point, by a difference in spin
+  // (kSpinStep of soil_mechanics.cpp; the viscosity's share is left out).
+  double thrust_slope = 0.0;
+};
+
 // The stresses on `wheel` from `soil` under `surface`, pressed before as
-// `memory` says; `samples` points along the arc (midpoint rule). The
-// wheel's mid-plane is taken upright (its axle along the surface).
+// `memory` says; `samples` points along the arc (midpoint rule), and,
+// when `slopes` is given, their slopes in the same pass. The wheel's
+// mid-plane is taken upright (its axle along the surface).
 WheelSoilForces WheelOnSoil(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
-                            const SoilMemory& memory, int samples = 64);
+                            const SoilMemory& memory, int samples = 64,
+                            WheelSoilSlopes* slopes = nullptr);
+
+// WheelOnSoil and PressWheel at once, in one pass over the arc: the forces
+// on `memory` as it was, which pressing the rim's points first would not
+// change (where a point is pressed deeper it is on Bekker's curve either
+// way), and `memory` records the rim where it is now. A contact calls it
+// at the start of each step, so the soil holds every state's ruts.
+WheelSoilForces PressWheelOnSoil(const Soil& soil, const WheelState& wheel,
+                                 const SoilSurface& surface, SoilMemory* memory, int samples = 64,
+                                 WheelSoilSlopes* slopes = nullptr);
 
 // Records in `memory` how deep `wheel` presses the soil now (the arc's
 // points below the untouched surface), so that later steps see the rut.
