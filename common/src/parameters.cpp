@@ -157,7 +157,8 @@ const Entry* FindEntry(const std::vector<Entry>& entries, const std::string& key
   return nullptr;
 }
 
-void SetValue(const std::vector<Entry>& entries, const std::string& key,
+// Sets key to value; false (and a diagnostic) when it could not.
+bool SetValue(const std::vector<Entry>& entries, const std::string& key,
               const std::string& value, const std::string& base_dir,
               const ParameterOrigin& origin, DiagnosticList* diagnostics) {
   const Entry* entry = FindEntry(entries, key);
@@ -168,13 +169,12 @@ void SetValue(const std::vector<Entry>& entries, const std::string& key,
     const std::string hint = NearestName(key, keys);
     if (!hint.empty()) message += " (did you mean '" + hint + "'?)";
     diagnostics->Add(origin.file, origin.line, key, message);
-    return;
+    return false;
   }
   const std::string problem = entry->set(value, base_dir);
-  if (!problem.empty()) {
-    diagnostics->Add(origin.file, origin.line, key,
-                     "value '" + value + "' " + problem);
-  }
+  if (problem.empty()) return true;
+  diagnostics->Add(origin.file, origin.line, key, "value '" + value + "' " + problem);
+  return false;
 }
 
 std::string DirectoryOf(const std::string& file) {
@@ -182,10 +182,40 @@ std::string DirectoryOf(const std::string& file) {
   return parent.empty() ? std::string(".") : parent.string();
 }
 
+// Where each key was set (file line or command line), for the checks
+// between keys.
+using KeyOrigins = std::map<std::string, ParameterOrigin>;
+
+// globalERP and globalCFM are the per-step law: set while jointStiffness
+// gives the joints' law, they would be ignored, so they are refused.
+void CheckJointLaw(const Parameters& params, const KeyOrigins& set,
+                   DiagnosticList* diagnostics) {
+  if (params.jointStiffness <= 0.0) return;
+  for (const char* key : {"globalERP", "globalCFM"}) {
+    const auto it = set.find(key);
+    if (it == set.end()) continue;
+    diagnostics->Add(it->second.file, it->second.line, key,
+                     std::string(key) +
+                         " applies only with jointStiffness=0: the joints' ERP and CFM come "
+                         "from jointStiffness and jointDamping (the same spring at any step "
+                         "size); set jointStiffness=0 for the per-step law");
+  }
+}
+
+void ParseText(const std::string& text, const std::string& file_name, Parameters* params,
+               DiagnosticList* diagnostics, KeyOrigins* set);
+
 }  // namespace
 
 void ParseParametersText(const std::string& text, const std::string& file_name,
                          Parameters* params, DiagnosticList* diagnostics) {
+  ParseText(text, file_name, params, diagnostics, nullptr);
+}
+
+namespace {
+
+void ParseText(const std::string& text, const std::string& file_name, Parameters* params,
+               DiagnosticList* diagnostics, KeyOrigins* set) {
   const std::vector<Entry> entries = BindEntries(params);
   const std::string base_dir = DirectoryOf(file_name);
   std::map<std::string, int> line_of_key;
@@ -221,14 +251,17 @@ void ParseParametersText(const std::string& text, const std::string& file_name,
       continue;
     }
     line_of_key[key] = line_number;
-    SetValue(entries, key, value, base_dir, ParameterOrigin{file_name, line_number},
-             diagnostics);
+    const ParameterOrigin origin{file_name, line_number};
+    if (SetValue(entries, key, value, base_dir, origin, diagnostics) && set) (*set)[key] = origin;
   }
 }
+
+}  // namespace
 
 Parameters LoadParameters(const ParameterSources& sources) {
   Parameters params;
   DiagnosticList diagnostics;
+  KeyOrigins set;
   std::string file = sources.file_given ? sources.file : std::string();
   if (!sources.file_given && sources.default_file) {
     // The default file: ./parameters.txt, else the shipped one; none is fine.
@@ -239,8 +272,8 @@ Parameters LoadParameters(const ParameterSources& sources) {
   }
   if (!file.empty()) {
     try {
-      ParseParametersText(ReadBoundedFile(file, kMaxSettingsFileBytes, "parameters files"), file,
-                          &params, &diagnostics);
+      ParseText(ReadBoundedFile(file, kMaxSettingsFileBytes, "parameters files"), file, &params,
+                &diagnostics, &set);
     } catch (const FileReadError& e) {
       // The default file is optional: one that cannot be opened is skipped.
       if (!e.cannot_open())
@@ -251,8 +284,10 @@ Parameters LoadParameters(const ParameterSources& sources) {
   }
   const std::vector<Entry> entries = BindEntries(&params);
   for (const auto& [key, value] : sources.overrides) {
-    SetValue(entries, key, value, "", ParameterOrigin{kCommandLine, 0}, &diagnostics);
+    const ParameterOrigin origin{kCommandLine, 0};
+    if (SetValue(entries, key, value, "", origin, &diagnostics)) set[key] = origin;
   }
+  CheckJointLaw(params, set, &diagnostics);
   if (!diagnostics.empty()) throw ConfigError(diagnostics);
   return params;
 }

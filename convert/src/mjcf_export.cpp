@@ -320,9 +320,9 @@ MjcfExport Writer::Run() {
       "contact combination: ours takes the softer softness of two materials, MuJoCo the one of "
       "the higher priority (here: the lower friction)");
   not_carried_.push_back(
-      "the step method (ODE dWorldStep/QuickStep, ERP " + NumberText(params_.globalERP) +
-      ", CFM " + NumberText(params_.globalCFM) +
-      " on joints): MuJoCo's joints are exact in joint coordinates");
+      "the step method (ODE dWorldStep/QuickStep, ERP " + NumberText(params_.JointERP()) +
+      ", CFM " + NumberText(params_.JointCFM()) +
+      " on joints at this step): MuJoCo's joints are exact in joint coordinates");
 
   std::ostringstream out;
   out << "<!-- MJCF for MuJoCo 2.2, converted by simpartner-convert from " << CommentSafe(world_.file)

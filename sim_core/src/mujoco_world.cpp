@@ -548,7 +548,7 @@ void MujocoWorld::SetStops(int joint, int axis, double lo, double hi) {
   m_->jnt_range[2 * id] = std::isfinite(lo) ? lo : -1e10;
   m_->jnt_range[2 * id + 1] = std::isfinite(hi) ? hi : 1e10;
   // ODE's stops use the world's ERP and CFM.
-  StepLaw(params_.globalERP, params_.globalCFM, m_->dof_invweight0[map.dof[axis]],
+  StepLaw(params_.JointERP(), params_.JointCFM(), m_->dof_invweight0[map.dof[axis]],
           m_->jnt_solref + mjNREF * id, m_->jnt_solimp + mjNIMP * id);
 }
 

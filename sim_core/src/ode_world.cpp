@@ -137,8 +137,8 @@ void OdeWorld::Build() {
                                        threading_);
   dWorldSetGravity(world_, world.gravity.x(), world.gravity.y(), world.gravity.z());
   gravity_ = world.gravity.norm();
-  dWorldSetERP(world_, params.globalERP);
-  dWorldSetCFM(world_, params.globalCFM);
+  dWorldSetERP(world_, params.JointERP());
+  dWorldSetCFM(world_, params.JointCFM());
   dWorldSetContactMaxCorrectingVel(world_, params.contactMaxCorrectingVel);
   dWorldSetContactSurfaceLayer(world_, params.contactSurfaceLayer);
   dWorldSetAutoDisableFlag(world_, params.autoDisableFlag ? 1 : 0);

@@ -166,6 +166,43 @@ TEST_F(ParametersFiles, MissingGivenFileIsAnError) {
   }
 }
 
+// The joints' law is physical by default: a per-step globalERP or
+// globalCFM would be ignored, so it is refused where it was set; with
+// jointStiffness=0 it is the law.
+TEST_F(ParametersFiles, PerStepJointLawOnlyWithoutJointStiffness) {
+  const std::string file = Write("erp.txt", "stepsize=0.002\nglobalCFM=1e-6\n");
+  try {
+    LoadParameters(FromFile(file));
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    const DiagnosticList& d = e.diagnostics();
+    ASSERT_EQ(d.size(), 1u) << d.Format();
+    EXPECT_EQ(d.items()[0].file, file);
+    EXPECT_EQ(d.items()[0].line, 2);
+    EXPECT_EQ(d.items()[0].element, "globalCFM");
+    EXPECT_NE(d.items()[0].message.find("jointStiffness=0"), std::string::npos);
+  }
+  ParameterSources per_step = FromFile(file);
+  per_step.overrides = {{"jointStiffness", "0"}};
+  const Parameters params = LoadParameters(per_step);
+  EXPECT_EQ(params.JointCFM(), 1e-6);
+  EXPECT_EQ(params.JointERP(), 0.2);
+}
+
+// Physical: ERP and CFM of a spring k and damper c at step h (ODE's
+// manual, "How To Use ERP and CFM"): the 0.2 and 1e-5 of the original at
+// 1 ms, and the spring k = ERP / (h CFM) the same at every step.
+TEST(Parameters, JointLawIsTheSameSpringAtAnyStep) {
+  Parameters params;
+  EXPECT_NEAR(params.JointERP(), 0.2, 1e-15);
+  EXPECT_NEAR(params.JointCFM(), 1e-5, 1e-20);
+  for (const double h : {0.0005, 0.001, 0.002, 0.01}) {
+    params.stepsize = h;
+    EXPECT_NEAR(params.JointERP() / (h * params.JointCFM()), 2e7, 1e-6) << "h " << h;
+    EXPECT_NEAR((1.0 - params.JointERP()) / params.JointCFM(), 8e4, 1e-9) << "h " << h;
+  }
+}
+
 TEST_F(ParametersFiles, FileAndCommandLineErrorsAreAllReported) {
   const std::string file = Write("bad.txt", "\n\nglobalERP=2\n");
   ParameterSources sources = FromFile(file);

@@ -46,6 +46,10 @@ struct Parameters {
   double quickStepW = 1.3;
   double globalERP = 0.2;
   double globalCFM = 1e-5;
+  // The joints' rows as a spring and damper, the same at any step (ERP 0.2
+  // and CFM 1e-5 at 1 ms); jointStiffness 0 = globalERP and globalCFM.
+  double jointStiffness = 2e7;
+  double jointDamping = 8e4;
   double contactMaxCorrectingVel = 0.2;
   double contactSurfaceLayer = 0.0;
   bool autoDisableFlag = false;
@@ -74,6 +78,17 @@ struct Parameters {
 
   // Transport.
   std::string lcmUrl = kDefaultLcmUrl;
+
+  // The ERP and CFM of every joint row at this step size: from
+  // jointStiffness and jointDamping, else globalERP and globalCFM.
+  double JointERP() const {
+    if (jointStiffness <= 0.0) return globalERP;
+    return stepsize * jointStiffness / (stepsize * jointStiffness + jointDamping);
+  }
+  double JointCFM() const {
+    if (jointStiffness <= 0.0) return globalCFM;
+    return 1.0 / (stepsize * jointStiffness + jointDamping);
+  }
 
   // Lists every key with its type, range and documentation. The visitor has
   // Section(title), Bool, Int, Double, String, Path and Choice members.
@@ -111,8 +126,17 @@ struct Parameters {
     v.Double("quickStepW", quickStepW, 0.01, 2.0,
              "successive over-relaxation factor of dWorldQuickStep");
     v.Double("globalERP", globalERP, 0.0, 1.0,
-             "error reduction parameter (common 0.1 to 0.8)");
-    v.Double("globalCFM", globalCFM, 0.0, 1.0, "constraint force mixing");
+             "error reduction parameter of every joint row, per step (the original's); "
+             "used only with jointStiffness=0");
+    v.Double("globalCFM", globalCFM, 0.0, 1.0,
+             "constraint force mixing of every joint row, per step; used only with "
+             "jointStiffness=0");
+    v.Double("jointStiffness", jointStiffness, 0.0, kInf,
+             "[N/m; N m/rad on rotational rows] every joint row's (and stop's) stiffness: "
+             "with jointDamping it gives each step's ERP = h k / (h k + c) and CFM = "
+             "1 / (h k + c), the same spring at any step size; 0 = globalERP and globalCFM");
+    v.Double("jointDamping", jointDamping, 0.0, kInf,
+             "[N s/m; N m s/rad] every joint row's damping, with jointStiffness");
     v.Double("contactMaxCorrectingVel", contactMaxCorrectingVel, 0.0, kInf,
              "[m/s] largest velocity a contact may use to correct penetration");
     v.Double("contactSurfaceLayer", contactSurfaceLayer, 0.0, 1.0,
