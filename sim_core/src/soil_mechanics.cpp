@@ -81,13 +81,20 @@ double ArcHalfAngle(double sinkage, double radius, bool* stuck) {
 }
 
 // Wong and Reece's shear displacement of the rim point at theta (sine
-// sin_theta), which entered the soil at theta_front (sine sin_front).
+// sin_theta), which entered the soil at theta_entry (sine sin_entry): the
+// arc's front edge for a wheel spinning forward, its rear edge for one
+// spinning backward (EntryAngle).
 double ShearDisplacement(const Soil& soil, double radius, double v, double omega,
-                         double theta_front, double sin_front, double theta, double sin_theta) {
+                         double theta_entry, double sin_entry, double theta, double sin_theta) {
   if (std::abs(omega) > kStillSpin)
-    return radius * (theta_front - theta) - (v / omega) * (sin_front - sin_theta);
+    return radius * (theta_entry - theta) - (v / omega) * (sin_entry - sin_theta);
   if (std::abs(v) > kStillSpeed) return -std::copysign(kSlidFar * soil.shear_modulus, v);
   return 0.0;
+}
+
+// Where the rim's points enter the loaded arc at spin omega.
+double EntryAngle(const WheelSoilForces& out, double omega) {
+  return omega >= 0.0 ? out.theta_front : out.theta_rear;
 }
 
 double Slip(double radius, double v, double omega) {
@@ -241,14 +248,16 @@ WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSu
   }
   const double area = b * r * step;
   const double faster_spin = out.spin + kSpinStep;
-  const double sin_front = std::sin(out.theta_front);
+  const double entry = EntryAngle(out, out.spin), sin_entry = std::sin(entry);
+  const double faster_entry = EntryAngle(out, faster_spin);
+  const double sin_faster_entry = std::sin(faster_entry);
   double thrust = 0.0, faster_thrust = 0.0, stiffness = 0.0;
   for (const ArcSample& a : arc) {
     if (a.sigma <= 0.0) continue;
     const Eigen::Vector3d inward = a.cos_theta * frame.up - a.sin_theta * frame.forward;
     const Eigen::Vector3d tangent = a.cos_theta * frame.forward + a.sin_theta * frame.up;
-    const double j = ShearDisplacement(soil, r, out.forward_speed, out.spin, out.theta_front,
-                                       sin_front, a.theta, a.sin_theta);
+    const double j = ShearDisplacement(soil, r, out.forward_speed, out.spin, entry, sin_entry,
+                                       a.theta, a.sin_theta);
     const double tau = soil.Shear(a.sigma, j);
     out.normal_force += a.sigma * area * inward;
     out.shear_force += tau * area * tangent;
@@ -258,7 +267,7 @@ WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSu
     if (!slopes) continue;
     thrust += tau * area * a.cos_theta;
     const double j_faster = ShearDisplacement(soil, r, out.forward_speed, faster_spin,
-                                              out.theta_front, sin_front, a.theta, a.sin_theta);
+                                              faster_entry, sin_faster_entry, a.theta, a.sin_theta);
     faster_thrust += soil.Shear(a.sigma, j_faster) * area * a.cos_theta;
     // tau's share: strength (c + sigma tan phi) times the same factor of j.
     const double strength = soil.cohesion + a.sigma * soil.tan_phi;

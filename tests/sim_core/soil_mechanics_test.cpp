@@ -250,6 +250,28 @@ TEST(SoilMemory, PressingWhileAnsweringChangesNeitherForcesNorRuts) {
   }
 }
 
+// Driven backward, a wheel is the mirror image of one driven forward: on
+// untouched soil the same load and the opposite pull. (The shear once
+// counted from the front edge either way: backward it pulled forward.)
+TEST(RollingWheel, BackwardIsTheMirrorOfForward) {
+  const Soil soil = Soil::From(kDrySand);
+  for (const double slip : {0.1, 0.3}) {
+    const double omega = 2.0, v = (1.0 - slip) * kRadius * omega;
+    WheelState forward = WheelSunk(0.03), backward = WheelSunk(0.03);
+    forward.velocity = Eigen::Vector3d(v, 0, 0);
+    forward.angular_velocity = Eigen::Vector3d(0, 0, -omega);
+    backward.velocity = -forward.velocity;
+    backward.angular_velocity = -forward.angular_velocity;
+    const WheelSoilForces f = WheelOnSoil(soil, forward, SoilSurface{}, SoilMemory{});
+    const WheelSoilForces b = WheelOnSoil(soil, backward, SoilSurface{}, SoilMemory{});
+    EXPECT_GT(f.Force().x(), 10.0) << "slip " << slip;
+    EXPECT_NEAR(b.Force().x(), -f.Force().x(), 1e-9 * f.Force().norm()) << "slip " << slip;
+    EXPECT_NEAR(b.Force().y(), f.Force().y(), 1e-9 * f.Force().norm()) << "slip " << slip;
+    EXPECT_NEAR(b.shear_torque, -f.shear_torque, 1e-9 * std::abs(f.shear_torque));
+    EXPECT_NEAR(b.slip, f.slip, 1e-12);
+  }
+}
+
 TEST(RollingWheel, AWheelSunkPastItsAxleIsStuckNotNaN) {
   const Soil soil = Soil::From(kSnow);
   const WheelSoilForces f = WheelOnSoil(soil, WheelSunk(1.5 * kRadius), SoilSurface{}, SoilMemory{});

@@ -13,7 +13,9 @@
 //   - a shear stress tau, Janosi and Hanamoto's (c + sigma tan phi)
 //     (1 - exp(-|j| / K)), j the shear displacement the rim point has
 //     built up since it entered the soil (Wong and Reece):
-//       j(theta) = r (theta_f - theta) - (v / omega) (sin theta_f - sin theta).
+//       j(theta) = r (theta_e - theta) - (v / omega) (sin theta_e - sin theta),
+//     theta_e the edge where the rim enters the soil: the front edge
+//     theta_f spinning forward, the rear edge theta_r spinning backward.
 // Summed over the loaded arc (the wheel's width b times r dtheta) they
 // are the soil's force on the wheel. The soil remembers how deep it was
 // pressed (SoilMemory), so ruts stay and a second pass meets soil already
