@@ -377,7 +377,7 @@ CommandLineSpec CmdCommandLine() {
       Number("timeout", "S", "seconds to wait for the sim's answer (default 2)").Above(0, 3600),
       Text("body", "NAME", "only this body"),
       Switch("follow", "every one until interrupted, not only the newest"),
-      Switch("depth", "read CAMERA: its depth image, not its colour image"),
+      Switch("depth", "a camera's depth image, not its colour image"),
       Integer("count", "N", "with --follow: stop after N"),
       Integer("sim", "ID", "talk to the simulation of this id only (several sims on one bus); "
                            "default: the first sim heard")
@@ -393,8 +393,8 @@ CommandLineSpec CmdCommandLine() {
        "hold the joint where it is (force limit per axis, default 1000)"},
       {"stops", {name, Positional{"LO1,HI1,..."}}, "joint stops (per slot x,y,z or per axis)"},
       {"read", {Positional{"SENSOR"}},
-       "ask a sensor for a reading and print it; a camera: wait for its next image\n"
-       "(simpartner-camera) and print its size and mean colour, or depth range",
+       "ask a sensor for a reading and print it; a camera:\n"
+       "its next image's size, mean colour or depth range",
        {"depth"}},
       {"pause", {}, "pause the sim"},
       {"resume", {}, "resume a paused sim"},
