@@ -606,8 +606,8 @@ sensor_reading_t Client::WaitForReading(const std::string& sensor, int64_t after
 }
 
 int Client::CameraIndex(const std::string& camera) {
-  int index;
-  bool subscribe;
+  int index = -1;
+  bool subscribe = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!catalog_) throw NoSim(options_.url, 0.0);
