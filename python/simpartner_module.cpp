@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstring>
 #include <map>
 #include <memory>
 #include <optional>
@@ -19,9 +20,11 @@
 #include "simpartner/client/command.h"
 #include "simpartner/client/lock_step.h"
 #include "simpartner/command_shape.h"
+#include "simpartner/image_fit.h"
 #include "simpartner/logger/export.h"
 #include "simpartner/logger/logged_run.h"
 #include "simpartner/parameters.h"
+#include "simpartner/sensor_kinds.h"
 
 namespace py = pybind11;
 
@@ -33,6 +36,14 @@ using simpartner::client::ClientOptions;
 // An (rows, columns) float64 array.
 py::array_t<double> Matrix(size_t rows, size_t columns) {
   return py::array_t<double>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(columns)});
+}
+
+// An array of `shape` (row-major) that owns `values`: no copy.
+template <class T>
+py::array_t<T> OwningArray(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+  auto* owner = new std::vector<T>(std::move(values));
+  py::capsule release(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(std::move(shape), owner->data(), release);
 }
 
 // The newest state as a dict of arrays (bodies and joints in model order).
@@ -161,19 +172,63 @@ class Sim {
   std::unique_ptr<Client> client_;
 };
 
-// A sensor reading as a dict: values as a NumPy array (Scanner ranges,
-// Position x y z qw qx qy qz, Velocity, ForceTorque), the Echo's text.
-py::dict ReadingDict(const simpartner::sensor_reading_t& r) {
-  py::array_t<double> values(static_cast<py::ssize_t>(r.values.size()));
-  auto v = values.mutable_unchecked<1>();
-  for (size_t i = 0; i < r.values.size(); ++i) v(static_cast<py::ssize_t>(i)) = r.values[i];
+// A sensor reading as a dict: values as a NumPy float64 array in the
+// layout of sensor_reading_t.lcm (1-D; a Lidar's layers x rays), their
+// names (sensor_kinds.h), the Echo's text.
+py::dict ReadingDict(const simpartner::sensor_reading_t& r, const simpartner::model_t& model) {
+  const simpartner::sensor_t* sensor =
+      r.sensor >= 0 && static_cast<size_t>(r.sensor) < model.sensors.size()
+          ? &model.sensors[static_cast<size_t>(r.sensor)]
+          : nullptr;
+  const simpartner::ReadingShape shape =
+      sensor ? simpartner::ShapeOfReading(*sensor) : simpartner::ReadingShape{};
+  std::vector<double> values = r.values;
+  std::vector<py::ssize_t> dims = {static_cast<py::ssize_t>(values.size())};
+  if (sensor && sensor->kind == simpartner::sensor_t::KIND_LIDAR &&
+      static_cast<size_t>(shape.rows) * static_cast<size_t>(shape.columns) == values.size())
+    dims = {shape.rows, shape.columns};
   py::dict d;
   d["name"] = r.name;
+  d["kind"] = simpartner::SpellSensorKind(r.kind).word;
   d["step"] = r.step;
   d["time"] = r.sim_time;
-  d["values"] = values;
+  d["values"] = OwningArray(std::move(values), std::move(dims));
+  d["columns"] = sensor ? simpartner::ReadingColumns(*sensor) : std::vector<std::string>{};
   d["text"] = r.text;
   return d;
+}
+
+// A camera image as a dict: pixels as a NumPy array (H x W x 3 uint8 for
+// colour; H x W float32 metres or uint16 millimetres for depth), without
+// going through Python objects per pixel.
+py::dict ImageDict(simpartner::image_t image) {
+  const py::ssize_t h = image.height, w = image.width;
+  py::object pixels;
+  if (image.format == simpartner::image_t::FORMAT_RGB8) {
+    pixels = OwningArray(std::move(image.data), {h, w, 3});
+  } else if (image.format == simpartner::image_t::FORMAT_DEPTH_F32) {
+    std::vector<float> depth(image.data.size() / sizeof(float));
+    std::memcpy(depth.data(), image.data.data(), depth.size() * sizeof(float));  // little-endian
+    pixels = OwningArray(std::move(depth), {h, w});
+  } else {
+    std::vector<uint16_t> depth(image.data.size() / sizeof(uint16_t));
+    std::memcpy(depth.data(), image.data.data(), depth.size() * sizeof(uint16_t));
+    pixels = OwningArray(std::move(depth), {h, w});
+  }
+  py::dict d;
+  d["name"] = image.name;
+  d["robot"] = image.robot;
+  d["step"] = image.step;
+  d["time"] = image.sim_time;
+  d["width"] = image.width;
+  d["height"] = image.height;
+  d["format"] = simpartner::ImageFormatName(image.format);
+  d["pixels"] = pixels;
+  return d;
+}
+
+simpartner::client::ImageKind ImageKindOf(bool depth) {
+  return depth ? simpartner::client::ImageKind::kDepth : simpartner::client::ImageKind::kColour;
 }
 
 // for state in sim.lockstep(period, steps): the client library's LockStep
@@ -222,14 +277,6 @@ class LockStepLoop {
   int64_t taken_ = 0;
   std::unique_ptr<simpartner::client::LockStep> loop_;
 };
-
-// An array of `shape` (row-major) that owns `values`: no copy.
-template <class T>
-py::array_t<T> OwningArray(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
-  auto* owner = new std::vector<T>(std::move(values));
-  py::capsule release(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>(std::move(shape), owner->data(), release);
-}
 
 // read_logged's `simulation`: an id (int, or a NumPy integer), "last",
 // "running", or the id as text.
@@ -352,11 +399,13 @@ PYBIND11_MODULE(simpartner, m) {
             s.client().Find(name);  // UnknownTarget for a name the model lacks
             const auto r = s.client().LatestReading(name);
             if (!r) return py::none();
-            return ReadingDict(*r);
+            return ReadingDict(*r, *s.client().model());
           },
           py::arg("name"),
-          "The latest reading of sensor `name` (dict: name, step, time, values as a NumPy "
-          "array, text), or None before the first")
+          "The latest reading of sensor `name`, or None before the first: dict of name, kind "
+          "('imu', 'lidar', ...), step, time [s of sim time], values (NumPy float64: 1-D in the "
+          "order of columns; a lidar's 2-D, layers x rays, lowest layer first), columns (the "
+          "names of the values: 'ax', 'ay', ... or 'range_0', ...), text (an echo's)")
       .def(
           "wait_reading",
           [](Sim& s, const std::string& name, int64_t after_step, double timeout) {
@@ -365,10 +414,41 @@ PYBIND11_MODULE(simpartner, m) {
               py::gil_scoped_release release;
               r = s.client().WaitForReading(name, after_step, timeout);
             }
-            return ReadingDict(r);
+            return ReadingDict(r, *s.client().model());
           },
           py::arg("name"), py::arg("after_step") = -1, py::arg("timeout") = 2.0,
-          "Waits for a reading of sensor `name` from a step after after_step; Timeout")
+          "Waits for a reading of sensor `name` from a step after after_step (dict as reading); "
+          "Timeout")
+      .def(
+          "image",
+          [](Sim& s, const std::string& name, bool depth) -> py::object {
+            const auto image = s.client().LatestImage(name, ImageKindOf(depth));
+            if (!image) return py::none();
+            return ImageDict(std::move(*image));
+          },
+          py::arg("name"), py::arg("depth") = false,
+          "The newest image of camera `name` (rendered by simpartner-camera), or None before "
+          "the first; the first call starts receiving images (so it returns None). Dict as "
+          "wait_image's.")
+      .def(
+          "wait_image",
+          [](Sim& s, const std::string& name, int64_t after_step, double timeout, bool depth) {
+            simpartner::image_t image;
+            {
+              py::gil_scoped_release release;
+              image = s.client().WaitForImage(name, after_step, timeout, ImageKindOf(depth));
+            }
+            return ImageDict(std::move(image));
+          },
+          py::arg("name"), py::arg("after_step") = -1, py::arg("timeout") = 2.0,
+          py::arg("depth") = false,
+          "Waits for an image of camera `name` showing a step after after_step; Timeout. Dict "
+          "of name, robot, step, time [s of sim time], width, height, format ('rgb8', "
+          "'depth-f32', 'depth-u16') and pixels: depth=False, the colour image, uint8 of shape "
+          "(height, width, 3), RGB, row 0 at the top; depth=True, the depth along the camera's "
+          "axis, shape (height, width): float32 metres (+inf: nothing before far) for "
+          "'depth-f32', uint16 millimetres (0: nothing, or beyond 65.535 m) for 'depth-u16', as "
+          "the camera declares.")
       .def(
           "lockstep",
           [](Sim& s, int64_t period, std::optional<int64_t> steps, const std::string& name,

@@ -11,6 +11,7 @@
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
+#include "simpartner/sensor_t.hpp"
 #include "simpartner/sender.h"
 #include "simpartner/state_request_t.hpp"
 
@@ -26,6 +27,8 @@ std::vector<uint8_t> Encode(const T& message) {
 
 constexpr size_t kMaxKeptReplies = 4096;
 constexpr size_t kMaxKeptSyncReplies = 64;
+// Colour and depth of a few cameras; older images are of no use.
+constexpr int kImageQueue = 8;
 
 // The bus key of SIMPARTNER_BUS_KEY, if set (bus_signing.h).
 std::optional<BusSigning> SigningFromEnvironment() {
@@ -41,6 +44,8 @@ std::optional<BusSigning> SigningFromEnvironment() {
 Client::Client(ClientOptions options)
     : options_(std::move(options)),
       sender_(SenderName(options_.program)),
+      images_(&bad_messages_,
+              [](const std::string& line) { std::cerr << "simpartner client: " << line << "\n"; }),
       signing_(SigningFromEnvironment()) {
   // Two clients of one process share the sender; request ids starting at a
   // random point keep their replies apart.
@@ -209,6 +214,9 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     }
     std::lock_guard<std::mutex> callback_lock(callback_mutex_);
     if (on_reading_) on_reading_(reading);
+  } else if (channel == channels::kImage) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (images_.Offer(data, size)) changed_.notify_all();
   }
 }
 
@@ -294,6 +302,7 @@ std::shared_ptr<const Catalog> Client::LearnModel(
   catalog_ = catalog;
   catalog_known_ = true;
   readings_.clear();
+  images_.SetModel(model_);
   replies_.clear();
   // Followed; unless a still newer sim has shown up meanwhile.
   restart_.reset();
@@ -591,6 +600,53 @@ sensor_reading_t Client::WaitForReading(const std::string& sensor, int64_t after
       if (again != readings_.end() && again->second.step > after_step) return again->second;
       throw Timeout("SIM_SENSOR reading of " + target.name + " after step " +
                         std::to_string(after_step),
+                    timeout, options_.url);
+    }
+  }
+}
+
+int Client::CameraIndex(const std::string& camera) {
+  int index = -1;
+  bool subscribe = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!catalog_) throw NoSim(options_.url, 0.0);
+    const Target& target = catalog_->Resolve(camera);
+    if (!target.is_sensor() || target.lcm_kind != sensor_t::KIND_CAMERA)
+      throw UnknownTarget(camera, {}, "'" + camera + "' is a " + target.kind_name() +
+                                          ", not a camera");
+    index = target.index;
+    subscribe = !images_subscribed_;
+    images_subscribed_ = true;
+  }
+  // Outside mutex_: LCM holds its own lock while our handler takes mutex_.
+  if (subscribe)
+    lcm_->subscribe(channels::kImage, &Client::OnMessageBuffer, this)
+        ->setQueueCapacity(kImageQueue);
+  return index;
+}
+
+std::optional<image_t> Client::LatestImage(const std::string& camera, ImageKind kind) {
+  const int index = CameraIndex(camera);
+  std::lock_guard<std::mutex> lock(mutex_);
+  return images_.Latest(index, kind);
+}
+
+image_t Client::WaitForImage(const std::string& camera, int64_t after_step, double timeout,
+                             ImageKind kind) {
+  const int index = CameraIndex(camera);
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  std::unique_lock<std::mutex> lock(mutex_);
+  auto arrived = [&] { return images_.LatestStep(index, kind) > after_step; };
+  for (;;) {
+    ThrowIfRestarted();
+    if (arrived()) return *images_.Latest(index, kind);
+    if (changed_.wait_until(lock, deadline) == std::cv_status::timeout) {
+      if (arrived()) return *images_.Latest(index, kind);
+      throw Timeout(std::string("SIM_IMAGE ") + (kind == ImageKind::kColour ? "colour" : "depth") +
+                        " image of " + camera + " after step " + std::to_string(after_step) +
+                        " (is simpartner-camera running?)",
                     timeout, options_.url);
     }
   }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "simpartner/client/client.h"
+#include "simpartner/client/image_summary.h"
 #include "simpartner/command_line.h"
 #include "simpartner/diagnostic.h"
 #include "simpartner/command_t.hpp"
@@ -125,6 +126,7 @@ struct Options {
   std::vector<std::string> words;  // command and its arguments
   std::string body;
   bool follow = false;
+  bool depth = false;  // read CAMERA: the depth image
   long count = -1;  // --follow: stop after this many (tests), -1 = forever
   int64_t simulation_id = 0;  // --sim: the simulation to talk to; 0 = the first heard
 };
@@ -147,6 +149,7 @@ Options MakeOptions(const CommandLine& command_line, const Parameters& params) {
   o.words.insert(o.words.begin(), command_line.command());
   o.body = command_line.Text("body");
   o.follow = command_line.Has("follow");
+  o.depth = command_line.Has("depth");
   o.count = static_cast<long>(command_line.Integer("count", o.count));
   o.simulation_id = command_line.Integer("sim", o.simulation_id);
   return o;
@@ -215,11 +218,26 @@ int RunActuatorCommand(const Options& o, std::ostream& out) {
   return kCmdOk;
 }
 
+// A camera has no SIM_SENSOR reading: the next image simpartner-camera
+// renders of it (colour, or with --depth its depth image).
+int RunReadCamera(Client& client, const Target& target, const Options& o, std::ostream& out) {
+  const ImageKind kind = o.depth ? ImageKind::kDepth : ImageKind::kColour;
+  client.LatestImage(target.qualified_name(), kind);  // starts receiving images
+  const image_t image = client.WaitForImage(target.qualified_name(), -1, o.timeout, kind);
+  out << target.name << " (camera) step " << image.step << ", t = " << FormatNumber(image.sim_time)
+      << " s: " << SummariseImage(image) << "\n";
+  return kCmdOk;
+}
+
 int RunRead(const Options& o, std::ostream& out) {
   Client client(MakeClientOptions(o, true));
   const Target target = client.Find(o.words[1]);
   if (!target.is_sensor())
     throw UnknownTarget(o.words[1], {}, "'" + o.words[1] + "' is an actuator; read takes a sensor");
+  if (target.lcm_kind == sensor_t::KIND_CAMERA) return RunReadCamera(client, target, o, out);
+  if (o.depth)
+    throw UsageError("--depth is for a camera, and '" + o.words[1] + "' is not one (" +
+                     target.kind_name() + ")");
   const command_reply_t reply = SendAndWait(client, Read(target), o.timeout);
   const sensor_reading_t r =
       client.WaitForReading(target.qualified_name(), reply.applied_at_step - 1, o.timeout);
@@ -359,6 +377,7 @@ CommandLineSpec CmdCommandLine() {
       Number("timeout", "S", "seconds to wait for the sim's answer (default 2)").Above(0, 3600),
       Text("body", "NAME", "only this body"),
       Switch("follow", "every one until interrupted, not only the newest"),
+      Switch("depth", "a camera's depth image, not its colour image"),
       Integer("count", "N", "with --follow: stop after N"),
       Integer("sim", "ID", "talk to the simulation of this id only (several sims on one bus); "
                            "default: the first sim heard")
@@ -373,7 +392,10 @@ CommandLineSpec CmdCommandLine() {
       {"hold", {name, Positional{"FMAX", 0, 1}},
        "hold the joint where it is (force limit per axis, default 1000)"},
       {"stops", {name, Positional{"LO1,HI1,..."}}, "joint stops (per slot x,y,z or per axis)"},
-      {"read", {Positional{"SENSOR"}}, "ask a sensor for a reading and print it"},
+      {"read", {Positional{"SENSOR"}},
+       "ask a sensor for a reading and print it; a camera:\n"
+       "its next image's size, mean colour or depth range",
+       {"depth"}},
       {"pause", {}, "pause the sim"},
       {"resume", {}, "resume a paused sim"},
       {"step", {Positional{"N"}}, "take N steps, then stay paused"},

@@ -2,11 +2,11 @@
 // obtained, a header line, then one line per body or joint and step.
 #include <ostream>
 
+#include "csv_field.h"
 #include "simpartner/logger/export.h"
 #include "simpartner/logger/sql_text.h"
 
 namespace simpartner::logger {
-namespace {
 
 std::string CsvField(const std::string& text) {
   if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
@@ -19,6 +19,8 @@ std::string CsvField(const std::string& text) {
   }
   return out + "\"";
 }
+
+namespace {
 
 void WriteHeader(const ExportRequest& request, std::ostream& out) {
   if (request.velocities)

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <ostream>
 
 #include "simpartner/logger/query.h"
@@ -17,7 +18,8 @@ struct CommandName {
 constexpr CommandName kCommands[] = {
     {"list", QueryCommand::kList},       {"names", QueryCommand::kNames},
     {"poses", QueryCommand::kPoses},     {"forces", QueryCommand::kForces},
-    {"joints", QueryCommand::kJoints},   {"plot", QueryCommand::kPlot},
+    {"joints", QueryCommand::kJoints},   {"readings", QueryCommand::kReadings},
+    {"plot", QueryCommand::kPlot},
     {"delete", QueryCommand::kDelete},   {"prune", QueryCommand::kPrune},
     {"storage", QueryCommand::kStorage}, {"compress", QueryCommand::kCompress},
 };
@@ -58,6 +60,23 @@ void PrintNames(DbConnection* db, const std::string& simulation, std::ostream& o
   }
 }
 
+// A CSV to `out`, or to the file of --out (saying how many rows went there).
+int WriteCsv(const QueryOptions& o, std::ostream& out, std::ostream& err,
+             const std::function<uint64_t(std::ostream&)>& write) {
+  if (o.out_path.empty()) {
+    write(out);
+    return 0;
+  }
+  std::ofstream file(o.out_path);
+  if (!file) {
+    err << "simpartner-query: cannot write " << o.out_path << "\n";
+    return 1;
+  }
+  const uint64_t rows = write(file);
+  err << "simpartner-query: " << rows << " rows to " << o.out_path << "\n";
+  return 0;
+}
+
 int RunExport(DbConnection* db, const QueryOptions& o, std::ostream& out, std::ostream& err) {
   ExportRequest request;
   request.kind = o.command == QueryCommand::kPoses    ? ExportKind::kPoses
@@ -70,18 +89,16 @@ int RunExport(DbConnection* db, const QueryOptions& o, std::ostream& out, std::o
   request.every = o.every;
   request.velocities = o.velocities;
   request.unwrap = o.unwrap;
-  if (o.out_path.empty()) {
-    ExportCsv(db, request, out);
-    return 0;
-  }
-  std::ofstream file(o.out_path);
-  if (!file) {
-    err << "simpartner-query: cannot write " << o.out_path << "\n";
-    return 1;
-  }
-  const uint64_t rows = ExportCsv(db, request, file);
-  err << "simpartner-query: " << rows << " rows to " << o.out_path << "\n";
-  return 0;
+  return WriteCsv(o, out, err, [&](std::ostream& to) { return ExportCsv(db, request, to); });
+}
+
+int RunReadings(DbConnection* db, const QueryOptions& o, std::ostream& out, std::ostream& err) {
+  ReadingsRequest request;
+  request.simulation = o.simulation;
+  request.sensor = o.sensor;
+  request.from = o.from;
+  request.to = o.to;
+  return WriteCsv(o, out, err, [&](std::ostream& to) { return ExportReadingsCsv(db, request, to); });
 }
 
 int RunPlot(DbConnection* db, const QueryOptions& o, std::ostream& err) {
@@ -137,7 +154,8 @@ CommandLineSpec QueryCommandLine() {
   CommandLineSpec spec;
   spec.program = "simpartner-query";
   spec.summary =
-      "Lists the logged simulations, exports one's poses, contact forces or joint states to CSV, "
+      "Lists the logged simulations, exports one's poses, contact forces, joint states or sensor "
+      "readings to CSV, "
       "plots them with gnuplot, and (as the administrator) deletes simulations.";
   spec.options = {
       Text("db-options", "FILE",
@@ -147,6 +165,7 @@ CommandLineSpec QueryCommandLine() {
            "state/mariadb; delete, prune, storage and compress: admin.cnf there)"),
       Text("body", "NAME", "only this body (e.g. Wheel1)"),
       Text("joint", "NAME", "only this joint (e.g. Axle1)"),
+      Text("sensor", "NAME", "only this sensor's readings (e.g. Imu), under its kind's names"),
       Text("out", "FILE", "write the CSV (or the plot's PNG) to this file").Short('o'),
       Number("from", "S", "only from this simulation time [s]"),
       Number("to", "S", "only up to this simulation time [s]"),
@@ -166,6 +185,11 @@ CommandLineSpec QueryCommandLine() {
        {"body", "out", "from", "to", "every"}},
       {"joints", {sim}, "joint anchors, angles, rates and constraint force on body1, CSV",
        {"joint", "out", "from", "to", "every", "unwrap"}},
+      {"readings", {sim},
+       "logged sensor readings, CSV: with --sensor one row per reading (a lidar's: per layer) "
+       "and its kind's columns (ax, ay, ... for an imu); without, one row per value (sensor, "
+       "kind, layer, column, value)",
+       {"sensor", "out", "from", "to"}},
       {"plot", {Positional{"WHAT"}, sim},
        "a PNG (-o FILE.png) or, with DISPLAY and no -o, a window (the command ends when the "
        "window is closed); WHAT: position, velocity (--body B), angle, rate, force (--joint J), "
@@ -196,6 +220,7 @@ QueryOptions MakeQueryOptions(const CommandLine& command_line) {
   else if (!words.empty()) o.simulation = words.back();
   o.body = command_line.Text("body");
   o.joint = command_line.Text("joint");
+  o.sensor = command_line.Text("sensor");
   o.out_path = command_line.Text("out");
   o.from = command_line.Number("from", o.from);
   o.to = command_line.Number("to", o.to);
@@ -222,6 +247,8 @@ int RunQuery(const QueryOptions& o, const Parameters& params, std::ostream& out,
     case QueryCommand::kForces:
     case QueryCommand::kJoints:
       return RunExport(db.get(), o, out, err);
+    case QueryCommand::kReadings:
+      return RunReadings(db.get(), o, out, err);
     case QueryCommand::kPlot:
       return RunPlot(db.get(), o, err);
     case QueryCommand::kDelete:

@@ -89,7 +89,9 @@ uint32_t ResolveSimulation(DbConnection* db, const std::string& which) {
 }
 
 std::vector<std::string> PartNames(DbConnection* db, uint32_t simulation, PartKind kind) {
-  const std::string table = kind == PartKind::kJoint ? "`Joint`" : "Body";
+  const std::string table = kind == PartKind::kJoint    ? "`Joint`"
+                            : kind == PartKind::kSensor ? "Sensor"
+                                                        : "Body";
   std::unique_ptr<sql::ResultSet> rows =
       db->Query("SELECT name FROM " + table +
                     " WHERE simulationID = " + std::to_string(simulation) + " ORDER BY busIndex",
@@ -106,9 +108,14 @@ std::vector<std::string> PartNames(DbConnection* db, uint32_t simulation, PartKi
 void RequirePartName(const std::vector<std::string>& names, uint32_t simulation, PartKind kind,
                      const std::string& name) {
   if (std::find(names.begin(), names.end(), name) != names.end()) return;
-  const bool joint = kind == PartKind::kJoint;
-  std::string message = "simulation " + std::to_string(simulation) + " has no " +
-                        (joint ? "joint" : "body") + " named '" + name + "'";
+  const char* part = kind == PartKind::kJoint    ? "joint"
+                     : kind == PartKind::kSensor ? "sensor"
+                                                 : "body";
+  const char* parts = kind == PartKind::kJoint    ? "joints"
+                      : kind == PartKind::kSensor ? "sensors"
+                                                  : "bodies";
+  std::string message = "simulation " + std::to_string(simulation) + " has no " + part +
+                        " named '" + name + "'";
   size_t best = std::string::npos;
   std::string nearest;
   for (const std::string& n : names) {
@@ -121,7 +128,7 @@ void RequirePartName(const std::vector<std::string>& names, uint32_t simulation,
   if (!nearest.empty() && best <= std::max<size_t>(2, name.size() / 3))
     message += " (did you mean '" + nearest + "'?)";
   else if (!names.empty()) {
-    message += "; its " + std::string(joint ? "joints" : "bodies") + ":";
+    message += "; its " + std::string(parts) + ":";
     for (size_t i = 0; i < names.size() && i < 40; ++i) message += (i ? ", " : " ") + names[i];
   }
   throw Error(message);

@@ -4,16 +4,21 @@
 // SIM_STATE of the image's own step has it (the pinhole projection,
 // computed here from the states' poses), and a ball moving about 3 pixels a
 // step tells the step apart from its neighbours. Then the sim restarts,
-// and the camera renders the new simulation.
+// and the camera renders the new simulation. Meanwhile `simpartner-cmd read`
+// of the camera (in-process) prints one of those images.
 #include <gtest/gtest.h>
 #include <signal.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <map>
 #include <optional>
+#include <sstream>
 
 #include "../support/bus_listener.h"
 #include "../support/bus_url.h"
@@ -24,6 +29,7 @@
 #include "../support/text_file.h"
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
+#include "simpartner/client/cmd.h"
 #include "simpartner/image_t.hpp"
 #include "simpartner/model_t.hpp"
 #include "simpartner/state_t.hpp"
@@ -136,10 +142,16 @@ TEST(CameraProcess, EachImageShowsTheStateOfItsStep) {
                       (dir / "camera.log").string());
   ASSERT_TRUE(bus.UntilFileHolds(dir / "camera.log", "listening on", 20))
       << test_support::ReadText(dir / "camera.log");
+  // simpartner-cmd read of the camera, beside the test's own listener.
+  std::ostringstream read_out, read_err;
+  std::future<int> read = std::async(std::launch::async, [&] {
+    return client::RunCmd({"read", "Eye", "--lcm-url", url, "--timeout", "10"}, read_out, read_err);
+  });
   test_support::SimProcess sim((dir / "world.xml").string(), url, (dir / "sim.log").string(),
                                {"--stepsize=0.01", "--duration=1.2"});
   ASSERT_TRUE(bus.Until([&] { return sim.Wait(std::chrono::milliseconds(0)).has_value(); }, 30))
       << sim.Log();
+  ASSERT_EQ(read.get(), 0) << read_err.str();
   bus.Until([] { return false; }, 0.5);  // the last images
   const std::vector<image_t> first = images;
   const std::map<int64_t, state_t> first_states = states;
@@ -204,6 +216,17 @@ TEST(CameraProcess, EachImageShowsTheStateOfItsStep) {
     }
   }
   EXPECT_GE(checked, 8) << first.size() << " images; " << log;
+
+  // The read printed an image the bus carried: its step, time and size,
+  // and a mean colour (the grey ground and sky, not black).
+  const std::string line = read_out.str();
+  long long step = -1;
+  ASSERT_EQ(std::sscanf(line.c_str(), "Eye (camera) step %lld,", &step), 1) << line;
+  const auto shown = std::find_if(first.begin(), first.end(),
+                                  [&](const image_t& i) { return i.step == step; });
+  ASSERT_NE(shown, first.end()) << line;
+  EXPECT_NE(line.find("320x240 rgb8, mean colour "), std::string::npos) << line;
+  EXPECT_EQ(line.find("mean colour 0.0 0.0 0.0"), std::string::npos) << line;
   if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 

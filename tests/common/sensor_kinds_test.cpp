@@ -50,5 +50,32 @@ TEST(SensorKinds, AReadingHasTheValuesItsLayoutLists) {
   EXPECT_EQ(ReadingSize(Sensor(sensor_t::KIND_CAMERA, {640, 480, 1.2, 0.1, 50, 2})), 0);
 }
 
+TEST(SensorKinds, EachValueHasTheNameOfItsLayout) {
+  using Names = std::vector<std::string>;
+  EXPECT_EQ(ReadingColumns(Sensor(sensor_t::KIND_IMU)),
+            (Names{"ax", "ay", "az", "wx", "wy", "wz", "qw", "qx", "qy", "qz"}));
+  EXPECT_EQ(ReadingColumns(Sensor(sensor_t::KIND_ENCODER)), (Names{"count", "count_rate"}));
+  EXPECT_EQ(ReadingColumns(Sensor(sensor_t::KIND_CONTACT)),
+            (Names{"touching", "force", "fx", "fy", "fz"}));
+  EXPECT_EQ(ReadingColumns(Sensor(sensor_t::KIND_GNSS)).front(), "fix");
+  EXPECT_EQ(ReadingColumns(Sensor(sensor_t::KIND_GNSS)).back(), "altitude");
+  EXPECT_EQ(ReadingColumns(Sensor(sensor_t::KIND_SCANNER, {3, 0.1, 10})),
+            (Names{"range_0", "range_1", "range_2"}));
+  EXPECT_TRUE(ReadingColumns(Sensor(sensor_t::KIND_ECHO)).empty());
+  EXPECT_TRUE(ReadingColumns(Sensor(sensor_t::KIND_CAMERA, {640, 480, 1.2, 0.1, 50, 2})).empty());
+}
+
+TEST(SensorKinds, ALidarReadingIsLayersByRays) {
+  const sensor_t lidar = Sensor(sensor_t::KIND_LIDAR, {360, 3.14, 4, -0.1, 0.1, 0, 50, 0, 0});
+  EXPECT_EQ(ShapeOfReading(lidar).rows, 4);
+  EXPECT_EQ(ShapeOfReading(lidar).columns, 360);
+  EXPECT_EQ(ReadingColumns(lidar).size(), 360u);
+  EXPECT_EQ(ReadingColumns(lidar)[359], "range_359");
+  const sensor_t scanner = Sensor(sensor_t::KIND_SCANNER, {11, 0.1, 10});
+  EXPECT_EQ(ShapeOfReading(scanner).rows, 1);
+  EXPECT_EQ(ShapeOfReading(scanner).columns, 11);
+  EXPECT_EQ(ShapeOfReading(Sensor(sensor_t::KIND_IMU)).columns, 10);
+}
+
 }  // namespace
 }  // namespace simpartner

@@ -47,6 +47,38 @@ SimRun DrivenGen3Run(int steps, int64_t simulation_id) {
   return testing::MakeRun(&sim, steps);
 }
 
+// WorkPartner gen3 standing on flat ground with its field sensors (Imu at
+// 100 Hz, Lidar 4 x 221 at 12.5 Hz, Gnss, four Encoders, ...): the run and
+// every reading it produced.
+struct SensedRun {
+  SimRun run;
+  std::vector<sensor_reading_t> readings;
+};
+SensedRun Gen3WithReadings(int steps, int64_t simulation_id) {
+  model::WorldLoadResult loaded =
+      model::LoadWorldFile(std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml");
+  EXPECT_TRUE(loaded.world) << loaded.diagnostics.Format();
+  sim::Simulation sim(*loaded.world, Parameters(), simulation_id);
+  SensedRun sensed;
+  sim.FillModel(&sensed.run.model);
+  sensed.run.model.host = "testhost";
+  for (int i = 0; i < steps; ++i) {
+    sim.Step();
+    state_t s;
+    sim.FillState(&s);
+    sensed.run.states.push_back(s);
+    for (sensor_reading_t& r : sim.TakeSensorReadings()) sensed.readings.push_back(std::move(r));
+  }
+  return sensed;
+}
+
+std::vector<sensor_reading_t> ReadingsOf(const SensedRun& sensed, const std::string& name) {
+  std::vector<sensor_reading_t> out;
+  for (const sensor_reading_t& r : sensed.readings)
+    if (r.name == name) out.push_back(r);
+  return out;
+}
+
 // The shipped free-fall world: a particle dropped from rest, no ground.
 SimRun FreeFallRun(int steps, int64_t simulation_id) {
   model::WorldLoadResult loaded =
@@ -105,6 +137,28 @@ class QueryToolTest : public testing::ServerTest {
     std::unique_ptr<DbConnection> db = DbConnection::Open(target, false);
     db->UseDatabase(false);
     return db;
+  }
+  // Logs the run with its sensor readings.
+  void LogWithReadings(const SensedRun& sensed) {
+    WriterOptions options;
+    options.lcm_url = "udpm://test";
+    options.scratch_dir = dir_.string();
+    DbWriter writer(server_->LoggerTarget("simpartner"), options, [](const std::string&) {});
+    const SimRun& run = sensed.run;
+    std::vector<Record> records = {run.ModelRecord()};
+    for (Record& r : run.StateRecords(1, static_cast<int64_t>(run.states.size())))
+      records.push_back(std::move(r));
+    for (const sensor_reading_t& r : sensed.readings)
+      records.push_back(testing::MakeRecord(RecordKind::kSensor, run.model.simulation_id, r));
+    records.push_back(MakeEndedRecord(
+        run.model.simulation_id, 2,
+        EndedPayload{static_cast<int64_t>(run.states.size()), EndKind::kStopped, ""}));
+    writer.Write(records);
+  }
+  Csv Readings(const ReadingsRequest& request) {
+    std::ostringstream out;
+    ExportReadingsCsv(Reader().get(), request, out);
+    return ParseCsv(out.str());
   }
   Csv Export(const ExportRequest& request) {
     std::ostringstream out;
@@ -504,6 +558,78 @@ TEST_F(QueryToolTest, UnknownNamesAndSimulationsAreNamed) {
     ParsePlotKind("angel");
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("did you mean 'angle'"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(QueryToolTest, ReadingsOfOneSensorUnderItsKindsNames) {
+  const SensedRun sensed = Gen3WithReadings(200, 31);
+  LogWithReadings(sensed);
+  const std::vector<sensor_reading_t> imu = ReadingsOf(sensed, "Imu");
+  ASSERT_GE(imu.size(), 10u);  // 100 Hz for 0.2 s
+  const Csv csv = Readings(ReadingsRequest{"last", "Imu"});
+  EXPECT_EQ(csv.header, "time_s,step,sensor,ax,ay,az,wx,wy,wz,qw,qx,qy,qz");
+  ASSERT_EQ(csv.rows.size(), imu.size());
+  for (size_t i = 0; i < imu.size(); ++i) {
+    ASSERT_EQ(csv.rows[i].size(), 13u);
+    EXPECT_EQ(std::stoll(csv.rows[i][1]), imu[i].step);
+    EXPECT_EQ(csv.rows[i][2], "Imu");
+    for (size_t k = 0; k < 10; ++k) EXPECT_EQ(csv.Number(i, 3 + k), imu[i].values[k]) << i << "," << k;
+  }
+  // Standing (y up): the specific force is +g up.
+  EXPECT_NEAR(csv.Number(csv.rows.size() - 1, 4), 9.81, 1.0);
+
+  // The lidar: a row per layer, its 221 ranges after the layer number.
+  const std::vector<sensor_reading_t> lidar = ReadingsOf(sensed, "Lidar");
+  ASSERT_GE(lidar.size(), 1u);
+  const Csv layers = Readings(ReadingsRequest{"last", "Lidar"});
+  EXPECT_EQ(layers.header.rfind("time_s,step,sensor,layer,range_0,range_1,", 0), 0u)
+      << layers.header;
+  EXPECT_NE(layers.header.find(",range_220"), std::string::npos);
+  EXPECT_EQ(layers.header.find(",range_221"), std::string::npos);
+  ASSERT_EQ(layers.rows.size(), 4 * lidar.size());
+  for (size_t layer = 0; layer < 4; ++layer) {
+    EXPECT_EQ(layers.rows[layer][3], std::to_string(layer));
+    EXPECT_EQ(layers.Number(layer, 4 + 17), lidar[0].values[layer * 221 + 17]);
+  }
+
+  // The range of time, and a sensor with no readings keeps its header.
+  const Csv late = Readings(ReadingsRequest{"last", "Imu", 0.1, 0.15});
+  ASSERT_FALSE(late.rows.empty());
+  for (size_t i = 0; i < late.rows.size(); ++i) {
+    EXPECT_GE(late.Number(i, 0), 0.1);
+    EXPECT_LE(late.Number(i, 0), 0.15);
+  }
+  const Csv none = Readings(ReadingsRequest{"last", "Imu", 5, 6});
+  EXPECT_EQ(none.header, "time_s,step,sensor,ax,ay,az,wx,wy,wz,qw,qx,qy,qz");
+  EXPECT_TRUE(none.rows.empty());
+}
+
+TEST_F(QueryToolTest, ReadingsOfEverySensorOneValueARow) {
+  const SensedRun sensed = Gen3WithReadings(100, 32);
+  LogWithReadings(sensed);
+  const Csv csv = Readings(ReadingsRequest{"last", ""});
+  EXPECT_EQ(csv.header, "time_s,step,sensor,kind,layer,column,value");
+  size_t values = 0;
+  for (const sensor_reading_t& r : sensed.readings) values += r.values.empty() ? 1 : r.values.size();
+  EXPECT_EQ(csv.rows.size(), values);
+  const std::vector<sensor_reading_t> encoder = ReadingsOf(sensed, "Encoder2");
+  ASSERT_FALSE(encoder.empty());
+  bool found = false;
+  for (size_t i = 0; i < csv.rows.size() && !found; ++i) {
+    const std::vector<std::string>& row = csv.rows[i];
+    if (row[2] != "Encoder2" || row[5] != "count_rate" || std::stoll(row[1]) != encoder[0].step)
+      continue;
+    found = true;
+    EXPECT_EQ(row[3], "encoder");
+    EXPECT_EQ(row[4], "0");
+    EXPECT_EQ(csv.Number(i, 6), encoder[0].values[1]);
+  }
+  EXPECT_TRUE(found);
+  try {
+    Readings(ReadingsRequest{"last", "Imuu"});
+    ADD_FAILURE() << "no error for a sensor the simulation lacks";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "simulation 1 has no sensor named 'Imuu' (did you mean 'Imu'?)");
   }
 }
 

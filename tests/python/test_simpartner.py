@@ -102,6 +102,28 @@ class BusTest(unittest.TestCase):
         wheel = model["bodies"].index("Wheel1")
         self.assertGreater(state["position"][wheel, 1], 0.0)
 
+    def test_field_sensor_readings_as_numpy(self):
+        imu = self.sim.wait_reading("Imu", timeout=10.0)
+        self.assertEqual(imu["kind"], "imu")
+        self.assertEqual(imu["columns"],
+                         ["ax", "ay", "az", "wx", "wy", "wz", "qw", "qx", "qy", "qz"])
+        self.assertEqual(imu["values"].shape, (10,))
+        self.assertEqual(imu["values"].dtype, np.float64)
+        # Standing on flat ground (y up): the specific force is +g up.
+        self.assertAlmostEqual(imu["values"][1], 9.81, delta=1.0)
+        # gen3's lidar: 4 layers of 221 rays, as layers x rays.
+        lidar = self.sim.wait_reading("Lidar", timeout=10.0)
+        self.assertEqual(lidar["values"].shape, (4, 221))
+        self.assertEqual(lidar["columns"][0], "range_0")
+        self.assertEqual(len(lidar["columns"]), 221)
+        self.assertTrue(np.all(lidar["values"] > 0))
+        encoder = self.sim.wait_reading("Encoder1", timeout=10.0)
+        self.assertEqual(encoder["columns"], ["count", "count_rate"])
+        self.assertEqual(encoder["values"][0], math.floor(encoder["values"][0]))  # counts
+        # A camera has no readings, and a sensor no images.
+        with self.assertRaises(simpartner.UnknownTarget):
+            self.sim.image("Imu")
+
     def test_wheel_turns_at_the_rate_it_is_given(self):
         model = self.sim.model()
         axle = model["joints"].index("Axle1")
@@ -144,6 +166,51 @@ class BusTest(unittest.TestCase):
         old = self.sim.model()["simulation_id"]
         self.sim.reset(timeout=30)
         self.assertNotEqual(self.sim.model()["simulation_id"], old)
+
+
+class ImageTest(unittest.TestCase):
+    """Camera images as NumPy arrays: gen3's HeadCamera (640 x 480, depth in
+    millimetres), its images published by a stand-in for simpartner-camera
+    (tests/support/publish_image_main.cpp) with a pattern known here."""
+
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="sp_pyimg_")
+        url = unique_url(5)
+        self.log = open(os.path.join(self.dir, "sim.log"), "w")
+        self.sim_process = start_sim(url, self.log)
+        self.camera = subprocess.Popen(
+            [BINARY_DIR + "/tests/sp_test_publish_image", url, "HeadCamera", "60"],
+            stdout=self.log, stderr=subprocess.STDOUT, env=child_env())
+        self.sim = simpartner.Sim(url, timeout=30.0)
+
+    def tearDown(self):
+        del self.sim
+        stop(self.camera)
+        stop(self.sim_process)
+        self.log.close()
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def test_colour_and_depth_images(self):
+        self.assertIsNone(self.sim.image("HeadCamera"))  # not received before asked for
+        colour = self.sim.wait_image("HeadCamera", timeout=20.0)
+        self.assertEqual((colour["width"], colour["height"], colour["format"]), (640, 480, "rgb8"))
+        pixels = colour["pixels"]
+        self.assertEqual(pixels.shape, (480, 640, 3))
+        self.assertEqual(pixels.dtype, np.uint8)
+        # Row 5, column 300: red = 300 % 256, green = 5, blue = 7.
+        self.assertEqual(list(pixels[5, 300]), [44, 5, 7])
+        self.assertEqual(list(pixels[479, 0]), [0, 479 % 256, 7])
+        self.assertAlmostEqual(colour["time"], colour["step"] * 0.001, places=9)
+        self.assertIsNotNone(self.sim.image("HeadCamera"))
+        depth = self.sim.wait_image("HeadCamera", after_step=colour["step"] - 1, timeout=20.0,
+                                    depth=True)
+        self.assertEqual(depth["format"], "depth-u16")
+        self.assertEqual(depth["pixels"].shape, (480, 640))
+        self.assertEqual(depth["pixels"].dtype, np.uint16)
+        self.assertEqual(depth["pixels"][0, 10], 1010)  # millimetres
+        self.assertEqual(depth["pixels"][479, 639], 1639)
+        later = self.sim.wait_image("HeadCamera", after_step=depth["step"], timeout=20.0)
+        self.assertGreater(later["step"], depth["step"])
 
 
 class ExampleTest(unittest.TestCase):

@@ -1,8 +1,8 @@
 // Control code's connection to the sim over LCM.
 //
 // Threading: a Client owns one receive thread that handles the bus and
-// keeps the newest state, status, sensor readings, the replies addressed to
-// this client and the newest model. Every public method may be called from
+// keeps the newest state, status, sensor readings, camera images (once
+// asked for), the replies addressed to this client and the newest model. Every public method may be called from
 // any thread (teleop's UI loop, a sequencer's main loop); they only lock a
 // mutex briefly and publish, or wait on a condition variable fed by the
 // receive thread. Callbacks (OnState, OnReading) run on the receive thread:
@@ -12,7 +12,13 @@
 // Input: every message is decoded through DecodeFromBus; messages that
 // decode but do not fit the model (a state with other body counts, a
 // reading of a sensor the model lacks, a model whose indices contradict
-// it) are counted as bad too (BadMessageSummary) and ignored.
+// it, an image that does not fit its camera: image_store.h) are counted as
+// bad too (BadMessageSummary) and ignored.
+//
+// Camera images (SIM_IMAGE, from simpartner-camera) are ~1 MB each at
+// 30 Hz a camera, so the client subscribes to SIM_IMAGE only at the first
+// call of LatestImage or WaitForImage: a client that never asks for an
+// image never receives or decodes one.
 //
 // Restarts: when a SIM_MODEL with a new simulation id arrives (a sim sends
 // it when it starts or resets, and every modelPeriod),
@@ -40,6 +46,7 @@
 #include "simpartner/client/catalog.h"
 #include "simpartner/client/command.h"
 #include "simpartner/client/errors.h"
+#include "simpartner/client/image_store.h"
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
 #include "simpartner/model_t.hpp"
@@ -157,6 +164,18 @@ class Client {
   // Waits for a reading of `sensor` (name as in the model) from a step
   // after `after_step`; throws Timeout, SimRestarted.
   sensor_reading_t WaitForReading(const std::string& sensor, int64_t after_step, double timeout);
+  // The newest image of a camera sensor (name as in the model): colour
+  // (image_t.FORMAT_RGB8) or depth (FORMAT_DEPTH_F32 or _U16, as the
+  // camera declares). Nothing before the first; the first call subscribes
+  // to SIM_IMAGE, so it returns nothing. Throws UnknownTarget when
+  // `camera` is not a camera.
+  std::optional<image_t> LatestImage(const std::string& camera,
+                                     ImageKind kind = ImageKind::kColour);
+  // Waits for an image of `camera` from a step after `after_step` (e.g.
+  // the step of a state, or the step a command was applied at); throws
+  // Timeout, SimRestarted, UnknownTarget.
+  image_t WaitForImage(const std::string& camera, int64_t after_step, double timeout,
+                       ImageKind kind = ImageKind::kColour);
   // Waits for a SIM_STATE with sim_time >= t - half a step; returns it.
   // Throws Timeout, SimRestarted.
   state_t WaitUntilSimTime(double sim_time, double timeout);
@@ -229,6 +248,9 @@ class Client {
   // before a reset). Requires
   // mutex_ held.
   bool HeardFromAttached(int64_t simulation_id);
+  // The camera sensor `camera` names (its index); subscribes to SIM_IMAGE
+  // on the first call. Throws UnknownTarget, NoSim.
+  int CameraIndex(const std::string& camera);
 
   ClientOptions options_;
   std::string sender_;
@@ -251,6 +273,8 @@ class Client {
   std::optional<state_t> state_reply_;
   uint64_t model_count_ = 0;
   std::map<int, sensor_reading_t> readings_;  // by sensor index
+  ImageStore images_;             // of the learned model (guarded by mutex_)
+  bool images_subscribed_ = false;  // SIM_IMAGE (set under mutex_)
   std::map<int64_t, command_reply_t> replies_;
   std::optional<SimRestarted> restart_;
   int64_t latest_simulation_id_ = 0;

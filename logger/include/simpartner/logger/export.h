@@ -57,4 +57,24 @@ uint32_t ReadExport(DbConnection* db, const ExportRequest& request,
 // line starting with '#' says how they were obtained.
 uint64_t ExportCsv(DbConnection* db, const ExportRequest& request, std::ostream& out);
 
+// Logged sensor readings (SensorReading) of one simulation, for
+// `simpartner-query readings`.
+struct ReadingsRequest {
+  std::string simulation = "last";  // as ExportRequest.simulation
+  std::string sensor;               // only this sensor (wide CSV); "" = every sensor (long CSV)
+  // Only readings with from <= simulationTime <= to [s].
+  double from = -std::numeric_limits<double>::infinity();
+  double to = std::numeric_limits<double>::infinity();
+};
+
+// CSV of the readings in step order; returns the number of data rows.
+// One sensor: "wide", time_s, step, sensor, then the values under the names
+// of its kind (sensor_kinds.h: ax, ay, ... for an Imu); a Scanner or Lidar
+// gets one row per layer, "layer" (lowest first) then range_0 .. range_N-1;
+// an Echo its text. Every sensor: "long", one row per value: time_s, step,
+// sensor, kind, layer (0 but for a lidar), column (the value's name),
+// value. Non-finite values are NULL, as in the database. Throws Error for
+// an unknown simulation or sensor (with a did-you-mean), DbError.
+uint64_t ExportReadingsCsv(DbConnection* db, const ReadingsRequest& request, std::ostream& out);
+
 }  // namespace simpartner::logger

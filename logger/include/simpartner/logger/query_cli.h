@@ -13,7 +13,9 @@
 
 namespace simpartner::logger {
 
-enum class QueryCommand { kList, kNames, kPoses, kForces, kJoints, kPlot, kDelete, kPrune, kStorage, kCompress };
+enum class QueryCommand {
+  kList, kNames, kPoses, kForces, kJoints, kReadings, kPlot, kDelete, kPrune, kStorage, kCompress
+};
 
 struct QueryOptions {
   QueryCommand command = QueryCommand::kList;
@@ -21,6 +23,7 @@ struct QueryOptions {
   std::string plot_kind;   // plot's WHAT (ParsePlotKind reads it)
   std::string body;        // --body: only this body ("" = all)
   std::string joint;       // --joint: only this joint
+  std::string sensor;      // --sensor: only this sensor's readings ("" = every sensor's)
   std::string out_path;    // --out: the CSV or PNG file ("" = stdout, or a plot window)
   double from = -std::numeric_limits<double>::infinity();  // --from [s]
   double to = std::numeric_limits<double>::infinity();     // --to [s]

@@ -22,12 +22,12 @@ void ListSimulations(DbConnection* db, std::ostream& out);
 // saying which is missing.
 uint32_t ResolveSimulation(DbConnection* db, const std::string& which);
 
-enum class PartKind { kBody, kJoint };
+enum class PartKind { kBody, kJoint, kSensor };
 
-// The names of a simulation's bodies or joints, in bus order.
+// The names of a simulation's bodies, joints or sensors, in bus order.
 std::vector<std::string> PartNames(DbConnection* db, uint32_t simulation, PartKind kind);
-// Throws Error when `name` is not one of `names` (the simulation's bodies
-// or joints), with the nearest name or the list.
+// Throws Error when `name` is not one of `names` (the simulation's bodies,
+// joints or sensors), with the nearest name or the list.
 void RequirePartName(const std::vector<std::string>& names, uint32_t simulation, PartKind kind,
                      const std::string& name);
 void RequirePartName(DbConnection* db, uint32_t simulation, PartKind kind, const std::string& name);

@@ -1,0 +1,45 @@
+#include "simpartner/client/image_store.h"
+
+#include "simpartner/channels.h"
+#include "simpartner/image_fit.h"
+
+namespace simpartner::client {
+
+void ImageStore::SetModel(std::shared_ptr<const model_t> model) {
+  model_ = std::move(model);
+  newest_.clear();
+}
+
+bool ImageStore::Offer(const void* data, size_t size) {
+  auto image = std::make_shared<image_t>();
+  bool print = false;
+  if (const auto refusal =
+          DecodeFromBus(channels::kImage, data, size, image.get(), counter_, &print)) {
+    if (print) report_(*refusal + "; ignored");
+    return false;
+  }
+  if (!model_ || image->simulation_id != model_->simulation_id) return false;
+  if (const auto misfit = ImageMisfit(*image, *model_)) {
+    const std::string description = std::string(channels::kImage) + ": image of step " +
+                                    std::to_string(image->step) + ": " + *misfit + "; ignored";
+    if (counter_->Count(channels::kImage, description)) report_(description);
+    return false;
+  }
+  const ImageKind kind =
+      image->format == image_t::FORMAT_RGB8 ? ImageKind::kColour : ImageKind::kDepth;
+  newest_[{image->camera, kind}] = std::move(image);
+  return true;
+}
+
+std::optional<image_t> ImageStore::Latest(int camera, ImageKind kind) const {
+  const auto it = newest_.find({camera, kind});
+  if (it == newest_.end()) return std::nullopt;
+  return *it->second;
+}
+
+int64_t ImageStore::LatestStep(int camera, ImageKind kind) const {
+  const auto it = newest_.find({camera, kind});
+  return it == newest_.end() ? -1 : it->second->step;
+}
+
+}  // namespace simpartner::client
