@@ -78,11 +78,18 @@ constexpr double kPullTolerance = 0.005;
 // 2 mm cells are the same at any step.
 constexpr double kStepTolerance = 0.002;
 
+// The soils and points of a run; the unit tests' (context.quick) fewer.
+std::vector<std::string> Soils(const Context& context, std::vector<std::string> all) {
+  return context.quick ? std::vector<std::string>{all.front()} : all;
+}
+double CurveStep(const Context& context) { return context.quick ? 0.1 : 0.02; }
+
 }  // namespace
 
 ExperimentResult SoilSinkage(const Context& context) {
   ExperimentResult result;
-  const std::vector<std::string> soils = {"dry_sand", "sandy_loam", "clayey_soil", "snow"};
+  const std::vector<std::string> soils =
+      Soils(context, {"dry_sand", "sandy_loam", "clayey_soil", "snow"});
   // Not lighter: below 1.44 mm of sinkage clayey soil's shipped k_u is
   // flatter than Bekker's curve (the notes).
   const std::vector<double> masses = context.quick ? std::vector<double>{50, 100}
@@ -92,15 +99,16 @@ ExperimentResult SoilSinkage(const Context& context) {
   plot.title = "Rigid wheel (r 0.3 m, b 0.2 m) at rest: sinkage against load";
   plot.xlabel = "load [N]";
   plot.ylabel = "sinkage [mm]";
+  plot.log_y = true;  // 2 mm of clay to 180 mm of snow
   double worst_drift = 0;
   for (const std::string& name : soils) {
     const model::SoilParameters p = LibrarySoil(context, name);
     Series curve{Spoken(name) + ", Bekker", {}, {}, "dashed"};
-    for (double load = 50; load <= 1100; load += 50) {
+    for (double load = 50; load <= 1100; load += 2500 * CurveStep(context)) {
       curve.x.push_back(load);
       curve.y.push_back(1000 * StandingSinkage(p, kR, kB, load, kCurveIntervals));
     }
-    Series points{Spoken(name) + ", sim", {}, {}, "points"};
+    Series points{Spoken(name) + ", sim", {}, {}, "mark"};
     for (const double mass : masses) {
       const Standing s = StandWheel(context, name, mass, context.params.stepsize, &result.not_applicable);
       if (!result.not_applicable.empty()) return result;
@@ -142,7 +150,8 @@ ExperimentResult SoilCompaction(const Context& context) {
   ExperimentResult result;
   // Not clayey soil: with its shipped k_u the closed form's rebound gives
   // back more than the compaction took (the notes).
-  const std::vector<std::string> soils = {"dry_sand", "sandy_loam", "snow", "lunar_nominal"};
+  const std::vector<std::string> soils =
+      Soils(context, {"dry_sand", "sandy_loam", "snow", "lunar_nominal"});
   std::string figures;
   for (const std::string& name : soils) {
     model::SoilParameters p = LibrarySoil(context, name);
@@ -189,8 +198,7 @@ ExperimentResult SoilCompaction(const Context& context) {
 
 ExperimentResult SoilTraction(const Context& context) {
   ExperimentResult result;
-  const std::vector<std::string> soils = context.quick ? std::vector<std::string>{"dry_sand"}
-                                                       : std::vector<std::string>{"dry_sand", "sandy_loam", "snow"};
+  const std::vector<std::string> soils = Soils(context, {"dry_sand", "sandy_loam", "snow"});
   const std::vector<double> slips = context.quick ? std::vector<double>{0.1, 0.6}
                                                   : std::vector<double>{0.05, 0.1, 0.2, 0.3, 0.45, 0.6};
   Plot pulls;
@@ -203,12 +211,12 @@ ExperimentResult SoilTraction(const Context& context) {
     Series curve{Spoken(name) + ", Janosi-Hanamoto integral", {}, {}, "dashed"};
     RigSetup setup;
     setup.soil = {name, ""};
-    for (double slip = 0.02; slip <= 0.701; slip += 0.02) {
+    for (double slip = 0.02; slip <= 0.701; slip += CurveStep(context)) {
       curve.x.push_back(slip);
       const double z = RollingSinkage(p, kR, kB, slip, setup.load, 0.0, kCurveIntervals);
       curve.y.push_back(RollingWheel(p, kR, kB, z, slip, 0.0, kCurveIntervals).pull);
     }
-    Series points{Spoken(name) + ", sim", {}, {}, "points"};
+    Series points{Spoken(name) + ", sim", {}, {}, "mark"};
     for (const double slip : slips) {
       setup.slip = slip;
       const RigRun rig = RunRig(context, setup, &result.not_applicable);
@@ -295,6 +303,10 @@ ExperimentResult SoilStepSize(const Context& context) {
   plot.title = "Dry sand at 0.5, 1 and 2 ms steps: difference from the 1 ms figure (tolerance 0.2 %)";
   plot.xlabel = "step [ms]";
   plot.ylabel = "difference [%]";
+  for (Series* series : {&standing, &rolling, &pulls}) {  // in the order of the steps
+    std::swap(series->x[0], series->x[1]);
+    std::swap(series->y[0], series->y[1]);
+  }
   plot.series = {standing, rolling, pulls};
   result.plots.push_back(plot);
   result.notes =
@@ -310,8 +322,7 @@ ExperimentResult SoilStepSize(const Context& context) {
 
 ExperimentResult SoilMultiPass(const Context& context) {
   ExperimentResult result;
-  const std::vector<std::string> soils = context.quick ? std::vector<std::string>{"dry_sand"}
-                                                       : std::vector<std::string>{"dry_sand", "snow"};
+  const std::vector<std::string> soils = Soils(context, {"dry_sand", "snow"});
   constexpr double kSlip = 0.2;
   std::string figures;
   for (const std::string& name : soils) {

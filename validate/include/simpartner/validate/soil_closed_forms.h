@@ -65,47 +65,65 @@ struct RollingWheelForces {
   double compaction = 0;   // the normal stresses' resistance: b r int sigma sin [N]
 };
 
-inline RollingWheelForces RollingWheel(const model::SoilParameters& p, double r, double b,
-                                       double z0, double slip, double rut = 0.0,
-                                       int intervals = kSimpsonIntervals) {
+// The stresses along that wheel's loaded arc, theta from `rear` to `front`.
+struct RollingArc {
+  double front = 0, rear = 0;
+  std::function<double(double)> sigma, tau;
+};
+
+inline RollingArc RollingStresses(const model::SoilParameters& p, double r, double b, double z0,
+                                  double slip, double rut) {
   const double k_u = p.unloading_stiffness * 1e3, tan_phi = std::tan(p.friction_angle * M_PI / 180);
   // Where the soil starts to push ahead (the rut's rebounded floor) and
   // how deep it was ever pressed behind the lowest point.
   const double rut_floor = rut > 0 ? std::max(0.0, rut - Bekker(p, b, rut) / k_u) : 0.0;
   const double deepest = std::max(z0, rut);
-  const double front = std::acos(std::clamp(1.0 - (z0 - rut_floor) / r, -1.0, 1.0));
-  const double rear = -std::acos(
+  RollingArc arc;
+  arc.front = std::acos(std::clamp(1.0 - (z0 - rut_floor) / r, -1.0, 1.0));
+  arc.rear = -std::acos(
       std::clamp(1.0 - (z0 - (deepest - Bekker(p, b, deepest) / k_u)) / r, -1.0, 1.0));
-  auto unloaded = [&](double z, double z_max) {
+  auto unloaded = [&p, b, k_u](double z, double z_max) {
     return std::max(0.0, Bekker(p, b, z_max) - k_u * (z_max - z));
   };
-  auto sigma = [&](double t) {
+  arc.sigma = [=, &p](double t) {
     const double z = z0 - r * (1.0 - std::cos(t));
     if (t < 0) return unloaded(z, deepest);
     return z >= rut ? Bekker(p, b, z) : unloaded(z, rut);
   };
-  auto tau = [&](double t) {
+  arc.tau = [=, &p, sigma = arc.sigma, front = arc.front](double t) {
     const double j = r * ((front - t) - (1 - slip) * (std::sin(front) - std::sin(t)));
     return (p.cohesion * 1e3 + sigma(t) * tan_phi) * (1 - std::exp(-j / p.shear_modulus));
   };
+  return arc;
+}
+
+// The load alone (what RollingSinkage bisects on).
+inline double RollingLoad(const model::SoilParameters& p, double r, double b, double z0,
+                          double slip, double rut = 0.0, int intervals = kSimpsonIntervals) {
+  const RollingArc a = RollingStresses(p, r, b, z0, slip, rut);
+  return b * r * Simpson([&](double t) { return a.sigma(t) * std::cos(t) + a.tau(t) * std::sin(t); },
+                         a.rear, a.front, intervals);
+}
+
+inline RollingWheelForces RollingWheel(const model::SoilParameters& p, double r, double b,
+                                       double z0, double slip, double rut = 0.0,
+                                       int intervals = kSimpsonIntervals) {
+  const RollingArc a = RollingStresses(p, r, b, z0, slip, rut);
   RollingWheelForces out;
-  out.load = b * r * Simpson([&](double t) { return sigma(t) * std::cos(t) + tau(t) * std::sin(t); },
-                             rear, front, intervals);
-  out.pull = b * r * Simpson([&](double t) { return tau(t) * std::cos(t) - sigma(t) * std::sin(t); },
-                             rear, front, intervals);
-  out.compaction = b * r * Simpson([&](double t) { return sigma(t) * std::sin(t); }, rear, front,
-                                   intervals);
+  out.load = RollingLoad(p, r, b, z0, slip, rut, intervals);
+  out.pull = b * r * Simpson([&](double t) { return a.tau(t) * std::cos(t) - a.sigma(t) * std::sin(t); },
+                             a.rear, a.front, intervals);
+  out.compaction = b * r * Simpson([&](double t) { return a.sigma(t) * std::sin(t); }, a.rear,
+                                   a.front, intervals);
   return out;
 }
 
 // The sinkage at which that wheel carries `load` (bisection).
 inline double RollingSinkage(const model::SoilParameters& p, double r, double b, double slip,
-                             double load, double rut = 0.0,
-                             int intervals = kSimpsonIntervals) {
+                             double load, double rut = 0.0, int intervals = kSimpsonIntervals) {
   double lo = rut > 0 ? rut - Bekker(p, b, rut) / (p.unloading_stiffness * 1e3) : 0.0, hi = r;
   for (int k = 0; k < 50; ++k)
-    (RollingWheel(p, r, b, 0.5 * (lo + hi), slip, rut, intervals).load < load ? lo : hi) =
-        0.5 * (lo + hi);
+    (RollingLoad(p, r, b, 0.5 * (lo + hi), slip, rut, intervals) < load ? lo : hi) = 0.5 * (lo + hi);
   return 0.5 * (lo + hi);
 }
 
