@@ -43,7 +43,8 @@ std::string Milli(double metres) { return FormatFixed(metres * 1000.0, 2); }
 // critically at its closed-form sinkage z: 2 sqrt(k m) over the loaded
 // area, k = dW/dz. It acts only while the wheel moves: not at rest.
 double CriticalViscosity(const model::SoilParameters& p, double mass, double z) {
-  const double k = (StandingLoad(p, kR, kB, 1.01 * z) - StandingLoad(p, kR, kB, 0.99 * z)) / (0.02 * z);
+  const double k =
+      (StandingLoad(p, kR, kB, 1.01 * z) - StandingLoad(p, kR, kB, 0.99 * z)) / (0.02 * z);
   const double area = kB * 2 * kR * std::acos(1.0 - z / kR);
   return 2 * std::sqrt(k * mass) / area / 1e3;
 }
@@ -59,8 +60,9 @@ Standing StandWheel(const Context& context, const std::string& soil_name, double
   const model::SoilParameters p = LibrarySoil(context, soil_name);
   Standing out;
   out.expected = StandingSinkage(p, kR, kB, mass * kG);
-  const RigSoil soil{soil_name, "<viscosity>" + FormatNumber(CriticalViscosity(p, mass, out.expected)) +
-                                    "</viscosity>"};
+  const RigSoil soil{
+      soil_name,
+      "<viscosity>" + FormatNumber(CriticalViscosity(p, mass, out.expected)) + "</viscosity>"};
   out.run = RunStandingWheel(context, soil, mass, stepsize, not_applicable);
   return out;
 }
@@ -92,8 +94,8 @@ ExperimentResult SoilSinkage(const Context& context) {
       Soils(context, {"dry_sand", "sandy_loam", "clayey_soil", "snow"});
   // Not lighter: below 1.44 mm of sinkage clayey soil's shipped k_u is
   // flatter than Bekker's curve (the notes).
-  const std::vector<double> masses = context.quick ? std::vector<double>{50, 100}
-                                                   : std::vector<double>{50, 75, 100};
+  const std::vector<double> masses =
+      context.quick ? std::vector<double>{50, 100} : std::vector<double>{50, 75, 100};
   Plot plot;
   plot.file = "soil_sinkage.png";
   plot.title = "Rigid wheel (r 0.3 m, b 0.2 m) at rest: sinkage against load";
@@ -110,12 +112,14 @@ ExperimentResult SoilSinkage(const Context& context) {
     }
     Series points{Spoken(name) + ", sim", {}, {}, "mark"};
     for (const double mass : masses) {
-      const Standing s = StandWheel(context, name, mass, context.params.stepsize, &result.not_applicable);
+      const Standing s =
+          StandWheel(context, name, mass, context.params.stepsize, &result.not_applicable);
       if (!result.not_applicable.empty()) return result;
       result.sim_seconds += s.run.sim_seconds;
       worst_drift = std::max(worst_drift, s.run.drift);
-      result.checks.push_back(Relative("sinkage, " + Spoken(name) + ", " + FormatNumber(mass * kG) + " N",
-                                       1000 * s.run.sinkage, 1000 * s.expected, kSinkageTolerance, "mm"));
+      result.checks.push_back(
+          Relative("sinkage, " + Spoken(name) + ", " + FormatNumber(mass * kG) + " N",
+                   1000 * s.run.sinkage, 1000 * s.expected, kSinkageTolerance, "mm"));
       points.x.push_back(mass * kG);
       points.y.push_back(1000 * s.run.sinkage);
     }
@@ -168,10 +172,11 @@ ExperimentResult SoilCompaction(const Context& context) {
     const double tolerance = kSinkageTolerance * (p.n + 1);
     result.checks.push_back(Relative("sinkage, " + Spoken(name), 1000 * rig.sinkage[0], 1000 * z0,
                                      kSinkageTolerance, "mm"));
-    result.checks.push_back(Relative("compaction resistance, " + Spoken(name), -rig.pull,
-                                     resistance, tolerance, "N"));
-    figures += "| " + Spoken(name) + " | " + Milli(z0) + " | " + FormatFixed(BekkerCompaction(p, kB, z0), 2) +
-               " | " + FormatFixed(resistance, 2) + " | " + FormatFixed(-rig.pull, 2) + " |\n";
+    result.checks.push_back(
+        Relative("compaction resistance, " + Spoken(name), -rig.pull, resistance, tolerance, "N"));
+    figures += "| " + Spoken(name) + " | " + Milli(z0) + " | " +
+               FormatFixed(BekkerCompaction(p, kB, z0), 2) + " | " + FormatFixed(resistance, 2) +
+               " | " + FormatFixed(-rig.pull, 2) + " |\n";
   }
   result.notes =
       "The rig (a sled on a rail, the wheel's carrier on a free vertical slider below it: "
@@ -192,15 +197,17 @@ ExperimentResult SoilCompaction(const Context& context) {
       "whose arc stops at the untouched surface, gives +0.28 N); the figures are out of range "
       "there, as in soil_sinkage.\n\n"
       "| soil | z0 [mm] | Bekker's R_c [N] | less the rebound [N] | sim [N] |\n"
-      "|---|---:|---:|---:|---:|\n" + figures;
+      "|---|---:|---:|---:|---:|\n" +
+      figures;
   return result;
 }
 
 ExperimentResult SoilTraction(const Context& context) {
   ExperimentResult result;
   const std::vector<std::string> soils = Soils(context, {"dry_sand", "sandy_loam", "snow"});
-  const std::vector<double> slips = context.quick ? std::vector<double>{0.1, 0.6}
-                                                  : std::vector<double>{0.05, 0.1, 0.2, 0.3, 0.45, 0.6};
+  const std::vector<double> slips = context.quick
+                                        ? std::vector<double>{0.1, 0.6}
+                                        : std::vector<double>{0.05, 0.1, 0.2, 0.3, 0.45, 0.6};
   Plot pulls;
   pulls.file = "soil_traction.png";
   pulls.title = "Driven wheel, load 490.5 N: drawbar pull against slip";
@@ -225,8 +232,10 @@ ExperimentResult SoilTraction(const Context& context) {
       const double z = RollingSinkage(p, kR, kB, slip, setup.load);
       const double pull = RollingWheel(p, kR, kB, z, slip).pull;
       const std::string at = Spoken(name) + ", slip " + FormatNumber(slip);
-      result.checks.push_back(Absolute("drawbar pull, " + at, rig.pull, pull, kPullTolerance * setup.load, "N"));
-      result.checks.push_back(Relative("sinkage, " + at, 1000 * rig.sinkage[0], 1000 * z, kSinkageTolerance, "mm"));
+      result.checks.push_back(
+          Absolute("drawbar pull, " + at, rig.pull, pull, kPullTolerance * setup.load, "N"));
+      result.checks.push_back(
+          Relative("sinkage, " + at, 1000 * rig.sinkage[0], 1000 * z, kSinkageTolerance, "mm"));
       points.x.push_back(slip);
       points.y.push_back(rig.pull);
     }
@@ -275,16 +284,16 @@ ExperimentResult SoilStepSize(const Context& context) {
                                      1000 * s.expected, kSinkageTolerance, "mm"));
     result.checks.push_back(Relative("rolling sinkage, slip 0.3" + at, 1000 * rig.sinkage[0],
                                      1000 * z_rolling, kSinkageTolerance, "mm"));
-    result.checks.push_back(Absolute("drawbar pull, slip 0.3" + at, rig.pull, pull,
-                                     kPullTolerance * setup.load, "N"));
+    result.checks.push_back(
+        Absolute("drawbar pull, slip 0.3" + at, rig.pull, pull, kPullTolerance * setup.load, "N"));
     if (h == 0.001) {
       standing_1ms = s.run.sinkage;
       rolling_1ms = rig.sinkage[0];
       pull_1ms = rig.pull;
     } else {
       result.checks.push_back(Relative("standing sinkage" + at + " against 1 ms",
-                                       1000 * s.run.sinkage, 1000 * standing_1ms,
-                                       kStepTolerance, "mm"));
+                                       1000 * s.run.sinkage, 1000 * standing_1ms, kStepTolerance,
+                                       "mm"));
       result.checks.push_back(Relative("rolling sinkage" + at + " against 1 ms",
                                        1000 * rig.sinkage[0], 1000 * rolling_1ms, kStepTolerance,
                                        "mm"));
@@ -300,7 +309,8 @@ ExperimentResult SoilStepSize(const Context& context) {
   }
   Plot plot;
   plot.file = "soil_step_size.png";
-  plot.title = "Dry sand at 0.5, 1 and 2 ms steps: difference from the 1 ms figure (tolerance 0.2 %)";
+  plot.title =
+      "Dry sand at 0.5, 1 and 2 ms steps: difference from the 1 ms figure (tolerance 0.2 %)";
   plot.xlabel = "step [ms]";
   plot.ylabel = "difference [%]";
   for (Series* series : {&standing, &rolling, &pulls}) {  // in the order of the steps
@@ -343,7 +353,8 @@ ExperimentResult SoilMultiPass(const Context& context) {
     result.checks.push_back(Relative("second pass's sinkage, " + soil, 1000 * rig.sinkage[1],
                                      1000 * second, kSinkageTolerance, "mm"));
     result.checks.push_back(AtMost("second pass sinks the rut deeper by less, " + soil,
-                                   1000 * (rig.sinkage[1] - rig.sinkage[0]), 1000 * rig.sinkage[0], "mm"));
+                                   1000 * (rig.sinkage[1] - rig.sinkage[0]), 1000 * rig.sinkage[0],
+                                   "mm"));
     figures += "| " + soil + " | " + Milli(first) + " | " + Milli(rig.sinkage[0]) + " | " +
                Milli(second) + " | " + Milli(rig.sinkage[1]) + " |\n";
   }
@@ -358,7 +369,8 @@ ExperimentResult SoilMultiPass(const Context& context) {
       "Sinkages below the untouched surface; the third check is the multi-pass claim itself: "
       "the second pass deepens the rut by less than the first pass made it.\n\n"
       "| soil | first pass, Wong [mm] | sim [mm] | second pass, Wong [mm] | sim [mm] |\n"
-      "|---|---:|---:|---:|---:|\n" + figures;
+      "|---|---:|---:|---:|---:|\n" +
+      figures;
   return result;
 }
 

@@ -40,8 +40,7 @@ std::string Wheel(const std::string& name, double mass, double x) {
 }
 
 std::string StandingWorld(const RigSoil& soil, double mass) {
-  return "<world name=\"SoilStandingWheel\">" + Ground(soil) + Wheel("Wheel", mass, 0) +
-         "</world>";
+  return "<world name=\"SoilStandingWheel\">" + Ground(soil) + Wheel("Wheel", mass, 0) + "</world>";
 }
 
 constexpr double kWheelMass = 10.0;  // the rig's wheel [kg]; its carrier takes the rest
@@ -54,9 +53,9 @@ std::string RigWheel(int k, double x, double load) {
          At(x, kRigRadius) + "</object>\n" + Wheel("Wheel" + n, kWheelMass, x) +
          "<joint type=\"Slider\" name=\"Hanger" + n + "\"><body1>Carrier" + n +
          "</body1><body2>Sled</body2>" + Vector("axis1", 0, 1, 0) + "</joint>\n" +
-         "<joint type=\"Hinge\" name=\"Axle" + n + "\"><body1>Carrier" + n + "</body1><body2>Wheel" +
-         n + "</body2>" + Vector("anchor", x, kRigRadius, 0) + Vector("axis1", 0, 0, 1) +
-         "</joint>\n";
+         "<joint type=\"Hinge\" name=\"Axle" + n + "\"><body1>Carrier" + n +
+         "</body1><body2>Wheel" + n + "</body2>" + Vector("anchor", x, kRigRadius, 0) +
+         Vector("axis1", 0, 0, 1) + "</joint>\n";
 }
 
 std::string RigWorld(const RigSetup& setup) {
@@ -72,8 +71,7 @@ std::string RigWorld(const RigSetup& setup) {
 // Loads a rig's world; null (with the engine's reason) when the engine
 // cannot model it.
 std::unique_ptr<SimRun> Load(const Context& context, const std::string& name,
-                             const std::string& xml, double stepsize,
-                             std::string* not_applicable) {
+                             const std::string& xml, double stepsize, std::string* not_applicable) {
   model::World world = LoadWorldText(context, name, xml);
   Parameters params = context.params;
   params.stepsize = stepsize;
@@ -87,8 +85,8 @@ std::unique_ptr<SimRun> Load(const Context& context, const std::string& name,
 StandingRun RunStandingWheel(const Context& context, const RigSoil& soil, double mass,
                              double stepsize, std::string* not_applicable) {
   StandingRun out;
-  const auto run = Load(context, "soil_standing_wheel.xml", StandingWorld(soil, mass), stepsize,
-                        not_applicable);
+  const auto run =
+      Load(context, "soil_standing_wheel.xml", StandingWorld(soil, mass), stepsize, not_applicable);
   if (run == nullptr) return out;
   const int wheel = run->Body("Wheel");
   const int64_t ramp = run->StepAt(2.0);

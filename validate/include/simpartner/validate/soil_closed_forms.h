@@ -36,8 +36,9 @@ inline double Bekker(const model::SoilParameters& p, double b, double z) {
 inline double StandingLoad(const model::SoilParameters& p, double r, double b, double z,
                            int intervals = kSimpsonIntervals) {
   const double half = std::acos(1.0 - z / r);
-  return b * r * Simpson([&](double t) { return Bekker(p, b, z - r * (1 - std::cos(t))) * std::cos(t); },
-                         -half, half, intervals);
+  return b * r *
+         Simpson([&](double t) { return Bekker(p, b, z - r * (1 - std::cos(t))) * std::cos(t); },
+                 -half, half, intervals);
 }
 
 // The sinkage [m] at which a standing wheel carries `load` [N] (bisection).
@@ -60,9 +61,9 @@ inline double StandingSinkage(const model::SoilParameters& p, double r, double b
 // j = r [(theta_f - theta) - (1 - i)(sin theta_f - sin theta)] from where
 // the soil starts to push, theta_f).
 struct RollingWheelForces {
-  double load = 0;         // carried: b r int (sigma cos + tau sin) [N]
-  double pull = 0;         // drawbar pull: b r int (tau cos - sigma sin) [N]
-  double compaction = 0;   // the normal stresses' resistance: b r int sigma sin [N]
+  double load = 0;        // carried: b r int (sigma cos + tau sin) [N]
+  double pull = 0;        // drawbar pull: b r int (tau cos - sigma sin) [N]
+  double compaction = 0;  // the normal stresses' resistance: b r int sigma sin [N]
 };
 
 // The stresses along that wheel's loaded arc, theta from `rear` to `front`.
@@ -80,8 +81,8 @@ inline RollingArc RollingStresses(const model::SoilParameters& p, double r, doub
   const double deepest = std::max(z0, rut);
   RollingArc arc;
   arc.front = std::acos(std::clamp(1.0 - (z0 - rut_floor) / r, -1.0, 1.0));
-  arc.rear = -std::acos(
-      std::clamp(1.0 - (z0 - (deepest - Bekker(p, b, deepest) / k_u)) / r, -1.0, 1.0));
+  arc.rear =
+      -std::acos(std::clamp(1.0 - (z0 - (deepest - Bekker(p, b, deepest) / k_u)) / r, -1.0, 1.0));
   auto unloaded = [&p, b, k_u](double z, double z_max) {
     return std::max(0.0, Bekker(p, b, z_max) - k_u * (z_max - z));
   };
@@ -101,8 +102,9 @@ inline RollingArc RollingStresses(const model::SoilParameters& p, double r, doub
 inline double RollingLoad(const model::SoilParameters& p, double r, double b, double z0,
                           double slip, double rut = 0.0, int intervals = kSimpsonIntervals) {
   const RollingArc a = RollingStresses(p, r, b, z0, slip, rut);
-  return b * r * Simpson([&](double t) { return a.sigma(t) * std::cos(t) + a.tau(t) * std::sin(t); },
-                         a.rear, a.front, intervals);
+  return b * r *
+         Simpson([&](double t) { return a.sigma(t) * std::cos(t) + a.tau(t) * std::sin(t); },
+                 a.rear, a.front, intervals);
 }
 
 inline RollingWheelForces RollingWheel(const model::SoilParameters& p, double r, double b,
@@ -111,10 +113,12 @@ inline RollingWheelForces RollingWheel(const model::SoilParameters& p, double r,
   const RollingArc a = RollingStresses(p, r, b, z0, slip, rut);
   RollingWheelForces out;
   out.load = RollingLoad(p, r, b, z0, slip, rut, intervals);
-  out.pull = b * r * Simpson([&](double t) { return a.tau(t) * std::cos(t) - a.sigma(t) * std::sin(t); },
-                             a.rear, a.front, intervals);
-  out.compaction = b * r * Simpson([&](double t) { return a.sigma(t) * std::sin(t); }, a.rear,
-                                   a.front, intervals);
+  out.pull = b * r *
+             Simpson([&](double t) { return a.tau(t) * std::cos(t) - a.sigma(t) * std::sin(t); },
+                     a.rear, a.front, intervals);
+  out.compaction =
+      b * r *
+      Simpson([&](double t) { return a.sigma(t) * std::sin(t); }, a.rear, a.front, intervals);
   return out;
 }
 
@@ -123,7 +127,8 @@ inline double RollingSinkage(const model::SoilParameters& p, double r, double b,
                              double load, double rut = 0.0, int intervals = kSimpsonIntervals) {
   double lo = rut > 0 ? rut - Bekker(p, b, rut) / (p.unloading_stiffness * 1e3) : 0.0, hi = r;
   for (int k = 0; k < 50; ++k)
-    (RollingLoad(p, r, b, 0.5 * (lo + hi), slip, rut, intervals) < load ? lo : hi) = 0.5 * (lo + hi);
+    (RollingLoad(p, r, b, 0.5 * (lo + hi), slip, rut, intervals) < load ? lo : hi) =
+        0.5 * (lo + hi);
   return 0.5 * (lo + hi);
 }
 

@@ -41,7 +41,7 @@ StandingRun RunStandingWheel(const Context& context, const RigSoil& soil, double
 // track.
 struct RigSetup {
   RigSoil soil;
-  double load = 490.5;   // per wheel [N]
+  double load = 490.5;  // per wheel [N]
   bool tandem = false;
   double spacing = 0.8;  // [m]
   double speed = 0.3;    // the sled's [m/s]
@@ -53,7 +53,7 @@ struct RigSetup {
 
 struct RigRun {
   double sinkage[2] = {0, 0};  // per wheel, mean over the last second [m]
-  double pull = 0;  // the wheels' drawbar pull together (minus the rail's force) [N]
+  double pull = 0;             // the wheels' drawbar pull together (minus the rail's force) [N]
   double sim_seconds = 0;
 };
 
