@@ -1,5 +1,6 @@
-// The validation experiments of SPEC 8 and the two beyond the original:
-// each runs a shipped world through the sim library (sp_sim_core) exactly
+// The validation experiments of SPEC 8, the two beyond the original and
+// issue 28's on soil: each runs a shipped world (the soil rigs: a world of
+// its own beside them) through the sim library (sp_sim_core) exactly
 // as simpartner-sim would, drives the robot with timed commands and
 // compares what happened with the analytic or real-robot target.
 #pragma once
