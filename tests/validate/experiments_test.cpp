@@ -385,5 +385,76 @@ TEST(Validation, PassivePendulumCreatesNoEnergy) {
   EXPECT_NEAR(r.Measured("period"), 2 * M_PI * std::sqrt(2.0 / (3 * kG)) * 1.18034, 0.005 * 1.93);
 }
 
+// Issue 28's soil experiments (shortened: fewer soils, loads and slips).
+// Targets from the shipped library's figures (models/soils/wong2008.xml)
+// and the closed forms written out here.
+TEST(Validation, WheelOnDrySandRestsAtBekkersSinkage) {
+  const ExperimentResult r = RunNamed("soil_sinkage");
+  // Bekker's static sinkage of a 50 kg wheel (r 0.3 m, b 0.2 m) on dry
+  // sand: 17.926 mm (docs/soil.md, tests/sim_core/soil_contact_test.cpp).
+  EXPECT_NEAR(r.Measured("sinkage, dry sand, 490.5 N"), 17.926, 0.005 * 17.926);
+  // The load grows as z^(n + 1/2): twice the load, 2^(1/1.6) the sinkage
+  // (within 1 %: the arc's shape is not quite that power).
+  EXPECT_NEAR(r.Measured("sinkage, dry sand, 981 N") / r.Measured("sinkage, dry sand, 490.5 N"),
+              std::pow(2.0, 1 / 1.6), 0.01 * std::pow(2.0, 1 / 1.6));
+  EXPECT_TRUE(r.Passed());
+}
+
+TEST(Validation, TowedWheelsResistanceIsBekkersLessTheRebound) {
+  const ExperimentResult r = RunNamed("soil_compaction");
+  // Dry sand (n 1.1, k_c 0.99, k_phi 1528.43, k_u 10,000 kPa/m), b 0.2 m,
+  // at the sinkage the sim reached: b (k_c/b + k_phi) z^(n+1) / (n+1)
+  // less b p(z)^2 / (2 k_u).
+  const double z = r.Measured("sinkage, dry sand") / 1000, b = 0.2;
+  const double k = (0.99 / b + 1528.43) * 1e3, p = k * std::pow(z, 1.1);
+  const double resistance = b * k * std::pow(z, 2.1) / 2.1 - b * p * p / (2 * 1e7);
+  EXPECT_NEAR(r.Measured("compaction resistance, dry sand"), resistance, 0.01 * resistance);
+  EXPECT_TRUE(r.Passed());
+}
+
+TEST(Validation, DrawbarPullGrowsWithSlipAsWongsIntegral) {
+  const ExperimentResult r = RunNamed("soil_traction");
+  const double low = r.Measured("drawbar pull, dry sand, slip 0.1");
+  const double high = r.Measured("drawbar pull, dry sand, slip 0.6");
+  // At most the soil's shear strength over the contact less the
+  // compaction: (c A + W tan phi) with W = 490.5 N, A < 0.2 x 0.25 m^2.
+  EXPECT_GT(low, 0.0);
+  EXPECT_GT(high, 3 * low);
+  EXPECT_LT(high, 1.04e3 * 0.05 + 490.5 * std::tan(28 * M_PI / 180));
+  EXPECT_TRUE(r.Passed());
+}
+
+TEST(Validation, SoilFiguresDoNotDependOnTheStep) {
+  const ExperimentResult r = RunNamed("soil_step_size");
+  for (const char* figure : {"standing sinkage", "rolling sinkage, slip 0.3"}) {
+    const double at_1ms = r.Measured(std::string(figure) + ", 1 ms");
+    EXPECT_NEAR(r.Measured(std::string(figure) + ", 0.5 ms"), at_1ms, 0.002 * at_1ms) << figure;
+    EXPECT_NEAR(r.Measured(std::string(figure) + ", 2 ms"), at_1ms, 0.002 * at_1ms) << figure;
+  }
+  const double pull = r.Measured("drawbar pull, slip 0.3, 1 ms");
+  EXPECT_NEAR(r.Measured("drawbar pull, slip 0.3, 2 ms"), pull, 0.002 * 490.5);
+  EXPECT_TRUE(r.Passed());
+}
+
+TEST(Validation, SecondPassInTheRutSinksLess) {
+  const ExperimentResult r = RunNamed("soil_multipass");
+  const double first = r.Measured("first pass's sinkage, dry sand");
+  const double second = r.Measured("second pass's sinkage, dry sand");
+  EXPECT_GT(second, first);             // below the untouched surface, in the rut
+  EXPECT_LT(second - first, 0.5 * first);  // but it deepens the rut far less
+  EXPECT_TRUE(r.Passed());
+}
+
+TEST(Validation, SoilIsNotApplicableOnMujoco) {
+  Context context = Quick();
+  context.params.engine = "mujoco";
+  const ExperimentResult r = RunExperiment(*FindExperiment("soil_multipass"), context);
+  EXPECT_EQ(r.error, "");
+  EXPECT_NE(r.not_applicable.find("the MuJoCo engine does not model soil"), std::string::npos)
+      << r.not_applicable;
+  EXPECT_TRUE(r.checks.empty());
+  EXPECT_EQ(r.stepping.steps, 0);
+}
+
 }  // namespace
 }  // namespace simpartner::validate

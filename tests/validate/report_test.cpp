@@ -187,6 +187,34 @@ TEST(ValidateReport, BothEnginesGetAColumnEachAndTheirOwnPlots) {
   EXPECT_EQ(ReadText(dir.path() / "free_fall.png").substr(1, 3), "PNG");
 }
 
+TEST(ValidateReport, AnExperimentAnEngineCannotRunIsNotApplicableNotFailed) {
+  std::vector<ExperimentResult> results = OnBothEngines();
+  results[1].checks.clear();
+  results[1].plots.clear();
+  results[1].stepping = StepTiming{};
+  results[1].not_applicable = "the engine does not model it";
+  TempDir dir;
+  WriteReport(dir.path().string(), results, "simpartner-validate --engine both", Parameters());
+  const std::string page = ReadText(dir.path() / "README.md");
+  EXPECT_NE(page.find("Experiments passed: ODE 1 of 1, MuJoCo 0 of 0 (1 not applicable)."),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| [free_fall](#free_fall) | PASS | 0.50 | n/a | - |"), std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| 4.02 m PASS | n/a |"), std::string::npos) << page;
+  EXPECT_NE(page.find("MuJoCo: not applicable: the engine does not model it."),
+            std::string::npos)
+      << page;
+  EXPECT_EQ(page.find("free_fall_mujoco.png"), std::string::npos);
+  std::ostringstream line, tally;
+  PrintResult(results[1], line, true);
+  EXPECT_EQ(line.str(), "free_fall            mujoco NOT APPLICABLE: the engine does not model it\n");
+  PrintTallies(TallyByEngine(results), tally);
+  EXPECT_NE(tally.str().find("0 of 0 experiments passed on MuJoCo, 1 not applicable"),
+            std::string::npos)
+      << tally.str();
+}
+
 TEST(ValidateReport, AnEnginesOwnTargetShowsInItsCell) {
   // A target computed from each run (a steady state from the run's own
   // loads): 4.72 m is within 2 % of ODE's 4.69 m but not of MuJoCo's 4.61 m.
@@ -314,7 +342,8 @@ TEST(ValidateCommandLine, ListsEveryExperimentOfSpec8AndOurs) {
   for (const char* name :
        {"free_fall", "free_fall_thrown", "sliding_cube", "two_spheres", "circle_equal",
         "circle_differential", "scanner", "pole_task", "skid", "caterpillar", "rolking",
-        "gen4_loads", "test_track", "rolling_sphere", "pendulum_energy"})
+        "gen4_loads", "test_track", "rolling_sphere", "pendulum_energy", "soil_sinkage",
+        "soil_compaction", "soil_traction", "soil_step_size", "soil_multipass"})
     EXPECT_NE(out.find(std::string(name) + (std::string(name) == "skid" ? " (slow)" : "")),
               std::string::npos)
         << name;

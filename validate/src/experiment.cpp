@@ -49,6 +49,16 @@ const std::vector<Experiment>& Experiments() {
        false, RollingSphere},
       {"pendulum_energy", "Beyond the original: a passive pendulum creates no energy in 60 s",
        false, PendulumEnergy},
+      {"soil_sinkage", "Issue 28 (a): a rigid wheel's static sinkage on four soils, two loads",
+       false, SoilSinkage},
+      {"soil_compaction", "Issue 28 (b): a towed wheel's compaction resistance", false,
+       SoilCompaction},
+      {"soil_traction", "Issue 28 (c): drawbar pull against slip 0.05 to 0.6", false,
+       SoilTraction},
+      {"soil_step_size", "Issue 28 (d): sinkage and drawbar pull at 0.5, 1 and 2 ms steps",
+       false, SoilStepSize},
+      {"soil_multipass", "Issue 28 (f): a second wheel in the first one's rut sinks less", false,
+       SoilMultiPass},
   };
   return kExperiments;
 }

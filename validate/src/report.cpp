@@ -27,6 +27,12 @@ std::string Seconds(double s) {
   return text;
 }
 
+// "" or "5 not applicable", of an engine's tally.
+std::string NotApplicableText(const EngineTally& tally) {
+  return tally.not_applicable == 0 ? std::string()
+                                   : std::to_string(tally.not_applicable) + " not applicable";
+}
+
 // A '|' inside a Markdown table cell is written \|.
 std::string Cell(const std::string& text) {
   std::string out;
@@ -41,6 +47,10 @@ void PrintResult(const ExperimentResult& result, std::ostream& out, bool name_en
       Pad(result.name, 20) + (name_engine ? " " + Pad(result.engine, 6) : std::string());
   if (!result.error.empty()) {
     out << head << " ERROR: " << result.error << "  FAIL\n";
+    return;
+  }
+  if (!result.not_applicable.empty()) {
+    out << head << " NOT APPLICABLE: " << result.not_applicable << "\n";
     return;
   }
   for (const Check& c : result.checks) {
@@ -61,7 +71,11 @@ std::vector<EngineTally> TallyByEngine(const std::vector<ExperimentResult>& resu
   for (const ExperimentResult& r : results) {
     auto it = std::find_if(tallies.begin(), tallies.end(),
                            [&](const EngineTally& t) { return t.engine == r.engine; });
-    if (it == tallies.end()) it = tallies.insert(tallies.end(), EngineTally{r.engine, 0, 0, {}});
+    if (it == tallies.end()) it = tallies.insert(tallies.end(), EngineTally{r.engine, 0, 0, 0, {}});
+    if (!r.not_applicable.empty()) {
+      it->not_applicable += 1;
+      continue;
+    }
     it->passed += r.Passed() ? 1 : 0;
     it->run += 1;
     it->stepping.steps += r.stepping.steps;
@@ -73,7 +87,8 @@ std::vector<EngineTally> TallyByEngine(const std::vector<ExperimentResult>& resu
 void PrintTallies(const std::vector<EngineTally>& tallies, std::ostream& out) {
   for (const EngineTally& t : tallies)
     out << t.passed << " of " << t.run << " experiments passed on " << EngineTitle(t.engine)
-        << " (mean " << MicrosecondsText(t.stepping.MicrosecondsPerStep()) << " µs per step)\n";
+        << (t.not_applicable == 0 ? "" : ", " + NotApplicableText(t)) << " (mean "
+        << MicrosecondsText(t.stepping.MicrosecondsPerStep()) << " µs per step)\n";
 }
 
 std::string MicrosecondsText(double microseconds) {
@@ -134,7 +149,8 @@ std::string TallyText(const std::vector<EngineTally>& tallies) {
   std::string text;
   for (const EngineTally& t : tallies)
     text += (text.empty() ? "" : ", ") + EngineTitle(t.engine) + " " + std::to_string(t.passed) +
-            " of " + std::to_string(t.run);
+            " of " + std::to_string(t.run) +
+            (t.not_applicable == 0 ? "" : " (" + NotApplicableText(t) + ")");
   return text;
 }
 
@@ -158,7 +174,7 @@ void WriteHeader(std::ostream& out, const std::vector<ExperimentResult>& results
   out << "# SimPartner validation\n\n"
       << "Written by `" << command << "` on " << date << " (experiments passed: "
       << TallyText(tallies) << "; " << Seconds(wall)
-      << " of computing). Each experiment of SPEC 8, and two beyond the original, runs a "
+      << " of computing). Each experiment of SPEC 8, and those beyond the original, runs a "
       << "shipped world from `models/worlds/` through the sim library exactly as "
       << "`simpartner-sim` runs it (loader, `Simulation::Submit` with the step each command "
       << "applies at, `Simulation::Step`), as fast as possible, with step " << params.stepsize
@@ -182,6 +198,7 @@ void WriteSummary(std::ostream& out, const std::vector<ExperimentRuns>& groups,
     out << "| " << Link(g.first->name) << " |";
     for (const ExperimentResult* r : g.by_engine) {
       if (r == nullptr) out << " - | - |";
+      else if (!r->not_applicable.empty()) out << " n/a | - |";
       else out << " " << Verdict(r->Passed()) << " | "
                << MicrosecondsText(r->stepping.MicrosecondsPerStep()) << " |";
     }
@@ -228,6 +245,7 @@ class Failures {
 // target computed from the run: the steady state of the same vehicle).
 std::string CheckCell(const ExperimentResult* r, const Check& row, Failures* failures) {
   if (r != nullptr && !r->error.empty()) return "run failed **FAIL**";
+  if (r != nullptr && !r->not_applicable.empty()) return "n/a";
   const Check* c = FindCheck(r, row.label);
   if (c == nullptr) return "-";
   std::string cell = Cell(c->MeasuredText());
@@ -305,6 +323,11 @@ void WriteSection(std::ostream& out, const ExperimentRuns& g, size_t engines) {
       << "\n\n";
   for (const ExperimentResult* r : g.by_engine) {
     if (r == nullptr) continue;
+    if (!r->not_applicable.empty()) {
+      out << (engines > 1 ? EngineTitle(r->engine) + ": " : std::string("Verdict: "))
+          << "not applicable: " << r->not_applicable << ".\n\n";
+      continue;
+    }
     out << (engines > 1 ? EngineTitle(r->engine) + ": " : std::string("Verdict: "))
         << (r->Passed() ? "**PASS**" : "**FAIL**") << " (" << Seconds(r->sim_seconds)
         << " simulated in " << Seconds(r->wall_seconds) << ", "
@@ -313,7 +336,7 @@ void WriteSection(std::ostream& out, const ExperimentRuns& g, size_t engines) {
   }
   if (!first.notes.empty()) out << first.notes << "\n\n";
   for (const ExperimentResult* r : g.by_engine) {
-    if (r == nullptr) continue;
+    if (r == nullptr || !r->not_applicable.empty()) continue;
     if (engines > 1) out << "### On " << EngineTitle(r->engine) << "\n\n";
     if (!r->error.empty()) out << "The run failed: `" << r->error << "`\n\n";
     if (r != &first && !r->notes.empty() && r->notes != first.notes) out << r->notes << "\n\n";

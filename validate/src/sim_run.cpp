@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "simpartner/model/flat_model.h"
 #include "simpartner/model/loader.h"
+#include "simpartner/sim/engine.h"
 #include "simpartner/sequencer/check.h"
 #include "simpartner/sequencer/sequence.h"
 
@@ -37,8 +39,34 @@ SimRun::SimRun(const Context& context, const std::string& world, Parameters para
   params.environment = path;
   model::World loaded = model::LoadWorldOrThrow(path);
   for (model::RobotInstance& robot : loaded.robots) robot.placement.pretranslate(move_robots);
-  sim_ = std::make_unique<sim::Simulation>(std::move(loaded), std::move(params), 1);
+  Start(std::move(loaded), std::move(params));
+}
+
+SimRun::SimRun(const Context& context, const std::string& name, model::World world,
+               Parameters params)
+    : context_(context), world_name_(name) {
+  Start(std::move(world), std::move(params));
+}
+
+void SimRun::Start(model::World world, Parameters params) {
+  sim_ = std::make_unique<sim::Simulation>(std::move(world), std::move(params), 1);
   for (const model::FlatBody& b : sim_->flat().bodies) com_offsets_.push_back(b.source->com);
+}
+
+model::World LoadWorldText(const Context& context, const std::string& name,
+                           const std::string& xml) {
+  const std::string path = (fs::path(context.models_dir) / "worlds" / name).string();
+  model::WorldLoadResult loaded = model::ParseWorld(xml, path);
+  if (!loaded.world) throw Error(loaded.diagnostics.Format());
+  return std::move(*loaded.world);
+}
+
+std::string EngineLacks(const model::World& world, const Parameters& params) {
+  const model::FlatModel flat = model::Flatten(world);
+  std::string lacks;
+  for (const Diagnostic& d : sim::EngineLimits(flat, params))
+    lacks += (lacks.empty() ? "" : "; ") + d.message;
+  return lacks;
 }
 
 int64_t SimRun::StepAt(double t) const { return std::llround(t / dt()); }

@@ -11,19 +11,22 @@
 
 namespace simpartner::validate {
 
-// "name  label  measured  target  tolerance  PASS|FAIL" for each check, or
-// "name  ERROR: reason" for a run that failed; with name_engine,
+// "name  label  measured  target  tolerance  PASS|FAIL" for each check,
+// "name  ERROR: reason" for a run that failed, or "name  NOT APPLICABLE:
+// reason" for an engine that cannot run it; with name_engine,
 // "name  engine  ..." (a run on more than one engine).
 void PrintResult(const ExperimentResult& result, std::ostream& out, bool name_engine = false);
 
 // How the report names an engine: "ode" -> "ODE", "mujoco" -> "MuJoCo".
 std::string EngineTitle(const std::string& engine);
 
-// Passed and run experiments of one engine, and their sim steps.
+// Passed and run experiments of one engine, and their sim steps; those
+// the engine cannot represent are counted apart, not run.
 struct EngineTally {
   std::string engine;
   int passed = 0;
   int run = 0;
+  int not_applicable = 0;
   StepTiming stepping;
 };
 // One tally per engine of results, in the order the engines first appear.

@@ -12,10 +12,23 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/model/model.h"
 #include "simpartner/sim/simulation.h"
 #include "simpartner/validate/experiment.h"
 
 namespace simpartner::validate {
+
+// A world an experiment writes itself (the soil rigs), read by the loader
+// as if it were the file models_dir/worlds/<name>, so that what it names (a
+// soil library) is found as beside a shipped world. Throws
+// simpartner::Error with the loader's diagnostics.
+model::World LoadWorldText(const Context& context, const std::string& name,
+                           const std::string& xml);
+
+// What params.engine cannot represent of `world`, in the engine's words
+// ("surface material 'sand' is a soil: the MuJoCo engine does not model
+// soil"; several joined by "; "), or "" when it can run it.
+std::string EngineLacks(const model::World& world, const Parameters& params);
 
 class SimRun {
  public:
@@ -25,6 +38,8 @@ class SimRun {
   // The same world with every robot moved by `move_robots` from where the
   // file places it (a run that starts partway along a track).
   SimRun(const Context& context, const std::string& world, const Eigen::Vector3d& move_robots);
+  // A world already loaded (LoadWorldText); `name` is for messages.
+  SimRun(const Context& context, const std::string& name, model::World world, Parameters params);
 
   sim::Simulation& sim() { return *sim_; }
   double time() const { return sim_->time(); }
@@ -75,6 +90,7 @@ class SimRun {
  private:
   SimRun(const Context& context, const std::string& world, Parameters params,
          const Eigen::Vector3d& move_robots);
+  void Start(model::World world, Parameters params);
   const Context& context_;
   std::string world_name_;
   std::unique_ptr<sim::Simulation> sim_;
