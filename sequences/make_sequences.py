@@ -102,6 +102,18 @@ def skid():
     w.write()
 
 
+def soil_drive():
+    """experiments_soil_robot.cpp: gen3 on soil (and on hard ground)."""
+    w = Writer("gen3_soil_drive.xml", "models/worlds/sand_field.xml",
+               "gen3 drives straight: all four wheels at 1.5 rad/s from t = 2 s (also played "
+               "on snow_field.xml and flat_ground.xml by simpartner-validate)")
+    start = 2.0
+    for k in range(1, 5):
+        velocity(w, start, "Axle%dMotor" % k, 1.5)
+    w.end(start + 8.0)
+    w.write()
+
+
 def test_track():
     """experiments_robot.cpp TestTrack."""
     w = Writer("gen4_test_track.xml", "models/worlds/test_track.xml",
@@ -315,6 +327,7 @@ def main():
            "gen1 circle: steering 0.2 rad, inner wheels 1.00 m/s, outer %r m/s, the speed that "
            "rolls without slip on a cot(alpha/2) (contactMu 1)" % matched)
     skid()
+    soil_drive()
     test_track()
     scanner()
     pole_task()

@@ -59,6 +59,8 @@ const std::vector<Experiment>& Experiments() {
        false, SoilStepSize},
       {"soil_multipass", "Issue 28 (f): a second wheel in the first one's rut sinks less", false,
        SoilMultiPass},
+      {"soil_robot", "Issue 28 (e): gen3 driven on dry sand and snow vs hard ground", false,
+       SoilRobot},
   };
   return kExperiments;
 }

@@ -104,5 +104,7 @@ ExperimentResult SoilCompaction(const Context& context);
 ExperimentResult SoilTraction(const Context& context);
 ExperimentResult SoilStepSize(const Context& context);
 ExperimentResult SoilMultiPass(const Context& context);
+// Issue 28 (e): gen3 on the shipped soil worlds (experiments_soil_robot.cpp).
+ExperimentResult SoilRobot(const Context& context);
 
 }  // namespace simpartner::validate

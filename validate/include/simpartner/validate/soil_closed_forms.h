@@ -122,6 +122,15 @@ inline RollingWheelForces RollingWheel(const model::SoilParameters& p, double r,
   return out;
 }
 
+// The torque [N m] that wheel's shear resists its spin with (the driving
+// torque it needs in a steady state): b r^2 times the integral of tau.
+inline double RollingShearTorque(const model::SoilParameters& p, double r, double b, double z0,
+                                 double slip, double rut = 0.0,
+                                 int intervals = kSimpsonIntervals) {
+  const RollingArc a = RollingStresses(p, r, b, z0, slip, rut);
+  return b * r * r * Simpson(a.tau, a.rear, a.front, intervals);
+}
+
 // The sinkage at which that wheel carries `load` (bisection).
 inline double RollingSinkage(const model::SoilParameters& p, double r, double b, double slip,
                              double load, double rut = 0.0, int intervals = kSimpsonIntervals) {
