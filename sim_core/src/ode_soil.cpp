@@ -66,6 +66,9 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   const Eigen::Vector3d in_plane = up - up.dot(state.axle) * state.axle;
   const Eigen::Vector3d wheel_up = in_plane.normalized();
   const Eigen::Vector3d forward = wheel_up.cross(state.axle).normalized();
+  pressing_.push_back(
+      Pressed{wheel, &ground.surface, forward, state.axle, state.centre - state.radius * wheel_up,
+              state.width});
 
   // Normal: the soil's force along up and its stiffness there.
   WheelState deeper = state;
@@ -123,6 +126,8 @@ void OdeSoil::AfterStep() {
   for (const Touch& touch : touched_)
     PressWheel(StateOf(touch.wheel, touch.body), touch.ground->surface, &touch.ground->memory);
   touched_.clear();
+  last_step_.swap(pressing_);
+  pressing_.clear();
 }
 
 const WheelSoilForces* OdeSoil::Last(dGeomID wheel) const {

@@ -1,8 +1,10 @@
 // The physics process on the bus: runs a Simulation against absolute
 // deadlines (or as fast as possible), publishes SIM_STATE, SIM_SENSOR,
 // SIM_COMMAND_REPLY, SIM_MODEL (at start, every modelPeriod and on request),
-// SIM_STATE_REPLY (on request, running or paused) and SIM_STATUS (every
-// statusPeriod and on every change), and obeys SIM_COMMAND and SIM_CONTROL.
+// SIM_STATE_REPLY (on request, running or paused), SIM_STATUS (every
+// statusPeriod and on every change) and SIM_SOIL_RUTS (the ruts' changes
+// every kRutPeriod of sim time; all of them with a model sent at start,
+// on request or after a reset), and obeys SIM_COMMAND and SIM_CONTROL.
 // Everything it publishes goes out, in order, through a sending thread
 // (bus_sender.h). Synchronous controllers join over SIM_SYNC
 // (lock_step.h): at each of their ticks the node waits for their answers
@@ -57,6 +59,11 @@ class SimNode {
   void StepAndPublish();
   // Returns the bytes it published.
   size_t PublishModel();
+  // SIM_SOIL_RUTS: every rut cell (when there are any), in parts.
+  // Returns the bytes it published.
+  size_t PublishRutSnapshot();
+  // The ruts' changes go out every this much sim time while wheels press soil.
+  static constexpr double kRutPeriod = 0.1;  // [s]
   void PublishStatus();
 
   // Real-time factors a SIM_CONTROL may ask for (besides <= 0: as fast as
@@ -69,8 +76,8 @@ class SimNode {
   // SIM_MODEL goes out at most kModelRepliesPerSecond and, for a large
   // model, at most kModelBytesPerSecond on average, however many ask (a
   // 33-byte request returns the whole model: 20 requests/s of a 35 MB
-  // model once slowed a sim to 0.017 x real time). A reset's new model
-  // goes out at once.
+  // model once slowed a sim to 0.017 x real time), the ruts sent with it
+  // counted in. A reset's new model goes out at once.
   static constexpr int kModelRepliesPerSecond = 4;
   static constexpr double kModelBytesPerSecond = 1024.0 * 1024.0;
 
@@ -109,6 +116,8 @@ class SimNode {
   // false when a control or a lock-step answer woke it first.
   bool WaitForDeadline();
   void PublishReplies();
+  void PublishRutChanges();
+  void StampRuts(soil_ruts_t* message) const;  // utime, simulation id, step
   // What is due besides the steps: state replies, the model (on request
   // and every modelPeriod), the status (on change and every statusPeriod).
   void PublishDue(Clock::time_point* next_model, Clock::time_point* next_status,
