@@ -528,14 +528,24 @@ void SimNode::PublishRutChanges() {
 }
 
 size_t SimNode::PublishRutSnapshot() {
+  rut_parts_.clear();  // a newer snapshot, or none after a reset
   if (sim_->ruts().cells() == 0) return 0;
   size_t bytes = 0;
   for (soil_ruts_t& part : sim_->ruts().Snapshot()) {
     StampRuts(&part);
-    Publish(channels::kSoilRuts, part);
     bytes += static_cast<size_t>(part.getEncodedSize());
+    rut_parts_.push_back(std::move(part));
   }
+  PublishRutParts();
   return bytes;
+}
+
+void SimNode::PublishRutParts() {
+  const auto now = Clock::now();
+  if (rut_parts_.empty() || now < next_rut_part_) return;
+  Publish(channels::kSoilRuts, rut_parts_.front());
+  rut_parts_.pop_front();
+  next_rut_part_ = now + kRutPartInterval;
 }
 
 size_t SimNode::PublishModel() {
@@ -608,6 +618,7 @@ void SimNode::PublishStatus() {
 void SimNode::PublishDue(Clock::time_point* next_model, Clock::time_point* next_status,
                          Clock::duration model_period, Clock::duration status_period) {
   ReplyState();
+  PublishRutParts();
   const auto now = Clock::now();
   if (model_changed_ || ((model_requested_ || now >= *next_model) && now >= next_model_allowed_)) {
     const bool asked = model_changed_ || model_requested_;

@@ -59,11 +59,14 @@ class SimNode {
   void StepAndPublish();
   // Returns the bytes it published.
   size_t PublishModel();
-  // SIM_SOIL_RUTS: every rut cell (when there are any), in parts.
-  // Returns the bytes it published.
+  // SIM_SOIL_RUTS: every rut cell (when there are any), in parts, the
+  // first now and one every kRutPartInterval after it. Returns the bytes.
   size_t PublishRutSnapshot();
   // The ruts' changes go out every this much sim time while wheels press soil.
   static constexpr double kRutPeriod = 0.1;  // [s]
+  // Parts of a snapshot sent at once (up to 98 kB each; 8 for a 100 m
+  // track) overflowed a receiver's default socket buffer and were lost.
+  static constexpr std::chrono::milliseconds kRutPartInterval{50};
   void PublishStatus();
 
   // Real-time factors a SIM_CONTROL may ask for (besides <= 0: as fast as
@@ -117,6 +120,7 @@ class SimNode {
   bool WaitForDeadline();
   void PublishReplies();
   void PublishRutChanges();
+  void PublishRutParts();  // the next part of a snapshot, when due
   void StampRuts(soil_ruts_t* message) const;  // utime, simulation id, step
   // What is due besides the steps: state replies, the model (on request
   // and every modelPeriod), the status (on change and every statusPeriod).
@@ -168,6 +172,8 @@ class SimNode {
   LockStep lock_step_;
   int64_t wait_tick_ = -1;                 // the tick being waited at, -1: none
   Clock::time_point wait_start_{};
+  std::deque<soil_ruts_t> rut_parts_;  // of a snapshot, still to send
+  Clock::time_point next_rut_part_{};
   bool model_requested_ = false;  // asked for (SIM_MODEL_REQUEST): within the rate
   bool model_changed_ = false;    // a reset: at once
   Clock::time_point next_model_allowed_{};
