@@ -369,8 +369,12 @@ void Renderer::DrawGround(const Scene& scene, const Viewpoint& viewpoint, const 
 
 void Renderer::DrawRuts(const Scene& scene) {
   const RutMap& ruts = scene.ruts();
-  if (ruts.generation() != ruts_generation_) {
+  const auto now = std::chrono::steady_clock::now();
+  // A cleared map (a new simulation) goes at once; growth waits its turn.
+  if (ruts.generation() != ruts_generation_ &&
+      (ruts.cells() == 0 || !ruts_ || now - ruts_built_ >= kRutRebuildInterval)) {
     ruts_generation_ = ruts.generation();
+    ruts_built_ = now;
     ruts_.reset();
     if (ruts.cells() > 0)
       ruts_ = std::make_unique<BufferMesh>(
@@ -379,11 +383,15 @@ void Renderer::DrawRuts(const Scene& scene) {
   if (!ruts_) return;
   // Lowered below the ground, which would hide them: drawn over it (the
   // depth test always passes) but writing their own depth, so that a
-  // wheel sunk in a rut shows down to the rut's floor. The bodies come next.
+  // wheel sunk in a rut shows down to the rut's floor. The bodies come
+  // next. A rut's far edge faces the camera, its near edge away: culled,
+  // it does not cover the floor.
   glEnable(GL_LIGHTING);
+  glEnable(GL_CULL_FACE);
   glDepthFunc(GL_ALWAYS);
   ruts_->Draw();
   glDepthFunc(GL_LEQUAL);
+  glDisable(GL_CULL_FACE);
 }
 
 void Renderer::DrawBodies(const Scene& scene, const Toggles& toggles) {

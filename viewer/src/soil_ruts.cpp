@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "simpartner/text.h"
 
@@ -93,27 +94,50 @@ Eigen::Vector3d RutMap::CellCentre(int32_t u, int32_t w) const {
   return origin_ + cell_size_ * ((u + 0.5) * u_axis_ + (w + 0.5) * w_axis);
 }
 
+namespace {
+
+// The depth at the corner of four cells (corner (u, w) is the one cell
+// (u, w) has at its lowest u and w): their mean, untouched cells counting
+// 0, so that neighbours meet without gaps and a rut's edges slope up to
+// the surface.
+double CornerDepth(const RutMap& ruts, int64_t u, int64_t w) {
+  double sum = 0.0;
+  for (int64_t du : {-1, 0})
+    for (int64_t dw : {-1, 0}) {
+      const int64_t cu = u + du, cw = w + dw;
+      if (cu < INT32_MIN || cu > INT32_MAX || cw < INT32_MIN || cw > INT32_MAX) continue;
+      const auto it = ruts.depths().find({static_cast<int32_t>(cu), static_cast<int32_t>(cw)});
+      if (it != ruts.depths().end()) sum += it->second;
+    }
+  return 0.25 * sum;
+}
+
+}  // namespace
+
 Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color) {
   Mesh mesh;
-  const Eigen::Vector3f up = ruts.up().cast<float>();
+  const Eigen::Vector3d up = ruts.up();
   // Half a cell along each axis of the grid.
   const Eigen::Vector3d a = 0.5 * ruts.cell_size() * ruts.u_axis();
-  const Eigen::Vector3d b = 0.5 * ruts.cell_size() * ruts.up().cross(ruts.u_axis());
+  const Eigen::Vector3d b = 0.5 * ruts.cell_size() * up.cross(ruts.u_axis());
   mesh.positions.reserve(4 * ruts.cells());
   mesh.normals.reserve(4 * ruts.cells());
   mesh.colors.reserve(4 * ruts.cells());
   mesh.indices.reserve(6 * ruts.cells());
   for (const auto& [cell, depth] : ruts.depths()) {
-    const auto [u, w] = cell;
-    const Eigen::Vector3d lowered = -static_cast<double>(depth) * ruts.up();
-    const Eigen::Vector3d c = ruts.CellCentre(u, w);
-    const Eigen::Vector3d corners[4] = {c - a - b + lowered, c + a - b + lowered,
-                                        c + a + b + lowered, c - a + b + lowered};
+    const int64_t u = cell.first, w = cell.second;
+    const Eigen::Vector3d c = ruts.CellCentre(cell.first, cell.second);
+    const Eigen::Vector3d corners[4] = {
+        c - a - b - CornerDepth(ruts, u, w) * up, c + a - b - CornerDepth(ruts, u + 1, w) * up,
+        c + a + b - CornerDepth(ruts, u + 1, w + 1) * up, c - a + b - CornerDepth(ruts, u, w + 1) * up};
+    // One normal per cell, across its diagonals.
+    const Eigen::Vector3f normal =
+        (corners[2] - corners[0]).cross(corners[3] - corners[1]).normalized().cast<float>();
     const float shade = 1.0f - std::min(0.5f, 0.33f + 0.17f * std::min(1.0f, depth / 0.05f));
     const auto first = static_cast<uint32_t>(mesh.positions.size());
     for (const Eigen::Vector3d& corner : corners) {
       mesh.positions.push_back(corner.cast<float>());
-      mesh.normals.push_back(up);
+      mesh.normals.push_back(normal);
       mesh.colors.push_back(shade * color);
     }
     for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(first + k);

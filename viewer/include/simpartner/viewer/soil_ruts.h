@@ -57,8 +57,10 @@ class RutMap {
   int64_t generation_ = 0;
 };
 
-// Each cell as a square lowered by its depth (indexed: 4 vertices, 2
-// triangles facing up), `color` darkened by a third,
+// Each cell as a square lowered into the ground (indexed: 4 vertices, 2
+// triangles facing up), each corner by the mean depth of the four cells
+// around it (0 where untouched): neighbours meet without gaps and a rut's
+// edges slope up to the surface. Coloured `color` darkened by a third,
 // and by half at 5 cm deep and deeper.
 Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color);
 
