@@ -45,6 +45,14 @@ Listing List(DbConnection* db) {
   return listing;
 }
 
+// A ground of Wong's dry sand, written out (docs/soil.md).
+constexpr const char* kSandGround =
+    "<surface material=\"sand\"><a>0</a><b>1</b><c>0</c><d>0</d>"
+    "</surface><material name=\"sand\"><mu>0.6</mu><soil><n>1.1</n><kc>0.99</kc>"
+    "<kphi>1528.43</kphi><cohesion>1.04</cohesion><frictionAngle>28</frictionAngle>"
+    "<shearModulus>0.025</shearModulus><unloadingStiffness>10000</unloadingStiffness>"
+    "<viscosity>0</viscosity></soil></material>";
+
 class DbTest : public testing::ServerTest {
  protected:
   std::unique_ptr<DbWriter> Writer(const std::string& database = "simpartner",
@@ -87,6 +95,22 @@ class DbTest : public testing::ServerTest {
                        "WHERE r.simulationID = " + sim,
                        db),
               steps * joints);
+  }
+  // world_xml run `steps` steps as simulation `simulation_id`: its model
+  // and every state written.
+  SimRun WriteRun(const std::string& world_xml, int64_t simulation_id, int steps) {
+    auto sim = sim::testing::MakeSim(world_xml);
+    sim->Reset(simulation_id);
+    const SimRun run = testing::MakeRun(sim.get(), steps);
+    WriteAll(run);
+    return run;
+  }
+  // The run's model and every state, in one batch.
+  void WriteAll(const SimRun& run) {
+    std::vector<Record> records = {run.ModelRecord()};
+    for (Record& r : run.StateRecords(1, static_cast<int64_t>(run.states.size())))
+      records.push_back(std::move(r));
+    Writer()->Write(records);
   }
   // The reader's session (SELECT only), in the logger's database.
   std::unique_ptr<DbConnection> Reader() {
@@ -225,10 +249,7 @@ TEST_F(DbTest, EveryStepOnceHoweverOftenItIsWritten) {
 
 TEST_F(DbTest, RowsHoldTheStateInSiUnitsAndAxisAngle) {
   const SimRun run = ArmRun(1500, 7);
-  auto writer = Writer();
-  std::vector<Record> records = {run.ModelRecord()};
-  for (Record& r : run.StateRecords(1, 1500)) records.push_back(std::move(r));
-  writer->Write(records);
+  WriteAll(run);
   auto db = Admin();
   for (int64_t step : {1, 700, 1500}) {
     const state_t& s = run.states[static_cast<size_t>(step - 1)];
@@ -293,13 +314,7 @@ TEST_F(DbTest, MaterialsAreStoredWithTheirBodies) {
       "<object type=\"Box\" name=\"Crate\"><mass>1</mass>" +
       sim::testing::Vec("size", 0.5, 0.5, 0.5) + sim::testing::Transform(2, 0.25, 0) +
       "</object></world>";
-  auto sim = sim::testing::MakeSim(world);
-  sim->Reset(77);
-  const SimRun run = testing::MakeRun(sim.get(), 3);
-  auto writer = Writer();
-  std::vector<Record> records = {run.ModelRecord()};
-  for (Record& r : run.StateRecords(1, 3)) records.push_back(std::move(r));
-  writer->Write(records);
+  WriteRun(world, 77, 3);
   auto db = Admin();
   EXPECT_EQ(QueryRows(db.get(), "SELECT name, mu, mu2, frictionDirection, bounce, bounceVelocity, "
                                 "softERP, softCFM, stiffness, damping, rollingFriction FROM Material "
@@ -315,13 +330,8 @@ TEST_F(DbTest, MaterialsAreStoredWithTheirBodies) {
 // A ground of soil (docs/soil.md): its Material row carries the soil's
 // name and figures; a material that is no soil has NULL there.
 TEST_F(DbTest, ASoilIsStoredWithItsMaterial) {
-  const std::string world =
-      "<world name=\"Soil\"><surface material=\"sand\"><a>0</a><b>1</b><c>0</c><d>0</d>"
-      "</surface><material name=\"sand\"><mu>0.6</mu><soil><n>1.1</n><kc>0.99</kc>"
-      "<kphi>1528.43</kphi><cohesion>1.04</cohesion><frictionAngle>28</frictionAngle>"
-      "<shearModulus>0.025</shearModulus><unloadingStiffness>10000</unloadingStiffness>"
-      "<viscosity>0</viscosity></soil></material>"
-      "<material name=\"ice\"><mu>0.025</mu></material></world>";
+  const std::string world = std::string("<world name=\"Soil\">") + kSandGround +
+                            "<material name=\"ice\"><mu>0.025</mu></material></world>";
   auto sim = sim::testing::MakeSim(world);
   sim->Reset(78);
   const SimRun run = testing::MakeRun(sim.get(), 1);
@@ -694,10 +704,7 @@ std::vector<std::string> AnalysisQueries() {
 
 TEST_F(DbTest, TheOriginalsMixedCaseQueriesRunUnchanged) {
   const SimRun run = Gen3Run(120, 77);
-  auto writer = Writer();
-  std::vector<Record> records = {run.ModelRecord()};
-  for (Record& r : run.StateRecords(1, 120)) records.push_back(std::move(r));
-  writer->Write(records);
+  WriteAll(run);
 
   const std::vector<std::string> queries = AnalysisQueries();
   ASSERT_EQ(queries.size(), 8u);
@@ -734,24 +741,13 @@ TEST_F(DbTest, TheOriginalsMixedCaseQueriesRunUnchanged) {
 // the figures of the state; query 8 (traction against slip) reads them.
 TEST_F(DbTest, WheelSoilRowsHoldEachWheelsSoilFigures) {
   const std::string world =
-      "<world name=\"Soil\"><surface material=\"sand\"><a>0</a><b>1</b><c>0</c><d>0</d>"
-      "</surface><material name=\"sand\"><mu>0.6</mu><soil><n>1.1</n><kc>0.99</kc>"
-      "<kphi>1528.43</kphi><cohesion>1.04</cohesion><frictionAngle>28</frictionAngle>"
-      "<shearModulus>0.025</shearModulus><unloadingStiffness>10000</unloadingStiffness>"
-      "<viscosity>0</viscosity></soil></material>"
+      std::string("<world name=\"Soil\">") + kSandGround +
       "<object type=\"Cylinder\" name=\"Wheel1\"><mass>50</mass><radius>0.3</radius>"
       "<length>0.2</length>" + sim::testing::Transform(0, 0.29, 0) +
       "<translationalVelocity><vx>0.5</vx><vy>0</vy><vz>0</vz></translationalVelocity>"
       "<rotationalVelocity><omegax>0</omegax><omegay>0</omegay><omegaz>-2</omegaz>"
       "</rotationalVelocity></object></world>";
-  auto sim = sim::testing::MakeSim(world);
-  sim->Reset(79);
-  const SimRun run = testing::MakeRun(sim.get(), 30);
-  auto writer = Writer();
-  std::vector<Record> records = {run.ModelRecord()};
-  for (Record& r : run.StateRecords(1, 30)) records.push_back(std::move(r));
-  writer->Write(records);
-
+  const SimRun run = WriteRun(world, 79, 30);
   auto db = Admin();
   const std::vector<std::string> rows = QueryRows(
       db.get(), "SELECT r.step, w.sinkage, w.slip, w.thrust, w.drawbarPull, w.wheelLoad, "
