@@ -70,3 +70,14 @@ SELECT (SELECT COUNT(*) FROM simulationrow WHERE simulationID = @simulation) AS 
          WHERE f.simulationRowID = s.simulationRowID AND s.simulationID = @simulation) AS forces,
        (SELECT COUNT(*) FROM jointPose j, SIMULATIONROW s
          WHERE j.simulationRowID = s.simulationRowID AND s.simulationID = @simulation) AS joints;
+
+-- 8. Traction against slip of the front right wheel on soft soil, in the
+--    steps it pressed the soil (docs/soil.md): the shear's traction
+--    (thrust), the drawbar pull (thrust less compaction resistance), its
+--    sinkage and load. Plot thrust / wheelLoad against slip.
+SELECT WheelSoil.slip, wheelsoil.thrust, WheelSoil.drawbarPull, wheelSoil.sinkage, WheelSoil.wheelLoad
+FROM wheelsoil, simulationRow, Body
+WHERE WheelSoil.simulationRowID = SimulationRow.simulationRowID
+  AND WheelSoil.bodyID = body.bodyID AND body.name = 'Wheel1'
+  AND simulationrow.simulationID = @simulation
+ORDER BY WheelSoil.slip;

@@ -46,6 +46,48 @@ py::array_t<T> OwningArray(std::vector<T>&& values, std::vector<py::ssize_t> sha
   return py::array_t<T>(std::move(shape), owner->data(), release);
 }
 
+// The wheels on soil of a state as a dict of arrays, one row per wheel
+// (body: its index in the model's bodies); rows 0 on rigid ground.
+py::dict WheelSoilDict(const simpartner::state_t& s) {
+  const size_t n = s.wheel_soil.size();
+  py::array_t<int32_t> body(static_cast<py::ssize_t>(n));
+  py::array_t<bool> stuck(static_cast<py::ssize_t>(n));
+  py::array_t<double> sinkage(static_cast<py::ssize_t>(n)), slip(static_cast<py::ssize_t>(n)),
+      thrust(static_cast<py::ssize_t>(n)), drawbar(static_cast<py::ssize_t>(n)),
+      load(static_cast<py::ssize_t>(n)), torque(static_cast<py::ssize_t>(n));
+  auto normal = Matrix(n, 3), shear = Matrix(n, 3);
+  auto nf = normal.mutable_unchecked<2>();
+  auto sf = shear.mutable_unchecked<2>();
+  for (size_t i = 0; i < n; ++i) {
+    const auto& w = s.wheel_soil[i];
+    const auto r = static_cast<py::ssize_t>(i);
+    body.mutable_at(r) = w.body;
+    stuck.mutable_at(r) = w.stuck;
+    sinkage.mutable_at(r) = w.sinkage;
+    slip.mutable_at(r) = w.slip;
+    thrust.mutable_at(r) = w.thrust;
+    drawbar.mutable_at(r) = w.drawbar_pull;
+    load.mutable_at(r) = w.load;
+    torque.mutable_at(r) = w.axle_torque;
+    for (py::ssize_t k = 0; k < 3; ++k) {
+      nf(r, k) = w.normal_force[k];
+      sf(r, k) = w.shear_force[k];
+    }
+  }
+  py::dict d;
+  d["body"] = body;
+  d["sinkage"] = sinkage;
+  d["slip"] = slip;
+  d["normal_force"] = normal;
+  d["shear_force"] = shear;
+  d["thrust"] = thrust;
+  d["drawbar_pull"] = drawbar;
+  d["load"] = load;
+  d["axle_torque"] = torque;
+  d["stuck"] = stuck;
+  return d;
+}
+
 // The newest state as a dict of arrays (bodies and joints in model order).
 py::dict StateDict(const simpartner::state_t& s) {
   const size_t nb = s.bodies.size(), nj = s.joints.size();
@@ -96,6 +138,7 @@ py::dict StateDict(const simpartner::state_t& s) {
   d["joint_continuous_angle"] = continuous;
   d["joint_rate"] = rate;
   d["joint_force1"] = force1;
+  d["wheel_soil"] = WheelSoilDict(s);
   return d;
 }
 
@@ -391,8 +434,8 @@ PYBIND11_MODULE(simpartner, m) {
       .def("model", &Sim::Model, "dict: simulation_id, world, step_size, robots, bodies, joints, "
                                  "targets (name, robot, kind, type, joint, axes)")
       .def("state", &Sim::State, py::arg("timeout") = 2.0,
-           "The newest state (dict of NumPy arrays); before any (a paused sim sends none) the "
-           "state the sim answers a request with; Timeout")
+           "The newest state (dict of NumPy arrays; wheel_soil: one row per wheel on soft soil); "
+           "before any (a paused sim sends none) the state the sim answers a request with; Timeout")
       .def(
           "reading",
           [](Sim& s, const std::string& name) -> py::object {

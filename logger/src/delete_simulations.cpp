@@ -24,7 +24,7 @@ DeleteSummary DeleteIds(DbConnection* db, const std::vector<uint32_t>& ids) {
     db->Begin();
     summary.steps = static_cast<uint64_t>(db->QueryInt(
         "SELECT COUNT(*) FROM SimulationRow WHERE simulationID IN (" + list + ")", "count steps", 0));
-    for (const char* table : {"Pose", "ForceAndTorque", "JointPose"})
+    for (const char* table : {"Pose", "ForceAndTorque", "JointPose", "WheelSoil"})
       db->Execute(std::string("DELETE t FROM ") + table +
                       " t JOIN SimulationRow r ON r.simulationRowID = t.simulationRowID "
                       "WHERE r.simulationID IN (" + list + ")",

@@ -202,6 +202,31 @@ std::string CheckModel(const model_t& m) {
   return "";
 }
 
+namespace {
+
+// The wheels on soil of a state: each names a body of the model, and its
+// figures are finite.
+std::string CheckWheelSoil(const state_t& s, const ModelShape& shape) {
+  std::string p;
+  for (size_t w = 0; w < s.wheel_soil.size(); ++w) {
+    const wheel_soil_t& ws = s.wheel_soil[w];
+    const std::string at = "wheel_soil[" + std::to_string(w) + "].";
+    if (!InRange(ws.body, shape.bodies, false))
+      return at + "body = " + std::to_string(ws.body) + " but the model of simulation " +
+             std::to_string(s.simulation_id) + " has " + std::to_string(shape.bodies) + " bodies";
+    const double scalars[] = {ws.sinkage, ws.slip, ws.thrust, ws.drawbar_pull, ws.load,
+                              ws.axle_torque};
+    const char* names[] = {"sinkage", "slip", "thrust", "drawbar_pull", "load", "axle_torque"};
+    for (size_t k = 0; k < 6; ++k)
+      if (!std::isfinite(scalars[k])) return at + names[k] + " = " + FormatNumber(scalars[k]);
+    if (!(p = NonFinite(ws.normal_force, at + "normal_force")).empty()) return p;
+    if (!(p = NonFinite(ws.shear_force, at + "shear_force")).empty()) return p;
+  }
+  return "";
+}
+
+}  // namespace
+
 std::string CheckState(const state_t& s, const ModelShape& shape) {
   if (s.num_bodies != shape.bodies)
     return "num_bodies = " + std::to_string(s.num_bodies) + " but the model of simulation " +
@@ -239,7 +264,7 @@ std::string CheckState(const state_t& s, const ModelShape& shape) {
     if (!(p = NonFiniteIn(js.force1, f("force1"))).empty()) return p;
     if (!(p = NonFiniteIn(js.torque1, f("torque1"))).empty()) return p;
   }
-  return "";
+  return CheckWheelSoil(s, shape);
 }
 
 std::string CheckSensorReading(const sensor_reading_t& r, const ModelShape& shape) {

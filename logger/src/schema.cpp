@@ -336,6 +336,30 @@ std::vector<Migration> BuildMigrations() {
               " ADD COLUMN IF NOT EXISTS soilUnloadingStiffness DOUBLE NULL COMMENT '[kPa/m]',"
               " ADD COLUMN IF NOT EXISTS soilViscosity DOUBLE NULL COMMENT '[kPa s/m]'"),
       }});
+  m.push_back(Migration{
+      10,
+      "WheelSoil: each wheel's sinkage, slip and soil force in the steps it pressed soft soil "
+      "(state_t.wheel_soil, docs/soil.md)",
+      {
+          std::string("CREATE TABLE IF NOT EXISTS WheelSoil ("
+                      " simulationRowID BIGINT UNSIGNED NOT NULL,"
+                      " bodyID INT UNSIGNED NOT NULL COMMENT 'the wheel',"
+                      " sinkage DOUBLE NOT NULL COMMENT '[m] lowest rim point below the untouched surface',"
+                      " slip DOUBLE NOT NULL COMMENT '[-] 1 - v/(r omega) driving, r omega/v - 1 braking',"
+                      " thrust DOUBLE NOT NULL COMMENT '[N] shear force along the rolling direction (traction H)',"
+                      " drawbarPull DOUBLE NOT NULL COMMENT '[N] whole soil force along the rolling direction (H - compaction resistance)',"
+                      " wheelLoad DOUBLE NOT NULL COMMENT '[N] whole soil force along the surface normal',"
+                      " axleTorque DOUBLE NOT NULL COMMENT '[N m] of the shear about the axle, positive against a forward spin',"
+                      " Fn_x DOUBLE NOT NULL COMMENT '[N] of the normal stresses, world frame',"
+                      " Fn_y DOUBLE NOT NULL,"
+                      " Fn_z DOUBLE NOT NULL,"
+                      " Fs_x DOUBLE NOT NULL COMMENT '[N] of the shear stresses, world frame',"
+                      " Fs_y DOUBLE NOT NULL,"
+                      " Fs_z DOUBLE NOT NULL,"
+                      " stuck BOOLEAN NOT NULL COMMENT 'sunk to the axle or deeper',"
+                      " PRIMARY KEY (simulationRowID, bodyID)"
+                      ")") + kTableOptions,
+      }});
   return m;
 }
 

@@ -170,6 +170,19 @@ void AppendJoint(RowSink* joints, int64_t row, int64_t joint_id, const joint_sta
   joints->EndRow();
 }
 
+void AppendWheelSoil(RowSink* wheels, int64_t row, int64_t body_id, const wheel_soil_t& wheel) {
+  wheels->BeginRow();
+  wheels->Int(row);
+  wheels->Int(body_id);
+  for (double v : {wheel.sinkage, wheel.slip, wheel.thrust, wheel.drawbar_pull, wheel.load,
+                   wheel.axle_torque})
+    wheels->Double(v);
+  for (double f : wheel.normal_force) wheels->Double(f);
+  for (double f : wheel.shear_force) wheels->Double(f);
+  wheels->Int(wheel.stuck ? 1 : 0);
+  wheels->EndRow();
+}
+
 }  // namespace
 
 uint64_t InsertStateRows(DbConnection* db, const std::vector<const state_t*>& states,
@@ -184,6 +197,10 @@ uint64_t InsertStateRows(DbConnection* db, const std::vector<const state_t*>& st
                  "rate2,rate3,F_x,F_y,F_z,T_x,T_y,T_z,continuousAngle,continuousAngle2,"
                  "continuousAngle3",
                  keep ? "angle = angle" : "");
+  RowSink wheels(db, target.method, target.scratch_dir, "WheelSoil",
+                 "simulationRowID,bodyID,sinkage,slip,thrust,drawbarPull,wheelLoad,axleTorque,"
+                 "Fn_x,Fn_y,Fn_z,Fs_x,Fs_y,Fs_z,stuck",
+                 keep ? "slip = slip" : "");
   for (const state_t* s : states) {
     const int64_t row = target.row_ids.at(s->step);
     for (size_t b = 0; b < s->bodies.size(); ++b) {
@@ -192,11 +209,14 @@ uint64_t InsertStateRows(DbConnection* db, const std::vector<const state_t*>& st
     }
     for (size_t j = 0; j < s->joints.size(); ++j)
       AppendJoint(&joints, row, target.joint_ids[j], s->joints[j]);
+    for (const wheel_soil_t& wheel : s->wheel_soil)
+      AppendWheelSoil(&wheels, row, target.body_ids[static_cast<size_t>(wheel.body)], wheel);
   }
   poses.Finish();
   forces.Finish();
   joints.Finish();
-  return poses.rows() + forces.rows() + joints.rows();
+  wheels.Finish();
+  return poses.rows() + forces.rows() + joints.rows() + wheels.rows();
 }
 
 }  // namespace simpartner::logger

@@ -1,7 +1,7 @@
 // One simulation's steps of a run as rows: which steps are new, which are in
 // the database already (whole, or without all their rows), which never
-// came (LogGap), then SimulationRow and the per-step Pose, ForceAndTorque
-// and JointPose rows.
+// came (LogGap), then SimulationRow and the per-step Pose, ForceAndTorque,
+// JointPose and WheelSoil rows.
 #pragma once
 
 #include <cstdint>

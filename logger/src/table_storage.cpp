@@ -12,7 +12,7 @@ namespace simpartner::logger {
 
 const std::vector<std::string>& PerStepTables() {
   static const std::vector<std::string> tables = {"SimulationRow", "Pose", "ForceAndTorque",
-                                                  "JointPose"};
+                                                  "JointPose", "WheelSoil"};
   return tables;
 }
 

@@ -66,6 +66,9 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   const Eigen::Vector3d in_plane = up - up.dot(state.axle) * state.axle;
   const Eigen::Vector3d wheel_up = in_plane.normalized();
   const Eigen::Vector3d forward = wheel_up.cross(state.axle).normalized();
+  pressing_.push_back(
+      Pressed{wheel, &ground.surface, forward, state.axle, state.centre - state.radius * wheel_up,
+              state.width});
 
   // Normal: the soil's stiffness against sinking further.
   const double stiffness = std::max(kLeastStiffness, slopes.stiffness);
@@ -105,6 +108,11 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   // The shear's torque about the axle beyond the row's r T at the rim.
   out->torque = (now.shear_torque - state.radius * thrust) * state.axle;
   return true;
+}
+
+void OdeSoil::AfterStep() {
+  last_step_.swap(pressing_);
+  pressing_.clear();
 }
 
 const WheelSoilForces* OdeSoil::Last(dGeomID wheel) const {

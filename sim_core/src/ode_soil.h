@@ -56,8 +56,21 @@ class OdeSoil {
   };
   bool Contact(dGeomID wheel, dBodyID body, dGeomID ground, WheelContact* out);
 
+  // Ends a step: the wheels that touched soil in it become LastStep().
+  void AfterStep();
+
   // The last evaluation of a wheel geom on soil (for readouts).
   const WheelSoilForces* Last(dGeomID wheel) const;
+  // The wheels that pressed soil in the last step, and in what frame.
+  struct Pressed {
+    dGeomID wheel;
+    const SoilSurface* surface;  // of the soil it pressed
+    Eigen::Vector3d forward;     // the wheel's rolling direction
+    Eigen::Vector3d axle;        // unit
+    Eigen::Vector3d lowest;      // its lowest rim point
+    double width;                // of its tread [m]
+  };
+  const std::vector<Pressed>& LastStep() const { return last_step_; }
 
  private:
   struct Ground {
@@ -69,6 +82,7 @@ class OdeSoil {
 
   const Parameters& params_;
   std::unordered_map<dGeomID, Ground> grounds_;
+  std::vector<Pressed> pressing_, last_step_;  // this step's touching wheels, the last step's
   std::unordered_map<dGeomID, WheelSoilForces> last_;
 };
 

@@ -624,6 +624,7 @@ void OdeWorld::Step() {
       throw Fail(e, "step");
     }
   }
+  if (soil_) soil_->AfterStep();
   for (size_t i = 0; i < bodies_.size(); ++i) {
     contact_force_[i].setZero();
     contact_torque_[i].setZero();
@@ -702,6 +703,31 @@ void OdeWorld::TrackContinuousAngles(bool first) {
       joint.wrapped[a] = now;
     }
   }
+}
+
+std::vector<WheelSoilReadout> OdeWorld::ReadWheelSoil() const {
+  std::vector<WheelSoilReadout> out;
+  if (!soil_) return out;
+  for (const OdeSoil::Pressed& pressed : soil_->LastStep()) {
+    const WheelSoilForces& forces = *soil_->Last(pressed.wheel);
+    WheelSoilReadout wheel;
+    wheel.body = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(pressed.wheel)) - 1].body;
+    wheel.sinkage = forces.sinkage;
+    wheel.slip = forces.slip;
+    wheel.normal_force = forces.normal_force;
+    wheel.shear_force = forces.shear_force;
+    wheel.forward = pressed.forward;
+    wheel.axle = pressed.axle;
+    wheel.lowest_point = pressed.lowest;
+    wheel.width = pressed.width;
+    wheel.surface_origin = pressed.surface->origin;
+    wheel.up = pressed.surface->up;
+    wheel.surface_u_axis = pressed.surface->u_axis;
+    wheel.axle_torque = forces.shear_torque;
+    wheel.stuck = forces.stuck;
+    out.push_back(wheel);
+  }
+  return out;
 }
 
 BodyReadout OdeWorld::ReadBody(int index) const {

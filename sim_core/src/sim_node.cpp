@@ -509,6 +509,43 @@ void SimNode::StepAndPublish() {
     sim_->FillState(&state_);
     Publish(channels::kState, state_);
   }
+  PublishRutChanges();
+}
+
+void SimNode::StampRuts(soil_ruts_t* message) const {
+  message->utime = WallMicros();
+  message->simulation_id = sim_->simulation_id();
+  message->step = sim_->step();
+}
+
+void SimNode::PublishRutChanges() {
+  const int64_t period =
+      std::max<int64_t>(1, std::llround(kRutPeriod / sim_->params().stepsize));
+  if (sim_->step() % period != 0 || !sim_->ruts().has_changes()) return;
+  soil_ruts_t changes = sim_->ruts().TakeChanges();
+  StampRuts(&changes);
+  Publish(channels::kSoilRuts, changes);
+}
+
+size_t SimNode::PublishRutSnapshot() {
+  rut_parts_.clear();  // a newer snapshot, or none after a reset
+  if (sim_->ruts().cells() == 0) return 0;
+  size_t bytes = 0;
+  for (soil_ruts_t& part : sim_->ruts().Snapshot()) {
+    StampRuts(&part);
+    bytes += static_cast<size_t>(part.getEncodedSize());
+    rut_parts_.push_back(std::move(part));
+  }
+  PublishRutParts();
+  return bytes;
+}
+
+void SimNode::PublishRutParts() {
+  const auto now = Clock::now();
+  if (rut_parts_.empty() || now < next_rut_part_) return;
+  Publish(channels::kSoilRuts, rut_parts_.front());
+  rut_parts_.pop_front();
+  next_rut_part_ = now + kRutPartInterval;
 }
 
 size_t SimNode::PublishModel() {
@@ -581,9 +618,16 @@ void SimNode::PublishStatus() {
 void SimNode::PublishDue(Clock::time_point* next_model, Clock::time_point* next_status,
                          Clock::duration model_period, Clock::duration status_period) {
   ReplyState();
+  PublishRutParts();
   const auto now = Clock::now();
   if (model_changed_ || ((model_requested_ || now >= *next_model) && now >= next_model_allowed_)) {
-    const double bytes = static_cast<double>(PublishModel());
+    const bool asked = model_changed_ || model_requested_;
+    size_t sent = PublishModel();
+    // A viewer that asks for the model (one started late) gets the ruts;
+    // the periodic announcement leaves them out (they can be large). They
+    // count against the same bytes a second.
+    if (asked) sent += PublishRutSnapshot();
+    const double bytes = static_cast<double>(sent);
     model_requested_ = model_changed_ = false;
     *next_model = now + model_period;
     next_model_allowed_ =

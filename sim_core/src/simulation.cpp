@@ -82,6 +82,7 @@ Simulation::Simulation(model::World world, Parameters params, int64_t simulation
 void Simulation::Build() {
   engine_.reset();
   bodies_read_ = false;
+  ruts_.Clear();
   engine_ = MakeEngine(flat_, params_);
   controllers_.clear();
   for (const model::FlatActuator& a : flat_.actuators) {
@@ -417,6 +418,7 @@ bool Simulation::Step() {
   ReadBodies();
   CheckHealth();
   if (faulted_) return false;
+  ruts_.Stamp(wheel_soil_);
 
   for (size_t s = 0; s < sensors_.size(); ++s) {
     const SensorState& sensor = sensors_[s];
@@ -435,6 +437,7 @@ void Simulation::ReadBodies() {
   bodies_.resize(flat_.bodies.size());
   for (size_t i = 0; i < flat_.bodies.size(); ++i)
     bodies_[i] = engine_->ReadBody(static_cast<int>(i));
+  wheel_soil_ = engine_->ReadWheelSoil();
   bodies_read_ = true;
 }
 
@@ -613,6 +616,30 @@ void Simulation::FillState(state_t* s) const {
     Copy3(r.torque1, out.torque1);
     Copy3(r.force2, out.force2);
     Copy3(r.torque2, out.torque2);
+  }
+  FillWheelSoil(s);
+}
+
+void Simulation::FillWheelSoil(state_t* s) const {
+  const std::vector<WheelSoilReadout> read =
+      bodies_read_ ? std::vector<WheelSoilReadout>{} : engine_->ReadWheelSoil();
+  const std::vector<WheelSoilReadout>& wheels = bodies_read_ ? wheel_soil_ : read;
+  s->num_wheel_soil = static_cast<int32_t>(wheels.size());
+  s->wheel_soil.resize(wheels.size());
+  for (size_t w = 0; w < wheels.size(); ++w) {
+    const WheelSoilReadout& in = wheels[w];
+    wheel_soil_t& out = s->wheel_soil[w];
+    out.body = in.body;
+    out.sinkage = in.sinkage;
+    out.slip = in.slip;
+    Copy3(in.normal_force, out.normal_force);
+    Copy3(in.shear_force, out.shear_force);
+    const Eigen::Vector3d force = in.normal_force + in.shear_force;
+    out.thrust = in.shear_force.dot(in.forward);
+    out.drawbar_pull = force.dot(in.forward);
+    out.load = force.dot(in.up);
+    out.axle_torque = in.axle_torque;
+    out.stuck = in.stuck;
   }
 }
 

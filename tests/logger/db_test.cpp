@@ -5,6 +5,7 @@
 // and the query tool's CSV.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -43,6 +44,14 @@ Listing List(DbConnection* db) {
   }
   return listing;
 }
+
+// A ground of Wong's dry sand, written out (docs/soil.md).
+constexpr const char* kSandGround =
+    "<surface material=\"sand\"><a>0</a><b>1</b><c>0</c><d>0</d>"
+    "</surface><material name=\"sand\"><mu>0.6</mu><soil><n>1.1</n><kc>0.99</kc>"
+    "<kphi>1528.43</kphi><cohesion>1.04</cohesion><frictionAngle>28</frictionAngle>"
+    "<shearModulus>0.025</shearModulus><unloadingStiffness>10000</unloadingStiffness>"
+    "<viscosity>0</viscosity></soil></material>";
 
 class DbTest : public testing::ServerTest {
  protected:
@@ -87,6 +96,30 @@ class DbTest : public testing::ServerTest {
                        db),
               steps * joints);
   }
+  // world_xml run `steps` steps as simulation `simulation_id`: its model
+  // and every state written.
+  SimRun WriteRun(const std::string& world_xml, int64_t simulation_id, int steps) {
+    auto sim = sim::testing::MakeSim(world_xml);
+    sim->Reset(simulation_id);
+    const SimRun run = testing::MakeRun(sim.get(), steps);
+    WriteAll(run);
+    return run;
+  }
+  // The run's model and every state, in one batch.
+  void WriteAll(const SimRun& run) {
+    std::vector<Record> records = {run.ModelRecord()};
+    for (Record& r : run.StateRecords(1, static_cast<int64_t>(run.states.size())))
+      records.push_back(std::move(r));
+    Writer()->Write(records);
+  }
+  // The reader's session (SELECT only), in the logger's database.
+  std::unique_ptr<DbConnection> Reader() {
+    DbTarget target = server_->LoggerTarget("simpartner");
+    target.option_file = server_->reader_options();
+    auto db = DbConnection::Open(target, false);
+    db->UseDatabase(false);
+    return db;
+  }
   std::vector<std::string> notices_;
 };
 
@@ -97,7 +130,8 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   EXPECT_EQ(MigrateSchema(db.get(), nullptr), LatestSchemaVersion());  // nothing left to do
   for (const char* table : {"Simulation", "Robot", "RobotComponent", "Body", "Joint", "Sensor",
                             "Actuator", "SimulationRow", "Pose", "JointPose", "ForceAndTorque",
-                            "LogGap", "SensorReading", "Command", "CommandReply", "Material"}) {
+                            "LogGap", "SensorReading", "Command", "CommandReply", "Material",
+                            "WheelSoil"}) {
     EXPECT_EQ(QueryInt(std::string("SELECT COUNT(*) FROM information_schema.TABLES WHERE "
                                    "TABLE_SCHEMA = 'simpartner_a' AND TABLE_NAME = '") + table + "'",
                        "simpartner_a"),
@@ -130,8 +164,8 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   std::vector<std::string> notices;
   auto b = DbConnection::Open(server_->LoggerTarget("simpartner_b"), false);
   EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 9);
-  ASSERT_EQ(notices.size(), 7u);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 10);
+  ASSERT_EQ(notices.size(), 8u);
   EXPECT_NE(notices[0].find("applied schema migration 3 (LogGap.reason"), std::string::npos);
   EXPECT_NE(notices[1].find("applied schema migration 4 (Material"), std::string::npos);
   EXPECT_NE(notices[2].find("applied schema migration 5 (JointPose.continuousAngle"), std::string::npos);
@@ -139,6 +173,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   EXPECT_NE(notices[4].find("applied schema migration 7 (Simulation.tag"), std::string::npos);
   EXPECT_NE(notices[5].find("applied schema migration 8 (Simulation.engine"), std::string::npos);
   EXPECT_NE(notices[6].find("applied schema migration 9 (Material.soil"), std::string::npos);
+  EXPECT_NE(notices[7].find("applied schema migration 10 (WheelSoil"), std::string::npos);
   // Simulations logged before migration 8 ran on ODE, the only engine then.
   EXPECT_EQ(QueryRows(old.get(), "SELECT busSimulationID, engine FROM Simulation"),
             (std::vector<std::string>{"5\tode"}));
@@ -170,7 +205,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   // Migrations cut short after adding their columns run again harmlessly.
   old->Execute("DELETE FROM SchemaVersion WHERE version >= 3", "");
   EXPECT_EQ(MigrateSchema(b.get(), nullptr), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 9);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 10);
 
   // A database from a newer logger is left alone.
   old->Execute("INSERT INTO SchemaVersion VALUES (99, 'from the future', NOW())", "");
@@ -179,7 +214,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
     FAIL() << "a newer schema was accepted";
   } catch (const DbError& e) {
     EXPECT_NE(std::string(e.what()).find("database 'simpartner_b' has schema version 99, newer than "
-                                         "this program's 9"),
+                                         "this program's 10"),
               std::string::npos) << e.what();
   }
 }
@@ -214,10 +249,7 @@ TEST_F(DbTest, EveryStepOnceHoweverOftenItIsWritten) {
 
 TEST_F(DbTest, RowsHoldTheStateInSiUnitsAndAxisAngle) {
   const SimRun run = ArmRun(1500, 7);
-  auto writer = Writer();
-  std::vector<Record> records = {run.ModelRecord()};
-  for (Record& r : run.StateRecords(1, 1500)) records.push_back(std::move(r));
-  writer->Write(records);
+  WriteAll(run);
   auto db = Admin();
   for (int64_t step : {1, 700, 1500}) {
     const state_t& s = run.states[static_cast<size_t>(step - 1)];
@@ -282,13 +314,7 @@ TEST_F(DbTest, MaterialsAreStoredWithTheirBodies) {
       "<object type=\"Box\" name=\"Crate\"><mass>1</mass>" +
       sim::testing::Vec("size", 0.5, 0.5, 0.5) + sim::testing::Transform(2, 0.25, 0) +
       "</object></world>";
-  auto sim = sim::testing::MakeSim(world);
-  sim->Reset(77);
-  const SimRun run = testing::MakeRun(sim.get(), 3);
-  auto writer = Writer();
-  std::vector<Record> records = {run.ModelRecord()};
-  for (Record& r : run.StateRecords(1, 3)) records.push_back(std::move(r));
-  writer->Write(records);
+  WriteRun(world, 77, 3);
   auto db = Admin();
   EXPECT_EQ(QueryRows(db.get(), "SELECT name, mu, mu2, frictionDirection, bounce, bounceVelocity, "
                                 "softERP, softCFM, stiffness, damping, rollingFriction FROM Material "
@@ -304,13 +330,8 @@ TEST_F(DbTest, MaterialsAreStoredWithTheirBodies) {
 // A ground of soil (docs/soil.md): its Material row carries the soil's
 // name and figures; a material that is no soil has NULL there.
 TEST_F(DbTest, ASoilIsStoredWithItsMaterial) {
-  const std::string world =
-      "<world name=\"Soil\"><surface material=\"sand\"><a>0</a><b>1</b><c>0</c><d>0</d>"
-      "</surface><material name=\"sand\"><mu>0.6</mu><soil><n>1.1</n><kc>0.99</kc>"
-      "<kphi>1528.43</kphi><cohesion>1.04</cohesion><frictionAngle>28</frictionAngle>"
-      "<shearModulus>0.025</shearModulus><unloadingStiffness>10000</unloadingStiffness>"
-      "<viscosity>0</viscosity></soil></material>"
-      "<material name=\"ice\"><mu>0.025</mu></material></world>";
+  const std::string world = std::string("<world name=\"Soil\">") + kSandGround +
+                            "<material name=\"ice\"><mu>0.025</mu></material></world>";
   auto sim = sim::testing::MakeSim(world);
   sim->Reset(78);
   const SimRun run = testing::MakeRun(sim.get(), 1);
@@ -663,13 +684,8 @@ TEST_F(DbTest, TheLoggerUserHasOnlyTheRightsItNeeds) {
   EXPECT_EQ(reader->QueryInt("SELECT COUNT(*) FROM Pose", "", -1), 3);
 }
 
-TEST_F(DbTest, TheOriginalsMixedCaseQueriesRunUnchanged) {
-  const SimRun run = Gen3Run(120, 77);
-  auto writer = Writer();
-  std::vector<Record> records = {run.ModelRecord()};
-  for (Record& r : run.StateRecords(1, 120)) records.push_back(std::move(r));
-  writer->Write(records);
-
+// The queries of logger/analysis_queries.sql, as written (comments left out).
+std::vector<std::string> AnalysisQueries() {
   std::ifstream file(std::string(SP_SOURCE_DIR) + "/logger/analysis_queries.sql");
   std::stringstream text;
   text << file.rdbuf();
@@ -683,12 +699,17 @@ TEST_F(DbTest, TheOriginalsMixedCaseQueriesRunUnchanged) {
       current.clear();
     }
   }
-  ASSERT_EQ(queries.size(), 7u);
+  return queries;
+}
+
+TEST_F(DbTest, TheOriginalsMixedCaseQueriesRunUnchanged) {
+  const SimRun run = Gen3Run(120, 77);
+  WriteAll(run);
+
+  const std::vector<std::string> queries = AnalysisQueries();
+  ASSERT_EQ(queries.size(), 8u);
   // As the analysts did: the reader's user, the queries as written.
-  DbTarget reader_target = server_->LoggerTarget("simpartner");
-  reader_target.option_file = server_->reader_options();
-  auto db = DbConnection::Open(reader_target, false);
-  db->UseDatabase(false);
+  auto db = Reader();
   db->Execute("SET @simulation = 1", "SET @simulation");
   std::vector<std::vector<std::string>> results;
   for (const std::string& q : queries) results.push_back(QueryRows(db.get(), q));
@@ -712,6 +733,58 @@ TEST_F(DbTest, TheOriginalsMixedCaseQueriesRunUnchanged) {
   EXPECT_EQ(results[6], (std::vector<std::string>{"120\t" + std::to_string(120 * 26) + "\t" +
                                                   std::to_string(120 * 26) + "\t" +
                                                   std::to_string(120 * 25)}));
+  EXPECT_TRUE(results[7].empty());  // gen3 on rigid ground: no wheel on soil
+}
+
+// A wheel rolling onto sand (sunk 1 cm at the start, driven at 0.5 m/s
+// and 2 rad/s): a WheelSoil row for each step it pressed the soil, with
+// the figures of the state; query 8 (traction against slip) reads them.
+TEST_F(DbTest, WheelSoilRowsHoldEachWheelsSoilFigures) {
+  const std::string world =
+      std::string("<world name=\"Soil\">") + kSandGround +
+      "<object type=\"Cylinder\" name=\"Wheel1\"><mass>50</mass><radius>0.3</radius>"
+      "<length>0.2</length>" + sim::testing::Transform(0, 0.29, 0) +
+      "<translationalVelocity><vx>0.5</vx><vy>0</vy><vz>0</vz></translationalVelocity>"
+      "<rotationalVelocity><omegax>0</omegax><omegay>0</omegay><omegaz>-2</omegaz>"
+      "</rotationalVelocity></object></world>";
+  const SimRun run = WriteRun(world, 79, 30);
+  auto db = Admin();
+  const std::vector<std::string> rows = QueryRows(
+      db.get(), "SELECT r.step, w.sinkage, w.slip, w.thrust, w.drawbarPull, w.wheelLoad, "
+                "w.axleTorque, w.Fn_x, w.Fn_y, w.Fn_z, w.Fs_x, w.Fs_y, w.Fs_z, w.stuck FROM "
+                "WheelSoil w JOIN SimulationRow r USING (simulationRowID) JOIN Body b ON "
+                "b.bodyID = w.bodyID WHERE b.name = 'Wheel1' ORDER BY r.step");
+  ASSERT_EQ(rows.size(), 30u);
+  std::vector<double> slips;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const state_t& s = run.states[i];
+    ASSERT_EQ(s.wheel_soil.size(), 1u) << "step " << s.step;
+    const wheel_soil_t& w = s.wheel_soil[0];
+    std::vector<double> v;
+    std::stringstream fields(rows[i]);
+    for (std::string field; std::getline(fields, field, '\t');) v.push_back(std::stod(field));
+    ASSERT_EQ(v.size(), 14u);
+    // Exact: the shortest round-trip text of each double.
+    EXPECT_EQ(v[0], static_cast<double>(s.step));
+    const double expected[] = {w.sinkage, w.slip, w.thrust, w.drawbar_pull, w.load,
+                               w.axle_torque, w.normal_force[0], w.normal_force[1],
+                               w.normal_force[2], w.shear_force[0], w.shear_force[1],
+                               w.shear_force[2], w.stuck ? 1.0 : 0.0};
+    for (size_t k = 0; k < 13; ++k) EXPECT_EQ(v[k + 1], expected[k]) << "step " << s.step << " column " << k + 1;
+    slips.push_back(w.slip);
+  }
+  // It sank and carried its weight's order of magnitude; it slipped.
+  EXPECT_GT(run.states.back().wheel_soil[0].sinkage, 0.005);
+  EXPECT_GT(run.states.back().wheel_soil[0].load, 100.0);
+  EXPECT_GT(std::abs(run.states.back().wheel_soil[0].slip), 0.01);
+
+  auto reader = Reader();
+  reader->Execute("SET @simulation = 1", "SET @simulation");
+  const std::vector<std::string> traction = QueryRows(reader.get(), AnalysisQueries().at(7));
+  ASSERT_EQ(traction.size(), 30u);
+  std::sort(slips.begin(), slips.end());
+  for (size_t i = 0; i < traction.size(); ++i)
+    EXPECT_EQ(std::stod(traction[i].substr(0, traction[i].find('\t'))), slips[i]) << i;
 }
 
 TEST_F(DbTest, AServerThatRefusesWritesIsAnErrorNamingServerAndCause) {

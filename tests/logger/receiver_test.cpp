@@ -233,6 +233,17 @@ TEST_F(ReceiverTest, MessagesThatDoNotFitTheModelAreInvalid) {
   state_t zero_quaternion = State(5, 3);
   zero_quaternion.bodies[0].orientation[0] = 0;
   Publish(channels::kState, zero_quaternion);
+  // Wheels on soil: one naming a body the model lacks, one with a NaN slip.
+  state_t no_such_wheel = State(5, 4);
+  no_such_wheel.wheel_soil.resize(1);
+  no_such_wheel.num_wheel_soil = 1;
+  no_such_wheel.wheel_soil[0].body = 2;
+  Publish(channels::kState, no_such_wheel);
+  state_t nan_slip = State(5, 5);
+  nan_slip.wheel_soil.resize(2);
+  nan_slip.num_wheel_soil = 2;
+  nan_slip.wheel_soil[1].slip = NAN;
+  Publish(channels::kState, nan_slip);
   model_t bad = TwoBodyModel(6);
   bad.joints[0].body1 = 7;
   Publish(channels::kModel, bad);
@@ -249,13 +260,16 @@ TEST_F(ReceiverTest, MessagesThatDoNotFitTheModelAreInvalid) {
 
   EXPECT_TRUE(Queued().empty());
   const ReceiverStats stats = receiver_->Stats();
-  EXPECT_EQ(stats.channels.at(channels::kState).invalid, 3u);
+  EXPECT_EQ(stats.channels.at(channels::kState).invalid, 5u);
   EXPECT_EQ(stats.channels.at(channels::kModel).invalid, 3u);
   EXPECT_EQ(stats.channels.at(channels::kSensor).invalid, 1u);
   const std::string text = out_.str();
   EXPECT_NE(text.find("SIM_STATE: num_bodies = 3 but the model of simulation 5 has 2"),
             std::string::npos) << text;
   EXPECT_NE(text.find("bodies[1].position[2] = nan"), std::string::npos) << text;
+  EXPECT_NE(text.find("wheel_soil[0].body = 2 but the model of simulation 5 has 2 bodies"),
+            std::string::npos) << text;
+  EXPECT_NE(text.find("wheel_soil[1].slip = nan"), std::string::npos) << text;
   EXPECT_NE(text.find("joints[0].body1 = 7 (no such body)"), std::string::npos) << text;
   EXPECT_NE(text.find("bodies[0].name is not valid UTF-8"), std::string::npos) << text;
   EXPECT_NE(text.find("engine is not valid UTF-8 of at most 32 bytes (33 bytes)"), std::string::npos)

@@ -20,6 +20,7 @@
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/model_t.hpp"
+#include "simpartner/soil_ruts_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "../sim_core/test_worlds.h"
@@ -455,6 +456,58 @@ TEST_P(SimProcessEngineTest, StockLcmLoggerAndLogplayerCarryTheStream) {
   EXPECT_EQ(bus.states.size(), 1200u);
   EXPECT_EQ(bus.models.front().num_bodies, 3);
   player.Wait(std::chrono::milliseconds(5000));
+}
+
+// Issue 28: a wheel rolling onto sand leaves a rut; a listener started a
+// second later asks for the model and gets the ruts so far with it
+// (SIM_SOIL_RUTS), then their changes.
+TEST_F(SimProcessTest, ALateListenerGetsTheRutsWithTheModel) {
+  const std::string world = (dir_ / "wheel_on_sand.xml").string();
+  std::ofstream(world) << R"(<world name="WheelOnSand">)" << sim::testing::Vec("gravity", 0, -9.81, 0)
+                       << R"(<surface material="sand"><a>0</a><b>1</b><c>0</c><d>0</d></surface>
+  <material name="sand"><mu>0.6</mu><soil><n>1.1</n><kc>0.99</kc><kphi>1528.43</kphi>
+    <cohesion>1.04</cohesion><frictionAngle>28</frictionAngle><shearModulus>0.025</shearModulus>
+    <unloadingStiffness>20000</unloadingStiffness><viscosity>60</viscosity></soil></material>
+  <object type="Cylinder" name="Wheel"><mass>50</mass><radius>0.3</radius><length>0.2</length>)"
+                       << sim::testing::Transform(0, 0.29, 0) << R"(
+    <translationalVelocity><vx>1</vx><vy>0</vy><vz>0</vz></translationalVelocity>
+    <rotationalVelocity><omegax>0</omegax><omegay>0</omegay><omegaz>-3.3</omegaz></rotationalVelocity>
+  </object></world>)";
+  const std::string url = BusUrl(45);
+  SimProcess sim(world, url, Log(), {"--duration=20"});
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // started well before us
+  Listener bus(url);
+  std::vector<soil_ruts_t> ruts;
+  bus.Keep(channels::kSoilRuts, &ruts);
+  model_request_t request{};
+  request.sender = "late-test";
+  bus.lcm().publish(channels::kModelRequest, &request);
+  const auto snapshot_done = [&] {
+    for (const soil_ruts_t& r : ruts)
+      if (r.snapshot && r.part == r.parts - 1) return true;
+    return false;
+  };
+  ASSERT_TRUE(bus.Until([&] { return !bus.models.empty() && snapshot_done(); }, 5.0)) << LogText();
+  const soil_ruts_t* first = nullptr;
+  int32_t cells = 0;
+  for (const soil_ruts_t& r : ruts) {
+    if (!r.snapshot) continue;
+    if (first == nullptr) first = &r;
+    EXPECT_EQ(r.simulation_id, bus.models.front().simulation_id);
+    cells += r.num_cells;
+    // Sunk a few centimetres: Bekker's 1.8 cm at rest, more while rolling in.
+    for (float depth : r.depth) {
+      EXPECT_GT(depth, 0.0f);
+      EXPECT_LT(depth, 0.1f);
+    }
+  }
+  ASSERT_NE(first, nullptr);
+  EXPECT_EQ(first->part, 0);
+  EXPECT_EQ(first->cell_size, 0.02);
+  EXPECT_EQ(first->up[1], 1.0);
+  // A second of rolling at up to 1 m/s leaves a track tens of cells long and
+  // 10 or 11 wide (the 0.2 m tread).
+  EXPECT_GT(cells, 10 * 10) << cells;
 }
 
 // One engine: the command line is refused before any engine is built.

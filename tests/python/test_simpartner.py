@@ -101,6 +101,12 @@ class BusTest(unittest.TestCase):
         self.assertTrue(np.allclose(np.linalg.norm(state["orientation"], axis=1), 1.0, atol=1e-6))
         wheel = model["bodies"].index("Wheel1")
         self.assertGreater(state["position"][wheel, 1], 0.0)
+        # Rigid ground: no wheel on soil, but the arrays are there, empty.
+        soil = state["wheel_soil"]
+        self.assertEqual(soil["body"].shape, (0,))
+        self.assertEqual(soil["normal_force"].shape, (0, 3))
+        self.assertEqual(set(soil), {"body", "sinkage", "slip", "normal_force", "shear_force",
+                                     "thrust", "drawbar_pull", "load", "axle_torque", "stuck"})
 
     def test_field_sensor_readings_as_numpy(self):
         imu = self.sim.wait_reading("Imu", timeout=10.0)

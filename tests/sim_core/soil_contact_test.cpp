@@ -52,8 +52,8 @@ double BekkerSinkage() {
 }
 
 // Lowered over 2 s (a support force falling from m g to 0: the soil is
-// loaded, never overshot and unloaded), then left 1 s.
-double SettledSinkage(double stepsize, Eigen::Vector3d* drift) {
+// loaded, never overshot and unloaded), then left 1 s; null on a failed step.
+std::unique_ptr<Simulation> SettledWheel(double stepsize) {
   auto sim = MakeWheelOnSand(stepsize);
   const int wheel = sim->flat().FindBody("", "Wheel");
   const int ramp = static_cast<int>(std::lround(2.0 / stepsize));
@@ -62,9 +62,15 @@ double SettledSinkage(double stepsize, Eigen::Vector3d* drift) {
     const double support = k < ramp ? kMass * kG * (1.0 - static_cast<double>(k) / ramp) : 0.0;
     sim->engine().AddForce(wheel, Eigen::Vector3d(0, support, 0));
     EXPECT_TRUE(sim->Step()) << "step " << k;
-    if (::testing::Test::HasFailure()) return NAN;
+    if (::testing::Test::HasFailure()) return nullptr;
   }
-  const BodyReadout b = sim->engine().ReadBody(wheel);
+  return sim;
+}
+
+double SettledSinkage(double stepsize, Eigen::Vector3d* drift) {
+  auto sim = SettledWheel(stepsize);
+  if (!sim) return NAN;
+  const BodyReadout b = sim->engine().ReadBody(sim->flat().FindBody("", "Wheel"));
   *drift = Eigen::Vector3d(b.position.x(), 0, b.position.z());
   return kRadius - b.position.y();
 }
@@ -80,6 +86,52 @@ TEST(SoilContact, AWheelRestsAtBekkersSinkageAtAnyStep) {
     EXPECT_NEAR(sinkage, expected, 0.005 * expected) << "step " << h;
     EXPECT_LT(drift.norm(), 1e-6) << "step " << h;
   }
+}
+
+// SIM_STATE's wheel_soil of the resting wheel: its sinkage is Bekker's
+// (as above), the soil carries its weight, and nothing drives it.
+TEST(SoilContact, TheStateCarriesTheRestingWheelsSoilFigures) {
+  auto sim = SettledWheel(0.001);
+  ASSERT_TRUE(sim);
+  state_t state;
+  sim->FillState(&state);
+  ASSERT_EQ(state.num_wheel_soil, 1);
+  ASSERT_EQ(state.wheel_soil.size(), 1u);
+  const wheel_soil_t& w = state.wheel_soil[0];
+  EXPECT_EQ(w.body, sim->flat().FindBody("", "Wheel"));
+  const double expected = BekkerSinkage();
+  EXPECT_NEAR(w.sinkage, expected, 0.005 * expected);
+  EXPECT_NEAR(w.load, kMass * kG, 0.005 * kMass * kG);
+  EXPECT_NEAR(w.normal_force[1], kMass * kG, 0.005 * kMass * kG);
+  EXPECT_NEAR(w.slip, 0.0, 1e-6);
+  EXPECT_NEAR(w.thrust, 0.0, 1e-3 * kMass * kG);
+  EXPECT_NEAR(w.drawbar_pull, 0.0, 1e-3 * kMass * kG);
+  EXPECT_NEAR(w.axle_torque, 0.0, 1e-3 * kMass * kG * kRadius);
+  EXPECT_FALSE(w.stuck);
+  // Its rut: a row of 2 cm cells across its 0.2 m tread as deep as it
+  // sank, none deeper. Its lowest point, at x = 0, sits on a cell edge, so
+  // the row beside may hold as much (it pressed there while drifting by a
+  // hair, 1e-6 m or less): one row or two, never more.
+  const std::vector<soil_ruts_t> ruts = sim->ruts().Snapshot();
+  ASSERT_EQ(ruts.size(), 1u);
+  int as_deep = 0;
+  for (float depth : ruts[0].depth) {
+    EXPECT_LE(depth, 1.01 * w.sinkage);
+    if (std::abs(depth - w.sinkage) < 0.01 * w.sinkage) ++as_deep;
+  }
+  EXPECT_GE(as_deep, 10);
+  EXPECT_LE(as_deep, 22);
+}
+
+// On rigid ground the same wheel has no soil figures.
+TEST(SoilContact, TheStateHasNoWheelSoilOnRigidGround) {
+  Simulation sim(LoadInline(WheelWorld()), Parameters(), 1);
+  for (int k = 0; k < 50; ++k) ASSERT_TRUE(sim.Step());
+  state_t state;
+  sim.FillState(&state);
+  EXPECT_GT(state.bodies[0].contact_force[1], 0.0);  // it stands on the ground
+  EXPECT_EQ(state.num_wheel_soil, 0);
+  EXPECT_TRUE(state.wheel_soil.empty());
 }
 
 }  // namespace
@@ -114,12 +166,30 @@ std::string RigWorld() {
 
 struct RigResult {
   double sinkage = 0, pull = 0;
+  // Means of SIM_STATE's wheel_soil over the same second.
+  double state_slip = 0, state_sinkage = 0, state_pull = 0, state_thrust = 0;
+  // 1 - v / (r omega) from the wheel body's own velocities.
+  double body_slip = 0;
 };
+
+void AddWheelSoil(const Simulation& sim, RigResult* out) {
+  state_t state;
+  sim.FillState(&state);
+  EXPECT_EQ(state.num_wheel_soil, 1);
+  if (state.wheel_soil.size() != 1) return;
+  out->state_slip += state.wheel_soil[0].slip;
+  out->state_sinkage += state.wheel_soil[0].sinkage;
+  out->state_pull += state.wheel_soil[0].drawbar_pull;
+  out->state_thrust += state.wheel_soil[0].thrust;
+  const body_state_t& wheel = state.bodies[static_cast<size_t>(state.wheel_soil[0].body)];
+  // Rolling toward +x spins the wheel about -z.
+  out->body_slip += 1.0 - wheel.linear_velocity[0] / (-wheel.angular_velocity[2] * kRadius);
+}
 
 // Lowered onto the sand over 1 s, then driven at slip i for 3 s; the last
 // second's mean.
 RigResult RunRig(const model::SoilParameters& soil, double slip, double omega,
-                 double stepsize = 0.001) {
+                 double stepsize = 0.001, bool with_state = false) {
   model::World world = LoadInline(RigWorld());
   world.materials.at(0).soil = soil;
   Parameters params;
@@ -143,10 +213,12 @@ RigResult RunRig(const model::SoilParameters& soil, double slip, double omega,
     if (k < 3 * second) continue;
     out.sinkage += kRadius - sim.engine().ReadBody(wheel).position.y();
     out.pull += sim.engine().ReadJoint(rail).force1.x();
+    if (with_state) AddWheelSoil(sim, &out);
     ++counted;
   }
-  out.sinkage /= counted;
-  out.pull /= counted;
+  for (double* mean : {&out.sinkage, &out.pull, &out.state_slip, &out.state_sinkage,
+                       &out.state_pull, &out.state_thrust, &out.body_slip})
+    *mean /= counted;
   return out;
 }
 
@@ -176,6 +248,28 @@ TEST(SoilContact, DrawbarPullAgainstSlipIsJanosiHanamotosIntegral) {
     EXPECT_NEAR(rig.sinkage, at_1ms.sinkage, 0.005 * at_1ms.sinkage) << "step " << h;
     std::printf("step %.4f s, slip 0.3: sinkage %.5f m, pull %.2f N\n", h, rig.sinkage, -rig.pull);
   }
+}
+
+// SIM_STATE's wheel_soil of the rig's wheel driven at slip 0.3: its slip
+// is the rig's, its sinkage and drawbar pull Wong's (the tolerances of the
+// test above), and the pull is the thrust less the compaction resistance.
+TEST(SoilContact, TheStateCarriesTheDrivenWheelsSlipAndPull) {
+  model::SoilParameters soil = DrySand();
+  soil.viscosity = 0;
+  constexpr double kLoad = 50 * kG, kSlip = 0.3;
+  const RigResult rig = RunRig(soil, kSlip, 1.0, 0.001, true);
+  const double z = testing::RollingSinkage(soil, kRadius, kWidth, kSlip, kLoad);
+  const double pull = testing::RollingWheel(soil, kRadius, kWidth, z, kSlip).pull;
+  // The motors hold the rig near slip 0.3 (within their compliance); the
+  // state's slip is the wheel's own.
+  EXPECT_NEAR(rig.state_slip, rig.body_slip, 1e-4);
+  EXPECT_NEAR(rig.state_slip, kSlip, 0.01);
+  EXPECT_NEAR(rig.state_sinkage, z, 0.005 * z);
+  EXPECT_NEAR(rig.state_pull, pull, 0.005 * kLoad);
+  EXPECT_GT(rig.state_thrust, rig.state_pull);  // compaction resistance > 0
+  std::printf("SIM_STATE at slip %.2f: slip %.4f (the body's %.4f), sinkage %.5f m (Wong %.5f), pull %.2f N (Wong "
+              "%.2f), thrust %.2f N\n",
+              kSlip, rig.state_slip, rig.body_slip, rig.state_sinkage, z, rig.state_pull, pull, rig.state_thrust);
 }
 
 }  // namespace

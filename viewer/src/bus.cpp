@@ -38,6 +38,8 @@ ViewerBus::ViewerBus(lcm::LCM* lcm, const std::string& url, Scene* scene, Report
   lcm_.subscribe(channels::kState, &ViewerBus::OnState, this)->setQueueCapacity(kStateQueue);
   lcm_.subscribe(channels::kStatus, &ViewerBus::OnStatus, this)->setQueueCapacity(100);
   lcm_.subscribe(channels::kSensor, &ViewerBus::OnSensor, this)->setQueueCapacity(1000);
+  // A snapshot of a long run comes in many parts at once.
+  lcm_.subscribe(channels::kSoilRuts, &ViewerBus::OnSoilRuts, this)->setQueueCapacity(1000);
 }
 
 int ViewerBus::Drain(Clock::time_point until) {
@@ -133,6 +135,12 @@ void ViewerBus::OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& ch
   sensor_reading_t reading;
   if (!Decode(buffer, channel, &reading)) return;
   Note(scene_->OfferSensorReading(reading));
+}
+
+void ViewerBus::OnSoilRuts(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  soil_ruts_t ruts;
+  if (!Decode(buffer, channel, &ruts)) return;
+  Note(scene_->OfferSoilRuts(ruts));
 }
 
 void ViewerBus::SendControl(int8_t action, int64_t steps, double speed) {

@@ -213,6 +213,8 @@ void Renderer::ReleaseModel() {
   body_lists_.clear();
   heightfield_.reset();
   heightfield_grid_.positions.clear();
+  ruts_.reset();
+  ruts_generation_ = -1;
 }
 
 void Renderer::RebuildModel(const Scene& scene) {
@@ -290,6 +292,7 @@ void Renderer::Draw(const Scene& scene, const Viewpoint& viewpoint, const Toggle
 
   if (scene.has_model()) {
     DrawGround(scene, viewpoint, toggles);
+    DrawRuts(scene);
     DrawBodies(scene, toggles);
     DrawOverlays(scene, viewpoint, toggles);
   } else {
@@ -362,6 +365,33 @@ void Renderer::DrawGround(const Scene& scene, const Viewpoint& viewpoint, const 
     SetColor(kFieldGridColor);
     DrawLines(heightfield_grid_);
   }
+}
+
+void Renderer::DrawRuts(const Scene& scene) {
+  const RutMap& ruts = scene.ruts();
+  const auto now = std::chrono::steady_clock::now();
+  // A cleared map (a new simulation) goes at once; growth waits its turn.
+  if (ruts.generation() != ruts_generation_ &&
+      (ruts.cells() == 0 || !ruts_ || now - ruts_built_ >= kRutRebuildInterval)) {
+    ruts_generation_ = ruts.generation();
+    ruts_built_ = now;
+    ruts_.reset();
+    if (ruts.cells() > 0)
+      ruts_ = std::make_unique<BufferMesh>(
+          RutMesh(ruts, Eigen::Vector3f(kPlaneColor[0], kPlaneColor[1], kPlaneColor[2])));
+  }
+  if (!ruts_) return;
+  // Lowered below the ground, which would hide them: drawn over it (the
+  // depth test always passes) but writing their own depth, so that a
+  // wheel sunk in a rut shows down to the rut's floor. The bodies come
+  // next. A rut's far edge faces the camera, its near edge away: culled,
+  // it does not cover the floor.
+  glEnable(GL_LIGHTING);
+  glEnable(GL_CULL_FACE);
+  glDepthFunc(GL_ALWAYS);
+  ruts_->Draw();
+  glDepthFunc(GL_LEQUAL);
+  glDisable(GL_CULL_FACE);
 }
 
 void Renderer::DrawBodies(const Scene& scene, const Toggles& toggles) {

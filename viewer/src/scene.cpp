@@ -57,6 +57,7 @@ const char* RejectionName(Rejection r) {
     case Rejection::kBadQuaternion: return "bad quaternion";
     case Rejection::kBadModel: return "bad model";
     case Rejection::kBadReading: return "bad reading";
+    case Rejection::kBadRuts: return "bad ruts";
   }
   return "?";
 }
@@ -212,6 +213,31 @@ Verdict Scene::OfferModel(const model_t& model) {
   state_.reset();
   status_.reset();
   scans_.clear();
+  ruts_.Clear();
+  return v;
+}
+
+Verdict Scene::OfferSoilRuts(const soil_ruts_t& ruts) {
+  follower_.Heard(ruts.simulation_id, SimulationFollower::Clock::now());
+  if (!model_) {
+    Verdict v;
+    v.want_model = true;  // the model's answer brings the ruts again
+    return v;
+  }
+  if (ruts.simulation_id != model_->simulation_id)
+    return Reject(Rejection::kOtherSimulation, "SIM_SOIL_RUTS",
+                  "simulation_id = " + std::to_string(ruts.simulation_id) + ", the model is of " +
+                      std::to_string(model_->simulation_id) + ": ignored");
+  if (auto problem = CheckRuts(ruts))
+    return Reject(Rejection::kBadRuts, "SIM_SOIL_RUTS",
+                  *problem + " (step " + std::to_string(ruts.step) + "): ignored");
+  ++version_;
+  if (!ruts_.Take(ruts))
+    return Reject(Rejection::kBadRuts, "SIM_SOIL_RUTS",
+                  "more than " + std::to_string(RutMap::kMaxCells) +
+                      " rut cells: the newest are not shown");
+  Verdict v;
+  v.accepted = true;
   return v;
 }
 

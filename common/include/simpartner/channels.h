@@ -16,5 +16,6 @@ inline constexpr const char* kStatus = "SIM_STATUS";                // status_t
 inline constexpr const char* kSync = "SIM_SYNC";                    // sync_t
 inline constexpr const char* kSyncReply = "SIM_SYNC_REPLY";         // sync_reply_t
 inline constexpr const char* kImage = "SIM_IMAGE";                  // image_t (simpartner-camera)
+inline constexpr const char* kSoilRuts = "SIM_SOIL_RUTS";           // soil_ruts_t
 
 }  // namespace simpartner::channels

@@ -63,6 +63,27 @@ struct JointReadout {
   Eigen::Vector3d force2 = Eigen::Vector3d::Zero(), torque2 = Eigen::Vector3d::Zero();
 };
 
+// A wheel on soft soil in the last step (docs/soil.md): the soil model's
+// figures at the state the step began with, which gave the step's forces.
+struct WheelSoilReadout {
+  int body = -1;         // the wheel's flat body (a body has one geom)
+  double sinkage = 0.0;  // [m] lowest rim point below the untouched surface
+  double slip = 0.0;     // [-] 1 - v / (r omega) driving, r omega / v - 1 braking
+  Eigen::Vector3d normal_force = Eigen::Vector3d::Zero();  // [N] world frame
+  Eigen::Vector3d shear_force = Eigen::Vector3d::Zero();   // [N] world frame
+  Eigen::Vector3d forward = Eigen::Vector3d::Zero();  // rolling direction (unit)
+  Eigen::Vector3d axle = Eigen::Vector3d::Zero();     // unit
+  Eigen::Vector3d lowest_point = Eigen::Vector3d::Zero();  // of the rim, world
+  double width = 0.0;  // [m] of the tread
+  // The soil's untouched surface: a point of it, its normal and the
+  // direction of its rut grid's first axis (unit, along it).
+  Eigen::Vector3d surface_origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d up = Eigen::Vector3d::Zero();
+  Eigen::Vector3d surface_u_axis = Eigen::Vector3d::Zero();
+  double axle_torque = 0.0;  // [N m] of the shear about the axle, positive against the spin
+  bool stuck = false;
+};
+
 class PhysicsEngine {
  public:
   virtual ~PhysicsEngine() = default;
@@ -83,6 +104,9 @@ class PhysicsEngine {
   virtual JointReadout ReadJoint(int joint) const = 0;
   virtual double JointPosition(int joint, int axis) const = 0;
   virtual double JointRate(int joint, int axis) const = 0;
+  // The wheels that pressed soil in the last step; none on rigid ground
+  // and on an engine without soil.
+  virtual std::vector<WheelSoilReadout> ReadWheelSoil() const { return {}; }
 
   // Adds a force [N] at the centre of mass for the coming step only.
   virtual void AddForce(int body, const Eigen::Vector3d& force) = 0;

@@ -68,6 +68,7 @@ class OdeWorld : public PhysicsEngine {
   JointReadout ReadJoint(int joint) const override;
   double JointPosition(int joint, int axis) const override;
   double JointRate(int joint, int axis) const override;
+  std::vector<WheelSoilReadout> ReadWheelSoil() const override;
 
   // Adds a force [N] at the centre of mass for the coming step (ODE clears
   // accumulated forces after each step).

@@ -1,8 +1,10 @@
 // The physics process on the bus: runs a Simulation against absolute
 // deadlines (or as fast as possible), publishes SIM_STATE, SIM_SENSOR,
 // SIM_COMMAND_REPLY, SIM_MODEL (at start, every modelPeriod and on request),
-// SIM_STATE_REPLY (on request, running or paused) and SIM_STATUS (every
-// statusPeriod and on every change), and obeys SIM_COMMAND and SIM_CONTROL.
+// SIM_STATE_REPLY (on request, running or paused), SIM_STATUS (every
+// statusPeriod and on every change) and SIM_SOIL_RUTS (the ruts' changes
+// every kRutPeriod of sim time; all of them with a model sent at start,
+// on request or after a reset), and obeys SIM_COMMAND and SIM_CONTROL.
 // Everything it publishes goes out, in order, through a sending thread
 // (bus_sender.h). Synchronous controllers join over SIM_SYNC
 // (lock_step.h): at each of their ticks the node waits for their answers
@@ -57,6 +59,14 @@ class SimNode {
   void StepAndPublish();
   // Returns the bytes it published.
   size_t PublishModel();
+  // SIM_SOIL_RUTS: every rut cell (when there are any), in parts, the
+  // first now and one every kRutPartInterval after it. Returns the bytes.
+  size_t PublishRutSnapshot();
+  // The ruts' changes go out every this much sim time while wheels press soil.
+  static constexpr double kRutPeriod = 0.1;  // [s]
+  // Parts of a snapshot sent at once (up to 98 kB each; 8 for a 100 m
+  // track) overflowed a receiver's default socket buffer and were lost.
+  static constexpr std::chrono::milliseconds kRutPartInterval{50};
   void PublishStatus();
 
   // Real-time factors a SIM_CONTROL may ask for (besides <= 0: as fast as
@@ -69,8 +79,8 @@ class SimNode {
   // SIM_MODEL goes out at most kModelRepliesPerSecond and, for a large
   // model, at most kModelBytesPerSecond on average, however many ask (a
   // 33-byte request returns the whole model: 20 requests/s of a 35 MB
-  // model once slowed a sim to 0.017 x real time). A reset's new model
-  // goes out at once.
+  // model once slowed a sim to 0.017 x real time), the ruts sent with it
+  // counted in. A reset's new model goes out at once.
   static constexpr int kModelRepliesPerSecond = 4;
   static constexpr double kModelBytesPerSecond = 1024.0 * 1024.0;
 
@@ -109,6 +119,9 @@ class SimNode {
   // false when a control or a lock-step answer woke it first.
   bool WaitForDeadline();
   void PublishReplies();
+  void PublishRutChanges();
+  void PublishRutParts();  // the next part of a snapshot, when due
+  void StampRuts(soil_ruts_t* message) const;  // utime, simulation id, step
   // What is due besides the steps: state replies, the model (on request
   // and every modelPeriod), the status (on change and every statusPeriod).
   void PublishDue(Clock::time_point* next_model, Clock::time_point* next_status,
@@ -159,6 +172,8 @@ class SimNode {
   LockStep lock_step_;
   int64_t wait_tick_ = -1;                 // the tick being waited at, -1: none
   Clock::time_point wait_start_{};
+  std::deque<soil_ruts_t> rut_parts_;  // of a snapshot, still to send
+  Clock::time_point next_rut_part_{};
   bool model_requested_ = false;  // asked for (SIM_MODEL_REQUEST): within the rate
   bool model_changed_ = false;    // a reset: at once
   Clock::time_point next_model_allowed_{};

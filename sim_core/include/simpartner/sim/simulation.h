@@ -20,6 +20,7 @@
 #include "simpartner/model/flat_model.h"
 #include "simpartner/sim/engine.h"
 #include "simpartner/sim/sensor_readings.h"
+#include "simpartner/sim/soil_ruts.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/warning_t.hpp"
 
@@ -74,6 +75,8 @@ class Simulation {
   std::vector<warning_t> TakeWarnings();
 
   void FillState(state_t* state) const;
+  // The ruts of the wheels on soil so far (SIM_SOIL_RUTS); cleared by a reset.
+  SoilRuts& ruts() { return ruts_; }
   void FillModel(model_t* model) const;
   sensor_reading_t ReadSensor(int sensor);
 
@@ -103,8 +106,10 @@ class Simulation {
   command_reply_t Reply(const command_t& command, bool accepted, const std::string& reason) const;
   void ApplyPending(const Pending& pending);
   // Every body's readout after a step, kept for the health check and
-  // FillState (reading a MuJoCo body's velocity is a transform).
+  // FillState (reading a MuJoCo body's velocity is a transform), and the
+  // wheels' on soil.
   void ReadBodies();
+  void FillWheelSoil(state_t* state) const;
   void CheckHealth();
   // A reading of an Imu, Gnss, Encoder, Lidar or Contact sensor.
   std::vector<double> ReadNewSensor(int index, const BodyReadout& body,
@@ -120,7 +125,9 @@ class Simulation {
   int64_t simulation_id_;
   std::unique_ptr<PhysicsEngine> engine_;
   std::vector<BodyReadout> bodies_;  // after the last step, when bodies_read_
+  std::vector<WheelSoilReadout> wheel_soil_;  // after the last step, when bodies_read_
   bool bodies_read_ = false;
+  SoilRuts ruts_;
   std::vector<ActuatorController> controllers_;
   std::vector<SensorState> sensors_;
   std::vector<Pending> pending_;  // sorted by (step, sequence)

@@ -1,5 +1,5 @@
-// The viewer (and simpartner-camera) on the LCM bus: decodes SIM_MODEL, SIM_STATE, SIM_STATUS and
-// SIM_SENSOR into a Scene, asks for the model (SIM_MODEL_REQUEST) when it
+// The viewer (and simpartner-camera) on the LCM bus: decodes SIM_MODEL, SIM_STATE, SIM_STATUS,
+// SIM_SENSOR and SIM_SOIL_RUTS into a Scene, asks for the model (SIM_MODEL_REQUEST) when it
 // has none or sees another simulation, and sends SIM_CONTROL and scanner
 // read requests. Drain() handles everything that has arrived without
 // blocking, so the scene always holds the newest state and no backlog
@@ -63,6 +63,7 @@ class ViewerBus {
   void OnState(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void OnSoilRuts(const lcm::ReceiveBuffer* buffer, const std::string& channel);
   void Note(const Verdict& verdict);
   // Opens (bus_signing.h) and decodes the whole buffer; false when it is
   // refused, which is counted in the scene and reported.

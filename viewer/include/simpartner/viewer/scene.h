@@ -1,6 +1,7 @@
 // What the viewer knows about the running simulation, learned only from the
 // bus: the model of SIM_MODEL, the newest acceptable SIM_STATE, the last
-// SIM_STATUS and the latest scanner reading per sensor. No GL and no LCM
+// SIM_STATUS, the latest scanner reading per sensor and the soil's ruts
+// (SIM_SOIL_RUTS). No GL and no LCM
 // here, so the bookkeeping is unit tested on plain messages.
 //
 // A message that does not fit (a state of another simulation, with the
@@ -24,6 +25,7 @@
 #include "simpartner/simulation_follower.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "simpartner/viewer/soil_ruts.h"
 
 namespace simpartner::viewer {
 
@@ -37,8 +39,9 @@ enum class Rejection {
   kBadQuaternion,      // orientation far from unit length
   kBadModel,           // a SIM_MODEL the viewer cannot draw (sizes, indices)
   kBadReading,         // a SIM_SENSOR reading that does not fit its sensor
+  kBadRuts,            // a SIM_SOIL_RUTS message that does not fit (soil_ruts.h)
 };
-inline constexpr int kRejectionKinds = 8;
+inline constexpr int kRejectionKinds = 9;
 const char* RejectionName(Rejection r);
 
 // One ignored message, described for stderr and the HUD.
@@ -64,6 +67,7 @@ class Scene {
   Verdict OfferState(state_t&& state);
   Verdict OfferStatus(const status_t& status);
   Verdict OfferSensorReading(const sensor_reading_t& reading);
+  Verdict OfferSoilRuts(const soil_ruts_t& ruts);
   // Counts (and describes) a message the bus could not decode.
   void CountUndecodable(const std::string& channel, const std::string& refusal);
 
@@ -94,6 +98,9 @@ class Scene {
   // start: robot 0, else all bodies, else the heightfield.
   std::pair<Eigen::Vector3d, double> FocusSphere() const;
 
+  // The ruts in the soil (this simulation only).
+  const RutMap& ruts() const { return ruts_; }
+
   // Latest scanner reading per sensor index (this simulation only).
   const std::map<int, sensor_reading_t>& scans() const { return scans_; }
 
@@ -121,6 +128,7 @@ class Scene {
   int64_t states_before_model_ = 0;
   std::optional<status_t> status_;
   std::map<int, sensor_reading_t> scans_;
+  RutMap ruts_;
   std::array<int64_t, kRejectionKinds> rejected_{};
   std::deque<Problem> recent_problems_;
 };

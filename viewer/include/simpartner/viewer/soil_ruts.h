@@ -1,0 +1,67 @@
+// The ruts wheels pressed into soft soil, as the viewer learns them from
+// SIM_SOIL_RUTS (soil_ruts_t): square cells of the soil's surface and how
+// deep each was pressed. No GL here: the renderer draws RutMesh.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "simpartner/soil_ruts_t.hpp"
+#include "simpartner/viewer/mesh.h"
+
+namespace simpartner::viewer {
+
+// A rut message the viewer can use: the surface frame finite with unit,
+// perpendicular axes, a cell size of 1 mm to 1 m, part within parts, each
+// depth finite, above 0 and at most kMaxRutDepth. Returns the first
+// problem ("depth[3] = -0.5 (cell 12, -4)").
+inline constexpr double kMaxRutDepth = 10.0;  // [m]
+std::optional<std::string> CheckRuts(const soil_ruts_t& message);
+
+class RutMap {
+ public:
+  // Cells kept at most (a 100 m track of four 0.3 m wide wheels in 2 cm
+  // cells takes 60,000); beyond it new cells are left out.
+  static constexpr size_t kMaxCells = 1000000;
+
+  // Takes a checked message (CheckRuts): a snapshot's first part, or a
+  // message on another surface or cell size, replaces every cell; the
+  // rest deepen theirs. Returns false when cells were left out (full).
+  bool Take(const soil_ruts_t& message);
+  void Clear();
+
+  size_t cells() const { return depth_.size(); }
+  // Bumped on every change, so a cached mesh knows to rebuild.
+  int64_t generation() const { return generation_; }
+  // The deepest cell [m], 0 when none.
+  double deepest() const;
+  // The world position of cell (u, w)'s centre on the untouched surface.
+  Eigen::Vector3d CellCentre(int32_t u, int32_t w) const;
+  const std::map<std::pair<int32_t, int32_t>, float>& depths() const { return depth_; }
+  const Eigen::Vector3d& up() const { return up_; }
+  const Eigen::Vector3d& u_axis() const { return u_axis_; }
+  double cell_size() const { return cell_size_; }
+
+ private:
+  bool SameSurface(const soil_ruts_t& message) const;
+
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero(), up_ = Eigen::Vector3d::UnitY(),
+                  u_axis_ = Eigen::Vector3d::UnitX();
+  double cell_size_ = 0.0;
+  std::map<std::pair<int32_t, int32_t>, float> depth_;
+  int64_t generation_ = 0;
+};
+
+// Each cell as a square lowered into the ground (indexed: 4 vertices, 2
+// triangles facing up), each corner by the mean depth of the four cells
+// around it (0 where untouched): neighbours meet without gaps and a rut's
+// edges slope up to the surface. Coloured `color` darkened by a third,
+// and by half at 5 cm deep and deeper.
+Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color);
+
+}  // namespace simpartner::viewer

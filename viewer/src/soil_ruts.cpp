@@ -1,0 +1,148 @@
+#include "simpartner/viewer/soil_ruts.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "simpartner/text.h"
+
+namespace simpartner::viewer {
+namespace {
+
+bool AllFinite(const double (&v)[3]) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+Eigen::Vector3d Vec(const double (&v)[3]) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+
+std::string Triple(const double (&v)[3]) {
+  return "(" + FormatNumber(v[0]) + ", " + FormatNumber(v[1]) + ", " + FormatNumber(v[2]) + ")";
+}
+
+}  // namespace
+
+std::optional<std::string> CheckRuts(const soil_ruts_t& m) {
+  if (m.parts < 1 || m.part < 0 || m.part >= m.parts)
+    return "part = " + std::to_string(m.part) + " of parts = " + std::to_string(m.parts);
+  for (const auto& [name, v] : {std::pair<const char*, const double(&)[3]>{"origin", m.origin},
+                                {"up", m.up},
+                                {"u_axis", m.u_axis}})
+    if (!AllFinite(v)) return std::string(name) + " = " + Triple(v);
+  for (const auto& [name, v] :
+       {std::pair<const char*, const double(&)[3]>{"up", m.up}, {"u_axis", m.u_axis}})
+    if (std::abs(Vec(v).norm() - 1.0) > 1e-3)
+      return std::string(name) + " = " + Triple(v) + " (a unit vector is needed)";
+  if (std::abs(Vec(m.up).dot(Vec(m.u_axis))) > 1e-3)
+    return "u_axis = " + Triple(m.u_axis) + " is not along the surface of up = " + Triple(m.up);
+  if (!(m.cell_size >= 0.001 && m.cell_size <= 1.0))
+    return "cell_size = " + FormatNumber(m.cell_size) + " (1 mm to 1 m)";
+  for (size_t i = 0; i < m.depth.size(); ++i)
+    if (!(m.depth[i] > 0.0f && m.depth[i] <= kMaxRutDepth))
+      return "depth[" + std::to_string(i) + "] = " + FormatNumber(m.depth[i]) + " (cell " +
+             std::to_string(m.u[i]) + ", " + std::to_string(m.w[i]) + "; 0 < depth <= " +
+             FormatNumber(kMaxRutDepth) + " m)";
+  return std::nullopt;
+}
+
+bool RutMap::SameSurface(const soil_ruts_t& m) const {
+  return m.cell_size == cell_size_ && Vec(m.origin) == origin_ && Vec(m.up) == up_ &&
+         Vec(m.u_axis) == u_axis_;
+}
+
+bool RutMap::Take(const soil_ruts_t& m) {
+  if ((m.snapshot && m.part == 0) || !SameSurface(m)) {
+    depth_.clear();
+    origin_ = Vec(m.origin);
+    up_ = Vec(m.up);
+    u_axis_ = Vec(m.u_axis);
+    cell_size_ = m.cell_size;
+  }
+  ++generation_;
+  bool all = true;
+  for (size_t i = 0; i < m.depth.size(); ++i) {
+    const std::pair<int32_t, int32_t> cell{m.u[i], m.w[i]};
+    auto it = depth_.find(cell);
+    if (it == depth_.end()) {
+      if (depth_.size() >= kMaxCells) {
+        all = false;
+        continue;
+      }
+      it = depth_.emplace(cell, 0.0f).first;
+    }
+    // The ruts only deepen: a change that arrives late does not undo one.
+    it->second = std::max(it->second, m.depth[i]);
+  }
+  return all;
+}
+
+void RutMap::Clear() {
+  depth_.clear();
+  cell_size_ = 0.0;
+  ++generation_;
+}
+
+double RutMap::deepest() const {
+  float deepest = 0.0f;
+  for (const auto& [cell, depth] : depth_) deepest = std::max(deepest, depth);
+  return deepest;
+}
+
+Eigen::Vector3d RutMap::CellCentre(int32_t u, int32_t w) const {
+  const Eigen::Vector3d w_axis = up_.cross(u_axis_);
+  return origin_ + cell_size_ * ((u + 0.5) * u_axis_ + (w + 0.5) * w_axis);
+}
+
+namespace {
+
+// The depth at the corner of four cells (corner (u, w) is the one cell
+// (u, w) has at its lowest u and w): their mean, untouched cells counting
+// 0, so that neighbours meet without gaps and a rut's edges slope up to
+// the surface.
+double CornerDepth(const RutMap& ruts, int64_t u, int64_t w) {
+  double sum = 0.0;
+  for (int64_t du : {-1, 0})
+    for (int64_t dw : {-1, 0}) {
+      const int64_t cu = u + du, cw = w + dw;
+      if (cu < INT32_MIN || cu > INT32_MAX || cw < INT32_MIN || cw > INT32_MAX) continue;
+      const auto it = ruts.depths().find({static_cast<int32_t>(cu), static_cast<int32_t>(cw)});
+      if (it != ruts.depths().end()) sum += it->second;
+    }
+  return 0.25 * sum;
+}
+
+}  // namespace
+
+Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color) {
+  Mesh mesh;
+  const Eigen::Vector3d up = ruts.up();
+  // Half a cell along each axis of the grid.
+  const Eigen::Vector3d a = 0.5 * ruts.cell_size() * ruts.u_axis();
+  const Eigen::Vector3d b = 0.5 * ruts.cell_size() * up.cross(ruts.u_axis());
+  mesh.positions.reserve(4 * ruts.cells());
+  mesh.normals.reserve(4 * ruts.cells());
+  mesh.colors.reserve(4 * ruts.cells());
+  mesh.indices.reserve(6 * ruts.cells());
+  for (const auto& [cell, depth] : ruts.depths()) {
+    const int64_t u = cell.first, w = cell.second;
+    const Eigen::Vector3d c = ruts.CellCentre(cell.first, cell.second);
+    const Eigen::Vector3d corners[4] = {
+        c - a - b - CornerDepth(ruts, u, w) * up, c + a - b - CornerDepth(ruts, u + 1, w) * up,
+        c + a + b - CornerDepth(ruts, u + 1, w + 1) * up, c - a + b - CornerDepth(ruts, u, w + 1) * up};
+    // One normal per cell, across its diagonals.
+    const Eigen::Vector3f normal =
+        (corners[2] - corners[0]).cross(corners[3] - corners[1]).normalized().cast<float>();
+    const float shade = 1.0f - std::min(0.5f, 0.33f + 0.17f * std::min(1.0f, depth / 0.05f));
+    const auto first = static_cast<uint32_t>(mesh.positions.size());
+    for (const Eigen::Vector3d& corner : corners) {
+      mesh.positions.push_back(corner.cast<float>());
+      mesh.normals.push_back(normal);
+      mesh.colors.push_back(shade * color);
+    }
+    for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(first + k);
+  }
+  return mesh;
+}
+
+}  // namespace simpartner::viewer
