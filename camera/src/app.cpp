@@ -24,7 +24,7 @@
 #include "simpartner/text.h"
 #include "simpartner/viewer/bus.h"
 #include "simpartner/viewer/gl_window.h"
-#include "simpartner/viewer/png_image.h"
+#include "simpartner/png_image.h"
 #include "simpartner/viewer/scene.h"
 
 namespace simpartner::camera {
@@ -49,7 +49,7 @@ struct CameraRun {
   int64_t rendered = 0;
   double latency_sum_ms = 0;  // state published to image published
   double latency_max_ms = 0;
-  viewer::RgbImage last;
+  RgbImage last;
 };
 
 class CameraProcess {
@@ -200,9 +200,9 @@ class CameraProcess {
       if (c.last.pixels.empty()) continue;
       const std::string path = options_.save_dir + "/" + SafeFileName(c.sensor.name) + ".png";
       try {
-        viewer::WritePng(path, c.last);
+        WritePng(path, c.last);
         out_ << "simpartner-camera: wrote " << path << std::endl;
-      } catch (const viewer::PngError& e) {
+      } catch (const PngError& e) {
         Warn(std::string("frame not written: ") + e.what());
       }
     }

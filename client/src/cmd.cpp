@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "simpartner/client/client.h"
 #include "simpartner/client/image_summary.h"
@@ -120,6 +121,12 @@ std::optional<status_t> AwaitStatus(Client& client, double timeout,
   }
 }
 
+// The image of read --out could not be written (the writer's reason).
+class ImageFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct Options {
   std::string url;                 // --lcm-url, else lcmUrl of the parameters
   double timeout = 2.0;
@@ -127,6 +134,7 @@ struct Options {
   std::string body;
   bool follow = false;
   bool depth = false;  // read CAMERA: the depth image
+  std::string image_file;  // read CAMERA --out: where to write the image
   long count = -1;  // --follow: stop after this many (tests), -1 = forever
   int64_t simulation_id = 0;  // --sim: the simulation to talk to; 0 = the first heard
 };
@@ -150,6 +158,7 @@ Options MakeOptions(const CommandLine& command_line, const Parameters& params) {
   o.body = command_line.Text("body");
   o.follow = command_line.Has("follow");
   o.depth = command_line.Has("depth");
+  o.image_file = command_line.Text("out");
   o.count = static_cast<long>(command_line.Integer("count", o.count));
   o.simulation_id = command_line.Integer("sim", o.simulation_id);
   return o;
@@ -220,21 +229,36 @@ int RunActuatorCommand(const Options& o, std::ostream& out) {
 
 // A camera has no SIM_SENSOR reading: the next image simpartner-camera
 // renders of it (colour, or with --depth its depth image).
-int RunReadCamera(Client& client, const Target& target, const Options& o, std::ostream& out) {
+int RunReadCamera(Client& client, const Target& target, const Options& o, std::ostream& out,
+                  const ImageFileWriter& write_image) {
+  if (!o.image_file.empty() && !write_image)
+    throw UsageError("--out: this program writes no image files");
   const ImageKind kind = o.depth ? ImageKind::kDepth : ImageKind::kColour;
   client.LatestImage(target.qualified_name(), kind);  // starts receiving images
   const image_t image = client.WaitForImage(target.qualified_name(), -1, o.timeout, kind);
   out << target.name << " (camera) step " << image.step << ", t = " << FormatNumber(image.sim_time)
       << " s: " << SummariseImage(image) << "\n";
+  if (o.image_file.empty()) return kCmdOk;
+  try {
+    write_image(o.image_file, image);
+  } catch (const std::exception& e) {
+    throw ImageFileError(e.what());
+  }
+  out << "written to " << o.image_file
+      << (o.depth ? " (16-bit grey, millimetres)\n" : " (RGB)\n");
   return kCmdOk;
 }
 
-int RunRead(const Options& o, std::ostream& out) {
+int RunRead(const Options& o, std::ostream& out, const ImageFileWriter& write_image) {
   Client client(MakeClientOptions(o, true));
   const Target target = client.Find(o.words[1]);
   if (!target.is_sensor())
     throw UnknownTarget(o.words[1], {}, "'" + o.words[1] + "' is an actuator; read takes a sensor");
-  if (target.lcm_kind == sensor_t::KIND_CAMERA) return RunReadCamera(client, target, o, out);
+  if (target.lcm_kind == sensor_t::KIND_CAMERA)
+    return RunReadCamera(client, target, o, out, write_image);
+  if (!o.image_file.empty())
+    throw UsageError("--out is for a camera, and '" + o.words[1] + "' is not one (" +
+                     target.kind_name() + ")");
   if (o.depth)
     throw UsageError("--depth is for a camera, and '" + o.words[1] + "' is not one (" +
                      target.kind_name() + ")");
@@ -378,6 +402,7 @@ CommandLineSpec CmdCommandLine() {
       Text("body", "NAME", "only this body"),
       Switch("follow", "every one until interrupted, not only the newest"),
       Switch("depth", "a camera's depth image, not its colour image"),
+      Text("out", "FILE", "read CAMERA: also write the image to FILE (PNG; depth as 16-bit mm)"),
       Integer("count", "N", "with --follow: stop after N"),
       Integer("sim", "ID", "talk to the simulation of this id only (several sims on one bus); "
                            "default: the first sim heard")
@@ -395,7 +420,7 @@ CommandLineSpec CmdCommandLine() {
       {"read", {Positional{"SENSOR"}},
        "ask a sensor for a reading and print it; a camera:\n"
        "its next image's size, mean colour or depth range",
-       {"depth"}},
+       {"depth", "out"}},
       {"pause", {}, "pause the sim"},
       {"resume", {}, "resume a paused sim"},
       {"step", {Positional{"N"}}, "take N steps, then stay paused"},
@@ -414,7 +439,8 @@ CommandLineSpec CmdCommandLine() {
   return spec;
 }
 
-int RunCmd(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+int RunCmd(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+           const ImageFileWriter& write_image) {
   const char* prefix = "simpartner-cmd: ";
   const CommandLineSpec spec = CmdCommandLine();
   CommandLine command_line;
@@ -425,7 +451,7 @@ int RunCmd(const std::vector<std::string>& args, std::ostream& out, std::ostream
     const Options o = MakeOptions(command_line, params);
     const std::string& verb = o.words[0];
     if (verb == "set" || verb == "hold" || verb == "stops") return RunActuatorCommand(o, out);
-    if (verb == "read") return RunRead(o, out);
+    if (verb == "read") return RunRead(o, out, write_image);
     if (verb == "reset") return RunReset(o, out);
     if (verb == "model") return RunModel(o, out);
     if (verb == "state") return RunState(o, out);
@@ -451,6 +477,9 @@ int RunCmd(const std::vector<std::string>& args, std::ostream& out, std::ostream
   } catch (const SimRestarted& e) {
     err << prefix << e.what() << "\n";
     return kCmdRestarted;
+  } catch (const ImageFileError& e) {
+    err << prefix << e.what() << "\n";
+    return kCmdFileError;
   } catch (const ClientError& e) {
     err << prefix << e.what() << "\n";
     return kCmdUsage;

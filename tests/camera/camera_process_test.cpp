@@ -30,6 +30,7 @@
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
 #include "simpartner/client/cmd.h"
+#include "simpartner/png_image.h"
 #include "simpartner/image_t.hpp"
 #include "simpartner/model_t.hpp"
 #include "simpartner/state_t.hpp"
@@ -145,7 +146,9 @@ TEST(CameraProcess, EachImageShowsTheStateOfItsStep) {
   // simpartner-cmd read of the camera, beside the test's own listener.
   std::ostringstream read_out, read_err;
   std::future<int> read = std::async(std::launch::async, [&] {
-    return client::RunCmd({"read", "Eye", "--lcm-url", url, "--timeout", "10"}, read_out, read_err);
+    return client::RunCmd({"read", "Eye", "--lcm-url", url, "--timeout", "10", "--out",
+                           (dir / "eye.png").string()},
+                          read_out, read_err, WriteImagePng);
   });
   test_support::SimProcess sim((dir / "world.xml").string(), url, (dir / "sim.log").string(),
                                {"--stepsize=0.01", "--duration=1.2"});
@@ -227,6 +230,12 @@ TEST(CameraProcess, EachImageShowsTheStateOfItsStep) {
   ASSERT_NE(shown, first.end()) << line;
   EXPECT_NE(line.find("320x240 rgb8, mean colour "), std::string::npos) << line;
   EXPECT_EQ(line.find("mean colour 0.0 0.0 0.0"), std::string::npos) << line;
+  // --out wrote that image, pixel for pixel.
+  EXPECT_NE(line.find("written to " + (dir / "eye.png").string()), std::string::npos) << line;
+  const RgbImage file = ReadPng((dir / "eye.png").string());
+  ASSERT_EQ(file.width, shown->width);
+  ASSERT_EQ(file.height, shown->height);
+  EXPECT_TRUE(std::equal(file.pixels.begin(), file.pixels.end(), shown->data.begin()));
   if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 

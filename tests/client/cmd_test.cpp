@@ -335,7 +335,8 @@ TEST_F(CmdTest, UsageErrorsAndNoSim) {
                                              {"--timeout", "x", "status"},
                                              {"--frobnicate", "status"},
                                              {"pause", "--follow"},
-                                             {"model", "--body", "Torso"}}) {
+                                             {"model", "--body", "Torso"},
+                                             {"status", "--out", "x.png"}}) {
     r = RunInProcess(args);
     EXPECT_EQ(r.status, kCmdUsage) << r.err;
     EXPECT_TRUE(Contains(r.err, "simpartner-cmd: ")) << r.err;

@@ -4,14 +4,16 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include "simpartner/bitmap_font.h"
 #include "simpartner/viewer/keys.h"
 #include "simpartner/viewer/options.h"
-#include "simpartner/viewer/png_image.h"
+#include "simpartner/png_image.h"
 
 namespace simpartner::viewer {
 namespace {
@@ -102,6 +104,36 @@ TEST(PngTest, ErrorsNameTheFile) {
   std::filesystem::remove(not_png);
   image.pixels.resize(5);
   EXPECT_THROW(WritePng(TempPath("short.png").string(), image), PngError);
+}
+
+// A depth image of SIM_IMAGE as 16-bit grey millimetres (simpartner-cmd
+// read --depth --out). ReadPng keeps the high byte of each sample: mm / 256.
+TEST(PngTest, DepthImagesAreWrittenInMillimetres) {
+  image_t depth;
+  depth.width = 5;
+  depth.height = 1;
+  depth.format = image_t::FORMAT_DEPTH_F32;
+  const float metres[] = {1.0f, 10.0f, std::numeric_limits<float>::infinity(), 70.0f, 0.5f};
+  depth.data.resize(sizeof metres);
+  std::memcpy(depth.data.data(), metres, sizeof metres);
+  depth.num_bytes = static_cast<int32_t>(depth.data.size());
+  const std::string path = TempPath("depth.png").string();
+  WriteImagePng(path, depth);
+  const RgbImage back = ReadPng(path);
+  std::filesystem::remove(path);
+  ASSERT_EQ(back.width, 5);
+  // 1000, 10000 mm; nothing (inf) and beyond 65.535 m are 0; 500 mm.
+  const int high_bytes[] = {1000 / 256, 10000 / 256, 0, 0, 500 / 256};
+  for (int x = 0; x < 5; ++x) EXPECT_EQ(back.At(x, 0).r, high_bytes[x]) << "pixel " << x;
+  depth.data.resize(12);  // not 5 floats
+  try {
+    WriteImagePng(path, depth);
+    FAIL() << "no error";
+  } catch (const PngError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": depth image is 5 x 1 with 12 bytes"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 ViewerOptions Options(std::vector<std::string> args) {

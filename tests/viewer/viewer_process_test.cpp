@@ -33,7 +33,7 @@
 #include "simpartner/status_t.hpp"
 #include "simpartner/viewer/camera.h"
 #include "simpartner/viewer/options.h"
-#include "simpartner/viewer/png_image.h"
+#include "simpartner/png_image.h"
 #include "simpartner/viewer/xvfb.h"
 
 namespace simpartner::viewer {

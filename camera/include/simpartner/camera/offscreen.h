@@ -17,7 +17,7 @@
 namespace simpartner::camera {
 
 struct Frame {
-  viewer::RgbImage rgb;            // rows top to bottom
+  RgbImage rgb;            // rows top to bottom
   std::vector<float> depth_buffer; // 0 near .. 1 far, rows top to bottom; empty without depth
 };
 

@@ -16,7 +16,7 @@
 #include "simpartner/viewer/camera.h"
 #include "simpartner/viewer/mesh.h"
 #include "simpartner/viewer/toggles.h"
-#include "simpartner/viewer/png_image.h"
+#include "simpartner/png_image.h"
 #include "simpartner/viewer/scene.h"
 
 namespace simpartner::viewer {
