@@ -114,6 +114,15 @@ def soil_drive():
     w.write()
 
 
+def sensor_rig():
+    """experiments_sensors.cpp: the turntable at rest 1 s, then at 2 rad/s."""
+    w = Writer("sensor_rig_spin.xml", "models/worlds/sensor_rig.xml",
+               "the sensor turntable at rest for 1 s, then turned at 2 rad/s")
+    w.set(1.0, "TableMotor", [1000.0, 2.0])
+    w.end(1.0 + 100.0)
+    w.write()
+
+
 def test_track():
     """experiments_robot.cpp TestTrack."""
     w = Writer("gen4_test_track.xml", "models/worlds/test_track.xml",
@@ -328,6 +337,7 @@ def main():
            "rolls without slip on a cot(alpha/2) (contactMu 1)" % matched)
     skid()
     soil_drive()
+    sensor_rig()
     test_track()
     scanner()
     pole_task()

@@ -459,6 +459,22 @@ TEST(Validation, Gen3OnSandMatchesTheSingleWheelInItsRuts) {
   EXPECT_TRUE(r.Passed());
 }
 
+// Issue 27: the sensor rig's closed forms on both engines (quick: 10 s
+// turning, 1,000 IMU samples, the statistical tolerances widened to match).
+TEST(Validation, SensorRigMeetsItsClosedFormsOnBothEngines) {
+  for (const char* engine : {"ode", "mujoco"}) {
+    Context context = Quick();
+    context.params.engine = engine;
+    const ExperimentResult r = RunExperiment(*FindExperiment("sensors"), context);
+    EXPECT_EQ(r.error, "") << engine;
+    EXPECT_NEAR(r.Measured("TableImu turning: acceleration toward the axis"), 2.0 * 2.0 * 0.8,
+                0.001 * 3.2)
+        << engine;
+    EXPECT_EQ(r.Measured("SpindleEncoder readings off"), 0) << engine;
+    EXPECT_TRUE(r.Passed()) << engine;
+  }
+}
+
 TEST(Validation, SoilIsNotApplicableOnMujoco) {
   Context context = Quick();
   context.params.engine = "mujoco";

@@ -61,6 +61,7 @@ const std::vector<Experiment>& Experiments() {
        SoilMultiPass},
       {"soil_robot", "Issue 28 (e): gen3 driven on dry sand and snow vs hard ground", false,
        SoilRobot},
+      {"sensors", "Issue 27: IMU, encoder, lidar and GNSS on a turntable rig", false, Sensors},
   };
   return kExperiments;
 }

@@ -146,10 +146,11 @@ void SimRun::RunUntil(double t, const std::function<void()>& each_step) {
       throw Error(world_name_ + ": the simulation faulted at t = " + FormatNumber(sim_->time()) +
                   " s: " + reasons);
     }
-    // Replies and readings would go on the bus; here nobody reads them.
+    if (each_step) each_step();
+    // Replies and readings would go on the bus; here only each_step may
+    // have taken them.
     sim_->TakeReplies();
     sim_->TakeSensorReadings();
-    if (each_step) each_step();
     if ((sim_->step() & 1023) == 0 && context_.progress) {
       const auto now = Clock::now();
       if (std::chrono::duration<double>(now - last_report).count() >= kProgressEverySeconds) {

@@ -106,5 +106,7 @@ ExperimentResult SoilStepSize(const Context& context);
 ExperimentResult SoilMultiPass(const Context& context);
 // Issue 28 (e): gen3 on the shipped soil worlds (experiments_soil_robot.cpp).
 ExperimentResult SoilRobot(const Context& context);
+// Issue 27's field sensors on the sensor rig (experiments_sensors.cpp).
+ExperimentResult Sensors(const Context& context);
 
 }  // namespace simpartner::validate
