@@ -17,6 +17,11 @@ constexpr double kLeastStiffness = 1.0;
 // slope is flat.
 constexpr double kMostSlip = 1.0;
 
+// A friction row's compliance [m/(N s)] for a shear force of slope
+// `slope` [N s/m] against the row's velocity: ODE's slip, -1 / slope,
+// at most kMostSlip where the slope is flat.
+double Compliance(double slope) { return slope < -1.0 / kMostSlip ? -1.0 / slope : kMostSlip; }
+
 // A unit vector along the surface: the memory's first coordinate.
 Eigen::Vector3d AlongSurface(const Eigen::Vector3d& up) {
   const Eigen::Vector3d seed =
@@ -76,8 +81,13 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   // velocity v of the lowest rim point, and its slope.
   const double slip_velocity = now.forward_speed - state.radius * now.spin;
   const double thrust = now.shear_force.dot(forward);
-  const double slip1 =
-      slopes.thrust_slope < -1.0 / kMostSlip ? -1.0 / slopes.thrust_slope : kMostSlip;
+  const double slip1 = Compliance(slopes.thrust_slope);
+  // Second, across (ODE's second direction, normal x fdir1): the shear's
+  // side force against the wheel's speed along it, and its slope.
+  const Eigen::Vector3d across = up.cross(forward);
+  const double side_velocity = state.velocity.dot(across);
+  const double side_force = now.side_force * state.axle.dot(across);
+  const double slip2 = Compliance(slopes.side_slope);
 
   dContact contact{};
   contact.geom.g1 = wheel;
@@ -92,14 +102,15 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   // Without dContactApprox1 ODE's mu and mu2 are force bounds [N]: the
   // soil's shear strength over the loaded arc, whatever the row's force.
   contact.surface.mode = dContactSoftERP | dContactSoftCFM | dContactFDir1 | dContactMu2 |
-                         dContactSlip1 | dContactSlip2 | dContactMotion1;
+                         dContactSlip1 | dContactSlip2 | dContactMotion1 | dContactMotion2;
   contact.surface.mu = now.shear_strength;
   contact.surface.mu2 = now.shear_strength;
   contact.surface.soft_erp = 0.0;
   contact.surface.soft_cfm = 1.0 / (params_.stepsize * stiffness);
   contact.surface.slip1 = slip1;
   contact.surface.motion1 = slip_velocity + slip1 * thrust;
-  contact.surface.slip2 = params_.contactSlip;
+  contact.surface.slip2 = slip2;
+  contact.surface.motion2 = side_velocity + slip2 * side_force;
   ToOdeVector(forward, contact.fdir1);
   out->contact = contact;
 

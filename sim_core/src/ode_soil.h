@@ -13,10 +13,11 @@
 //     soil's shear force as a function of the slip velocity v of the rim's
 //     lowest point, linearized there: T(v) = T0 + T' (v - v0) is ODE's
 //     row with motion1 = v0 + s T0 and slip1 s = -1 / T';
-//   - the second, across, holds with the soil's shear strength as its
-//     bound (no lateral shear deformation yet); both bounds are forces
-//     (no dContactApprox1), as the row's normal force is only the step's
-//     increment;
+//   - the second, across, is the soil's side force as a function of the
+//     wheel's speed along its axle, linearized the same way (motion2,
+//     slip2); both rows are bounded by the soil's shear strength over the
+//     arc, as forces (no dContactApprox1), as the row's normal force is
+//     only the step's increment;
 //   - the shear's torque beyond what the row's force gives at the rim is
 //     added as a torque.
 // The soil records how deep each wheel presses it as it answers it, so

@@ -80,16 +80,40 @@ double ArcHalfAngle(double sinkage, double radius, bool* stuck) {
   return std::acos(1.0 - depth / radius);
 }
 
-// Wong and Reece's shear displacement of the rim point at theta (sine
-// sin_theta), which entered the soil at theta_entry (sine sin_entry): the
-// arc's front edge for a wheel spinning forward, its rear edge for one
-// spinning backward (EntryAngle).
-double ShearDisplacement(const Soil& soil, double radius, double v, double omega,
-                         double theta_entry, double sin_entry, double theta, double sin_theta) {
-  if (std::abs(omega) > kStillSpin)
-    return radius * (theta_entry - theta) - (v / omega) * (sin_entry - sin_theta);
-  if (std::abs(v) > kStillSpeed) return -std::copysign(kSlidFar * soil.shear_modulus, v);
-  return 0.0;
+// How far the rim point at theta (sine sin_theta) has sheared the soil
+// since it entered it at theta_entry (sine sin_entry): the arc's front
+// edge for a wheel spinning forward, its rear edge for one spinning
+// backward (EntryAngle). Along the rim, Wong and Reece's
+//   j_x = r (theta_e - theta) - (v / omega) (sin theta_e - sin theta);
+// across it, the wheel's side speed v_y over the time the point has been
+// in the soil, (theta_e - theta) / omega, against that speed:
+//   j_y = -v_y (theta_e - theta) / omega.
+// A wheel that does not turn has slid far wherever it moves.
+struct Displacement {
+  double along = 0.0, across = 0.0;
+};
+
+double SlidFar(const Soil& soil, double speed) {
+  return std::abs(speed) > kStillSpeed ? -std::copysign(kSlidFar * soil.shear_modulus, speed) : 0.0;
+}
+
+Displacement ShearDisplacement(const Soil& soil, double radius, double v, double side_speed,
+                               double omega, double theta_entry, double sin_entry, double theta,
+                               double sin_theta) {
+  if (std::abs(omega) <= kStillSpin) return {SlidFar(soil, v), SlidFar(soil, side_speed)};
+  const double turned = theta_entry - theta;
+  return {radius * turned - (v / omega) * (sin_entry - sin_theta), -side_speed * turned / omega};
+}
+
+// The shear stress [Pa] along and across the rim at normal stress sigma
+// after displacement d: Janosi and Hanamoto's law of the whole
+// displacement |d|, in its direction (Wong's combined slip), so a side
+// slip takes from the strength left for traction.
+Displacement ShearStress(const Soil& soil, double sigma, const Displacement& d) {
+  const double j = std::hypot(d.along, d.across);
+  if (j == 0.0) return {};
+  const double tau = soil.Shear(sigma, j);
+  return {tau * d.along / j, tau * d.across / j};
 }
 
 // Where the rim's points enter the loaded arc at spin omega.
@@ -173,8 +197,10 @@ double PressureWithMemory(const Soil& soil, double z, double z_max, double b) {
 
 namespace {
 
-// The spin step [rad/s] of the difference that gives the shear's slope.
+// The spin step [rad/s] and side speed step [m/s] of the differences that
+// give the shear's slopes.
 constexpr double kSpinStep = 1e-3;
+constexpr double kSideStep = 1e-3;
 
 // One point of the arc: its angle, and the normal stress there and its
 // slope against sinkage.
@@ -247,37 +273,52 @@ WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSu
     }
   }
   const double area = b * r * step;
+  out.side_speed = wheel.velocity.dot(wheel.axle);
   const double faster_spin = out.spin + kSpinStep;
   const double entry = EntryAngle(out, out.spin), sin_entry = std::sin(entry);
   const double faster_entry = EntryAngle(out, faster_spin);
   const double sin_faster_entry = std::sin(faster_entry);
-  double thrust = 0.0, faster_thrust = 0.0, stiffness = 0.0;
+  double thrust = 0.0, faster_thrust = 0.0, side = 0.0, faster_side = 0.0, stiffness = 0.0;
+  auto displacement = [&](double spin, double side_speed, double entry_angle, double sin_entry_angle,
+                          const ArcSample& a) {
+    return ShearDisplacement(soil, r, out.forward_speed, side_speed, spin, entry_angle,
+                             sin_entry_angle, a.theta, a.sin_theta);
+  };
   for (const ArcSample& a : arc) {
     if (a.sigma <= 0.0) continue;
     const Eigen::Vector3d inward = a.cos_theta * frame.up - a.sin_theta * frame.forward;
     const Eigen::Vector3d tangent = a.cos_theta * frame.forward + a.sin_theta * frame.up;
-    const double j = ShearDisplacement(soil, r, out.forward_speed, out.spin, entry, sin_entry,
-                                       a.theta, a.sin_theta);
-    const double tau = soil.Shear(a.sigma, j);
+    const Displacement tau = ShearStress(
+        soil, a.sigma, displacement(out.spin, out.side_speed, entry, sin_entry, a));
     out.normal_force += a.sigma * area * inward;
-    out.shear_force += tau * area * tangent;
-    out.shear_torque += r * tau * area;
+    out.shear_force += area * (tau.along * tangent + tau.across * wheel.axle);
+    out.shear_torque += r * tau.along * area;
+    out.side_force += tau.across * area;
     out.shear_strength += (soil.cohesion + a.sigma * soil.tan_phi) * area;
     out.contact_area += area;
     if (!slopes) continue;
-    thrust += tau * area * a.cos_theta;
-    const double j_faster = ShearDisplacement(soil, r, out.forward_speed, faster_spin,
-                                              faster_entry, sin_faster_entry, a.theta, a.sin_theta);
-    faster_thrust += soil.Shear(a.sigma, j_faster) * area * a.cos_theta;
+    thrust += tau.along * area * a.cos_theta;
+    side += tau.across * area;
+    faster_thrust += ShearStress(soil, a.sigma,
+                                 displacement(faster_spin, out.side_speed, faster_entry,
+                                              sin_faster_entry, a))
+                         .along *
+                     area * a.cos_theta;
+    faster_side += ShearStress(soil, a.sigma,
+                               displacement(out.spin, out.side_speed + kSideStep, entry, sin_entry,
+                                            a))
+                       .across *
+                   area;
     // tau's share: strength (c + sigma tan phi) times the same factor of j.
     const double strength = soil.cohesion + a.sigma * soil.tan_phi;
-    const double dtau = strength > 0.0 ? tau * soil.tan_phi / strength : 0.0;
+    const double dtau = strength > 0.0 ? tau.along * soil.tan_phi / strength : 0.0;
     stiffness += a.dsigma * area * (inward.dot(surface.up) + dtau * tangent.dot(surface.up));
   }
   out.touching = out.contact_area > 0.0;
   if (slopes) {
     slopes->stiffness = stiffness;
     slopes->thrust_slope = (faster_thrust - thrust) / (-r * kSpinStep);
+    slopes->side_slope = (faster_side - side) / kSideStep;
   }
   return out;
 }

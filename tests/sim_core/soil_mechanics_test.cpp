@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <ostream>
 #include <string>
 
@@ -270,6 +271,47 @@ TEST(RollingWheel, BackwardIsTheMirrorOfForward) {
     EXPECT_NEAR(b.shear_torque, -f.shear_torque, 1e-9 * std::abs(f.shear_torque));
     EXPECT_NEAR(b.slip, f.slip, 1e-12);
   }
+}
+
+// A wheel slipping sideways at slip angle alpha on untouched soil: its
+// side force and pull against Wong's combined-slip integral (the rim
+// point's displacement along the rim and across it, one Janosi-Hanamoto
+// law of the whole): a side force against the side speed, growing with
+// alpha, and the pull less than without it.
+TEST(RollingWheel, SideSlipGivesWongsSideForceAndTakesFromThePull) {
+  const model::SoilParameters& p = kDrySand;
+  const Soil soil = Soil::From(p);
+  const double z0 = 0.03, slip = 0.2, omega = 2.0, v = (1.0 - slip) * kRadius * omega;
+  const SoilMemory rolled = RolledTo(z0, 0.0005);  // its own track behind it, as Wong's wheel
+  double last_side = 0;
+  for (const double alpha_deg : {2.0, 5.0, 15.0}) {
+    const double tan_alpha = std::tan(alpha_deg * kPi / 180);
+    const validate::SideSlipForces expected =
+        validate::RollingWheelSideSlip(p, kRadius, kWidth, z0, slip, tan_alpha);
+    WheelState wheel = WheelSunk(z0);
+    wheel.velocity = Eigen::Vector3d(v, 0, v * tan_alpha);  // the axle is +z
+    wheel.angular_velocity = Eigen::Vector3d(0, 0, -omega);
+    const WheelSoilForces f = WheelOnSoil(soil, wheel, SoilSurface{}, rolled, 256);
+    const double load = f.Force().y();
+    std::printf("alpha %.0f deg: side force %.2f N (Wong %.2f), pull %.2f N (Wong %.2f)\n",
+                alpha_deg, f.side_force, expected.side, f.Force().x(), expected.pull);
+    EXPECT_NEAR(f.side_speed, v * tan_alpha, 1e-12);
+    EXPECT_LT(f.side_force, 0.0) << alpha_deg;
+    EXPECT_NEAR(f.side_force, expected.side, 0.005 * load) << "alpha " << alpha_deg;
+    EXPECT_NEAR(f.Force().z(), f.side_force, 1e-9 * load);
+    EXPECT_NEAR(f.Force().x(), expected.pull, 0.005 * load) << "alpha " << alpha_deg;
+    EXPECT_LT(f.side_force, last_side);
+    last_side = f.side_force;
+  }
+  WheelState straight = WheelSunk(z0);
+  straight.velocity = Eigen::Vector3d(v, 0, 0);
+  straight.angular_velocity = Eigen::Vector3d(0, 0, -omega);
+  const WheelSoilForces f0 = WheelOnSoil(soil, straight, SoilSurface{}, rolled, 256);
+  EXPECT_EQ(f0.side_force, 0.0);
+  WheelState sideways = straight;
+  sideways.velocity.z() = v * std::tan(15 * kPi / 180);
+  EXPECT_LT(WheelOnSoil(soil, sideways, SoilSurface{}, rolled, 256).Force().x(),
+            f0.Force().x());
 }
 
 TEST(RollingWheel, AWheelSunkPastItsAxleIsStuckNotNaN) {

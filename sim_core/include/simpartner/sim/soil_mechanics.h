@@ -15,7 +15,11 @@
 //     built up since it entered the soil (Wong and Reece):
 //       j(theta) = r (theta_e - theta) - (v / omega) (sin theta_e - sin theta),
 //     theta_e the edge where the rim enters the soil: the front edge
-//     theta_f spinning forward, the rear edge theta_r spinning backward.
+//     theta_f spinning forward, the rear edge theta_r spinning backward;
+//     a wheel that also moves along its axle at v_y shears the soil
+//     across too, j_y = -v_y (theta_e - theta) / omega (its speed over the
+//     time the point has been in the soil), and the law takes the whole
+//     displacement |(j, j_y)| in its direction (Wong's combined slip).
 // Summed over the loaded arc (the wheel's width b times r dtheta) they
 // are the soil's force on the wheel. The soil remembers how deep it was
 // pressed (SoilMemory), so ruts stay and a second pass meets soil already
@@ -136,6 +140,10 @@ struct WheelSoilForces {
   // Torque of the shear stresses about the axle [N m] (resisting a
   // driven wheel's spin: negative along the spin's sense).
   double shear_torque = 0.0;
+  // The wheel's speed along its axle [m/s], and the shear's force along
+  // the axle [N] (against that speed: the side force).
+  double side_speed = 0.0;
+  double side_force = 0.0;
 
   Eigen::Vector3d Force() const { return normal_force + shear_force; }
 };
@@ -151,6 +159,8 @@ struct WheelSoilSlopes {
   // velocity v - r omega of the lowest rim point, by a difference in spin
   // (kSpinStep of soil_mechanics.cpp; the viscosity's share is left out).
   double thrust_slope = 0.0;
+  // d(side force) / d(side speed) [N s/m], by a difference in side speed.
+  double side_slope = 0.0;
 };
 
 // The stresses on `wheel` from `soil` under `surface`, pressed before as

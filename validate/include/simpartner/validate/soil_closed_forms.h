@@ -131,6 +131,40 @@ inline double RollingShearTorque(const model::SoilParameters& p, double r, doubl
   return b * r * r * Simpson(a.tau, a.rear, a.front, intervals);
 }
 
+// That wheel also slipping sideways, at slip angle alpha (its centre's
+// side speed over its forward speed, tan alpha): the soil under a rim
+// point is sheared along the rim by Wong and Reece's j_x and across it by
+// j_y = r (1 - i) tan(alpha) (theta_f - theta) (the side speed times the
+// time since the point entered the soil), and Janosi and Hanamoto's law
+// takes the whole displacement in its direction (Wong, 2008, ch. 2.5,
+// combined slip). The side force [N] is against the side speed.
+struct SideSlipForces {
+  double pull = 0;  // b r int (tau_x cos - sigma sin) [N]
+  double side = 0;  // b r int tau_y, along the side speed [N] (negative)
+};
+
+inline SideSlipForces RollingWheelSideSlip(const model::SoilParameters& p, double r, double b,
+                                           double z0, double slip, double tan_alpha,
+                                           int intervals = kSimpsonIntervals) {
+  const RollingArc a = RollingStresses(p, r, b, z0, slip, 0.0);
+  const double tan_phi = std::tan(p.friction_angle * M_PI / 180);
+  auto shear = [&](double t, bool across) {
+    const double jx = r * ((a.front - t) - (1 - slip) * (std::sin(a.front) - std::sin(t)));
+    const double jy = -r * (1 - slip) * tan_alpha * (a.front - t);
+    const double j = std::hypot(jx, jy);
+    if (j == 0) return 0.0;
+    const double tau =
+        (p.cohesion * 1e3 + a.sigma(t) * tan_phi) * (1 - std::exp(-j / p.shear_modulus));
+    return tau * (across ? jy : jx) / j;
+  };
+  SideSlipForces out;
+  out.pull = b * r *
+             Simpson([&](double t) { return shear(t, false) * std::cos(t) - a.sigma(t) * std::sin(t); },
+                     a.rear, a.front, intervals);
+  out.side = b * r * Simpson([&](double t) { return shear(t, true); }, a.rear, a.front, intervals);
+  return out;
+}
+
 // The sinkage at which that wheel carries `load` (bisection).
 inline double RollingSinkage(const model::SoilParameters& p, double r, double b, double slip,
                              double load, double rut = 0.0, int intervals = kSimpsonIntervals) {
