@@ -43,8 +43,7 @@ std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,
   return std::make_unique<OdeWorld>(model, params);
 }
 
-std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string& why,
-                                    bool surface) {
+std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string& why) {
   std::vector<Diagnostic> out;
   auto check = [&](const char* ground, const std::string& material_name) {
     const model::Material* m = material_name.empty() ? nullptr : world.FindMaterial(material_name);
@@ -53,17 +52,14 @@ std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string
                              std::string(ground) + " material '" + m->name + "' is a soil: " +
                                  why});
   };
-  if (world.has_plane && surface) check("surface", world.plane_material);
+  if (world.has_plane) check("surface", world.plane_material);
   if (world.heightfield) check("heightfield", world.heightfield->material);
   return out;
 }
 
 std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parameters& params) {
   if (params.engine == "mujoco") return MujocoLimits(model, params);
-  // ODE's wheel-soil contact (ode_soil.h) has a plane of soil only.
-  return SoilGrounds(*model.world,
-                     "soil on a heightfield is not simulated yet (a surface of soil is)",
-                     /*surface=*/false);
+  return {};  // ODE's wheel-soil contact (ode_soil.h) takes a plane or a heightfield of soil
 }
 
 std::vector<std::string> ParametersTheEngineIgnores(const Parameters& params) {

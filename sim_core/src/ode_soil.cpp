@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace simpartner::sim {
 namespace {
@@ -41,6 +42,51 @@ void OdeSoil::AddGround(dGeomID plane, const model::SoilParameters& soil) {
   grounds_.emplace(plane, std::move(ground));
 }
 
+void OdeSoil::AddHeightfield(dGeomID field, const model::SoilParameters& soil,
+                             const model::Heightfield& shape, const Eigen::Isometry3d& pose) {
+  Ground ground{Soil::From(soil), SoilSurface{}, SoilMemory{}, &shape, pose};
+  grounds_.emplace(field, std::move(ground));
+}
+
+SoilSurface OdeSoil::SurfaceUnder(const Ground& ground, const WheelState& wheel) {
+  if (ground.shape == nullptr) return ground.surface;
+  const model::Heightfield& h = *ground.shape;
+  // In the field's frame (y up): the lowest rim point for the field's up,
+  // then again for the normal found there.
+  const Eigen::Isometry3d to_field = ground.pose.inverse();
+  const Eigen::Vector3d centre = to_field * wheel.centre;
+  const Eigen::Vector3d axle = to_field.linear() * wheel.axle;
+  // Slopes of the interpolated surface by differences over a quarter cell
+  // each way, inside the field (its heights are clamped at the border).
+  auto slope = [](double at, double cell, double half_extent,
+                  const std::function<double(double)>& height) {
+    const double lo = std::clamp(at - 0.25 * cell, -half_extent, half_extent);
+    const double hi = std::clamp(at + 0.25 * cell, -half_extent, half_extent);
+    return hi > lo ? (height(hi) - height(lo)) / (hi - lo) : 0.0;
+  };
+  const double dx = h.width / std::max(1, h.columns - 1), dz = h.depth / std::max(1, h.rows - 1);
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY(), lowest = centre;
+  for (int pass = 0; pass < 2; ++pass) {
+    const Eigen::Vector3d in_plane = up - up.dot(axle) * axle;
+    if (in_plane.norm() < 1e-6) break;  // axle upright: no lowest point
+    lowest = centre - wheel.radius * in_plane.normalized();
+    const double x = lowest.x(), z = lowest.z();
+    const double slope_x = slope(x, dx, 0.5 * h.width, [&](double u) { return h.HeightAt(u, z); });
+    const double slope_z = slope(z, dz, 0.5 * h.depth, [&](double w) { return h.HeightAt(x, w); });
+    up = Eigen::Vector3d(-slope_x, 1.0, -slope_z).normalized();
+  }
+  SoilSurface surface;
+  surface.origin = ground.pose * Eigen::Vector3d(lowest.x(), h.HeightAt(lowest.x(), lowest.z()),
+                                                 lowest.z());
+  surface.up = ground.pose.linear() * up;
+  surface.u_axis = AlongSurface(surface.up);
+  surface.keyed_apart = true;
+  surface.key_origin = ground.pose.translation();
+  surface.key_u = ground.pose.linear() * Eigen::Vector3d::UnitX();
+  surface.key_w = ground.pose.linear() * Eigen::Vector3d::UnitZ();
+  return surface;
+}
+
 WheelState OdeSoil::StateOf(dGeomID wheel, dBodyID body) const {
   WheelState state;
   dReal radius = 0, length = 0;
@@ -61,18 +107,19 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   if (dGeomGetClass(wheel) != dCylinderClass) return false;
   Ground& ground = grounds_.at(ground_geom);
   const WheelState state = StateOf(wheel, body);
+  const SoilSurface surface = SurfaceUnder(ground, state);
   WheelSoilSlopes slopes;
   // The soil keeps this state's rut as it answers it.
   const WheelSoilForces now =
-      PressWheelOnSoil(ground.soil, state, ground.surface, &ground.memory, kArcSamples, &slopes);
+      PressWheelOnSoil(ground.soil, state, surface, &ground.memory, kArcSamples, &slopes);
   last_[wheel] = now;
   if (!now.touching) return true;
-  const Eigen::Vector3d up = ground.surface.up;
+  const Eigen::Vector3d up = surface.up;
   const Eigen::Vector3d in_plane = up - up.dot(state.axle) * state.axle;
   const Eigen::Vector3d wheel_up = in_plane.normalized();
   const Eigen::Vector3d forward = wheel_up.cross(state.axle).normalized();
   pressing_.push_back(
-      Pressed{wheel, &ground.surface, forward, state.axle, state.centre - state.radius * wheel_up,
+      Pressed{wheel, surface, forward, state.axle, state.centre - state.radius * wheel_up,
               state.width});
 
   // Normal: the soil's stiffness against sinking further.

@@ -1,5 +1,6 @@
 // Wheels on soft soil inside ODE's step (issue 28, docs/soil.md): for a
-// wheel (a cylinder geom) on a ground plane of soil, one contact joint
+// wheel (a cylinder geom) on a ground plane or heightfield of soil (under
+// the wheel: its tangent plane there), one contact joint
 // whose rows carry the soil's force of this state, linearized so that
 // ODE solves it implicitly with the rest of the step, and no rigid
 // contact. soil_mechanics.h gives the stresses; this file turns them into
@@ -27,6 +28,7 @@
 #include <ode/ode.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <optional>
 #include <unordered_map>
@@ -44,6 +46,11 @@ class OdeSoil {
 
   // A ground plane of soil.
   void AddGround(dGeomID plane, const model::SoilParameters& soil);
+  // A heightfield of soil: `field` placed at `pose` (its frame y-up, as
+  // ODE's), heights from `shape` (kept by the caller). Each wheel meets
+  // the tangent plane of the field under its lowest point.
+  void AddHeightfield(dGeomID field, const model::SoilParameters& soil,
+                      const model::Heightfield& shape, const Eigen::Isometry3d& pose);
   bool IsGround(dGeomID geom) const { return grounds_.count(geom) > 0; }
 
   // The contact of `wheel` (a geom of body `body`) with soil `ground`
@@ -65,7 +72,7 @@ class OdeSoil {
   // The wheels that pressed soil in the last step, and in what frame.
   struct Pressed {
     dGeomID wheel;
-    const SoilSurface* surface;  // of the soil it pressed
+    SoilSurface surface;         // of the soil it pressed (a heightfield's: under it)
     Eigen::Vector3d forward;     // the wheel's rolling direction
     Eigen::Vector3d axle;        // unit
     Eigen::Vector3d lowest;      // its lowest rim point
@@ -76,10 +83,15 @@ class OdeSoil {
  private:
   struct Ground {
     Soil soil;
-    SoilSurface surface;
+    SoilSurface surface;  // a plane's
     SoilMemory memory;
+    const model::Heightfield* shape = nullptr;  // a heightfield's
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   };
   WheelState StateOf(dGeomID wheel, dBodyID body) const;
+  // The surface `wheel` meets on `ground`: the plane, or the heightfield's
+  // tangent plane under the wheel's lowest point.
+  static SoilSurface SurfaceUnder(const Ground& ground, const WheelState& wheel);
 
   const Parameters& params_;
   std::unordered_map<dGeomID, Ground> grounds_;

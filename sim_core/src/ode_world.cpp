@@ -217,6 +217,12 @@ void OdeWorld::Build() {
     heightfield_pose_.linear() = r;
     heightfield_pose_.translation() = h.position;
     add_geom_info(field, -1, -1, h.material);
+    const model::Material* material = h.material.empty() ? nullptr : world.FindMaterial(h.material);
+    if (material != nullptr && material->soil) {
+      if (!soil_) soil_ = std::make_unique<OdeSoil>(params_);
+      soil_->AddHeightfield(field, *material->soil, h, heightfield_pose_);
+      rigid_on_soil_said_.assign(model_.bodies.size(), false);
+    }
   }
 
   // Bodies: ODE puts the body origin at the centre of mass, so the geometry
@@ -720,9 +726,9 @@ std::vector<WheelSoilReadout> OdeWorld::ReadWheelSoil() const {
     wheel.axle = pressed.axle;
     wheel.lowest_point = pressed.lowest;
     wheel.width = pressed.width;
-    wheel.surface_origin = pressed.surface->origin;
-    wheel.up = pressed.surface->up;
-    wheel.surface_u_axis = pressed.surface->u_axis;
+    wheel.surface_origin = pressed.surface.origin;
+    wheel.up = pressed.surface.up;
+    wheel.surface_u_axis = pressed.surface.u_axis;
     wheel.axle_torque = forces.shear_torque;
     wheel.stuck = forces.stuck;
     out.push_back(wheel);

@@ -37,7 +37,12 @@ double HeightAbove(const SoilSurface& surface, const Eigen::Vector3d& point) {
   return (point - surface.origin).dot(surface.up);
 }
 
+// Where `point` is in the memory's grid.
 Eigen::Vector2d GroundCoordinates(const SoilSurface& surface, const Eigen::Vector3d& point) {
+  if (surface.keyed_apart) {
+    const Eigen::Vector3d d = point - surface.key_origin;
+    return {d.dot(surface.key_u), d.dot(surface.key_w)};
+  }
   const Eigen::Vector3d d = point - surface.origin;
   return {d.dot(surface.u_axis), d.dot(surface.up.cross(surface.u_axis))};
 }

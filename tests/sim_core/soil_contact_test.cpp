@@ -37,8 +37,21 @@ std::string WheelWorld() {
 </world>)";
 }
 
-std::unique_ptr<Simulation> MakeWheelOnSand(double stepsize) {
-  model::World world = LoadInline(WheelWorld());
+// The same wheel over a 4 x 4 m heightfield of sand (2 x 2 samples, row
+// by row along z, x from -2 to 2) instead of the surface, at height y.
+std::string HeightfieldWorld(const std::string& samples, double y) {
+  return R"(<world name="Soil">)" + testing::Vec("gravity", 0, -kG, 0) +
+         R"(<material name="sand"><mu>0.5</mu></material>
+  <heightfield rows="2" columns="2" material="sand"><width>4</width><depth>4</depth><samples>)" +
+         samples + R"(</samples></heightfield>
+  <object type="Cylinder" name="Wheel"><mass>50</mass><radius>0.3</radius><length>0.2</length>)" +
+         Transform(0, y, 0) + R"(</object>
+</world>)";
+}
+
+std::unique_ptr<Simulation> MakeWheelOnSand(double stepsize,
+                                            const std::string& world_xml = WheelWorld()) {
+  model::World world = LoadInline(world_xml);
   world.materials.at(0).soil = DrySand();
   Parameters params;
   params.stepsize = stepsize;
@@ -53,8 +66,9 @@ double BekkerSinkage() {
 
 // Lowered over 2 s (a support force falling from m g to 0: the soil is
 // loaded, never overshot and unloaded), then left 1 s; null on a failed step.
-std::unique_ptr<Simulation> SettledWheel(double stepsize) {
-  auto sim = MakeWheelOnSand(stepsize);
+std::unique_ptr<Simulation> SettledWheel(double stepsize,
+                                         const std::string& world_xml = WheelWorld()) {
+  auto sim = MakeWheelOnSand(stepsize, world_xml);
   const int wheel = sim->flat().FindBody("", "Wheel");
   const int ramp = static_cast<int>(std::lround(2.0 / stepsize));
   const int rest = static_cast<int>(std::lround(1.0 / stepsize));
@@ -86,6 +100,29 @@ TEST(SoilContact, AWheelRestsAtBekkersSinkageAtAnyStep) {
     EXPECT_NEAR(sinkage, expected, 0.005 * expected) << "step " << h;
     EXPECT_LT(drift.norm(), 1e-6) << "step " << h;
   }
+}
+
+// A heightfield of soil is the same soil: on a level field 0.5 m up the
+// wheel rests at Bekker's sinkage below it, without drifting.
+TEST(SoilContact, AWheelRestsAtBekkersSinkageOnAHeightfieldOfSoil) {
+  auto sim = SettledWheel(0.001, HeightfieldWorld("0.5 0.5 0.5 0.5", 0.5 + kRadius));
+  ASSERT_TRUE(sim);
+  const BodyReadout b = sim->engine().ReadBody(sim->flat().FindBody("", "Wheel"));
+  const double expected = BekkerSinkage();
+  EXPECT_NEAR(0.5 + kRadius - b.position.y(), expected, 0.005 * expected);
+  EXPECT_LT(Eigen::Vector3d(b.position.x(), 0, b.position.z()).norm(), 1e-6);
+}
+
+// On a sloping field the wheel meets the tangent plane under it: slope
+// 0.1 along x, so the soil's normal is (-0.1, 1, 0) normalized.
+TEST(SoilContact, OnASlopingHeightfieldTheSoilsNormalIsTheSlopes) {
+  auto sim = MakeWheelOnSand(0.001, HeightfieldWorld("-0.2 0.2 -0.2 0.2", kRadius - 0.005));
+  ASSERT_TRUE(sim->Step());
+  const std::vector<WheelSoilReadout> wheels = sim->engine().ReadWheelSoil();
+  ASSERT_EQ(wheels.size(), 1u);
+  const Eigen::Vector3d expected = Eigen::Vector3d(-0.1, 1, 0).normalized();
+  EXPECT_LT((wheels[0].up - expected).norm(), 1e-9) << wheels[0].up.transpose();
+  EXPECT_GT(wheels[0].sinkage, 0.0);
 }
 
 // SIM_STATE's wheel_soil of the resting wheel: its sinkage is Bekker's

@@ -141,8 +141,7 @@ std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parame
 // heightfield) whose material is a soil, at the material's <soil>:
 // "<ground> material '<name>' is a soil: <why>", for an engine that
 // refuses soil there.
-std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string& why,
-                                    bool surface = true);
+std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string& why);
 
 // The parameters params.engine does not read that differ from their
 // defaults, as "key=value" (ODE's stepper settings under MuJoCo), so that

@@ -117,6 +117,13 @@ struct SoilSurface {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   Eigen::Vector3d up = Eigen::Vector3d::UnitY();
   Eigen::Vector3d u_axis = Eigen::Vector3d::UnitX();
+  // A heightfield's tangent plane under one wheel: the memory is keyed in
+  // the field's own frame (along key_u and key_w from key_origin), which
+  // every wheel and step share, not in the plane's.
+  bool keyed_apart = false;
+  Eigen::Vector3d key_origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d key_u = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d key_w = Eigen::Vector3d::UnitZ();
 };
 
 // The soil's answer to a wheel, this step.
