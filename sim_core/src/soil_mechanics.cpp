@@ -115,7 +115,8 @@ Displacement ShearDisplacement(const Soil& soil, double radius, double v, double
 // displacement |d|, in its direction (Wong's combined slip), so a side
 // slip takes from the strength left for traction.
 Displacement ShearStress(const Soil& soil, double sigma, const Displacement& d) {
-  const double j = std::hypot(d.along, d.across);
+  // Not std::hypot: its care for overflow costs a sixth of the soil's time.
+  const double j = std::sqrt(d.along * d.along + d.across * d.across);
   if (j == 0.0) return {};
   const double tau = soil.Shear(sigma, j);
   return {tau * d.along / j, tau * d.across / j};
