@@ -1,9 +1,55 @@
 #include "simpartner/logger/schema.h"
 
+#include <cctype>
+#include <sstream>
+
 #include "simpartner/logger/sql_text.h"
+#include "simpartner/sensor_kinds.h"
 
 namespace simpartner::logger {
 namespace {
+
+// "FORCE_TORQUE" -> "ForceTorqueReading": the view of one kind's readings.
+std::string ReadingViewName(const std::string& database_name) {
+  std::string name;
+  bool upper = true;
+  for (const char c : database_name) {
+    if (c == '_') {
+      upper = true;
+      continue;
+    }
+    name += upper ? c : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    upper = false;
+  }
+  return name + "Reading";
+}
+
+// A view per sensor kind over SensorReading, its values in named columns
+// (sensor_kinds.h; a Scanner's and a Lidar's ranges stay one text,
+// layer-major), so SQL reads `SELECT az FROM ImuReading` rather than
+// splitting `vals`. Views, not tables: the readings are stored once.
+std::vector<std::string> ReadingViews() {
+  std::vector<std::string> views;
+  for (const SensorKindSpelling& kind : SensorKindSpellings()) {
+    const std::string columns = kind.columns;
+    if (columns.empty()) continue;  // Echo (text), Camera (images)
+    std::string select =
+        "CREATE VIEW IF NOT EXISTS " + ReadingViewName(kind.database) +
+        " AS SELECT r.simulationID, r.sensorID, s.name AS sensor, r.step, r.simulationTime";
+    if (columns == "range") {
+      select += ", r.vals AS ranges";
+    } else {
+      std::istringstream names(columns);
+      std::string name;
+      for (int k = 1; names >> name; ++k)
+        select += ", CAST(SUBSTRING_INDEX(SUBSTRING_INDEX(r.vals, ',', " + std::to_string(k) +
+                  "), ',', -1) AS DOUBLE) AS `" + name + "`";
+    }
+    views.push_back(select + " FROM SensorReading r JOIN Sensor s ON s.sensorID = r.sensorID WHERE "
+                             "s.type = '" + kind.database + "'");
+  }
+  return views;
+}
 
 constexpr const char* kTableOptions = " ENGINE=InnoDB DEFAULT CHARSET=utf8mb4";
 
@@ -360,6 +406,11 @@ std::vector<Migration> BuildMigrations() {
                       " PRIMARY KEY (simulationRowID, bodyID)"
                       ")") + kTableOptions,
       }});
+  m.push_back(Migration{
+      11,
+      "a view per sensor kind (ImuReading, GnssReading, EncoderReading, ...) with the readings' "
+      "values in named columns",
+      ReadingViews()});
   return m;
 }
 

@@ -164,8 +164,8 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   std::vector<std::string> notices;
   auto b = DbConnection::Open(server_->LoggerTarget("simpartner_b"), false);
   EXPECT_EQ(MigrateSchema(b.get(), [&](const std::string& s) { notices.push_back(s); }), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 10);
-  ASSERT_EQ(notices.size(), 8u);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 11);
+  ASSERT_EQ(notices.size(), 9u);
   EXPECT_NE(notices[0].find("applied schema migration 3 (LogGap.reason"), std::string::npos);
   EXPECT_NE(notices[1].find("applied schema migration 4 (Material"), std::string::npos);
   EXPECT_NE(notices[2].find("applied schema migration 5 (JointPose.continuousAngle"), std::string::npos);
@@ -174,6 +174,8 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   EXPECT_NE(notices[5].find("applied schema migration 8 (Simulation.engine"), std::string::npos);
   EXPECT_NE(notices[6].find("applied schema migration 9 (Material.soil"), std::string::npos);
   EXPECT_NE(notices[7].find("applied schema migration 10 (WheelSoil"), std::string::npos);
+  EXPECT_NE(notices[8].find("applied schema migration 11 (a view per sensor kind"),
+            std::string::npos);
   // Simulations logged before migration 8 ran on ODE, the only engine then.
   EXPECT_EQ(QueryRows(old.get(), "SELECT busSimulationID, engine FROM Simulation"),
             (std::vector<std::string>{"5\tode"}));
@@ -205,7 +207,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
   // Migrations cut short after adding their columns run again harmlessly.
   old->Execute("DELETE FROM SchemaVersion WHERE version >= 3", "");
   EXPECT_EQ(MigrateSchema(b.get(), nullptr), 2);
-  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 10);
+  EXPECT_EQ(QueryInt("SELECT MAX(version) FROM SchemaVersion", "simpartner_b"), 11);
 
   // A database from a newer logger is left alone.
   old->Execute("INSERT INTO SchemaVersion VALUES (99, 'from the future', NOW())", "");
@@ -214,7 +216,7 @@ TEST_F(DbTest, MigrationsCreateTheSchemaAndUpgradeOlderOnes) {
     FAIL() << "a newer schema was accepted";
   } catch (const DbError& e) {
     EXPECT_NE(std::string(e.what()).find("database 'simpartner_b' has schema version 99, newer than "
-                                         "this program's 10"),
+                                         "this program's 11"),
               std::string::npos) << e.what();
   }
 }

@@ -561,6 +561,41 @@ TEST_F(QueryToolTest, UnknownNamesAndSimulationsAreNamed) {
   }
 }
 
+// SQL reads a kind's readings by name from its view (schema version 11):
+// the values as the reading had them, in the kind's columns.
+TEST_F(QueryToolTest, EachSensorKindHasAViewWithNamedColumns) {
+  const SensedRun sensed = Gen3WithReadings(200, 32);
+  LogWithReadings(sensed);
+  const std::unique_ptr<DbConnection> db = Reader();
+  const std::vector<sensor_reading_t> imu = ReadingsOf(sensed, "Imu");
+  ASSERT_GE(imu.size(), 10u);
+  std::unique_ptr<sql::ResultSet> rows =
+      db->Query("SELECT step, sensor, ax, az, qw FROM ImuReading ORDER BY step", "ImuReading");
+  size_t i = 0;
+  while (rows->next()) {
+    ASSERT_LT(i, imu.size());
+    EXPECT_EQ(rows->getInt64("step"), imu[i].step);
+    EXPECT_EQ(std::string(rows->getString("sensor")), "Imu");
+    EXPECT_EQ(static_cast<double>(rows->getDouble("ax")), imu[i].values[0]) << i;
+    EXPECT_EQ(static_cast<double>(rows->getDouble("az")), imu[i].values[2]) << i;
+    EXPECT_EQ(static_cast<double>(rows->getDouble("qw")), imu[i].values[6]) << i;
+    ++i;
+  }
+  EXPECT_EQ(i, imu.size());
+  const std::vector<sensor_reading_t> encoder = ReadingsOf(sensed, "Encoder1");
+  ASSERT_FALSE(encoder.empty());
+  rows = db->Query("SELECT `count`, count_rate FROM EncoderReading WHERE sensor = 'Encoder1' "
+                   "ORDER BY step DESC LIMIT 1",
+                   "EncoderReading");
+  ASSERT_TRUE(rows->next());
+  EXPECT_EQ(static_cast<double>(rows->getDouble("count")), encoder.back().values[0]);
+  EXPECT_EQ(static_cast<double>(rows->getDouble("count_rate")), encoder.back().values[1]);
+  EXPECT_EQ(db->QueryInt("SELECT COUNT(*) FROM LidarReading", "LidarReading", -1),
+            static_cast<int64_t>(ReadingsOf(sensed, "Lidar").size()));
+  EXPECT_EQ(db->QueryInt("SELECT COUNT(*) FROM GnssReading WHERE fix = 1", "GnssReading", -1),
+            static_cast<int64_t>(ReadingsOf(sensed, "Gnss").size()));
+}
+
 TEST_F(QueryToolTest, ReadingsOfOneSensorUnderItsKindsNames) {
   const SensedRun sensed = Gen3WithReadings(200, 31);
   LogWithReadings(sensed);
