@@ -122,6 +122,42 @@ Displacement ShearStress(const Soil& soil, double sigma, const Displacement& d) 
   return {tau * d.along / j, tau * d.across / j};
 }
 
+// The shear stress at a rim point with its derivatives against the spin
+// and against the side speed, for a wheel that turns: the displacement's
+// derivatives are
+//   d j_x / d omega = (v / omega^2)(sin theta_e - sin theta),
+//   d j_y / d omega = v_y (theta_e - theta) / omega^2,
+//   d j_y / d v_y = -(theta_e - theta) / omega,
+// and tau = S (1 - e^(-j/K)) d / j gives
+//   d tau = S (e^(-j/K) / K) dj d / j + S (1 - e^(-j/K)) (dd / j - d dj / j^2),
+// dj = d . dd / j: one exp a point for the stress and both slopes.
+struct ShearAt {
+  Displacement tau, per_spin, per_side;
+};
+
+ShearAt ShearWithSlopes(const Soil& soil, double sigma, const Displacement& d,
+                        const Displacement& d_per_spin, const Displacement& d_per_side) {
+  const double strength = soil.cohesion + sigma * soil.tan_phi, k = soil.shear_modulus;
+  ShearAt out;
+  const double j = std::sqrt(d.along * d.along + d.across * d.across);
+  if (j == 0.0) {  // the law's slope at 0: S / K
+    out.per_spin = {strength * d_per_spin.along / k, strength * d_per_spin.across / k};
+    out.per_side = {strength * d_per_side.along / k, strength * d_per_side.across / k};
+    return out;
+  }
+  const double e = std::exp(-j / k), f = strength * (1.0 - e);
+  out.tau = {f * d.along / j, f * d.across / j};
+  auto derivative = [&](const Displacement& dd) {
+    const double dj = (d.along * dd.along + d.across * dd.across) / j;
+    const double df = strength * e / k * dj;
+    return Displacement{df * d.along / j + f * (dd.along / j - d.along * dj / (j * j)),
+                        df * d.across / j + f * (dd.across / j - d.across * dj / (j * j))};
+  };
+  out.per_spin = derivative(d_per_spin);
+  out.per_side = derivative(d_per_side);
+  return out;
+}
+
 // Where the rim's points enter the loaded arc at spin omega.
 double EntryAngle(const WheelSoilForces& out, double omega) {
   return omega >= 0.0 ? out.theta_front : out.theta_rear;
@@ -214,6 +250,7 @@ struct ArcSample {
   double theta, cos_theta, sin_theta;
   double sigma;   // [Pa]
   double dsigma;  // d sigma / dz [Pa/m]
+  double tau_along = 0.0;  // the shear stress along the rim [Pa]
 };
 
 // The soil's memory as an evaluation sees it: read only, or pressed by
@@ -243,6 +280,60 @@ void NormalStress(const Soil& soil, const WheelState& wheel, const SoilSurface& 
   }
   sample->sigma = s;
   sample->dsigma = ds;
+}
+
+// The shear stresses summed over the loaded arc into `out` (shear force,
+// torque, side force, strength, area), each point's stress along the rim
+// kept in `arc`, and the slopes the contact's rows need: the thrust's
+// (along the rolling direction) against the spin and the side force's
+// against the side speed. A wheel that does not turn (its shear is that
+// of a long slide, whatever the speed) takes them by differences.
+struct ShearSums {
+  double thrust_per_spin = 0.0, side_per_side_speed = 0.0;
+};
+
+ShearSums ShearOverArc(const Soil& soil, const WheelState& wheel, const WheelFrame& frame,
+                       double area, std::vector<ArcSample>* arc, WheelSoilForces* out) {
+  const double r = wheel.radius, v = out->forward_speed, v_y = out->side_speed, w = out->spin;
+  const bool turning = std::abs(w) > kStillSpin;
+  const double entry = EntryAngle(*out, w), sin_entry = std::sin(entry);
+  const double faster_entry = EntryAngle(*out, w + kSpinStep);
+  const double sin_faster_entry = std::sin(faster_entry);
+  ShearSums sums;
+  for (ArcSample& a : *arc) {
+    if (a.sigma <= 0.0) continue;
+    const Displacement d =
+        ShearDisplacement(soil, r, v, v_y, w, entry, sin_entry, a.theta, a.sin_theta);
+    ShearAt at;
+    if (turning) {
+      const double turned = entry - a.theta;
+      at = ShearWithSlopes(soil, a.sigma, d, {(v / (w * w)) * (sin_entry - a.sin_theta),
+                                              v_y * turned / (w * w)},
+                           {0.0, -turned / w});
+    } else {
+      at.tau = ShearStress(soil, a.sigma, d);
+      const Displacement faster = ShearStress(
+          soil, a.sigma, ShearDisplacement(soil, r, v, v_y, w + kSpinStep, faster_entry,
+                                           sin_faster_entry, a.theta, a.sin_theta));
+      const Displacement sideways = ShearStress(
+          soil, a.sigma,
+          ShearDisplacement(soil, r, v, v_y + kSideStep, w, entry, sin_entry, a.theta, a.sin_theta));
+      at.per_spin = {(faster.along - at.tau.along) / kSpinStep, 0.0};
+      at.per_side = {0.0, (sideways.across - at.tau.across) / kSideStep};
+    }
+    a.tau_along = at.tau.along;
+    const Eigen::Vector3d inward = a.cos_theta * frame.up - a.sin_theta * frame.forward;
+    const Eigen::Vector3d tangent = a.cos_theta * frame.forward + a.sin_theta * frame.up;
+    out->normal_force += a.sigma * area * inward;
+    out->shear_force += area * (at.tau.along * tangent + at.tau.across * wheel.axle);
+    out->shear_torque += r * at.tau.along * area;
+    out->side_force += at.tau.across * area;
+    out->shear_strength += (soil.cohesion + a.sigma * soil.tan_phi) * area;
+    out->contact_area += area;
+    sums.thrust_per_spin += at.per_spin.along * area * a.cos_theta;
+    sums.side_per_side_speed += at.per_side.across * area;
+  }
+  return sums;
 }
 
 // The soil's answer to `wheel` (soil_mechanics.h: WheelOnSoil).
@@ -280,51 +371,23 @@ WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSu
   }
   const double area = b * r * step;
   out.side_speed = wheel.velocity.dot(wheel.axle);
-  const double faster_spin = out.spin + kSpinStep;
-  const double entry = EntryAngle(out, out.spin), sin_entry = std::sin(entry);
-  const double faster_entry = EntryAngle(out, faster_spin);
-  const double sin_faster_entry = std::sin(faster_entry);
-  double thrust = 0.0, faster_thrust = 0.0, side = 0.0, faster_side = 0.0, stiffness = 0.0;
-  auto displacement = [&](double spin, double side_speed, double entry_angle, double sin_entry_angle,
-                          const ArcSample& a) {
-    return ShearDisplacement(soil, r, out.forward_speed, side_speed, spin, entry_angle,
-                             sin_entry_angle, a.theta, a.sin_theta);
-  };
+  const ShearSums shear = ShearOverArc(soil, wheel, frame, area, &arc, &out);
+  // The normal stresses' slope, and the shear's share of it: its
+  // strength (c + sigma tan phi) grows with sigma, times the same factor.
+  double stiffness = 0.0;
   for (const ArcSample& a : arc) {
     if (a.sigma <= 0.0) continue;
-    const Eigen::Vector3d inward = a.cos_theta * frame.up - a.sin_theta * frame.forward;
-    const Eigen::Vector3d tangent = a.cos_theta * frame.forward + a.sin_theta * frame.up;
-    const Displacement tau = ShearStress(
-        soil, a.sigma, displacement(out.spin, out.side_speed, entry, sin_entry, a));
-    out.normal_force += a.sigma * area * inward;
-    out.shear_force += area * (tau.along * tangent + tau.across * wheel.axle);
-    out.shear_torque += r * tau.along * area;
-    out.side_force += tau.across * area;
-    out.shear_strength += (soil.cohesion + a.sigma * soil.tan_phi) * area;
-    out.contact_area += area;
-    if (!slopes) continue;
-    thrust += tau.along * area * a.cos_theta;
-    side += tau.across * area;
-    faster_thrust += ShearStress(soil, a.sigma,
-                                 displacement(faster_spin, out.side_speed, faster_entry,
-                                              sin_faster_entry, a))
-                         .along *
-                     area * a.cos_theta;
-    faster_side += ShearStress(soil, a.sigma,
-                               displacement(out.spin, out.side_speed + kSideStep, entry, sin_entry,
-                                            a))
-                       .across *
-                   area;
-    // tau's share: strength (c + sigma tan phi) times the same factor of j.
     const double strength = soil.cohesion + a.sigma * soil.tan_phi;
-    const double dtau = strength > 0.0 ? tau.along * soil.tan_phi / strength : 0.0;
-    stiffness += a.dsigma * area * (inward.dot(surface.up) + dtau * tangent.dot(surface.up));
+    const double dtau = strength > 0.0 ? a.tau_along * soil.tan_phi / strength : 0.0;
+    stiffness += a.dsigma * area *
+                 ((a.cos_theta * frame.up - a.sin_theta * frame.forward).dot(surface.up) +
+                  dtau * (a.cos_theta * frame.forward + a.sin_theta * frame.up).dot(surface.up));
   }
   out.touching = out.contact_area > 0.0;
   if (slopes) {
     slopes->stiffness = stiffness;
-    slopes->thrust_slope = (faster_thrust - thrust) / (-r * kSpinStep);
-    slopes->side_slope = (faster_side - side) / kSideStep;
+    slopes->thrust_slope = shear.thrust_per_spin / -r;  // the slip velocity v - r omega
+    slopes->side_slope = shear.side_per_side_speed;
   }
   return out;
 }

@@ -314,6 +314,30 @@ TEST(RollingWheel, SideSlipGivesWongsSideForceAndTakesFromThePull) {
             f0.Force().x());
 }
 
+// The side force's slope against the side speed, which the contact's
+// second row is linearized with, against the derivative of Wong's
+// combined-slip integral (central differences in the slip angle).
+TEST(SoilSlopes, SideSlopeIsTheSideForcesSlopeAgainstSideSpeed) {
+  const model::SoilParameters& p = kDrySand;
+  const Soil soil = Soil::From(p);
+  const double z0 = 0.03, slip = 0.2, omega = 2.0, v = (1.0 - slip) * kRadius * omega;
+  const SoilMemory rolled = RolledTo(z0, 0.0005);
+  for (const double side_speed : {0.0, 0.02, 0.1}) {
+    const double d = 1e-4;
+    auto side = [&](double v_y) {
+      return validate::RollingWheelSideSlip(p, kRadius, kWidth, z0, slip, v_y / v).side;
+    };
+    const double expected = (side(side_speed + d) - side(side_speed - d)) / (2 * d);
+    WheelState wheel = WheelSunk(z0);
+    wheel.velocity = Eigen::Vector3d(v, 0, side_speed);
+    wheel.angular_velocity = Eigen::Vector3d(0, 0, -omega);
+    WheelSoilSlopes slopes;
+    WheelOnSoil(soil, wheel, SoilSurface{}, rolled, 256, &slopes);
+    EXPECT_LT(slopes.side_slope, 0.0);
+    EXPECT_NEAR(slopes.side_slope, expected, 0.02 * std::abs(expected)) << "v_y " << side_speed;
+  }
+}
+
 TEST(RollingWheel, AWheelSunkPastItsAxleIsStuckNotNaN) {
   const Soil soil = Soil::From(kSnow);
   const WheelSoilForces f = WheelOnSoil(soil, WheelSunk(1.5 * kRadius), SoilSurface{}, SoilMemory{});
