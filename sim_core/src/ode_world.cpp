@@ -328,6 +328,10 @@ void OdeWorld::Build() {
     joint->joint = id;
     dJointSetFeedback(id, &joint->feedback);
     joints_.push_back(std::move(joint));
+    // The motor rows' softness: a velocity per force (their stops keep the
+    // world's spring law, which ODE copied at creation).
+    for (int axis = 0; axis < flat.num_axes; ++axis)
+      SetJointParam(static_cast<int>(j), dParamCFM + dParamGroup * axis, params.MotorCFM());
   }
   SetStopsOfTheFiles(model, this);
   contact_force_.assign(bodies_.size(), Eigen::Vector3d::Zero());

@@ -204,10 +204,9 @@ TEST(Validation, Gen4StaticLoadsKeepTheCalibrationWithinTheRunsSpread) {
 //    faces (a cylinder on a plane touches along a line), k_p = k / 2, in
 //    series with its leg: the position rows of the axle, knee and hip
 //    hinges (each a spring of jointStiffness k_j, the same at any step)
-//    and the knee's hold (torque kHoldGain / CFM per radian, at the knee's
-//    horizontal distance l from the axle; the rows' CFM at step h is
-//    1 / (h k_j + c_j), ODE's spring-damper equivalence):
-//    k_v = 1 / (1 / k + 3 / k_j + l^2 CFM / G);
+//    and the knee's hold (torque kHoldGain / c_m per radian, c_m the
+//    motor's motorCompliance, at the knee's horizontal distance l from
+//    the axle): k_v = 1 / (1 / k + 3 / k_j + l^2 c_m / G);
 //  - cross weight: legs 2 and 4 are delta longer (their wheels sit delta
 //    lower in the file); on flat ground the chassis settles halfway, so
 //    (W2 + W4) - (W1 + W3) = 2 k_v delta;
@@ -222,7 +221,8 @@ struct Gen4Sums {
   double weight, front_minus_rear, left_minus_right, cross;
 };
 
-Gen4Sums PredictGen4Sums(double h) {
+// The same at any step size: every compliance in it is physical.
+Gen4Sums PredictGen4Sums() {
   const std::string file = std::string(SP_SOURCE_DIR) + "/models/robots/workpartner_gen4.xml";
   const model::RobotLoadResult loaded = model::LoadRobotFile(file);
   if (!loaded.robot) throw Error(loaded.diagnostics.Format());
@@ -251,9 +251,8 @@ Gen4Sums PredictGen4Sums(double h) {
   const model::Joint* axle = robot.FindJoint("Axle1");
   if (knee == nullptr || axle == nullptr) throw Error("gen4 has no Knee1 or Axle1");
   const double lever = std::abs(knee->anchor.x() - axle->anchor.x());
-  const double cfm = 1.0 / (h * params.jointStiffness + params.jointDamping);
   const double leg_compliance =
-      3.0 / params.jointStiffness + lever * lever * cfm / sim::kHoldGain;
+      3.0 / params.jointStiffness + lever * lever * params.motorCompliance / sim::kHoldGain;
   const double k_v = 1.0 / (1.0 / k_wheel + leg_compliance);
   const double a = std::abs(wheel[0]->pose.translation().x());
   const double t = std::abs(wheel[0]->pose.translation().z());
@@ -277,7 +276,7 @@ Gen4Sums PredictGen4Sums(double h) {
 // the ~200 N differences by the same arithmetic (rows of 2e7 N m/rad
 // against moments of tens of N m); 2.7 N on a sum is 0.7 N on a wheel.
 void ExpectGen4LoadsFollowTheSupports(const ExperimentResult& r, double h) {
-  const Gen4Sums predicted = PredictGen4Sums(h);
+  const Gen4Sums predicted = PredictGen4Sums();
   double w[4];
   for (int k = 0; k < 4; ++k) w[k] = r.Measured("Wheel" + std::to_string(k + 1) + " load");
   const double tolerance = 0.001 * predicted.weight;
@@ -291,12 +290,11 @@ TEST(Validation, Gen4StaticLoadsFollowTheMassesAndTheSupports) {
   ExpectGen4LoadsFollowTheSupports(RunNamed("gen4_loads"), Parameters().stepsize);
 }
 
-// The tyre and the legs' joint rows are physical springs, so the loads do
-// not depend on the step size: within 0.05 % on every wheel between 0.5,
-// 1 and 2 ms. Only the knee's hold (a velocity controller, softened by
-// each step's CFM) is per step: 0.3 % of the leg's compliance, 0.06 % of
-// the cross weight. With the joints per step (jointStiffness=0: globalERP
-// 0.2, globalCFM 1e-5), the cross weight was 205.7, 202.7 and 196.9 N, and
+// The tyre, the legs' joint rows and the knee's hold are physical (a
+// spring, springs, a motor's velocity per force), so the loads do not
+// depend on the step size: within 0.05 % on every wheel between 0.5, 1
+// and 2 ms. With the joints per step (jointStiffness=0: globalERP 0.2,
+// globalCFM 1e-5), the cross weight was 205.7, 202.7 and 196.9 N, and
 // wheel 1 moved 0.4 %; the tyre given per step (ERP 1/36, CFM 1/3600, the
 // same spring at 1 ms only) moved wheel 1 by 8.6 %.
 TEST(Validation, Gen4StaticLoadsAgreeAcrossStepSizes) {

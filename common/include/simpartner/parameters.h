@@ -50,6 +50,9 @@ struct Parameters {
   // and CFM 1e-5 at 1 ms); jointStiffness 0 = globalERP and globalCFM.
   double jointStiffness = 2e7;
   double jointDamping = 8e4;
+  // A joint motor's velocity per force, its softness under load: the
+  // same at any step (globalCFM's 1e-5 of the original).
+  double motorCompliance = 1e-5;
   double contactMaxCorrectingVel = 0.2;
   double contactSurfaceLayer = 0.0;
   bool autoDisableFlag = false;
@@ -89,6 +92,9 @@ struct Parameters {
     if (jointStiffness <= 0.0) return globalCFM;
     return 1.0 / (stepsize * jointStiffness + jointDamping);
   }
+  // The CFM of every joint motor's row: a velocity per force, so the
+  // same number at any step (ODE's motor row has no spring, only this).
+  double MotorCFM() const { return jointStiffness <= 0.0 ? globalCFM : motorCompliance; }
 
   // Lists every key with its type, range and documentation. The visitor has
   // Section(title), Bool, Int, Double, String, Path and Choice members.
@@ -137,6 +143,10 @@ struct Parameters {
              "1 / (h k + c), the same spring at any step size; 0 = globalERP and globalCFM");
     v.Double("jointDamping", jointDamping, 0.0, kInf,
              "[N s/m; N m s/rad] every joint row's damping, with jointStiffness");
+    v.Double("motorCompliance", motorCompliance, 0.0, 1.0,
+             "[m/(N s); rad/(N m s)] every joint motor's velocity per force (how far a held "
+             "or driven joint yields under load), the same at any step size; with "
+             "jointStiffness=0 the motors take globalCFM");
     v.Double("contactMaxCorrectingVel", contactMaxCorrectingVel, 0.0, kInf,
              "[m/s] largest velocity a contact may use to correct penetration");
     v.Double("contactSurfaceLayer", contactSurfaceLayer, 0.0, 1.0,
