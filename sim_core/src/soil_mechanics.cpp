@@ -209,11 +209,7 @@ double SoilMemory::Deepest(double u, double w) const {
   return it == deepest_.end() ? 0.0 : it->second;
 }
 
-void SoilMemory::Press(double u, double w, double z) {
-  if (z <= 0.0) return;
-  double& deepest = deepest_[Key(u, w)];
-  deepest = std::max(deepest, z);
-}
+void SoilMemory::Press(double u, double w, double z) { PathPress(this).Press(u, w, z); }
 
 double SoilMemory::PathPress::Press(double u, double w, double z) {
   const uint64_t key = memory_->Key(u, w);
@@ -250,7 +246,6 @@ struct ArcSample {
   double theta, cos_theta, sin_theta;
   double sigma;   // [Pa]
   double dsigma;  // d sigma / dz [Pa/m]
-  double tau_along = 0.0;  // the shear stress along the rim [Pa]
 };
 
 // The soil's memory as an evaluation sees it: read only, or pressed by
@@ -282,25 +277,28 @@ void NormalStress(const Soil& soil, const WheelState& wheel, const SoilSurface& 
   sample->dsigma = ds;
 }
 
-// The shear stresses summed over the loaded arc into `out` (shear force,
-// torque, side force, strength, area), each point's stress along the rim
-// kept in `arc`, and the slopes the contact's rows need: the thrust's
-// (along the rolling direction) against the spin and the side force's
-// against the side speed. A wheel that does not turn (its shear is that
-// of a long slide, whatever the speed) takes them by differences.
-struct ShearSums {
-  double thrust_per_spin = 0.0, side_per_side_speed = 0.0;
+// The stresses summed over the loaded arc into `out` (normal and shear
+// force, torque, side force, strength, area), and the slopes the
+// contact's rows need: the stresses' against sinking further (along
+// `up`: Bekker's or the unloading line's slope, and the shear's share, its
+// strength c + sigma tan phi growing with sigma), the thrust's (along the
+// rolling direction) against the spin and the side force's against the
+// side speed. A wheel that does not turn (its shear is that of a long
+// slide, whatever the speed) takes the last two by differences.
+struct ArcSums {
+  double stiffness = 0.0, thrust_per_spin = 0.0, side_per_side_speed = 0.0;
 };
 
-ShearSums ShearOverArc(const Soil& soil, const WheelState& wheel, const WheelFrame& frame,
-                       double area, std::vector<ArcSample>* arc, WheelSoilForces* out) {
+ArcSums SumOverArc(const Soil& soil, const WheelState& wheel, const WheelFrame& frame,
+                   const Eigen::Vector3d& up, double area, const std::vector<ArcSample>& arc,
+                   WheelSoilForces* out) {
   const double r = wheel.radius, v = out->forward_speed, v_y = out->side_speed, w = out->spin;
   const bool turning = std::abs(w) > kStillSpin;
   const double entry = EntryAngle(*out, w), sin_entry = std::sin(entry);
   const double faster_entry = EntryAngle(*out, w + kSpinStep);
   const double sin_faster_entry = std::sin(faster_entry);
-  ShearSums sums;
-  for (ArcSample& a : *arc) {
+  ArcSums sums;
+  for (const ArcSample& a : arc) {
     if (a.sigma <= 0.0) continue;
     const Displacement d =
         ShearDisplacement(soil, r, v, v_y, w, entry, sin_entry, a.theta, a.sin_theta);
@@ -321,7 +319,6 @@ ShearSums ShearOverArc(const Soil& soil, const WheelState& wheel, const WheelFra
       at.per_spin = {(faster.along - at.tau.along) / kSpinStep, 0.0};
       at.per_side = {0.0, (sideways.across - at.tau.across) / kSideStep};
     }
-    a.tau_along = at.tau.along;
     const Eigen::Vector3d inward = a.cos_theta * frame.up - a.sin_theta * frame.forward;
     const Eigen::Vector3d tangent = a.cos_theta * frame.forward + a.sin_theta * frame.up;
     out->normal_force += a.sigma * area * inward;
@@ -330,6 +327,9 @@ ShearSums ShearOverArc(const Soil& soil, const WheelState& wheel, const WheelFra
     out->side_force += at.tau.across * area;
     out->shear_strength += (soil.cohesion + a.sigma * soil.tan_phi) * area;
     out->contact_area += area;
+    const double strength = soil.cohesion + a.sigma * soil.tan_phi;
+    const double dtau = strength > 0.0 ? at.tau.along * soil.tan_phi / strength : 0.0;
+    sums.stiffness += a.dsigma * area * (inward.dot(up) + dtau * tangent.dot(up));
     sums.thrust_per_spin += at.per_spin.along * area * a.cos_theta;
     sums.side_per_side_speed += at.per_side.across * area;
   }
@@ -371,23 +371,12 @@ WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSu
   }
   const double area = b * r * step;
   out.side_speed = wheel.velocity.dot(wheel.axle);
-  const ShearSums shear = ShearOverArc(soil, wheel, frame, area, &arc, &out);
-  // The normal stresses' slope, and the shear's share of it: its
-  // strength (c + sigma tan phi) grows with sigma, times the same factor.
-  double stiffness = 0.0;
-  for (const ArcSample& a : arc) {
-    if (a.sigma <= 0.0) continue;
-    const double strength = soil.cohesion + a.sigma * soil.tan_phi;
-    const double dtau = strength > 0.0 ? a.tau_along * soil.tan_phi / strength : 0.0;
-    stiffness += a.dsigma * area *
-                 ((a.cos_theta * frame.up - a.sin_theta * frame.forward).dot(surface.up) +
-                  dtau * (a.cos_theta * frame.forward + a.sin_theta * frame.up).dot(surface.up));
-  }
+  const ArcSums sums = SumOverArc(soil, wheel, frame, surface.up, area, arc, &out);
   out.touching = out.contact_area > 0.0;
   if (slopes) {
-    slopes->stiffness = stiffness;
-    slopes->thrust_slope = shear.thrust_per_spin / -r;  // the slip velocity v - r omega
-    slopes->side_slope = shear.side_per_side_speed;
+    slopes->stiffness = sums.stiffness;
+    slopes->thrust_slope = sums.thrust_per_spin / -r;  // the slip velocity v - r omega
+    slopes->side_slope = sums.side_per_side_speed;
   }
   return out;
 }
