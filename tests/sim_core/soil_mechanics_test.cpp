@@ -44,6 +44,15 @@ WheelState WheelSunk(double sinkage) {
   return wheel;
 }
 
+// That wheel rolling toward +x at speed v, spinning at omega (its axle is
+// +z), and moving along its axle at side_speed.
+WheelState WheelRolling(double sinkage, double v, double omega, double side_speed = 0.0) {
+  WheelState wheel = WheelSunk(sinkage);
+  wheel.velocity = Eigen::Vector3d(v, 0, side_speed);
+  wheel.angular_velocity = Eigen::Vector3d(0, 0, -omega);
+  return wheel;
+}
+
 class StandingWheel : public ::testing::TestWithParam<model::SoilParameters> {};
 
 // A wheel pressed straight down into untouched soil: both halves of the
@@ -137,9 +146,7 @@ TEST(RollingWheel, DrawbarPullAgainstSlipIsWongsIntegral) {
     const double load = kWidth * kRadius * Simpson([&](double t) {
       return sigma(t) * std::cos(t) + tau(t) * std::sin(t);
     }, rear, front);
-    WheelState wheel = WheelSunk(z0);
-    wheel.velocity = Eigen::Vector3d(v, 0, 0);
-    wheel.angular_velocity = Eigen::Vector3d(0, 0, -omega);  // rolls toward +x
+    const WheelState wheel = WheelRolling(z0, v, omega);
     const WheelSoilForces f = WheelOnSoil(soil, wheel, SoilSurface{}, memory, 256);
     EXPECT_NEAR(f.slip, slip, 1e-12);
     EXPECT_NEAR(f.theta_front, front, 0.01) << slip;
@@ -219,9 +226,7 @@ TEST(SoilSlopes, ThrustSlopeIsThePullsSlopeAgainstSlipVelocity) {
       return testing::RollingWheel(p, kRadius, kWidth, z0, 1.0 - v / (kRadius * w)).pull;
     };
     const double expected = (pull(omega + d) - pull(omega - d)) / (-2 * d * kRadius);
-    WheelState wheel = WheelSunk(z0);
-    wheel.velocity = Eigen::Vector3d(v, 0, 0);
-    wheel.angular_velocity = Eigen::Vector3d(0, 0, -omega);
+    const WheelState wheel = WheelRolling(z0, v, omega);
     WheelSoilSlopes slopes;
     WheelOnSoil(soil, wheel, SoilSurface{}, memory, 256, &slopes);
     EXPECT_LT(slopes.thrust_slope, 0.0);
@@ -237,9 +242,8 @@ TEST(SoilMemory, PressingWhileAnsweringChangesNeitherForcesNorRuts) {
   const Soil soil = Soil::From(kDrySand);
   for (const double z0 : {0.001, 0.03}) {
     SoilMemory answered_first = RolledTo(0.5 * z0, 0.002), pressed_while = answered_first;
-    WheelState wheel = WheelSunk(z0);
-    wheel.velocity = Eigen::Vector3d(0.3, -0.01, 0);
-    wheel.angular_velocity = Eigen::Vector3d(0, 0, -1.5);
+    WheelState wheel = WheelRolling(z0, 0.3, 1.5);
+    wheel.velocity.y() = -0.01;  // sinking too
     const WheelSoilForces expected = WheelOnSoil(soil, wheel, SoilSurface{}, answered_first);
     PressWheel(wheel, SoilSurface{}, &answered_first);
     const WheelSoilForces got = PressWheelOnSoil(soil, wheel, SoilSurface{}, &pressed_while);
@@ -258,11 +262,8 @@ TEST(RollingWheel, BackwardIsTheMirrorOfForward) {
   const Soil soil = Soil::From(kDrySand);
   for (const double slip : {0.1, 0.3}) {
     const double omega = 2.0, v = (1.0 - slip) * kRadius * omega;
-    WheelState forward = WheelSunk(0.03), backward = WheelSunk(0.03);
-    forward.velocity = Eigen::Vector3d(v, 0, 0);
-    forward.angular_velocity = Eigen::Vector3d(0, 0, -omega);
-    backward.velocity = -forward.velocity;
-    backward.angular_velocity = -forward.angular_velocity;
+    const WheelState forward = WheelRolling(0.03, v, omega);
+    const WheelState backward = WheelRolling(0.03, -v, -omega);
     const WheelSoilForces f = WheelOnSoil(soil, forward, SoilSurface{}, SoilMemory{});
     const WheelSoilForces b = WheelOnSoil(soil, backward, SoilSurface{}, SoilMemory{});
     EXPECT_GT(f.Force().x(), 10.0) << "slip " << slip;
@@ -273,7 +274,8 @@ TEST(RollingWheel, BackwardIsTheMirrorOfForward) {
   }
 }
 
-// A wheel slipping sideways at slip angle alpha on untouched soil: its
+// A wheel slipping sideways at slip angle alpha, rolling steadily in its
+// own track (the rear of its arc on the unloading line, as Wong's): its
 // side force and pull against Wong's combined-slip integral (the rim
 // point's displacement along the rim and across it, one Janosi-Hanamoto
 // law of the whole): a side force against the side speed, growing with
@@ -288,9 +290,7 @@ TEST(RollingWheel, SideSlipGivesWongsSideForceAndTakesFromThePull) {
     const double tan_alpha = std::tan(alpha_deg * kPi / 180);
     const validate::SideSlipForces expected =
         validate::RollingWheelSideSlip(p, kRadius, kWidth, z0, slip, tan_alpha);
-    WheelState wheel = WheelSunk(z0);
-    wheel.velocity = Eigen::Vector3d(v, 0, v * tan_alpha);  // the axle is +z
-    wheel.angular_velocity = Eigen::Vector3d(0, 0, -omega);
+    const WheelState wheel = WheelRolling(z0, v, omega, v * tan_alpha);
     const WheelSoilForces f = WheelOnSoil(soil, wheel, SoilSurface{}, rolled, 256);
     const double load = f.Force().y();
     std::printf("alpha %.0f deg: side force %.2f N (Wong %.2f), pull %.2f N (Wong %.2f)\n",
@@ -303,13 +303,10 @@ TEST(RollingWheel, SideSlipGivesWongsSideForceAndTakesFromThePull) {
     EXPECT_LT(f.side_force, last_side);
     last_side = f.side_force;
   }
-  WheelState straight = WheelSunk(z0);
-  straight.velocity = Eigen::Vector3d(v, 0, 0);
-  straight.angular_velocity = Eigen::Vector3d(0, 0, -omega);
+  const WheelState straight = WheelRolling(z0, v, omega);
   const WheelSoilForces f0 = WheelOnSoil(soil, straight, SoilSurface{}, rolled, 256);
   EXPECT_EQ(f0.side_force, 0.0);
-  WheelState sideways = straight;
-  sideways.velocity.z() = v * std::tan(15 * kPi / 180);
+  const WheelState sideways = WheelRolling(z0, v, omega, v * std::tan(15 * kPi / 180));
   EXPECT_LT(WheelOnSoil(soil, sideways, SoilSurface{}, rolled, 256).Force().x(),
             f0.Force().x());
 }
@@ -328,9 +325,7 @@ TEST(SoilSlopes, SideSlopeIsTheSideForcesSlopeAgainstSideSpeed) {
       return validate::RollingWheelSideSlip(p, kRadius, kWidth, z0, slip, v_y / v).side;
     };
     const double expected = (side(side_speed + d) - side(side_speed - d)) / (2 * d);
-    WheelState wheel = WheelSunk(z0);
-    wheel.velocity = Eigen::Vector3d(v, 0, side_speed);
-    wheel.angular_velocity = Eigen::Vector3d(0, 0, -omega);
+    const WheelState wheel = WheelRolling(z0, v, omega, side_speed);
     WheelSoilSlopes slopes;
     WheelOnSoil(soil, wheel, SoilSurface{}, rolled, 256, &slopes);
     EXPECT_LT(slopes.side_slope, 0.0);
