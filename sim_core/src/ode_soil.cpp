@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 
 namespace simpartner::sim {
 namespace {
@@ -58,8 +57,7 @@ SoilSurface OdeSoil::SurfaceUnder(const Ground& ground, const WheelState& wheel)
   const Eigen::Vector3d axle = to_field.linear() * wheel.axle;
   // Slopes of the interpolated surface by differences over a quarter cell
   // each way, inside the field (its heights are clamped at the border).
-  auto slope = [](double at, double cell, double half_extent,
-                  const std::function<double(double)>& height) {
+  auto slope = [](double at, double cell, double half_extent, const auto& height) {
     const double lo = std::clamp(at - 0.25 * cell, -half_extent, half_extent);
     const double hi = std::clamp(at + 0.25 * cell, -half_extent, half_extent);
     return hi > lo ? (height(hi) - height(lo)) / (hi - lo) : 0.0;

@@ -6,12 +6,12 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "simpartner/diagnostic.h"
 #include "simpartner/model/loader.h"
-#include "simpartner/model/soil_library.h"
 #include "simpartner/validate/analysis.h"
 #include "simpartner/validate/experiment.h"
 #include "simpartner/validate/sim_run.h"
@@ -34,7 +34,32 @@ struct Drive {
   std::array<double, 4> drift{};  // per wheel, along the ground from the start [m]
   Series speed_trace;
   double sim_seconds = 0;
+  std::optional<model::SoilParameters> soil;  // of the world's ground, if soft
+  double calf_clearance = 0;  // gen3's calves above the ground as its file places them [m]
 };
+
+// The world's soil, if its ground is soft.
+std::optional<model::SoilParameters> SoilOf(const model::World& world) {
+  for (const model::Material& m : world.materials)
+    if (m.soil) return *m.soil;
+  return std::nullopt;
+}
+
+// The lowest point of gen3's calves above the ground, as the robot file
+// places them (the wheels touching the ground).
+double CalfClearance(const model::Robot& robot) {
+  double lowest = 1e9;
+  for (const model::Body& b : robot.bodies) {
+    if (b.name.rfind("Calf", 0) != 0) continue;
+    const Eigen::Vector3d half = b.geometry.size / 2;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d local((corner & 1 ? 1 : -1) * half.x(), (corner & 2 ? 1 : -1) * half.y(),
+                                  (corner & 4 ? 1 : -1) * half.z());
+      lowest = std::min(lowest, (b.pose * local).y());
+    }
+  }
+  return lowest;
+}
 
 // The robot is set down gently, as the single wheel on the rig: each body
 // is held up by a force that carries its weight at first and falls to 0
@@ -48,6 +73,9 @@ Drive RunDrive(const Context& context, const std::string& world, double end, dou
   if (drive) run.PlaySequence("gen3_soil_drive.xml");
   const int torso = run.Body("Torso");
   const sim::Simulation& sim = run.sim();
+  Drive out;
+  out.soil = SoilOf(sim.world());
+  out.calf_clearance = CalfClearance(sim.world().robots.at(0).robot);
   std::vector<Eigen::Vector3d> weights;  // of every body, upward
   for (const model::FlatBody& b : sim.flat().bodies)
     weights.push_back(b.source->is_static ? Eigen::Vector3d(Eigen::Vector3d::Zero())
@@ -59,7 +87,6 @@ Drive RunDrive(const Context& context, const std::string& world, double end, dou
   }
   std::array<Eigen::Vector3d, 4> start;
   for (int k = 0; k < 4; ++k) start[k] = run.Position(wheel[k]);
-  Drive out;
   out.speed_trace.title = world;
   const double from = end - window;
   double x_from = 0;
@@ -156,14 +183,6 @@ SteadyDrive SolveSteadyDrive(const model::SoilParameters& p, const std::array<do
   return out;
 }
 
-model::SoilParameters WorldSoil(const Context& context, const std::string& world) {
-  const model::World w =
-      model::LoadWorldOrThrow((std::filesystem::path(context.models_dir) / "worlds" / world).string());
-  for (const model::Material& m : w.materials)
-    if (m.soil) return *m.soil;
-  throw Error(world + " has no soil");
-}
-
 void CompareWithClosedForm(const Drive& drive, const SteadyDrive& steady, const std::string& soil,
                            ExperimentResult* result) {
   const double rolling = kWheelRadius * kSpin;
@@ -185,21 +204,6 @@ void CompareWithClosedForm(const Drive& drive, const SteadyDrive& steady, const 
   }
 }
 
-// The lowest point of gen3's calves above the ground, as the robot file
-// places them (the wheels touching the ground).
-double CalfClearance(const model::Robot& robot) {
-  double lowest = 1e9;
-  for (const model::Body& b : robot.bodies) {
-    if (b.name.rfind("Calf", 0) != 0) continue;
-    const Eigen::Vector3d half = b.geometry.size / 2;
-    for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d local((corner & 1 ? 1 : -1) * half.x(), (corner & 2 ? 1 : -1) * half.y(),
-                                  (corner & 4 ? 1 : -1) * half.z());
-      lowest = std::min(lowest, (b.pose * local).y());
-    }
-  }
-  return lowest;
-}
 
 // Snow: gen3 set down on it and left standing. Its front wheels sink
 // deeper than its rear ones, so it pitches forward and every wheel moves
@@ -211,8 +215,9 @@ double CalfClearance(const model::Robot& robot) {
 // are the checks. The rolling sinkage against the calves' clearance says
 // why gen3 is not driven on it.
 std::string StandOnSnow(const Context& context, ExperimentResult* result) {
-  const model::SoilParameters p = WorldSoil(context, "snow_field.xml");
   const Drive stand = RunDrive(context, "snow_field.xml", kDriveStart + 1.0, 1.0, false);
+  if (!stand.soil) throw Error("snow_field.xml has no soil");
+  const model::SoilParameters& p = *stand.soil;
   result->sim_seconds += stand.sim_seconds;
   double deepest_rolling = 0;
   for (int k = 0; k < 4; ++k) {
@@ -227,9 +232,7 @@ std::string StandOnSnow(const Context& context, ExperimentResult* result) {
     result->checks.push_back(AtMost("sinkage at rest" + at + " vs rolling at slip 0",
                                     1000 * stand.sinkage[k], 1000 * rolling, "mm"));
   }
-  const model::Robot robot = model::LoadRobotOrThrow(
-      (std::filesystem::path(context.models_dir) / "robots" / "workpartner_gen3.xml").string());
-  const double clearance = CalfClearance(robot);
+  const double clearance = stand.calf_clearance;
   const auto [least, most] = std::minmax_element(stand.sinkage.begin(), stand.sinkage.end());
   const auto [least_drift, most_drift] = std::minmax_element(stand.drift.begin(), stand.drift.end());
   return "On snow gen3 is set down and left standing: its wheels sink " +
@@ -273,8 +276,9 @@ ExperimentResult SoilRobot(const Context& context) {
   std::string figures;
   if (!context.quick) figures += StandOnSnow(context, &result);
   for (const std::string world : {"sand_field.xml"}) {
-    const model::SoilParameters p = WorldSoil(context, world);
     const Drive drive = RunDrive(context, world, end, window);
+    if (!drive.soil) throw Error(std::string(world) + " has no soil");
+    const model::SoilParameters& p = *drive.soil;
     result.sim_seconds += drive.sim_seconds;
     const SteadyDrive steady = SolveSteadyDrive(p, drive.load);
     CompareWithClosedForm(drive, steady, p.name, &result);
