@@ -44,6 +44,19 @@ class MaterialReading {
     if (m.damping) InRange(*m.damping, 0.0, limits::kMaxContactDamping, "damping");
   }
 
+  // mu2 is read across a rolling direction: across a slip's own direction
+  // it would act only while sticking, where a slip has none, and the old
+  // reading held a slide from turning, which no Coulomb law does.
+  void CheckAnisotropy(const Material& m) {
+    if (!m.mu2 || *m.mu2 == m.mu || m.friction_direction != FrictionDirection::kSlip) return;
+    Fail("mu2", what_ + ": mu2 " + FormatNumber(*m.mu2, 10) + " differs from mu " +
+                    FormatNumber(m.mu, 10) +
+                    " along the slip (frictionDirection slip, the default): friction across a "
+                    "slip's own direction is not a Coulomb law; give frictionDirection rolling "
+                    "(mu along a wheel's rolling direction, mu2 across it) or drop mu2 "
+                    "(docs/contacts.md)");
+  }
+
   // One softness, given one way: per step or physical.
   void CheckSoftness(const Material& m) {
     const bool per_step = xml::Child(node_, "softERP") || xml::Child(node_, "softCFM");
@@ -113,6 +126,7 @@ std::optional<Material> ReadMaterial(Reader& reader, const xmlNode* node,
   MaterialReading reading(reader, node, "material '" + m.name + "'");
   reading.ReadValues(&m);
   reading.CheckRanges(m);
+  if (reading.ok()) reading.CheckAnisotropy(m);
   reading.CheckSoftness(m);
   bool soil_ok = true;
   if (const xmlNode* soil = xml::Child(node, "soil"); soil != nullptr && soils != nullptr) {

@@ -50,33 +50,23 @@ Eigen::Vector3d MujocoWorld::PointVelocity(int mj_body, const Eigen::Vector3d& p
   return V(cvel + 3) + V(cvel).cross(point - at);
 }
 
-bool MujocoWorld::FrictionDirection(const mjContact& contact,
-                                    const model::SurfaceProperties& combined,
-                                    Eigen::Vector3d* direction) const {
+bool MujocoWorld::RollingDirection(const mjContact& contact,
+                                   const model::SurfaceProperties& combined,
+                                   Eigen::Vector3d* direction) const {
   const GeomInfo& g1 = geoms_[static_cast<size_t>(contact.geom1)];
   const GeomInfo& g2 = geoms_[static_cast<size_t>(contact.geom2)];
-  const Eigen::Vector3d normal = V(contact.frame);
-  if (combined.friction_direction == model::FrictionDirection::kRolling &&
-      g1.has_spin_axis != g2.has_spin_axis) {
-    // Perpendicular to the normal and to the wheel's spin axis.
-    const int geom = g1.has_spin_axis ? contact.geom1 : contact.geom2;
-    const GeomInfo& wheel = g1.has_spin_axis ? g1 : g2;
-    Eigen::Matrix3d r;
-    for (int row = 0; row < 3; ++row)
-      for (int col = 0; col < 3; ++col) r(row, col) = d_->geom_xmat[9 * geom + 3 * row + col];
-    const Eigen::Vector3d rolling = normal.cross(r * wheel.spin_axis);
-    if (rolling.norm() > kMinRollingSine) {
-      *direction = rolling.normalized();
-      return true;
-    }
-  }
-  // Along the slip of geom1 against geom2, when it slides.
-  const Eigen::Vector3d at = V(contact.pos);
-  Eigen::Vector3d slip = PointVelocity(m_->geom_bodyid[contact.geom1], at) -
-                         PointVelocity(m_->geom_bodyid[contact.geom2], at);
-  slip -= slip.dot(normal) * normal;
-  if (slip.norm() <= kSlipDirectionSpeed) return false;
-  *direction = slip.normalized();
+  if (combined.friction_direction != model::FrictionDirection::kRolling ||
+      g1.has_spin_axis == g2.has_spin_axis)
+    return false;
+  // Perpendicular to the normal and to the wheel's spin axis.
+  const int geom = g1.has_spin_axis ? contact.geom1 : contact.geom2;
+  const GeomInfo& wheel = g1.has_spin_axis ? g1 : g2;
+  Eigen::Matrix3d r;
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) r(row, col) = d_->geom_xmat[9 * geom + 3 * row + col];
+  const Eigen::Vector3d rolling = V(contact.frame).cross(r * wheel.spin_axis);
+  if (rolling.norm() <= kMinRollingSine) return false;  // a wheel lying flat rolls nowhere
+  *direction = rolling.normalized();
   return true;
 }
 
@@ -94,12 +84,17 @@ void MujocoWorld::SetUpContacts() {
   applied_.clear();
   for (int i = 0; i < d_->ncon; ++i) {
     mjContact& contact = d_->contact[i];
-    const model::SurfaceProperties combined = model::CombineSurfaces(
+    model::SurfaceProperties combined = model::CombineSurfaces(
         geoms_[static_cast<size_t>(contact.geom1)].surface,
         geoms_[static_cast<size_t>(contact.geom2)].surface);
+    // mu2 is read across a rolling direction only (as on ODE): a contact
+    // without one is isotropic, mu against the slip.
+    Eigen::Vector3d along;
+    const bool rolls = combined.mu2 != combined.mu && RollingDirection(contact, combined, &along);
+    if (!rolls) combined.mu2 = combined.mu;
     contact_surface_[static_cast<size_t>(i)] = combined;
     SetUpMaterial(combined, points[static_cast<size_t>(i)], &contact);
-    if (contact.dim > 1) SetUpFriction(i, combined);
+    if (contact.dim > 1) SetUpFriction(i, combined, rolls ? &along : nullptr);
   }
 }
 
@@ -118,14 +113,14 @@ void MujocoWorld::SetUpMaterial(const model::SurfaceProperties& combined, int po
   contact->dim = combined.mu == 0 && combined.mu2 == 0 ? 1 : combined.rolling_friction > 0 ? 6 : 3;
 }
 
-void MujocoWorld::SetUpFriction(int index, const model::SurfaceProperties& combined) {
+void MujocoWorld::SetUpFriction(int index, const model::SurfaceProperties& combined,
+                                const Eigen::Vector3d* rolling) {
   mjContact& contact = d_->contact[index];
-  Eigen::Vector3d along;
-  if (combined.mu2 != combined.mu && FrictionDirection(contact, combined, &along)) {
+  if (rolling != nullptr) {
     const Eigen::Vector3d normal = V(contact.frame);
-    const Eigen::Vector3d across = normal.cross(along);
+    const Eigen::Vector3d across = normal.cross(*rolling);
     for (int k = 0; k < 3; ++k) {
-      contact.frame[3 + k] = along[k];
+      contact.frame[3 + k] = (*rolling)[k];
       contact.frame[6 + k] = across[k];
     }
   }

@@ -441,7 +441,6 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
     surface.rho2 = rolling;
     surface.rhoN = 0.0;
   }
-  const bool anisotropic = combined.mu2 != combined.mu;
   for (int i = 0; i < n; ++i) {
     dContact& contact = contact_buffer_[static_cast<size_t>(i)];
     contact.surface = surface;
@@ -449,39 +448,43 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
     // separately, mu N along fdir1 and mu2 N along fdir2 = normal x fdir1.
     // Left to ODE, the directions come from the normal alone (world x and
     // z on a y-up plane), so friction depended on the heading: a cube
-    // sliding at 45 degrees braked at sqrt(2) mu g. With the first
-    // direction along the slip (or the rolling direction), sliding
-    // friction is mu N against the slip whatever the heading, and mu2 is
-    // what holds the slip from turning.
-    const bool isotropic_slip =
-        !anisotropic && combined.friction_direction == model::FrictionDirection::kSlip;
+    // sliding at 45 degrees braked at sqrt(2) mu g. A wheel's contact
+    // takes its rolling direction (mu along it, mu2 across); any other
+    // is isotropic Coulomb, mu N against the slip (the cone). mu2 is read
+    // across a rolling direction only: across a slip's own direction it
+    // would act only while sticking, where a slip has none, and held a
+    // slide from turning (materials say so at load, docs/contacts.md).
+    Eigen::Vector3d direction;
+    const bool rolls = combined.friction_direction == model::FrictionDirection::kRolling &&
+                       RollingDirection(g1, g2, o1, o2, contact.geom, &direction);
+    const bool slides = !rolls && SlipDirection(o1, o2, contact.geom, &direction);
     // Looked up only where it is used: a slow slide, or a sticking contact.
     const auto last = [&] { return NearestLastContact(o1, o2, FromOde(contact.geom.pos)); };
-    Eigen::Vector3d direction;
-    if (FrictionDirection1(combined, o1, g1, o2, g2, contact.geom, &direction)) {
+    if (rolls || slides) {
       contact.surface.mode |= dContactFDir1;
       contact.fdir1[0] = direction.x();
       contact.fdir1[1] = direction.y();
       contact.fdir1[2] = direction.z();
-      if (anisotropic) {
+      if (rolls && combined.mu2 != combined.mu) {
         contact.surface.mode |= dContactMu2;
         contact.surface.mu2 = combined.mu2;
-      } else if (isotropic_slip) {
+      } else if (slides) {
         // Isotropic Coulomb: a sliding contact's force is mu N against the
         // slip (the cone). A second row holding up to mu N across it (ODE's
         // pyramid) kept a slide from turning, so a skidding vehicle could
         // not drift. Across the slip the cone's force is mu N v_across /
         // |v|, a damping of mu N / |v|:
-        // - a slip one step of friction cannot stop (above mu g h) turns
-        //   by little in a step, and the across row is left free (mu2 0);
-        // - a slower slip turns within a step (time constant |v| / mu g),
+        // - a slip one step of friction cannot stop (above mu h N / m, N
+        //   the pair's last load, m its mass) turns by little in a step,
+        //   and the across row is left free (mu2 0);
+        // - a slower slip turns within a step (time constant m |v| / mu N),
         //   which an explicit damping overshoots: the across row gets the
         //   damping implicitly, as its compliance (slip2, velocity per
         //   force) |v| / (mu N), N the load of this point at the last
         //   step. A new contact has no load yet and is held across for
         //   that step, as a sticking one is.
         const double slip_speed = SlipVelocity(o1, o2, contact.geom).norm();
-        if (slip_speed > combined.mu * gravity_ * params_.stepsize) {
+        if (slip_speed > combined.mu * params_.stepsize * LoadPerMass(o1, b1, o2, b2)) {
           contact.surface.mode |= dContactMu2;
           contact.surface.mu2 = 0.0;
         } else if (const LastContact* point = last();
@@ -490,7 +493,7 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
               std::max(params_.contactSlip, slip_speed / (combined.mu * point->load));
         }
       }
-    } else if (const LastContact* point = isotropic_slip ? last() : nullptr; point != nullptr) {
+    } else if (const LastContact* point = rolls ? nullptr : last(); point != nullptr) {
       // Sticking: which way it will slide is not known; the force that
       // holds it is. Its first direction along that force makes the
       // pyramid's mu N the cone's bound on it (with ODE's directions a
@@ -555,32 +558,24 @@ bool OdeWorld::CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2) {
   return true;
 }
 
-bool OdeWorld::FrictionDirection1(const model::SurfaceProperties& combined, dGeomID o1,
-                                  const GeomInfo& g1, dGeomID o2, const GeomInfo& g2,
-                                  const dContactGeom& contact, Eigen::Vector3d* direction) const {
-  const Eigen::Vector3d normal = FromOde(contact.normal);
-  if (combined.friction_direction == model::FrictionDirection::kRolling) {
-    // Perpendicular to the normal and to the wheel's spin axis. The wheel
-    // is the one geom of the two with a spin axis; two wheels touching (or
-    // two bodies that do not spin) have no common rolling direction, and
-    // slide as "slip".
-    if (g1.has_spin_axis == g2.has_spin_axis) return SlipDirection(o1, o2, contact, direction);
-    const bool first_is_wheel = g1.has_spin_axis;
-    const dGeomID wheel = first_is_wheel ? o1 : o2;
-    const Eigen::Vector3d& axis_in_geom = first_is_wheel ? g1.spin_axis : g2.spin_axis;
-    const dReal* r = dGeomGetRotation(wheel);
-    Eigen::Vector3d axis;
-    for (int row = 0; row < 3; ++row)
-      axis[row] = r[row * 4] * axis_in_geom.x() + r[row * 4 + 1] * axis_in_geom.y() +
-                  r[row * 4 + 2] * axis_in_geom.z();
-    const Eigen::Vector3d rolling = normal.cross(axis);
-    if (rolling.norm() > kMinRollingSine) {
-      *direction = rolling.normalized();
-      return true;
-    }
-    // A wheel lying flat rolls nowhere: as "slip".
-  }
-  return SlipDirection(o1, o2, contact, direction);
+bool OdeWorld::RollingDirection(const GeomInfo& g1, const GeomInfo& g2, dGeomID o1, dGeomID o2,
+                                const dContactGeom& contact, Eigen::Vector3d* direction) const {
+  // Perpendicular to the normal and to the wheel's spin axis. The wheel is
+  // the one geom of the two with a spin axis; two wheels touching (or two
+  // bodies that do not spin) have no common rolling direction.
+  if (g1.has_spin_axis == g2.has_spin_axis) return false;
+  const bool first_is_wheel = g1.has_spin_axis;
+  const dGeomID wheel = first_is_wheel ? o1 : o2;
+  const Eigen::Vector3d& axis_in_geom = first_is_wheel ? g1.spin_axis : g2.spin_axis;
+  const dReal* r = dGeomGetRotation(wheel);
+  Eigen::Vector3d axis;
+  for (int row = 0; row < 3; ++row)
+    axis[row] = r[row * 4] * axis_in_geom.x() + r[row * 4 + 1] * axis_in_geom.y() +
+                r[row * 4 + 2] * axis_in_geom.z();
+  const Eigen::Vector3d rolling = FromOde(contact.normal).cross(axis);
+  if (rolling.norm() <= kMinRollingSine) return false;  // a wheel lying flat rolls nowhere
+  *direction = rolling.normalized();
+  return true;
 }
 
 Eigen::Vector3d OdeWorld::SlipVelocity(dGeomID o1, dGeomID o2, const dContactGeom& contact) const {
@@ -674,21 +669,44 @@ void OdeWorld::RecordLastContacts() {
                    });
 }
 
-const OdeWorld::LastContact* OdeWorld::NearestLastContact(dGeomID geom1, dGeomID geom2,
-                                                          const Eigen::Vector3d& position) const {
+std::pair<const OdeWorld::LastContact*, const OdeWorld::LastContact*> OdeWorld::LastContactsOf(
+    dGeomID geom1, dGeomID geom2) const {
   const auto first = std::lower_bound(
       last_contacts_.begin(), last_contacts_.end(), std::make_pair(geom1, geom2),
       [](const LastContact& a, const std::pair<dGeomID, dGeomID>& pair) {
         return GeomPairBefore(a.geom1, a.geom2, pair.first, pair.second);
       });
+  auto end = first;
+  while (end != last_contacts_.end() && end->geom1 == geom1 && end->geom2 == geom2) ++end;
+  const LastContact* begin = last_contacts_.data() + (first - last_contacts_.begin());
+  return {begin, begin + (end - first)};
+}
+
+const OdeWorld::LastContact* OdeWorld::NearestLastContact(dGeomID geom1, dGeomID geom2,
+                                                          const Eigen::Vector3d& position) const {
+  const auto [begin, end] = LastContactsOf(geom1, geom2);
   const LastContact* nearest = nullptr;
-  for (auto it = first; it != last_contacts_.end() && it->geom1 == geom1 && it->geom2 == geom2;
-       ++it) {
+  for (const LastContact* it = begin; it != end; ++it) {
     if (nearest == nullptr ||
         (it->position - position).squaredNorm() < (nearest->position - position).squaredNorm())
-      nearest = &*it;
+      nearest = it;
   }
   return nearest;
+}
+
+double OdeWorld::LoadPerMass(dGeomID geom1, dBodyID b1, dGeomID geom2, dBodyID b2) const {
+  const auto [begin, end] = LastContactsOf(geom1, geom2);
+  double load = 0.0;
+  for (const LastContact* it = begin; it != end; ++it) load += it->load;
+  if (load <= 0.0) return gravity_;  // a new contact: its weight is all it is known to carry
+  double inverse_mass = 0.0;
+  for (const dBodyID b : {b1, b2}) {
+    if (b == nullptr) continue;
+    dMass mass;
+    dBodyGetMass(b, &mass);
+    inverse_mass += 1.0 / mass.mass;
+  }
+  return load * inverse_mass;
 }
 
 void OdeWorld::TrackContinuousAngles(bool first) {

@@ -108,8 +108,11 @@ class MujocoWorld : public PhysicsEngine {
   // (shared among `points` points when it has a physical stiffness).
   void SetUpMaterial(const model::SurfaceProperties& combined, int points,
                      mjContact_* contact) const;
-  // Its friction frame, and whether it slides or rolls (AppliedFriction).
-  void SetUpFriction(int index, const model::SurfaceProperties& combined);
+  // Its friction frame (the first tangent along rolling, when an
+  // anisotropic contact has one), and whether it slides or rolls
+  // (AppliedFriction).
+  void SetUpFriction(int index, const model::SurfaceProperties& combined,
+                     const Eigen::Vector3d* rolling);
   // Friction applied to a contact rather than solved by MuJoCo: sliding
   // (a slip one step of friction cannot stop), rolling resistance (a roll
   // it cannot stop). Per newton of load, on geom1; then as applied.
@@ -155,11 +158,10 @@ class MujocoWorld : public PhysicsEngine {
   void CollectJointForces();
   // Velocity of a point fixed to a MuJoCo body (0 = the world).
   Eigen::Vector3d PointVelocity(int mj_body, const Eigen::Vector3d& point) const;
-  // The first friction direction of an anisotropic contact, as the ODE
-  // side picks it: a wheel's rolling direction, else the slip; false when
-  // it sticks (MuJoCo's own tangents stay).
-  bool FrictionDirection(const mjContact_& contact, const model::SurfaceProperties& combined,
-                         Eigen::Vector3d* direction) const;
+  // The rolling direction of a "rolling" pair's one spinning geom, as the
+  // ODE side picks it; false when neither or both spin, or it lies flat.
+  bool RollingDirection(const mjContact_& contact, const model::SurfaceProperties& combined,
+                        Eigen::Vector3d* direction) const;
   void CheckWarnings();
   EngineError Fail(const std::string& message, const std::string& during);
   std::vector<std::string> SuspectBodies() const;

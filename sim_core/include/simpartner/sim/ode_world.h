@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "simpartner/diagnostic.h"
@@ -164,11 +165,10 @@ class OdeWorld : public PhysicsEngine {
     Eigen::Vector3d spin_axis = Eigen::Vector3d::Zero();
     bool has_spin_axis = false;
   };
-  // First friction direction of one contact point (unit), or false when
-  // ODE's own directions are to be used (a sticking "slip" contact).
-  bool FrictionDirection1(const model::SurfaceProperties& combined, dGeomID o1, const GeomInfo& g1,
-                          dGeomID o2, const GeomInfo& g2, const dContactGeom& contact,
-                          Eigen::Vector3d* direction) const;
+  // The rolling direction (unit) of the one geom of the two that spins;
+  // false when neither or both do, or its wheel lies flat on the contact.
+  bool RollingDirection(const GeomInfo& g1, const GeomInfo& g2, dGeomID o1, dGeomID o2,
+                        const dContactGeom& contact, Eigen::Vector3d* direction) const;
   // The sliding velocity of o1 against o2 at the contact, in its plane.
   Eigen::Vector3d SlipVelocity(dGeomID o1, dGeomID o2, const dContactGeom& contact) const;
   // Along the sliding velocity of o1 against o2 at the contact; false when
@@ -200,6 +200,17 @@ class OdeWorld : public PhysicsEngine {
   bool CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2);
   std::vector<LastContact> last_contacts_;  // sorted by (geom1, geom2)
   void RecordLastContacts();
+  // The last step's contact points of the pair, [first, second).
+  std::pair<const LastContact*, const LastContact*> LastContactsOf(dGeomID geom1,
+                                                                   dGeomID geom2) const;
+  // The pair's load at the last step over the mass of its bodies (each
+  // inverse mass added): the acceleration their friction gives per unit
+  // mu, so mu h LoadPerMass is the slip one step of friction can stop.
+  // g on a pair that did not touch (its own weight is all that is known).
+  // The bodies' own masses, not what the joints add to them: a wheel of a
+  // robot stops faster by this than it does, which errs to the implicit
+  // branch of the cone (Collide), stable for any slip.
+  double LoadPerMass(dGeomID geom1, dBodyID b1, dGeomID geom2, dBodyID b2) const;
   // The last step's contact point of the pair nearest to position, or
   // nullptr when the pair did not touch.
   const LastContact* NearestLastContact(dGeomID geom1, dGeomID geom2,
@@ -207,7 +218,7 @@ class OdeWorld : public PhysicsEngine {
   std::vector<Eigen::Vector3d> contact_force_, contact_torque_;
   std::vector<std::string> messages_;
   int contact_count_ = 0;
-  double gravity_ = 0.0;  // [m/s^2] |g|, for the slip one step of friction can stop
+  double gravity_ = 0.0;  // [m/s^2] |g|: a new contact's load per mass (LoadPerMass)
   // Ray casting state (the ray geom lives outside the space).
   dGeomID ray_ = nullptr;
   int ray_exclude_body_ = -1;
