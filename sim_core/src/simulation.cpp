@@ -76,6 +76,7 @@ Simulation::Simulation(model::World world, Parameters params, int64_t simulation
       simulation_id_(simulation_id),
       noise_(static_cast<uint64_t>(params_.sensorSeed)) {
   flat_ = model::Flatten(world_);
+  ruts_ = SoilRuts(world_);
   Build();
 }
 

@@ -23,96 +23,174 @@ void Append(soil_ruts_t* message, uint64_t key, float depth) {
   message->num_cells = static_cast<int32_t>(message->depth.size());
 }
 
+// A unit normal or a point the engine computed from the same numbers as
+// the model: equal up to rounding.
+constexpr double kSame = 1e-6;
+
+bool IsSoil(const model::World& world, const std::string& material) {
+  const model::Material* m = material.empty() ? nullptr : world.FindMaterial(material);
+  return m != nullptr && m->soil;
+}
+
 }  // namespace
+
+SoilRuts::SoilRuts(const model::World& world) {
+  plane_is_soil_ = world.has_plane && IsSoil(world, world.plane_material);
+  plane_known_ = true;
+  plane_up_ = world.plane.head<3>();
+  plane_origin_ = world.plane[3] * plane_up_;
+  if (world.heightfield && IsSoil(world, world.heightfield->material)) {
+    field_ = &*world.heightfield;
+    // As the engines turn it: its y along the world's up.
+    field_pose_.linear() =
+        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), world.Up()).toRotationMatrix();
+    field_pose_.translation() = field_->position;
+    Grid& grid = grids_[soil_ruts_t::GROUND_HEIGHTFIELD];
+    grid.has_frame = true;
+    grid.origin = field_pose_.translation();
+    grid.up = field_pose_.linear().col(1);
+    grid.u_axis = field_pose_.linear().col(0);
+    grid.w_axis = grid.up.cross(grid.u_axis);
+  }
+}
+
+// The engine reports a plane's surface by its fixed point and normal,
+// a heightfield's by the point on the field under the wheel.
+bool SoilRuts::OnPlane(const WheelSoilReadout& wheel) const {
+  if (!plane_is_soil_) return false;
+  if (!plane_known_) return true;
+  return (wheel.up - plane_up_).norm() < kSame && (wheel.surface_origin - plane_origin_).norm() < kSame;
+}
+
+bool SoilRuts::OnField(const WheelSoilReadout& wheel) const {
+  if (field_ == nullptr) return false;
+  const Eigen::Vector3d p = field_pose_.inverse() * wheel.surface_origin;
+  return std::abs(p.y() - field_->HeightAt(p.x(), p.z())) < kSame;
+}
+
+SoilRuts::Grid* SoilRuts::GridOf(const WheelSoilReadout& wheel) {
+  if (OnPlane(wheel)) {
+    Grid& grid = grids_[soil_ruts_t::GROUND_PLANE];
+    if (!grid.has_frame) {
+      grid.has_frame = true;
+      grid.origin = wheel.surface_origin;
+      grid.up = wheel.up;
+      grid.u_axis = wheel.surface_u_axis;
+      grid.w_axis = grid.up.cross(grid.u_axis);
+    } else if ((wheel.up - grid.up).norm() > 1e-9 ||
+               std::abs((wheel.surface_origin - grid.origin).dot(grid.up)) > 1e-9) {
+      return nullptr;  // another plane: a world has one
+    }
+    return &grid;
+  }
+  return OnField(wheel) ? &grids_[soil_ruts_t::GROUND_HEIGHTFIELD] : nullptr;
+}
 
 void SoilRuts::Stamp(const std::vector<WheelSoilReadout>& wheels) {
   for (const WheelSoilReadout& wheel : wheels) {
     if (!(wheel.sinkage > 0.0)) continue;
-    if (!has_surface_) {
-      has_surface_ = true;
-      origin_ = wheel.surface_origin;
-      up_ = wheel.up;
-      u_axis_ = wheel.surface_u_axis;
-      w_axis_ = up_.cross(u_axis_);
-    } else if ((wheel.up - up_).norm() > 1e-9 ||
-               std::abs((wheel.surface_origin - origin_).dot(up_)) > 1e-9) {
-      continue;  // another soil ground
-    }
-    const Eigen::Vector3d across = wheel.axle - wheel.axle.dot(up_) * up_;
+    Grid* grid = GridOf(wheel);
+    if (grid == nullptr) continue;
+    const Eigen::Vector3d across = wheel.axle - wheel.axle.dot(wheel.up) * wheel.up;
     if (across.norm() < 1e-6) continue;  // a wheel lying flat presses no tread
-    const Eigen::Vector3d on_surface = wheel.lowest_point + wheel.sinkage * up_;
+    const Eigen::Vector3d on_surface = wheel.lowest_point + wheel.sinkage * wheel.up;
+    // The sinkage is along the surface's normal under the wheel; the grid
+    // keeps it along its own up (the same on a plane; on a slope of the
+    // field the normal's offset of a plane, measured along up).
+    const double depth = wheel.sinkage / std::max(0.1, wheel.up.dot(grid->up));
     // Points at most half a cell apart across the tread.
     const double width = wheel.width;
     const int points = static_cast<int>(std::ceil(width / (0.5 * kCellSize))) + 1;
     for (int k = 0; k < points; ++k) {
       const double t = width * (static_cast<double>(k) / (points - 1) - 0.5);
-      Press(on_surface + t * across.normalized(), static_cast<float>(wheel.sinkage));
+      Press(grid, on_surface + t * across.normalized(), static_cast<float>(depth));
     }
   }
 }
 
-void SoilRuts::Press(const Eigen::Vector3d& point, float depth) {
-  const Eigen::Vector3d d = point - origin_;
-  const double a = std::floor(d.dot(u_axis_) / kCellSize), b = std::floor(d.dot(w_axis_) / kCellSize);
+void SoilRuts::Press(Grid* grid, const Eigen::Vector3d& point, float depth) {
+  const Eigen::Vector3d d = point - grid->origin;
+  const double a = std::floor(d.dot(grid->u_axis) / kCellSize),
+               b = std::floor(d.dot(grid->w_axis) / kCellSize);
   if (!(std::abs(a) < 2e9 && std::abs(b) < 2e9)) return;
   const uint64_t key = Key(static_cast<int32_t>(a), static_cast<int32_t>(b));
-  auto it = cells_.find(key);
-  if (it == cells_.end()) {
+  auto it = grid->cells.find(key);
+  if (it == grid->cells.end()) {
     if (full()) return;
-    it = cells_.emplace(key, Cell{}).first;
+    it = grid->cells.emplace(key, Cell{}).first;
   }
   Cell& cell = it->second;
   if (depth <= cell.depth) return;
   cell.depth = depth;
   if (!cell.queued && cell.depth >= cell.sent + kDepthResolution) {
     cell.queued = true;
-    queued_.push_back(key);
+    grid->queued.push_back(key);
   }
 }
 
 void SoilRuts::Clear() {
-  has_surface_ = false;
-  cells_.clear();
-  queued_.clear();
+  for (Grid& grid : grids_) {
+    // The field's frame is the model's; the plane's, the first wheel's.
+    if (grid.ground == soil_ruts_t::GROUND_PLANE) grid.has_frame = false;
+    grid.cells.clear();
+    grid.queued.clear();
+  }
 }
 
-soil_ruts_t SoilRuts::Header(bool snapshot) const {
+bool SoilRuts::has_changes() const {
+  return !grids_[0].queued.empty() || !grids_[1].queued.empty();
+}
+
+size_t SoilRuts::cells() const { return grids_[0].cells.size() + grids_[1].cells.size(); }
+
+soil_ruts_t SoilRuts::Header(const Grid& grid, bool snapshot) const {
   soil_ruts_t m{};
   m.snapshot = snapshot;
   m.part = 0;
   m.parts = 1;
-  Eigen::Map<Eigen::Vector3d>(m.origin) = origin_;
-  Eigen::Map<Eigen::Vector3d>(m.up) = up_;
-  Eigen::Map<Eigen::Vector3d>(m.u_axis) = u_axis_;
+  Eigen::Map<Eigen::Vector3d>(m.origin) = grid.origin;
+  Eigen::Map<Eigen::Vector3d>(m.up) = grid.up;
+  Eigen::Map<Eigen::Vector3d>(m.u_axis) = grid.u_axis;
   m.cell_size = kCellSize;
   m.num_cells = 0;
+  m.ground = grid.ground;
   return m;
 }
 
 soil_ruts_t SoilRuts::TakeChanges() {
-  soil_ruts_t m = Header(false);
-  const size_t n = std::min(queued_.size(), static_cast<size_t>(kCellsPerMessage));
-  for (size_t i = queued_.size() - n; i < queued_.size(); ++i) {
-    Cell& cell = cells_.at(queued_[i]);
+  // Each ground in turn, so that one never starves the other.
+  if (grids_[next_grid_].queued.empty()) next_grid_ = 1 - next_grid_;
+  Grid& grid = grids_[next_grid_];
+  next_grid_ = 1 - next_grid_;
+  soil_ruts_t m = Header(grid, false);
+  const size_t n = std::min(grid.queued.size(), static_cast<size_t>(kCellsPerMessage));
+  for (size_t i = grid.queued.size() - n; i < grid.queued.size(); ++i) {
+    Cell& cell = grid.cells.at(grid.queued[i]);
     cell.queued = false;
     cell.sent = cell.depth;
-    Append(&m, queued_[i], cell.depth);
+    Append(&m, grid.queued[i], cell.depth);
   }
-  queued_.resize(queued_.size() - n);
+  grid.queued.resize(grid.queued.size() - n);
   return m;
 }
 
 std::vector<soil_ruts_t> SoilRuts::Snapshot() const {
-  std::vector<soil_ruts_t> parts(1, Header(true));
-  for (const auto& [key, cell] : cells_) {
-    if (parts.back().num_cells == kCellsPerMessage) parts.push_back(Header(true));
-    Append(&parts.back(), key, cell.depth);
+  std::vector<soil_ruts_t> all;
+  for (const Grid& grid : grids_) {
+    if (grid.cells.empty()) continue;
+    std::vector<soil_ruts_t> parts(1, Header(grid, true));
+    for (const auto& [key, cell] : grid.cells) {
+      if (parts.back().num_cells == kCellsPerMessage) parts.push_back(Header(grid, true));
+      Append(&parts.back(), key, cell.depth);
+    }
+    for (size_t i = 0; i < parts.size(); ++i) {
+      parts[i].part = static_cast<int32_t>(i);
+      parts[i].parts = static_cast<int32_t>(parts.size());
+    }
+    all.insert(all.end(), parts.begin(), parts.end());
   }
-  for (size_t i = 0; i < parts.size(); ++i) {
-    parts[i].part = static_cast<int32_t>(i);
-    parts[i].parts = static_cast<int32_t>(parts.size());
-  }
-  return parts;
+  if (all.empty()) all.push_back(Header(grids_[soil_ruts_t::GROUND_PLANE], true));
+  return all;
 }
 
 }  // namespace simpartner::sim

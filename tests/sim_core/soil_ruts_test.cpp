@@ -1,12 +1,19 @@
 // SoilRuts: the ruts' picture the sim sends the viewer (SIM_SOIL_RUTS):
-// each wheel's tread stamped into 2 cm cells of the soil's surface, the
-// cells deepened since the last message, every cell in bounded parts.
+// each wheel's tread stamped into 2 cm cells of the soil's surface (or of
+// a heightfield's base plane), the cells deepened since the last message,
+// every cell in bounded parts.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
+#include <cmath>
 #include <set>
 #include <utility>
 
+#include "simpartner/sim/simulation.h"
 #include "simpartner/sim/soil_ruts.h"
+#include "soil_closed_forms.h"
+#include "test_worlds.h"
 
 namespace simpartner::sim {
 namespace {
@@ -97,6 +104,155 @@ TEST(SoilRuts, MessagesAndSnapshotsAreBounded) {
   EXPECT_EQ(all.size(), 11000u);
   ruts.Clear();
   EXPECT_EQ(ruts.Snapshot()[0].num_cells, 0);
+}
+
+// A world tilted 0.2 rad about z (gravity along -(-sin 0.2, cos 0.2, 0)):
+// a 4 x 4 m heightfield of dry sand centred at (2, 0.5, -1.5), rising 0.1 m
+// along x and z each (2 x 2 samples), and a wheel 0.3 m in radius, 0.2 m
+// wide, its axle along the field's z, at field (0.7, -0.4) pressed 4 mm into
+// the soil; `plane` adds a surface of the same sand 2 m below the field.
+constexpr double kTilt = 0.2;
+const Eigen::Vector3d kFieldAt(2.0, 0.5, -1.5);
+const Eigen::Vector3d kWheelOnField(0.7, 0.0, -0.4);  // field frame; y from the field
+
+Eigen::Matrix3d FieldTurn() {
+  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(),
+                                            Eigen::Vector3d(-std::sin(kTilt), std::cos(kTilt), 0))
+      .toRotationMatrix();
+}
+
+// The field's height at (x, z) of its frame, worked out from its samples.
+double FieldHeight(double x, double z) { return 0.1 * (x + 2.0) / 4.0 + 0.1 * (z + 2.0) / 4.0; }
+
+std::string TiltedFieldWorld(bool plane) {
+  const Eigen::Matrix3d r = FieldTurn();
+  const Eigen::Vector3d wheel =
+      kFieldAt + r * Eigen::Vector3d(kWheelOnField.x(),
+                                     FieldHeight(kWheelOnField.x(), kWheelOnField.z()) + 0.3 - 0.004,
+                                     kWheelOnField.z());
+  std::string pose = "<transformation>";
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j)
+      pose += "<T" + std::to_string(i) + std::to_string(j) + ">" +
+              std::to_string(j < 3 ? r(i, j) : wheel[i]) + "</T" + std::to_string(i) +
+              std::to_string(j) + ">";
+  pose += "</transformation>";
+  const Eigen::Vector3d g = -9.81 * r.col(1);
+  const Eigen::Vector3d below = kFieldAt - 2.0 * r.col(1);
+  std::string surface;
+  if (plane)
+    surface = "<surface material=\"sand\"><a>" +
+              std::to_string(r(0, 1)) + "</a><b>" + std::to_string(r(1, 1)) + "</b><c>0</c><d>" +
+              std::to_string(below.dot(r.col(1))) + "</d></surface>";
+  return R"(<world name="Tilted">)" + testing::Vec("gravity", g.x(), g.y(), g.z()) + surface +
+         R"(<material name="sand"><mu>0.5</mu></material>
+  <heightfield rows="2" columns="2" material="sand"><width>4</width><depth>4</depth>)" +
+         testing::Vec("position", kFieldAt.x(), kFieldAt.y(), kFieldAt.z()) +
+         R"(<samples>0 0.1 0.1 0.2</samples></heightfield>
+  <object type="Cylinder" name="Wheel"><mass>50</mass><radius>0.3</radius><length>0.2</length>)" +
+         pose + R"(</object>
+</world>)";
+}
+
+model::World SandWorld(const std::string& xml) {
+  model::World world = testing::LoadInline(xml);
+  world.materials.at(0).soil = testing::WongEntry(1.1, 0.99, 1528.43, 1.04, 28);  // dry sand
+  world.materials.at(0).soil->name = "dry_sand";
+  return world;
+}
+
+// The rut's cells, put back in the world from the message alone (the
+// field's base plane, its height there, the depth below it), lie under the
+// wheel: across its tread, at its lowest point, as deep as it sank.
+TEST(SoilRuts, AWheelOnATiltedFieldOffTheOriginLeavesCellsUnderIt) {
+  Parameters params;
+  params.stepsize = 0.001;
+  Simulation sim(SandWorld(TiltedFieldWorld(false)), params, 1);
+  for (int k = 0; k < 20; ++k) ASSERT_TRUE(sim.Step());
+  const std::vector<WheelSoilReadout> wheels = sim.engine().ReadWheelSoil();
+  ASSERT_EQ(wheels.size(), 1u);
+  const WheelSoilReadout& wheel = wheels[0];
+  ASSERT_GT(wheel.sinkage, 0.001);
+
+  const std::vector<soil_ruts_t> parts = sim.ruts().Snapshot();
+  ASSERT_EQ(parts.size(), 1u);
+  const soil_ruts_t& m = parts[0];
+  EXPECT_EQ(m.ground, soil_ruts_t::GROUND_HEIGHTFIELD);
+  const Eigen::Matrix3d r = FieldTurn();
+  const Eigen::Vector3d origin(m.origin[0], m.origin[1], m.origin[2]);
+  const Eigen::Vector3d up(m.up[0], m.up[1], m.up[2]), u_axis(m.u_axis[0], m.u_axis[1], m.u_axis[2]);
+  // (The file gives gravity to 6 decimals.)
+  EXPECT_LT((origin - kFieldAt).norm(), 1e-12);
+  EXPECT_LT((up - r.col(1)).norm(), 1e-6);
+  EXPECT_LT((u_axis - r.col(0)).norm(), 1e-6);
+  // 0.2 m of tread in 2 cm cells: 10 or 11 across, one row or two along.
+  EXPECT_GE(m.num_cells, 10);
+  EXPECT_LE(m.num_cells, 22);
+  const Eigen::Vector3d forward = wheel.axle.cross(up).normalized();
+  // The field's slope along the wheel's up: the grid keeps depth along up.
+  const double depth = wheel.sinkage / wheel.up.dot(up);
+  for (size_t i = 0; i < m.depth.size(); ++i) {
+    const Eigen::Vector3d base = origin + m.cell_size * ((m.u[i] + 0.5) * u_axis +
+                                                         (m.w[i] + 0.5) * up.cross(u_axis));
+    const Eigen::Vector3d local = r.transpose() * (base - kFieldAt);
+    const Eigen::Vector3d floor =
+        kFieldAt + r * Eigen::Vector3d(local.x(), FieldHeight(local.x(), local.z()), local.z()) -
+        m.depth[i] * up;
+    const Eigen::Vector3d off = floor - wheel.lowest_point;
+    EXPECT_LE(std::abs(off.dot(wheel.axle)), 0.1 + m.cell_size) << "cell " << i;
+    EXPECT_LE(std::abs(off.dot(forward)), m.cell_size) << "cell " << i;
+    // Across the tread the floor follows the soil's slope (2.5 % along the
+    // axle); from that line a cell's centre is within a cell of the
+    // point pressed: 1 mm up or down on these slopes, at most.
+    const Eigen::Vector3d across = (wheel.axle - wheel.axle.dot(wheel.up) * wheel.up).normalized();
+    EXPECT_LE(std::abs((off - off.dot(across) * across).dot(up)), 0.001) << "cell " << i;
+    EXPECT_NEAR(m.depth[i], depth, 1e-6) << "cell " << i;
+  }
+}
+
+// With a plane and a heightfield of soil each ground has its grid: a
+// wheel's cells go in the message of the ground it presses, never the
+// other's, and the changes of both go out in turn.
+TEST(SoilRuts, EachSoilGroundKeepsItsOwnCells) {
+  const model::World world = SandWorld(TiltedFieldWorld(true));
+  SoilRuts ruts(world);
+  const Eigen::Matrix3d r = FieldTurn();
+  WheelSoilReadout on_plane;
+  on_plane.sinkage = 0.02;
+  on_plane.axle = r.col(2);
+  on_plane.width = 0.2;
+  on_plane.up = world.plane.head<3>();
+  on_plane.surface_origin = world.plane[3] * on_plane.up;  // as the engine gives a plane
+  on_plane.surface_u_axis = r.col(0);
+  on_plane.lowest_point =
+      kFieldAt - 0.005 * r.col(2) - 2.0 * on_plane.up - 0.02 * on_plane.up;
+  WheelSoilReadout on_field = on_plane;
+  on_field.up = r.col(1);
+  on_field.surface_origin =
+      kFieldAt + r * Eigen::Vector3d(0.7, FieldHeight(0.7, -0.405), -0.405);
+  on_field.lowest_point = on_field.surface_origin - 0.03 * on_field.up;
+  on_field.sinkage = 0.03;
+  ruts.Stamp({on_plane, on_field});
+
+  std::set<int8_t> grounds;
+  for (int k = 0; k < 2; ++k) {
+    ASSERT_TRUE(ruts.has_changes());
+    const soil_ruts_t m = ruts.TakeChanges();
+    grounds.insert(m.ground);
+    EXPECT_EQ(m.num_cells, 11);
+    for (float depth : m.depth)
+      EXPECT_FLOAT_EQ(depth, m.ground == soil_ruts_t::GROUND_PLANE ? 0.02f : 0.03f);
+  }
+  EXPECT_EQ(grounds, (std::set<int8_t>{soil_ruts_t::GROUND_PLANE, soil_ruts_t::GROUND_HEIGHTFIELD}));
+  EXPECT_FALSE(ruts.has_changes());
+  const std::vector<soil_ruts_t> parts = ruts.Snapshot();
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_NE(parts[0].ground, parts[1].ground);
+  // A wheel on neither ground (above the field's surface) leaves nothing.
+  WheelSoilReadout off = on_field;
+  off.surface_origin += 0.01 * on_field.up;
+  ruts.Stamp({off});
+  EXPECT_FALSE(ruts.has_changes());
 }
 
 }  // namespace

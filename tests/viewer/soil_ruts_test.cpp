@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 
+#include <Eigen/Geometry>
+
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -208,6 +210,117 @@ TEST(SoilRutsTest, TheRutsAreAGaplessTroughLoweredIntoTheGroundAndDarker) {
       EXPECT_LT(shade, 0.67f);
     }
   }
+}
+
+// TwoBodyModel tilted 0.2 rad about z, without its plane, over a 4 x 4 m
+// heightfield centred at (2, 0.5, -1.5) rising 0.1 m along x and z each
+// (2 x 2 samples): its surface is the plane h = 0.025 (x + 2) + 0.025 (z + 2)
+// of its frame, whichever diagonal its triangles take.
+model_t TiltedFieldModel(int64_t simulation_id) {
+  model_t m = TwoBodyModel(simulation_id);
+  m.has_plane = false;
+  m.up[0] = -std::sin(0.2);
+  m.up[1] = std::cos(0.2);
+  m.gravity[0] = -9.81 * m.up[0];
+  m.gravity[1] = -9.81 * m.up[1];
+  heightfield_t& h = m.heightfield;
+  h.present = true;
+  h.rows = h.columns = 2;
+  h.width = h.depth = 4;
+  h.scale = 1;
+  h.thickness = 1;
+  h.position[0] = 2;
+  h.position[1] = 0.5;
+  h.position[2] = -1.5;
+  h.samples = {0.0f, 0.1f, 0.1f, 0.2f};
+  h.num_samples = 4;
+  return m;
+}
+
+Eigen::Matrix3d TiltedFieldTurn() {
+  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(),
+                                            Eigen::Vector3d(-std::sin(0.2), std::cos(0.2), 0))
+      .toRotationMatrix();
+}
+
+// Ruts on the tilted field's grid: its base plane, in its frame.
+soil_ruts_t FieldRuts(int64_t simulation_id, const std::vector<Cell>& cells) {
+  soil_ruts_t m = Ruts(simulation_id, true, cells);
+  const Eigen::Matrix3d r = TiltedFieldTurn();
+  m.ground = soil_ruts_t::GROUND_HEIGHTFIELD;
+  m.origin[0] = 2;
+  m.origin[1] = 0.5;
+  m.origin[2] = -1.5;
+  for (int i = 0; i < 3; ++i) {
+    m.up[i] = r(i, 1);
+    m.u_axis[i] = r(i, 0);
+  }
+  return m;
+}
+
+// On a heightfield each corner is lowered from the field's surface above
+// it, not from its base plane, along the field's up.
+TEST(SoilRutsTest, RutsOnAHeightfieldAreLoweredFromItsSurface) {
+  Scene scene;
+  scene.OfferModel(TiltedFieldModel(7));
+  // A lone cell 2 cm deep at field (1.01, -0.51) (w runs along -z): each
+  // corner a quarter of it down.
+  ASSERT_TRUE(scene.OfferSoilRuts(FieldRuts(7, {{50, 25, 0.02f}})).accepted);
+  const RutMap& ruts = scene.ruts(soil_ruts_t::GROUND_HEIGHTFIELD);
+  ASSERT_EQ(ruts.cells(), 1u);
+  EXPECT_EQ(scene.ruts().cells(), 0u);  // the plane's are apart
+  const Mesh mesh = RutMesh(ruts, Eigen::Vector3f(0.5f, 0.5f, 0.5f), &scene.model().heightfield);
+  ASSERT_EQ(mesh.positions.size(), 4u);
+  const Eigen::Matrix3d r = TiltedFieldTurn();
+  const Eigen::Vector3d at(2, 0.5, -1.5);
+  for (const Eigen::Vector3f& p : mesh.positions) {
+    const Eigen::Vector3d local = r.transpose() * (p.cast<double>() - at);
+    EXPECT_TRUE(std::abs(local.x() - 1.0) < 1e-5 || std::abs(local.x() - 1.02) < 1e-5) << local.x();
+    EXPECT_TRUE(std::abs(local.z() + 0.5) < 1e-5 || std::abs(local.z() + 0.52) < 1e-5) << local.z();
+    const double surface = 0.025 * (local.x() + 2) + 0.025 * (local.z() + 2);
+    EXPECT_NEAR(local.y(), surface - 0.005, 1e-5);
+  }
+}
+
+// Ruts never go where their message does not put them on a ground of the
+// model: another ground, a frame that is not the ground's, an unknown one.
+TEST(SoilRutsTest, RutsOnAGroundTheModelLacksOrElsewhereAreRefused) {
+  Scene scene;
+  scene.OfferModel(TiltedFieldModel(7));
+  struct Case {
+    soil_ruts_t message;
+    std::string expected;
+  };
+  std::vector<Case> cases;
+  cases.push_back({Ruts(7, false, {{1, 2, 0.01f}}),
+                   "SIM_SOIL_RUTS: ground = 0 but the model has no surface plane (step 100)"});
+  Case moved{FieldRuts(7, {{1, 2, 0.01f}}), "origin = (2, 0.6, -1.5), up = "};
+  moved.message.origin[1] = 0.6;
+  cases.push_back(moved);
+  Case turned{FieldRuts(7, {{1, 2, 0.01f}}), "are not the heightfield's frame"};
+  turned.message.up[0] = 0;
+  turned.message.up[1] = 1;
+  turned.message.u_axis[0] = 1;
+  turned.message.u_axis[1] = 0;
+  cases.push_back(turned);
+  Case unknown{FieldRuts(7, {{1, 2, 0.01f}}), "ground = 7 (0 the plane, 1 the heightfield)"};
+  unknown.message.ground = 7;
+  cases.push_back(unknown);
+  for (const Case& c : cases) {
+    const Verdict v = scene.OfferSoilRuts(c.message);
+    EXPECT_FALSE(v.accepted) << c.expected;
+    ASSERT_TRUE(v.problem.has_value()) << c.expected;
+    EXPECT_EQ(v.problem->channel, "SIM_SOIL_RUTS");
+    EXPECT_NE(v.problem->message.find(c.expected), std::string::npos) << v.problem->message;
+  }
+  EXPECT_EQ(scene.ruts(soil_ruts_t::GROUND_HEIGHTFIELD).cells(), 0u);
+  // On the plane of a model without a heightfield, ground 1 is refused too.
+  Scene flat;
+  flat.OfferModel(TwoBodyModel(7));
+  const Verdict v = flat.OfferSoilRuts(FieldRuts(7, {{1, 2, 0.01f}}));
+  ASSERT_TRUE(v.problem.has_value());
+  EXPECT_NE(v.problem->message.find("ground = 1 but the model has no heightfield"), std::string::npos)
+      << v.problem->message;
 }
 
 }  // namespace

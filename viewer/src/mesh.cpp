@@ -175,6 +175,31 @@ double HeightfieldSample(const heightfield_t& f, int row, int column) {
   return f.scale * f.samples[static_cast<size_t>(row) * f.columns + column] + f.offset;
 }
 
+Eigen::Isometry3d HeightfieldPose(const heightfield_t& f, const Eigen::Vector3d& up) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = UpRotation(up);
+  pose.translation() = Eigen::Vector3d(f.position[0], f.position[1], f.position[2]);
+  return pose;
+}
+
+double HeightfieldSurface(const heightfield_t& f, double x, double z) {
+  const double u = std::clamp((x + f.width / 2) / f.width, 0.0, 1.0) * (f.columns - 1);
+  const double v = std::clamp((z + f.depth / 2) / f.depth, 0.0, 1.0) * (f.rows - 1);
+  const int c = std::min(static_cast<int>(u), f.columns - 2);
+  const int r = std::min(static_cast<int>(v), f.rows - 2);
+  const double fu = u - c, fv = v - r;
+  // HeightfieldMesh's triangles: (r, c) (r + 1, c) (r, c + 1) below the
+  // diagonal from (r + 1, c) to (r, c + 1), (r, c + 1) (r + 1, c)
+  // (r + 1, c + 1) beyond it.
+  const double h01 = HeightfieldSample(f, r, c + 1), h10 = HeightfieldSample(f, r + 1, c);
+  if (fu + fv <= 1.0) {
+    const double h00 = HeightfieldSample(f, r, c);
+    return h00 + fu * (h01 - h00) + fv * (h10 - h00);
+  }
+  const double h11 = HeightfieldSample(f, r + 1, c + 1);
+  return h11 + (1.0 - fu) * (h10 - h11) + (1.0 - fv) * (h01 - h11);
+}
+
 namespace {
 
 // Local (y-up) position of sample (row, column).

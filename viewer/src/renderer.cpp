@@ -213,8 +213,10 @@ void Renderer::ReleaseModel() {
   body_lists_.clear();
   heightfield_.reset();
   heightfield_grid_.positions.clear();
-  ruts_.reset();
-  ruts_generation_ = -1;
+  for (RutLayer& layer : ruts_) {
+    layer.mesh.reset();
+    layer.generation = -1;
+  }
 }
 
 void Renderer::RebuildModel(const Scene& scene) {
@@ -368,19 +370,27 @@ void Renderer::DrawGround(const Scene& scene, const Viewpoint& viewpoint, const 
 }
 
 void Renderer::DrawRuts(const Scene& scene) {
-  const RutMap& ruts = scene.ruts();
   const auto now = std::chrono::steady_clock::now();
-  // A cleared map (a new simulation) goes at once; growth waits its turn.
-  if (ruts.generation() != ruts_generation_ &&
-      (ruts.cells() == 0 || !ruts_ || now - ruts_built_ >= kRutRebuildInterval)) {
-    ruts_generation_ = ruts.generation();
-    ruts_built_ = now;
-    ruts_.reset();
-    if (ruts.cells() > 0)
-      ruts_ = std::make_unique<BufferMesh>(
-          RutMesh(ruts, Eigen::Vector3f(kPlaneColor[0], kPlaneColor[1], kPlaneColor[2])));
+  bool any = false;
+  for (int8_t ground : {soil_ruts_t::GROUND_PLANE, soil_ruts_t::GROUND_HEIGHTFIELD}) {
+    const RutMap& ruts = scene.ruts(ground);
+    RutLayer& layer = ruts_[static_cast<size_t>(ground)];
+    // A cleared map (a new simulation) goes at once; growth waits its turn.
+    if (ruts.generation() != layer.generation &&
+        (ruts.cells() == 0 || !layer.mesh || now - layer.built >= kRutRebuildInterval)) {
+      layer.generation = ruts.generation();
+      layer.built = now;
+      layer.mesh.reset();
+      // Ruts on the heightfield come only with a model that has one.
+      const heightfield_t* field =
+          ground == soil_ruts_t::GROUND_HEIGHTFIELD ? &scene.model().heightfield : nullptr;
+      if (ruts.cells() > 0)
+        layer.mesh = std::make_unique<BufferMesh>(
+            RutMesh(ruts, Eigen::Vector3f(kPlaneColor[0], kPlaneColor[1], kPlaneColor[2]), field));
+    }
+    any = any || layer.mesh;
   }
-  if (!ruts_) return;
+  if (!any) return;
   // Lowered below the ground, which would hide them: drawn over it (the
   // depth test always passes) but writing their own depth, so that a
   // wheel sunk in a rut shows down to the rut's floor. The bodies come
@@ -389,7 +399,8 @@ void Renderer::DrawRuts(const Scene& scene) {
   glEnable(GL_LIGHTING);
   glEnable(GL_CULL_FACE);
   glDepthFunc(GL_ALWAYS);
-  ruts_->Draw();
+  for (const RutLayer& layer : ruts_)
+    if (layer.mesh) layer.mesh->Draw();
   glDepthFunc(GL_LEQUAL);
   glDisable(GL_CULL_FACE);
 }

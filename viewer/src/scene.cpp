@@ -213,7 +213,7 @@ Verdict Scene::OfferModel(const model_t& model) {
   state_.reset();
   status_.reset();
   scans_.clear();
-  ruts_.Clear();
+  for (RutMap& ruts : ruts_) ruts.Clear();
   return v;
 }
 
@@ -228,11 +228,13 @@ Verdict Scene::OfferSoilRuts(const soil_ruts_t& ruts) {
     return Reject(Rejection::kOtherSimulation, "SIM_SOIL_RUTS",
                   "simulation_id = " + std::to_string(ruts.simulation_id) + ", the model is of " +
                       std::to_string(model_->simulation_id) + ": ignored");
-  if (auto problem = CheckRuts(ruts))
+  auto problem = CheckRuts(ruts);
+  if (!problem) problem = CheckRutsGround(ruts, *model_, Up());
+  if (problem)
     return Reject(Rejection::kBadRuts, "SIM_SOIL_RUTS",
                   *problem + " (step " + std::to_string(ruts.step) + "): ignored");
   ++version_;
-  if (!ruts_.Take(ruts))
+  if (!ruts_[ruts.ground == soil_ruts_t::GROUND_HEIGHTFIELD ? 1 : 0].Take(ruts))
     return Reject(Rejection::kBadRuts, "SIM_SOIL_RUTS",
                   "more than " + std::to_string(RutMap::kMaxCells) +
                       " rut cells: the newest are not shown");

@@ -38,11 +38,35 @@ std::optional<std::string> CheckRuts(const soil_ruts_t& m) {
     return "u_axis = " + Triple(m.u_axis) + " is not along the surface of up = " + Triple(m.up);
   if (!(m.cell_size >= 0.001 && m.cell_size <= 1.0))
     return "cell_size = " + FormatNumber(m.cell_size) + " (1 mm to 1 m)";
+  if (m.ground != soil_ruts_t::GROUND_PLANE && m.ground != soil_ruts_t::GROUND_HEIGHTFIELD)
+    return "ground = " + std::to_string(m.ground) + " (0 the plane, 1 the heightfield)";
   for (size_t i = 0; i < m.depth.size(); ++i)
     if (!(m.depth[i] > 0.0f && m.depth[i] <= kMaxRutDepth))
       return "depth[" + std::to_string(i) + "] = " + FormatNumber(m.depth[i]) + " (cell " +
              std::to_string(m.u[i]) + ", " + std::to_string(m.w[i]) + "; 0 < depth <= " +
              FormatNumber(kMaxRutDepth) + " m)";
+  return std::nullopt;
+}
+
+std::optional<std::string> CheckRutsGround(const soil_ruts_t& m, const model_t& model,
+                                           const Eigen::Vector3d& up) {
+  // The sim computes the frame from the same numbers: equal but rounding.
+  constexpr double kSame = 1e-6;
+  if (m.ground == soil_ruts_t::GROUND_PLANE) {
+    if (!model.has_plane) return std::string("ground = 0 but the model has no surface plane");
+    const Eigen::Vector3d n = Eigen::Vector3d(model.plane[0], model.plane[1], model.plane[2]);
+    if ((Vec(m.up) - n.normalized()).norm() > kSame ||
+        std::abs(Vec(m.origin).dot(n) - model.plane[3]) > kSame * n.norm())
+      return "up = " + Triple(m.up) + ", origin = " + Triple(m.origin) +
+             " are not the model's surface plane";
+    return std::nullopt;
+  }
+  if (!model.heightfield.present) return std::string("ground = 1 but the model has no heightfield");
+  const Eigen::Isometry3d pose = HeightfieldPose(model.heightfield, up);
+  if ((Vec(m.origin) - pose.translation()).norm() > kSame || (Vec(m.up) - pose.linear().col(1)).norm() > kSame ||
+      (Vec(m.u_axis) - pose.linear().col(0)).norm() > kSame)
+    return "origin = " + Triple(m.origin) + ", up = " + Triple(m.up) + ", u_axis = " +
+           Triple(m.u_axis) + " are not the heightfield's frame";
   return std::nullopt;
 }
 
@@ -114,9 +138,17 @@ double CornerDepth(const RutMap& ruts, int64_t u, int64_t w) {
 
 }  // namespace
 
-Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color) {
+Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color, const heightfield_t* field) {
   Mesh mesh;
   const Eigen::Vector3d up = ruts.up();
+  // The untouched surface above a point of the grid's plane: the plane
+  // itself, or the field's surface (its frame: x along u_axis, y up).
+  const Eigen::Vector3d field_z = ruts.u_axis().cross(up);
+  auto surface = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
+    if (field == nullptr) return p;
+    const Eigen::Vector3d d = p - ruts.origin();
+    return p + HeightfieldSurface(*field, d.dot(ruts.u_axis()), d.dot(field_z)) * up;
+  };
   // Half a cell along each axis of the grid.
   const Eigen::Vector3d a = 0.5 * ruts.cell_size() * ruts.u_axis();
   const Eigen::Vector3d b = 0.5 * ruts.cell_size() * up.cross(ruts.u_axis());
@@ -127,9 +159,10 @@ Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color) {
   for (const auto& [cell, depth] : ruts.depths()) {
     const int64_t u = cell.first, w = cell.second;
     const Eigen::Vector3d c = ruts.CellCentre(cell.first, cell.second);
-    const Eigen::Vector3d corners[4] = {
-        c - a - b - CornerDepth(ruts, u, w) * up, c + a - b - CornerDepth(ruts, u + 1, w) * up,
-        c + a + b - CornerDepth(ruts, u + 1, w + 1) * up, c - a + b - CornerDepth(ruts, u, w + 1) * up};
+    const Eigen::Vector3d corners[4] = {surface(c - a - b) - CornerDepth(ruts, u, w) * up,
+                                        surface(c + a - b) - CornerDepth(ruts, u + 1, w) * up,
+                                        surface(c + a + b) - CornerDepth(ruts, u + 1, w + 1) * up,
+                                        surface(c - a + b) - CornerDepth(ruts, u, w + 1) * up};
     // One normal per cell, across its diagonals.
     const Eigen::Vector3f normal =
         (corners[2] - corners[0]).cross(corners[3] - corners[1]).normalized().cast<float>();

@@ -1,18 +1,22 @@
 // The ruts wheels press into soft soil, as the viewer draws them (issue
-// 28, docs/soil.md): on a grid of kCellSize cells of the soil's surface,
-// the deepest sinkage a wheel's lowest rim point reached, stamped across
-// its tread. Fed each step's wheel readouts; gives SIM_SOIL_RUTS
-// messages: the cells deepened since the last one, or every cell.
+// 28, docs/soil.md): on a grid of kCellSize cells of each soil ground (the
+// surface plane's, the heightfield's base plane), the deepest sinkage a
+// wheel's lowest rim point reached, stamped across its tread. Fed each
+// step's wheel readouts; gives SIM_SOIL_RUTS messages: the cells deepened
+// since the last one, or every cell.
 // The soil's own memory (2 mm cells along each wheel's mid-plane) stays
 // the engine's: this is its picture, coarse enough to draw and to send.
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
+#include <array>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
 
+#include "simpartner/model/model.h"
 #include "simpartner/sim/engine.h"
 #include "simpartner/soil_ruts_t.hpp"
 
@@ -29,38 +33,67 @@ class SoilRuts {
   // A cell is sent again once it is this much deeper than when last sent.
   static constexpr float kDepthResolution = 0.0005f;  // [m]
 
-  // Stamps each wheel's tread into the grid. The grid lies on the first
-  // soil surface met; wheels on another are left out (one soil ground is
-  // all the worlds have).
+  // A world whose only soil is its surface plane (the grid lies on the
+  // surface of the first wheel stamped).
+  SoilRuts() = default;
+  // The soil grounds of `world` (which must outlive this): its surface
+  // plane and its heightfield where their material is a soil.
+  explicit SoilRuts(const model::World& world);
+
+  // Stamps each wheel's tread into the grid of the ground it presses:
+  // the heightfield when its untouched surface point lies on the field,
+  // else the plane; a wheel on neither is left out.
   void Stamp(const std::vector<WheelSoilReadout>& wheels);
   void Clear();
 
-  bool has_changes() const { return !queued_.empty(); }
-  size_t cells() const { return cells_.size(); }
-  bool full() const { return cells_.size() >= kMaxCells; }
+  bool has_changes() const;
+  size_t cells() const;
+  bool full() const { return cells() >= kMaxCells; }
 
-  // The cells deepened since the last call (at most kCellsPerMessage; the
-  // rest come with the next), as a message without utime, simulation id
-  // and step.
+  // The cells of one ground deepened since the last call (at most
+  // kCellsPerMessage; the rest, and the other ground's, come with the
+  // next), as a message without utime, simulation id and step.
   soil_ruts_t TakeChanges();
-  // Every cell, in parts of at most kCellsPerMessage (one empty part when
-  // there are none).
+  // Every cell, each ground's in its own parts of at most
+  // kCellsPerMessage (one empty part when there are none).
   std::vector<soil_ruts_t> Snapshot() const;
 
  private:
   struct Cell {
     float depth = 0.0f;
     float sent = 0.0f;     // the depth last sent
-    bool queued = false;  // in queued_
+    bool queued = false;  // in queued
   };
-  void Press(const Eigen::Vector3d& point, float depth);
-  soil_ruts_t Header(bool snapshot) const;
+  // One ground's cells, keyed along u_axis and w_axis = up x u_axis from
+  // origin.
+  struct Grid {
+    explicit Grid(int8_t ground_kind) : ground(ground_kind) {}
+    int8_t ground;
+    bool has_frame = false;
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero(), up = Eigen::Vector3d::UnitY(),
+                    u_axis = Eigen::Vector3d::UnitX(), w_axis = Eigen::Vector3d::UnitZ();
+    std::unordered_map<uint64_t, Cell> cells;
+    std::vector<uint64_t> queued;
+  };
+  // The grid of the ground `wheel` presses (its frame set), or null.
+  Grid* GridOf(const WheelSoilReadout& wheel);
+  void Press(Grid* grid, const Eigen::Vector3d& point, float depth);
+  soil_ruts_t Header(const Grid& grid, bool snapshot) const;
 
-  bool has_surface_ = false;
-  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero(), up_ = Eigen::Vector3d::UnitY(),
-                  u_axis_ = Eigen::Vector3d::UnitX(), w_axis_ = Eigen::Vector3d::UnitZ();
-  std::unordered_map<uint64_t, Cell> cells_;
-  std::vector<uint64_t> queued_;
+  bool OnPlane(const WheelSoilReadout& wheel) const;
+  bool OnField(const WheelSoilReadout& wheel) const;
+
+  // The soil plane's normal and its point nearest the origin, as the
+  // engine reports them (plane_known_), or whichever the first wheel
+  // reports (a SoilRuts made without a world).
+  bool plane_is_soil_ = true, plane_known_ = false;
+  Eigen::Vector3d plane_up_ = Eigen::Vector3d::UnitY(), plane_origin_ = Eigen::Vector3d::Zero();
+  const model::Heightfield* field_ = nullptr;  // of soil, or none
+  Eigen::Isometry3d field_pose_ = Eigen::Isometry3d::Identity();
+  // Indexed by soil_ruts_t::GROUND_*.
+  std::array<Grid, 2> grids_ = {Grid(soil_ruts_t::GROUND_PLANE),
+                                 Grid(soil_ruts_t::GROUND_HEIGHTFIELD)};
+  size_t next_grid_ = 0;       // whose changes TakeChanges sends first
 };
 
 }  // namespace simpartner::sim

@@ -55,6 +55,13 @@ Mesh GeometryMesh(const geometry_t& geometry);
 Mesh HeightfieldMesh(const heightfield_t& field, const Eigen::Vector3d& up);
 // Height (along up, before the position offset) of sample (row, column).
 double HeightfieldSample(const heightfield_t& field, int row, int column);
+// The field's frame in the world: its y along `up`, its origin at its
+// position (as HeightfieldMesh places it).
+Eigen::Isometry3d HeightfieldPose(const heightfield_t& field, const Eigen::Vector3d& up);
+// Height (as HeightfieldSample) of the surface HeightfieldMesh draws at
+// (x, z) of the field's frame: on the triangle there, clamped at the
+// field's border.
+double HeightfieldSurface(const heightfield_t& field, double x, double z);
 // Grid lines on the heightfield surface along the sample rows and columns
 // that lie nearest to every `spacing` metres, lifted by `lift` along up.
 // Samples where a line stays within `tolerance` of a straight chord are

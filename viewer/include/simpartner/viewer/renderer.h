@@ -93,9 +93,13 @@ class Renderer {
   std::vector<unsigned> body_lists_;  // one display list per body (0: nothing to draw)
   std::unique_ptr<BufferMesh> heightfield_;
   Lines heightfield_grid_;
-  std::unique_ptr<BufferMesh> ruts_;  // of the scene's ruts of generation ruts_generation_
-  int64_t ruts_generation_ = -1;
-  std::chrono::steady_clock::time_point ruts_built_{};
+  // The mesh of the scene's ruts of one ground, of generation `generation`.
+  struct RutLayer {
+    std::unique_ptr<BufferMesh> mesh;
+    int64_t generation = -1;
+    std::chrono::steady_clock::time_point built{};
+  };
+  std::array<RutLayer, 2> ruts_;  // by ground (soil_ruts_t::GROUND_*)
   // The ruts' mesh is rebuilt at most this often (its changes come ten
   // times a second; rebuilding 55,000 cells each time cost 40 % of the
   // frame rate).

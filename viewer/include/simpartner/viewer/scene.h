@@ -98,8 +98,11 @@ class Scene {
   // start: robot 0, else all bodies, else the heightfield.
   std::pair<Eigen::Vector3d, double> FocusSphere() const;
 
-  // The ruts in the soil (this simulation only).
-  const RutMap& ruts() const { return ruts_; }
+  // The ruts in the soil of one ground (soil_ruts_t::GROUND_*; this
+  // simulation only).
+  const RutMap& ruts(int8_t ground = soil_ruts_t::GROUND_PLANE) const {
+    return ruts_[ground == soil_ruts_t::GROUND_HEIGHTFIELD ? 1 : 0];
+  }
 
   // Latest scanner reading per sensor index (this simulation only).
   const std::map<int, sensor_reading_t>& scans() const { return scans_; }
@@ -128,7 +131,7 @@ class Scene {
   int64_t states_before_model_ = 0;
   std::optional<status_t> status_;
   std::map<int, sensor_reading_t> scans_;
-  RutMap ruts_;
+  std::array<RutMap, 2> ruts_;  // by ground
   std::array<int64_t, kRejectionKinds> rejected_{};
   std::deque<Problem> recent_problems_;
 };

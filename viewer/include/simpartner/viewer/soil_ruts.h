@@ -1,6 +1,7 @@
 // The ruts wheels pressed into soft soil, as the viewer learns them from
 // SIM_SOIL_RUTS (soil_ruts_t): square cells of the soil's surface and how
-// deep each was pressed. No GL here: the renderer draws RutMesh.
+// deep each was pressed, on the surface plane or on the heightfield (its
+// base plane's grid). No GL here: the renderer draws RutMesh.
 #pragma once
 
 #include <Eigen/Core>
@@ -11,17 +12,23 @@
 #include <string>
 #include <utility>
 
+#include "simpartner/model_t.hpp"
 #include "simpartner/soil_ruts_t.hpp"
 #include "simpartner/viewer/mesh.h"
 
 namespace simpartner::viewer {
 
 // A rut message the viewer can use: the surface frame finite with unit,
-// perpendicular axes, a cell size of 1 mm to 1 m, part within parts, each
-// depth finite, above 0 and at most kMaxRutDepth. Returns the first
-// problem ("depth[3] = -0.5 (cell 12, -4)").
+// perpendicular axes, a cell size of 1 mm to 1 m, part within parts, a
+// known ground, each depth finite, above 0 and at most kMaxRutDepth.
+// Returns the first problem ("depth[3] = -0.5 (cell 12, -4)").
 inline constexpr double kMaxRutDepth = 10.0;  // [m]
 std::optional<std::string> CheckRuts(const soil_ruts_t& message);
+// A checked message's ground is one of `model`'s (whose up is `up`), the
+// grid on it: the plane's normal and a point of it, or the heightfield's
+// frame (HeightfieldPose). Returns the first problem.
+std::optional<std::string> CheckRutsGround(const soil_ruts_t& message, const model_t& model,
+                                           const Eigen::Vector3d& up);
 
 class RutMap {
  public:
@@ -29,9 +36,10 @@ class RutMap {
   // cells takes 60,000); beyond it new cells are left out.
   static constexpr size_t kMaxCells = 1000000;
 
-  // Takes a checked message (CheckRuts): a snapshot's first part, or a
-  // message on another surface or cell size, replaces every cell; the
-  // rest deepen theirs. Returns false when cells were left out (full).
+  // Takes a checked message (CheckRuts) of this map's ground: a
+  // snapshot's first part, or a message on another surface or cell size,
+  // replaces every cell; the rest deepen theirs. Returns false when cells
+  // were left out (full).
   bool Take(const soil_ruts_t& message);
   void Clear();
 
@@ -40,11 +48,13 @@ class RutMap {
   int64_t generation() const { return generation_; }
   // The deepest cell [m], 0 when none.
   double deepest() const;
-  // The world position of cell (u, w)'s centre on the untouched surface.
+  // The world position of cell (u, w)'s centre on the grid's plane (on a
+  // heightfield: its base plane).
   Eigen::Vector3d CellCentre(int32_t u, int32_t w) const;
   const std::map<std::pair<int32_t, int32_t>, float>& depths() const { return depth_; }
   const Eigen::Vector3d& up() const { return up_; }
   const Eigen::Vector3d& u_axis() const { return u_axis_; }
+  const Eigen::Vector3d& origin() const { return origin_; }
   double cell_size() const { return cell_size_; }
 
  private:
@@ -60,8 +70,11 @@ class RutMap {
 // Each cell as a square lowered into the ground (indexed: 4 vertices, 2
 // triangles facing up), each corner by the mean depth of the four cells
 // around it (0 where untouched): neighbours meet without gaps and a rut's
-// edges slope up to the surface. Coloured `color` darkened by a third,
-// and by half at 5 cm deep and deeper.
-Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color);
+// edges slope up to the surface. On a heightfield (`field`, the ruts'
+// grid on its base plane: CheckRutsGround) each corner is lowered from the
+// field's surface above it as drawn. Coloured `color` darkened by a
+// third, and by half at 5 cm deep and deeper.
+Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color,
+             const heightfield_t* field = nullptr);
 
 }  // namespace simpartner::viewer
