@@ -341,10 +341,35 @@ TEST(Validation, CaterpillarAdvancesAStridePerCycle) {
   EXPECT_LT(r.Measured("caterpillar speed / skidding wheels' speed"), 1.0);
 }
 
+// The pitch [rad] of a gen1 calf (knee to foot, from forward towards up)
+// with its foot `ahead` of the hip, the hip 0.48 m above the axle and both
+// links 0.3 m: the knee is where the two links' circles meet, behind the
+// hip-foot line for the front legs and ahead of it for the rear ones.
+double CalfPitchFromKnee(bool front, double ahead) {
+  const double hip_x = 0.0, hip_y = 0.48, link = 0.3;
+  const double dx = ahead - hip_x, dy = -hip_y, d = std::hypot(dx, dy);
+  const double along = d / 2.0, across = std::sqrt(link * link - along * along);
+  const double mid_x = hip_x + dx / 2.0, mid_y = hip_y + dy / 2.0;
+  // The unit normal (-dy, dx) / d points forward-up of the line downwards.
+  const double side = front ? -1.0 : 1.0;
+  const double knee_x = mid_x + side * across * (-dy / d);
+  const double knee_y = mid_y + side * across * (dx / d);
+  return std::atan2(0.0 - knee_y, ahead - knee_x);
+}
+
+// A held wheel keeps its angle to its calf, so in the push (each foot from
+// 0.25 m ahead of its hip to below it) it rolls r times its calf's pitch
+// change: the part of rolking's creep that needs no slip at all.
 TEST(Validation, RollingWalkingAdvancesAStridePerCycle) {
   const ExperimentResult r = RunNamed("rolking");
   EXPECT_NEAR(r.Measured("rolking speed vs stride"), 0.25 / 7.0, 0.10 * 0.25 / 7.0);
   EXPECT_LT(r.Measured("rolking speed / skidding wheels' speed"), 1.0);
+  const double front = 0.235 * (CalfPitchFromKnee(true, 0.25) - CalfPitchFromKnee(true, 0.0));
+  const double rear = 0.235 * (CalfPitchFromKnee(false, 0.25) - CalfPitchFromKnee(false, 0.0));
+  EXPECT_NEAR(front, 0.0665, 0.0001);  // 0.283 rad
+  EXPECT_NEAR(rear, 0.1592, 0.0001);   // 0.677 rad
+  EXPECT_NEAR(r.Measured("rolking front held wheels' roll in the push"), front, 0.01 * front);
+  EXPECT_NEAR(r.Measured("rolking rear held wheels' roll in the push"), rear, 0.01 * rear);
 }
 
 // The test track's planks alone (the unit tests' short drive, from 2.3 m
