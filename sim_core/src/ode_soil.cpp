@@ -34,7 +34,7 @@ Eigen::Vector3d AlongSurface(const Eigen::Vector3d& up) {
 void OdeSoil::AddGround(dGeomID plane, const model::SoilParameters& soil) {
   dVector4 p;
   dGeomPlaneGetParams(plane, p);
-  Ground ground{Soil::From(soil), SoilSurface{}, SoilMemory{}};
+  Ground ground{Soil::From(soil), SoilSurface{}, SoilMemory{soil.n}};
   ground.surface.up = Eigen::Vector3d(p[0], p[1], p[2]).normalized();
   ground.surface.origin = ground.surface.up * p[3];
   ground.surface.u_axis = AlongSurface(ground.surface.up);
@@ -43,7 +43,7 @@ void OdeSoil::AddGround(dGeomID plane, const model::SoilParameters& soil) {
 
 void OdeSoil::AddHeightfield(dGeomID field, const model::SoilParameters& soil,
                              const model::Heightfield& shape, const Eigen::Isometry3d& pose) {
-  Ground ground{Soil::From(soil), SoilSurface{}, SoilMemory{}, &shape, pose};
+  Ground ground{Soil::From(soil), SoilSurface{}, SoilMemory{soil.n}, &shape, pose};
   grounds_.emplace(field, std::move(ground));
 }
 

@@ -1,8 +1,10 @@
 #include "simpartner/sim/soil_mechanics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <vector>
+#include <stdexcept>
+#include <string>
 
 namespace simpartner::sim {
 namespace {
@@ -145,13 +147,17 @@ ShearAt ShearWithSlopes(const Soil& soil, double sigma, const Displacement& d,
     out.per_side = {strength * d_per_side.along / k, strength * d_per_side.across / k};
     return out;
   }
-  const double e = std::exp(-j / k), f = strength * (1.0 - e);
-  out.tau = {f * d.along / j, f * d.across / j};
+  const double inverse_j = 1.0 / j;  // divisions are what a point costs most
+  const double e = std::exp(-j / k), f = strength * (1.0 - e), f_per_j = f * inverse_j;
+  const Displacement unit{d.along * inverse_j, d.across * inverse_j};
+  out.tau = {f_per_j * d.along, f_per_j * d.across};
+  const double e_per_k = strength * e / k;
   auto derivative = [&](const Displacement& dd) {
-    const double dj = (d.along * dd.along + d.across * dd.across) / j;
-    const double df = strength * e / k * dj;
-    return Displacement{df * d.along / j + f * (dd.along / j - d.along * dj / (j * j)),
-                        df * d.across / j + f * (dd.across / j - d.across * dj / (j * j))};
+    const double dj = unit.along * dd.along + unit.across * dd.across;
+    // d tau = (df - f / j dj) unit + f / j dd
+    const double radial = e_per_k * dj - f_per_j * dj;
+    return Displacement{radial * unit.along + f_per_j * dd.along,
+                        radial * unit.across + f_per_j * dd.across};
   };
   out.per_spin = derivative(d_per_spin);
   out.per_side = derivative(d_per_side);
@@ -194,7 +200,8 @@ double Soil::Shear(double sigma, double j) const {
   return std::copysign(strength * (1.0 - std::exp(-std::abs(j) / shear_modulus)), j);
 }
 
-SoilMemory::SoilMemory(double cell_size) : cell_size_(cell_size) {}
+SoilMemory::SoilMemory(double exponent, double cell_size)
+    : exponent_(exponent), cell_size_(cell_size) {}
 
 uint64_t SoilMemory::Key(double u, double w) const {
   // Two's complement cell indices, 32 bits each (shifting a negative
@@ -204,33 +211,44 @@ uint64_t SoilMemory::Key(double u, double w) const {
   return (iu << 32) ^ (iw & 0xffffffffULL);
 }
 
-double SoilMemory::Deepest(double u, double w) const {
+const SoilMemory::Depth& SoilMemory::At(double u, double w) const {
+  static constexpr Depth kUntouched{};
   const auto it = deepest_.find(Key(u, w));
-  return it == deepest_.end() ? 0.0 : it->second;
+  return it == deepest_.end() ? kUntouched : it->second;
 }
 
-void SoilMemory::Press(double u, double w, double z) { PathPress(this).Press(u, w, z); }
+void SoilMemory::Press(double u, double w, double z) {
+  PathPress press(this);
+  if (z > press.Cell(u, w).z) press.Deepen(z, std::pow(z, exponent_));
+}
 
-double SoilMemory::PathPress::Press(double u, double w, double z) {
+const SoilMemory::Depth& SoilMemory::PathPress::Cell(double u, double w) {
   const uint64_t key = memory_->Key(u, w);
   if (!in_cell_ || key != key_) {
     in_cell_ = true;
     key_ = key;
     const auto it = memory_->deepest_.find(key);
     deepest_ = it == memory_->deepest_.end() ? nullptr : &it->second;
-    before_ = deepest_ ? *deepest_ : 0.0;
-  }
-  if (z > 0.0) {
-    // References into an unordered_map stay valid as it grows.
-    if (!deepest_) deepest_ = &memory_->deepest_[key];
-    *deepest_ = std::max(*deepest_, z);
+    before_ = deepest_ ? *deepest_ : Depth{};
   }
   return before_;
 }
 
+void SoilMemory::PathPress::Deepen(double z, double z_n) {
+  if (!(z > 0.0)) return;
+  // References into an unordered_map stay valid as it grows.
+  if (!deepest_) deepest_ = &memory_->deepest_[key_];
+  if (z > deepest_->z) *deepest_ = Depth{z, z_n};
+}
+
 double PressureWithMemory(const Soil& soil, double z, double z_max, double b) {
-  if (z >= z_max) return soil.Pressure(z, b);
-  return std::max(0.0, soil.Pressure(z_max, b) - soil.unloading_stiffness * (z_max - z));
+  return PressureWithMemory(soil, z, {z_max, std::pow(z_max, soil.n)}, b);
+}
+
+double PressureWithMemory(const Soil& soil, double z, const SoilMemory::Depth& before, double b) {
+  if (z >= before.z) return soil.Pressure(z, b);
+  const double p_max = (soil.k_c / b + soil.k_phi) * before.z_n;
+  return std::max(0.0, p_max - soil.unloading_stiffness * (before.z - z));
 }
 
 namespace {
@@ -255,24 +273,44 @@ struct ArcMemory {
   SoilMemory::PathPress* pressed = nullptr;
 };
 
+// How fast the rim point at theta sinks (its velocity against the
+// surface's up): -(v + omega x (p - c)) . up with p - c = r (-cos theta
+// u + sin theta f) (u, f the wheel frame's up and forward), i.e.
+// -(v . up) + r cos theta omega . (u x up) - r sin theta omega . (f x up):
+// three numbers a wheel, two products a point.
+struct SinkingRate {
+  SinkingRate(const WheelState& wheel, const WheelFrame& frame, const Eigen::Vector3d& up)
+      : centre(-wheel.velocity.dot(up)),
+        per_cos(wheel.radius * wheel.angular_velocity.dot(frame.up.cross(up))),
+        per_sin(-wheel.radius * wheel.angular_velocity.dot(frame.forward.cross(up))) {}
+  double At(double cos_theta, double sin_theta) const {
+    return centre + per_cos * cos_theta + per_sin * sin_theta;
+  }
+  double centre, per_cos, per_sin;
+};
+
 // The normal stress at `point` of the rim, and its slope against sinkage.
 // With `press`, the memory records the point (ArcMemory).
 void NormalStress(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
-                  const ArcMemory& memory, const Eigen::Vector3d& point, ArcSample* sample) {
+                  const ArcMemory& memory, const Eigen::Vector3d& point, double sinking,
+                  ArcSample* sample) {
   const double z = -HeightAbove(surface, point);
   const Eigen::Vector2d at = GroundCoordinates(surface, point);
-  const double z_max =
-      memory.pressed ? memory.pressed->Press(at.x(), at.y(), z) : memory.read.Deepest(at.x(), at.y());
-  double s = PressureWithMemory(soil, z, z_max, wheel.width);
-  double ds = 0.0;
-  if (s > 0.0) {
-    ds = z >= z_max ? soil.n * s / z : soil.unloading_stiffness;
-    const double sinking = -(wheel.velocity + wheel.angular_velocity.cross(point - wheel.centre))
-                                .dot(surface.up);
-    // The soil's damping: on any loaded point, sinking or rising.
-    s = std::max(0.0, s + soil.viscosity * sinking);
-    if (s == 0.0) ds = 0.0;
+  const SoilMemory::Depth& before =
+      memory.pressed ? memory.pressed->Cell(at.x(), at.y()) : memory.read.At(at.x(), at.y());
+  double s = 0.0, ds = 0.0;
+  if (z > 0.0 && z >= before.z) {  // on Bekker's curve: the one pow of the point
+    const double z_n = std::pow(z, soil.n);
+    if (memory.pressed) memory.pressed->Deepen(z, z_n);
+    s = (soil.k_c / wheel.width + soil.k_phi) * z_n;
+    ds = soil.n * s / z;
+  } else if (z > 0.0) {
+    s = PressureWithMemory(soil, z, before, wheel.width);
+    ds = soil.unloading_stiffness;
   }
+  // The soil's damping: on any loaded point, sinking or rising.
+  if (s > 0.0) s = std::max(0.0, s + soil.viscosity * sinking);
+  if (s == 0.0) ds = 0.0;
   sample->sigma = s;
   sample->dsigma = ds;
 }
@@ -290,7 +328,7 @@ struct ArcSums {
 };
 
 ArcSums SumOverArc(const Soil& soil, const WheelState& wheel, const WheelFrame& frame,
-                   const Eigen::Vector3d& up, double area, const std::vector<ArcSample>& arc,
+                   const Eigen::Vector3d& up, double area, const ArcSample* arc, int samples,
                    WheelSoilForces* out) {
   const double r = wheel.radius, v = out->forward_speed, v_y = out->side_speed, w = out->spin;
   const bool turning = std::abs(w) > kStillSpin;
@@ -298,7 +336,8 @@ ArcSums SumOverArc(const Soil& soil, const WheelState& wheel, const WheelFrame& 
   const double faster_entry = EntryAngle(*out, w + kSpinStep);
   const double sin_faster_entry = std::sin(faster_entry);
   ArcSums sums;
-  for (const ArcSample& a : arc) {
+  for (const ArcSample* a_point = arc; a_point != arc + samples; ++a_point) {
+    const ArcSample& a = *a_point;
     if (a.sigma <= 0.0) continue;
     const Displacement d =
         ShearDisplacement(soil, r, v, v_y, w, entry, sin_entry, a.theta, a.sin_theta);
@@ -339,6 +378,13 @@ ArcSums SumOverArc(const Soil& soil, const WheelState& wheel, const WheelFrame& 
 // The soil's answer to `wheel` (soil_mechanics.h: WheelOnSoil).
 WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
                          const ArcMemory& memory, int samples, WheelSoilSlopes* slopes) {
+  if (samples < 1 || samples > kMaxArcSamples)
+    throw std::invalid_argument("soil: " + std::to_string(samples) + " arc samples, not 1 to " +
+                                std::to_string(kMaxArcSamples));
+  // A memory keeps z^n of its own soil's n (SoilMemory).
+  if (memory.read.exponent() != soil.n)
+    throw std::invalid_argument("soil: a memory of exponent " + std::to_string(memory.read.exponent()) +
+                                " for a soil of n " + std::to_string(soil.n));
   WheelSoilForces out;
   if (slopes) *slopes = WheelSoilSlopes{};
   const WheelFrame frame = FrameOf(wheel, surface);
@@ -353,17 +399,19 @@ WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSu
 
   // Normal stresses first: where the arc is loaded decides theta_front.
   const double step = 2.0 * half / samples;
-  std::vector<ArcSample> arc(static_cast<size_t>(samples));
+  std::array<ArcSample, kMaxArcSamples> arc;
   out.theta_front = -half;
   out.theta_rear = half;
   ArcAngles angles(half, step);
-  for (ArcSample& a : arc) {
+  const SinkingRate sinking(wheel, frame, surface.up);
+  for (int k = 0; k < samples; ++k) {
+    ArcSample& a = arc[static_cast<size_t>(k)];
     a.theta = angles.theta;
     a.cos_theta = angles.cos_theta;
     a.sin_theta = angles.sin_theta;
     angles.Next();
     const Eigen::Vector3d point = RimPoint(wheel, frame, a.cos_theta, a.sin_theta);
-    NormalStress(soil, wheel, surface, memory, point, &a);
+    NormalStress(soil, wheel, surface, memory, point, sinking.At(a.cos_theta, a.sin_theta), &a);
     if (a.sigma > 0.0) {
       out.theta_front = std::max(out.theta_front, a.theta + 0.5 * step);
       out.theta_rear = std::min(out.theta_rear, a.theta - 0.5 * step);
@@ -371,7 +419,7 @@ WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSu
   }
   const double area = b * r * step;
   out.side_speed = wheel.velocity.dot(wheel.axle);
-  const ArcSums sums = SumOverArc(soil, wheel, frame, surface.up, area, arc, &out);
+  const ArcSums sums = SumOverArc(soil, wheel, frame, surface.up, area, arc.data(), samples, &out);
   out.touching = out.contact_area > 0.0;
   if (slopes) {
     slopes->stiffness = sums.stiffness;
@@ -408,7 +456,8 @@ void PressWheel(const WheelState& wheel, const SoilSurface& surface, SoilMemory*
   for (ArcAngles angles(half, step); angles.k < samples; angles.Next()) {
     const Eigen::Vector3d point = RimPoint(wheel, frame, angles.cos_theta, angles.sin_theta);
     const Eigen::Vector2d at = GroundCoordinates(surface, point);
-    press.Press(at.x(), at.y(), -HeightAbove(surface, point));
+    const double z = -HeightAbove(surface, point);
+    if (z > press.Cell(at.x(), at.y()).z) press.Deepen(z, std::pow(z, memory->exponent()));
   }
 }
 

@@ -58,15 +58,23 @@ struct Soil {
   double Shear(double sigma, double j) const;
 };
 
-// How deep the soil has been pressed, on a square grid of the ground
+// How deep one soil has been pressed, on a square grid of the ground
 // (coordinates along the surface): per cell, the deepest sinkage below the
-// untouched surface so far. Cells no wheel has touched are not stored.
+// untouched surface so far and its power n (Bekker's exponent), so that a
+// point on the unloading line needs no pow. Cells no wheel has touched are
+// not stored.
 class SoilMemory {
  public:
-  explicit SoilMemory(double cell_size = 0.002);
+  // A depth z [m] and z^n.
+  struct Depth {
+    double z = 0.0, z_n = 0.0;
+  };
+  explicit SoilMemory(double exponent, double cell_size = 0.002);
+  double exponent() const { return exponent_; }
   double cell_size() const { return cell_size_; }
   // The deepest sinkage [m] at (u, w) so far; 0 where untouched.
-  double Deepest(double u, double w) const;
+  double Deepest(double u, double w) const { return At(u, w).z; }
+  const Depth& At(double u, double w) const;
   // Records sinkage z at (u, w) when it is deeper than the deepest so far.
   void Press(double u, double w, double z);
   size_t cells() const { return deepest_.size(); }
@@ -78,27 +86,32 @@ class SoilMemory {
   class PathPress {
    public:
     explicit PathPress(SoilMemory* memory) : memory_(memory) {}
-    // Records z at (u, w); returns the cell's deepest before the path.
-    double Press(double u, double w, double z);
+    // The cell at (u, w): what it held before the path.
+    const Depth& Cell(double u, double w);
+    // Records z (z_n = z^n) in the cell last named, when deeper.
+    void Deepen(double z, double z_n);
 
    private:
     SoilMemory* memory_;
     bool in_cell_ = false;
     uint64_t key_ = 0;
-    double before_ = 0.0;
-    double* deepest_ = nullptr;  // the cell's entry, once it has one
+    Depth before_;
+    Depth* deepest_ = nullptr;  // the cell's entry, once it has one
   };
 
  private:
   uint64_t Key(double u, double w) const;
+  double exponent_;
   double cell_size_;
-  std::unordered_map<uint64_t, double> deepest_;
+  std::unordered_map<uint64_t, Depth> deepest_;
 };
 
 // The pressure [Pa] of soil pressed to z where it was pressed to z_max
 // before, under a plate of width b: Bekker's curve when z >= z_max, its
 // unloading line below, never negative.
 double PressureWithMemory(const Soil& soil, double z, double z_max, double b);
+// The same with z_max^n known (SoilMemory::Depth).
+double PressureWithMemory(const Soil& soil, double z, const SoilMemory::Depth& before, double b);
 
 // A rigid wheel and its motion, in world coordinates.
 struct WheelState {
@@ -170,8 +183,12 @@ struct WheelSoilSlopes {
   double side_slope = 0.0;
 };
 
+// The most points an evaluation takes along the arc.
+constexpr int kMaxArcSamples = 512;
+
 // The stresses on `wheel` from `soil` under `surface`, pressed before as
-// `memory` says; `samples` points along the arc (midpoint rule), and,
+// `memory` (of this soil's n) says; `samples` points along the arc
+// (midpoint rule, 1 to kMaxArcSamples; std::invalid_argument else), and,
 // when `slopes` is given, their slopes in the same pass. The wheel's
 // mid-plane is taken upright (its axle along the surface).
 WheelSoilForces WheelOnSoil(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
