@@ -12,7 +12,10 @@
 //             "signing", its cost over sim+pub
 // for each world given (default: the WorkPartner worlds), each stepper
 // setting, as fast as possible. Also peak resident memory.
-//   bench/sim_bench [--steps N] [--lcm-url URL] [world.xml ...]
+//   bench/sim_bench [--steps N] [--lcm-url URL] [--set MOTORS] [world.xml ...]
+// --set NAME=FMAX,VELOCITY[;NAME=...] sets velocity motors before the
+// first step of every measurement (the bare loop's motors too), e.g. to
+// measure a robot driving rather than standing.
 #include <lcm/lcm-cpp.hpp>
 
 #include <chrono>
@@ -21,6 +24,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -38,6 +44,53 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using namespace simpartner;
+
+// A velocity motor set before the first step (--set).
+struct MotorSetting {
+  std::string name;
+  double fmax = 0.0, velocity = 0.0;
+};
+
+// NAME=FMAX,VELOCITY[;NAME=FMAX,VELOCITY...]; nullopt (said on err) when
+// a part is not of that form.
+std::optional<std::vector<MotorSetting>> ReadMotorSettings(const std::string& text,
+                                                           std::ostream& err) {
+  std::vector<MotorSetting> out;
+  std::stringstream parts(text);
+  std::string part;
+  while (std::getline(parts, part, ';')) {
+    MotorSetting m;
+    char equals = 0, comma = 0;
+    std::stringstream in(part);
+    if (!std::getline(in, m.name, '=') || m.name.empty() || !(in >> m.fmax >> comma >> m.velocity) ||
+        comma != ',' || (in >> equals)) {
+      err << "sim_bench: --set: '" << part << "' is not NAME=FMAX,VELOCITY\n";
+      return std::nullopt;
+    }
+    out.push_back(m);
+  }
+  return out;
+}
+
+// A simulation of `world` with the motors set (refused ones said on err).
+std::unique_ptr<sim::Simulation> MakeSim(const model::World& world, const Parameters& params,
+                                         const std::vector<MotorSetting>& motors, bool* ok) {
+  auto sim = std::make_unique<sim::Simulation>(world, params, 1);
+  for (const MotorSetting& m : motors) {
+    command_t c{};
+    c.sender = "sim_bench";
+    c.target = m.name;
+    c.action = command_t::ACTION_SET;
+    c.apply_at_step = -1;
+    c.values = {m.fmax, m.velocity};
+    c.num_values = 2;
+    if (const auto reply = sim->Submit(c); reply && !reply->accepted) {
+      std::cerr << "sim_bench: --set " << m.name << ": " << reply->reason << "\n";
+      *ok = false;
+    }
+  }
+  return sim;
+}
 
 // Peak resident set size of this process [MB] (VmHWM).
 double PeakRssMb() {
@@ -117,6 +170,9 @@ int main(int argc, char** argv) {
       simpartner::Text("lcm-url", "URL", "LCM URL for sim+pub (default udpm://239.255.76.67:7667?ttl=0)"),
       simpartner::Text("engine", "E", "the engines measured: ode, mujoco or both (default both)")
           .Choices({"ode", "mujoco", "both"}),
+      simpartner::Text("set", "MOTORS",
+                       "NAME=FMAX,VELOCITY[;NAME=...]: velocity motors set before the first step\n"
+                       "(e.g. to measure a robot driving rather than standing)"),
   };
   spec.positionals = {simpartner::Positional{"world.xml", 0, simpartner::kAnyCount}};
   simpartner::CommandLine args;
@@ -126,6 +182,8 @@ int main(int argc, char** argv) {
   const int steps = static_cast<int>(args.Integer("steps", 5000));
   const std::string url = args.Text("lcm-url", "udpm://239.255.76.67:7667?ttl=0");
   const std::string engines = args.Text("engine", "both");
+  const auto motors = ReadMotorSettings(args.Text("set", ""), std::cerr);
+  if (!motors) return 2;
   std::vector<std::string> worlds = args.positional();
   if (worlds.empty()) {
     for (const char* w : {"gen1_flat.xml", "flat_ground_gen2.xml", "flat_ground.xml", "gen4_flat.xml"})
@@ -176,29 +234,35 @@ int main(int argc, char** argv) {
       {
         sim::Simulation sim(*loaded.world, params, 1);
         // The same constraint rows as the sim holding its pose: a motor
-        // (velocity 0, 1000 per axis) on every actuated joint.
+        // (velocity 0, 1000 per axis) on every actuated joint, or as --set.
         for (const model::FlatActuator& actuator : sim.flat().actuators) {
           const int joint = actuator.joint;
           for (int axis = 0; joint >= 0 && axis < sim.flat().joints[joint].num_axes; ++axis)
             sim.engine().SetMotor(joint, axis, 0.0, 1000.0);
+          for (const MotorSetting& m : *motors)
+            if (m.name == actuator.name && joint >= 0)
+              sim.engine().SetMotor(joint, 0, m.velocity, m.fmax);
         }
         bare_us = params.engine == "mujoco"
                       ? BareMujoco(dynamic_cast<sim::MujocoWorld&>(sim.engine()), steps)
                       : BareOde(dynamic_cast<sim::OdeWorld&>(sim.engine()), params, steps);
       }
       double sim_us = 0, pub_us = 0;
-      bool faulted = false;
+      bool faulted = false, motors_ok = true;
       size_t bodies = 0;
       {
-        sim::Simulation sim(*loaded.world, params, 1);
+        auto made = MakeSim(*loaded.world, params, *motors, &motors_ok);
+        sim::Simulation& sim = *made;
         bodies = sim.flat().bodies.size();
         const auto start = Clock::now();
         for (int n = 0; n < steps; ++n) faulted |= !sim.Step();
         sim_us = MicrosPerStep(Clock::now() - start, steps);
       }
+      if (!motors_ok) return 2;  // a --set the sim refused: said
       double enc_us = 0;
       {
-        sim::Simulation sim(*loaded.world, params, 1);
+        auto made = MakeSim(*loaded.world, params, *motors, &motors_ok);
+        sim::Simulation& sim = *made;
         state_t state;
         std::vector<uint8_t> buffer;
         const auto start = Clock::now();
@@ -212,7 +276,8 @@ int main(int argc, char** argv) {
       }
       double sync_us = 0;
       {
-        sim::Simulation sim(*loaded.world, params, 1);
+        auto made = MakeSim(*loaded.world, params, *motors, &motors_ok);
+        sim::Simulation& sim = *made;
         state_t state;
         const auto start = Clock::now();
         for (int n = 0; n < steps; ++n) {
@@ -226,7 +291,8 @@ int main(int argc, char** argv) {
       BusSigning signing(BusSigning::Key{});
       double signed_us = 0;
       for (BusSigning* signer : {static_cast<BusSigning*>(nullptr), &signing}) {
-        sim::Simulation sim(*loaded.world, params, 1);
+        auto made = MakeSim(*loaded.world, params, *motors, &motors_ok);
+        sim::Simulation& sim = *made;
         sim::BusSender sender(&bus, signer);
         state_t state;
         const auto start = Clock::now();
