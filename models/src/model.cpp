@@ -169,6 +169,15 @@ Eigen::Vector3d World::Up() const {
   return -gravity / norm;
 }
 
+Eigen::Isometry3d World::HeightfieldPose() const {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  if (!heightfield) return pose;
+  pose.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), Up()).toRotationMatrix();
+  pose.translation() = heightfield->position;
+  return pose;
+}
+
 const Material* World::FindMaterial(const std::string& name) const {
   for (const Material& m : materials)
     if (m.name == name) return &m;

@@ -108,9 +108,7 @@ class EngineWriter {
       local << 1, 0, 0,
                0, 0, 1,
                0, -1, 0;
-      const Eigen::Matrix3d up =
-          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), world.Up())
-              .toRotationMatrix();
+      const Eigen::Matrix3d up = world.HeightfieldPose().linear();
       out << "    <geom name=\"" << kMjcfField << "\" type=\"hfield\" hfield=\"" << kMjcfField
           << "\" pos=\"" << Vec(h.position) << "\" quat=\"" << Quat(up * local)
           << "\" condim=\"6\"/>\n";

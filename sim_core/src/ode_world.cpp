@@ -206,16 +206,13 @@ void OdeWorld::Build() {
     dGeomHeightfieldDataBuildDouble(heightfield_data_, h.samples.data(), 1, h.width, h.depth,
                                     h.columns, h.rows, h.scale, h.offset, h.thickness, 0);
     const dGeomID field = dCreateHeightfield(space_, heightfield_data_, 1);
+    // ODE's heightfield is y-up; turned so that its y follows "up".
+    heightfield_pose_ = world.HeightfieldPose();
     dGeomSetPosition(field, h.position.x(), h.position.y(), h.position.z());
-    // ODE's heightfield is y-up; turn it so that its y follows "up".
-    const Eigen::Matrix3d r =
-        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), world.Up()).toRotationMatrix();
     dMatrix3 rotation;
-    ToOde(r, rotation);
+    ToOde(heightfield_pose_.linear(), rotation);
     dGeomSetRotation(field, rotation);
     heightfield_geom_ = field;
-    heightfield_pose_.linear() = r;
-    heightfield_pose_.translation() = h.position;
     add_geom_info(field, -1, -1, h.material);
     const model::Material* material = h.material.empty() ? nullptr : world.FindMaterial(h.material);
     if (material != nullptr && material->soil) {

@@ -264,6 +264,9 @@ struct World {
 
   // Unit vector opposite to gravity (+y when there is no gravity).
   Eigen::Vector3d Up() const;
+  // Where the engines put the heightfield: its samples' y turned onto Up()
+  // (the shortest turn), at its position. Identity without a heightfield.
+  Eigen::Isometry3d HeightfieldPose() const;
   const Material* FindMaterial(const std::string& name) const;
 };
 
