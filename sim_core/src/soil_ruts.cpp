@@ -32,14 +32,12 @@ bool IsSoil(const model::World& world, const std::string& material) {
 
 SoilRuts::SoilRuts(const model::World& world) {
   if (world.heightfield && IsSoil(world, world.heightfield->material)) {
-    // Its frame as the engines turn it: its y along the world's up.
-    const Eigen::Matrix3d turn =
-        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), world.Up()).toRotationMatrix();
+    const Eigen::Isometry3d pose = world.HeightfieldPose();
     Grid& grid = grids_[soil_ruts_t::GROUND_HEIGHTFIELD];
     grid.has_frame = true;
-    grid.origin = world.heightfield->position;
-    grid.up = turn.col(1);
-    grid.u_axis = turn.col(0);
+    grid.origin = pose.translation();
+    grid.up = pose.linear().col(1);
+    grid.u_axis = pose.linear().col(0);
     grid.w_axis = grid.up.cross(grid.u_axis);
   }
 }
