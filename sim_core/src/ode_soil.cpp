@@ -110,15 +110,14 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
   // The soil keeps this state's rut as it answers it.
   const WheelSoilForces now =
       PressWheelOnSoil(ground.soil, state, surface, &ground.memory, kArcSamples, &slopes);
-  last_[wheel] = now;
   if (!now.touching) return true;
   const Eigen::Vector3d up = surface.up;
   const Eigen::Vector3d in_plane = up - up.dot(state.axle) * state.axle;
   const Eigen::Vector3d wheel_up = in_plane.normalized();
   const Eigen::Vector3d forward = wheel_up.cross(state.axle).normalized();
-  pressing_.push_back(
-      Pressed{wheel, surface, forward, state.axle, state.centre - state.radius * wheel_up,
-              state.width});
+  const SoilGround kind = ground.shape != nullptr ? SoilGround::kHeightfield : SoilGround::kPlane;
+  pressing_.push_back(Pressed{wheel, now, surface, forward, state.axle,
+                              state.centre - state.radius * wheel_up, state.width, kind});
 
   // Normal: the soil's stiffness against sinking further.
   const double stiffness = std::max(kLeastStiffness, slopes.stiffness);
@@ -169,11 +168,6 @@ bool OdeSoil::Contact(dGeomID wheel, dBodyID body, dGeomID ground_geom, WheelCon
 void OdeSoil::AfterStep() {
   last_step_.swap(pressing_);
   pressing_.clear();
-}
-
-const WheelSoilForces* OdeSoil::Last(dGeomID wheel) const {
-  const auto it = last_.find(wheel);
-  return it == last_.end() ? nullptr : &it->second;
 }
 
 }  // namespace simpartner::sim

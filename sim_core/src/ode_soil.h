@@ -36,6 +36,7 @@
 
 #include "simpartner/model/model.h"
 #include "simpartner/parameters.h"
+#include "simpartner/sim/engine.h"
 #include "simpartner/sim/soil_mechanics.h"
 
 namespace simpartner::sim {
@@ -67,16 +68,18 @@ class OdeSoil {
   // Ends a step: the wheels that touched soil in it become LastStep().
   void AfterStep();
 
-  // The last evaluation of a wheel geom on soil (for readouts).
-  const WheelSoilForces* Last(dGeomID wheel) const;
-  // The wheels that pressed soil in the last step, and in what frame.
+  // The wheels that pressed soil in the last step, in what frame and with
+  // what forces (a wheel near a plane and a field of soil is evaluated on
+  // each: only the one it presses counts).
   struct Pressed {
     dGeomID wheel;
+    WheelSoilForces forces;
     SoilSurface surface;         // of the soil it pressed (a heightfield's: under it)
     Eigen::Vector3d forward;     // the wheel's rolling direction
     Eigen::Vector3d axle;        // unit
     Eigen::Vector3d lowest;      // its lowest rim point
     double width;                // of its tread [m]
+    SoilGround ground;           // which soil it pressed
   };
   const std::vector<Pressed>& LastStep() const { return last_step_; }
 
@@ -96,7 +99,6 @@ class OdeSoil {
   const Parameters& params_;
   std::unordered_map<dGeomID, Ground> grounds_;
   std::vector<Pressed> pressing_, last_step_;  // this step's touching wheels, the last step's
-  std::unordered_map<dGeomID, WheelSoilForces> last_;
 };
 
 }  // namespace simpartner::sim

@@ -734,9 +734,10 @@ std::vector<WheelSoilReadout> OdeWorld::ReadWheelSoil() const {
   std::vector<WheelSoilReadout> out;
   if (!soil_) return out;
   for (const OdeSoil::Pressed& pressed : soil_->LastStep()) {
-    const WheelSoilForces& forces = *soil_->Last(pressed.wheel);
+    const WheelSoilForces& forces = pressed.forces;
     WheelSoilReadout wheel;
     wheel.body = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(pressed.wheel)) - 1].body;
+    wheel.ground = pressed.ground;
     wheel.sinkage = forces.sinkage;
     wheel.slip = forces.slip;
     wheel.normal_force = forces.normal_force;

@@ -23,10 +23,6 @@ void Append(soil_ruts_t* message, uint64_t key, float depth) {
   message->num_cells = static_cast<int32_t>(message->depth.size());
 }
 
-// A unit normal or a point the engine computed from the same numbers as
-// the model: equal up to rounding.
-constexpr double kSame = 1e-6;
-
 bool IsSoil(const model::World& world, const std::string& material) {
   const model::Material* m = material.empty() ? nullptr : world.FindMaterial(material);
   return m != nullptr && m->soil;
@@ -35,55 +31,32 @@ bool IsSoil(const model::World& world, const std::string& material) {
 }  // namespace
 
 SoilRuts::SoilRuts(const model::World& world) {
-  plane_is_soil_ = world.has_plane && IsSoil(world, world.plane_material);
-  plane_known_ = true;
-  plane_up_ = world.plane.head<3>();
-  plane_origin_ = world.plane[3] * plane_up_;
   if (world.heightfield && IsSoil(world, world.heightfield->material)) {
-    field_ = &*world.heightfield;
-    // As the engines turn it: its y along the world's up.
-    field_pose_.linear() =
-        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), world.Up()).toRotationMatrix();
-    field_pose_.translation() = field_->position;
+    const Eigen::Isometry3d pose = world.HeightfieldPose();
     Grid& grid = grids_[soil_ruts_t::GROUND_HEIGHTFIELD];
     grid.has_frame = true;
-    grid.origin = field_pose_.translation();
-    grid.up = field_pose_.linear().col(1);
-    grid.u_axis = field_pose_.linear().col(0);
+    grid.origin = pose.translation();
+    grid.up = pose.linear().col(1);
+    grid.u_axis = pose.linear().col(0);
     grid.w_axis = grid.up.cross(grid.u_axis);
   }
 }
 
-// The engine reports a plane's surface by its fixed point and normal,
-// a heightfield's by the point on the field under the wheel.
-bool SoilRuts::OnPlane(const WheelSoilReadout& wheel) const {
-  if (!plane_is_soil_) return false;
-  if (!plane_known_) return true;
-  return (wheel.up - plane_up_).norm() < kSame && (wheel.surface_origin - plane_origin_).norm() < kSame;
-}
-
-bool SoilRuts::OnField(const WheelSoilReadout& wheel) const {
-  if (field_ == nullptr) return false;
-  const Eigen::Vector3d p = field_pose_.inverse() * wheel.surface_origin;
-  return std::abs(p.y() - field_->HeightAt(p.x(), p.z())) < kSame;
-}
-
 SoilRuts::Grid* SoilRuts::GridOf(const WheelSoilReadout& wheel) {
-  if (OnPlane(wheel)) {
-    Grid& grid = grids_[soil_ruts_t::GROUND_PLANE];
-    if (!grid.has_frame) {
-      grid.has_frame = true;
-      grid.origin = wheel.surface_origin;
-      grid.up = wheel.up;
-      grid.u_axis = wheel.surface_u_axis;
-      grid.w_axis = grid.up.cross(grid.u_axis);
-    } else if ((wheel.up - grid.up).norm() > 1e-9 ||
-               std::abs((wheel.surface_origin - grid.origin).dot(grid.up)) > 1e-9) {
-      return nullptr;  // another plane: a world has one
-    }
-    return &grid;
+  if (wheel.ground == SoilGround::kHeightfield) {
+    Grid& field = grids_[soil_ruts_t::GROUND_HEIGHTFIELD];
+    return field.has_frame ? &field : nullptr;
   }
-  return OnField(wheel) ? &grids_[soil_ruts_t::GROUND_HEIGHTFIELD] : nullptr;
+  // A world has one plane: its frame as the engine reports it.
+  Grid& grid = grids_[soil_ruts_t::GROUND_PLANE];
+  if (!grid.has_frame) {
+    grid.has_frame = true;
+    grid.origin = wheel.surface_origin;
+    grid.up = wheel.up;
+    grid.u_axis = wheel.surface_u_axis;
+    grid.w_axis = grid.up.cross(grid.u_axis);
+  }
+  return &grid;
 }
 
 void SoilRuts::Stamp(const std::vector<WheelSoilReadout>& wheels) {

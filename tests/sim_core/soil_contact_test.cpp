@@ -130,6 +130,9 @@ TEST(SoilContact, OnASlopingHeightfieldTheSoilsNormalIsTheSlopes) {
 TEST(SoilContact, TheStateCarriesTheRestingWheelsSoilFigures) {
   auto sim = SettledWheel(0.001);
   ASSERT_TRUE(sim);
+  const std::vector<WheelSoilReadout> wheels = sim->engine().ReadWheelSoil();
+  ASSERT_EQ(wheels.size(), 1u);
+  EXPECT_EQ(wheels[0].ground, SoilGround::kPlane);
   state_t state;
   sim->FillState(&state);
   ASSERT_EQ(state.num_wheel_soil, 1);

@@ -167,12 +167,15 @@ model::World SandWorld(const std::string& xml) {
 TEST(SoilRuts, AWheelOnATiltedFieldOffTheOriginLeavesCellsUnderIt) {
   Parameters params;
   params.stepsize = 0.001;
-  Simulation sim(SandWorld(TiltedFieldWorld(false)), params, 1);
+  // With a plane of the same soil 2 m below, which the engine evaluates
+  // the wheel on too: the readout is of the field it pressed, and says so.
+  Simulation sim(SandWorld(TiltedFieldWorld(true)), params, 1);
   for (int k = 0; k < 20; ++k) ASSERT_TRUE(sim.Step());
   const std::vector<WheelSoilReadout> wheels = sim.engine().ReadWheelSoil();
   ASSERT_EQ(wheels.size(), 1u);
   const WheelSoilReadout& wheel = wheels[0];
   ASSERT_GT(wheel.sinkage, 0.001);
+  EXPECT_EQ(wheel.ground, SoilGround::kHeightfield);
 
   const std::vector<soil_ruts_t> parts = sim.ruts().Snapshot();
   ASSERT_EQ(parts.size(), 1u);
@@ -211,8 +214,8 @@ TEST(SoilRuts, AWheelOnATiltedFieldOffTheOriginLeavesCellsUnderIt) {
 }
 
 // With a plane and a heightfield of soil each ground has its grid: a
-// wheel's cells go in the message of the ground it presses, never the
-// other's, and the changes of both go out in turn.
+// wheel's cells go in the message of the ground the engine says it
+// pressed, never the other's, and the changes of both go out in turn.
 TEST(SoilRuts, EachSoilGroundKeepsItsOwnCells) {
   const model::World world = SandWorld(TiltedFieldWorld(true));
   SoilRuts ruts(world);
@@ -227,6 +230,7 @@ TEST(SoilRuts, EachSoilGroundKeepsItsOwnCells) {
   on_plane.lowest_point =
       kFieldAt - 0.005 * r.col(2) - 2.0 * on_plane.up - 0.02 * on_plane.up;
   WheelSoilReadout on_field = on_plane;
+  on_field.ground = SoilGround::kHeightfield;
   on_field.up = r.col(1);
   on_field.surface_origin =
       kFieldAt + r * Eigen::Vector3d(0.7, FieldHeight(0.7, -0.405), -0.405);
@@ -248,11 +252,12 @@ TEST(SoilRuts, EachSoilGroundKeepsItsOwnCells) {
   const std::vector<soil_ruts_t> parts = ruts.Snapshot();
   ASSERT_EQ(parts.size(), 2u);
   EXPECT_NE(parts[0].ground, parts[1].ground);
-  // A wheel on neither ground (above the field's surface) leaves nothing.
-  WheelSoilReadout off = on_field;
-  off.surface_origin += 0.01 * on_field.up;
-  ruts.Stamp({off});
-  EXPECT_FALSE(ruts.has_changes());
+  // Without a heightfield of soil in the world a wheel said to be on one
+  // leaves nothing.
+  SoilRuts plane_only;
+  plane_only.Stamp({on_field});
+  EXPECT_FALSE(plane_only.has_changes());
+  EXPECT_EQ(plane_only.cells(), 0u);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The soil's ruts in the viewer (SIM_SOIL_RUTS): kept for the simulation
 // shown, snapshots replacing and changes deepening them, forged messages
 // refused with channel, field and value, and drawn as lowered, darker
-// patches of the ground.
+// patches of the ground seen through their openings.
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 
@@ -279,6 +279,20 @@ TEST(SoilRutsTest, RutsOnAHeightfieldAreLoweredFromItsSurface) {
     EXPECT_TRUE(std::abs(local.z() + 0.5) < 1e-5 || std::abs(local.z() + 0.52) < 1e-5) << local.z();
     const double surface = 0.025 * (local.x() + 2) + 0.025 * (local.z() + 2);
     EXPECT_NEAR(local.y(), surface - 0.005, 1e-5);
+  }
+  // Its opening, which the renderer draws the floor through (so that a
+  // hill before it hides it), is the same square on the field's surface.
+  const Mesh opening = RutOpeningMesh(ruts, &scene.model().heightfield);
+  ASSERT_EQ(opening.positions.size(), 4u);
+  ASSERT_EQ(opening.indices, mesh.indices);
+  ASSERT_EQ(opening.normals.size(), 4u);
+  ASSERT_EQ(opening.colors.size(), 4u);
+  for (size_t k = 0; k < 4; ++k) {
+    const Eigen::Vector3d local = r.transpose() * (opening.positions[k].cast<double>() - at);
+    const Eigen::Vector3d floor = r.transpose() * (mesh.positions[k].cast<double>() - at);
+    EXPECT_NEAR(local.x(), floor.x(), 1e-5);
+    EXPECT_NEAR(local.z(), floor.z(), 1e-5);
+    EXPECT_NEAR(local.y(), 0.025 * (local.x() + 2) + 0.025 * (local.z() + 2), 1e-5);
   }
 }
 

@@ -29,6 +29,7 @@
 #include "simpartner/child_process.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_t.hpp"
+#include "simpartner/soil_ruts_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/viewer/camera.h"
@@ -87,6 +88,18 @@ std::string TerrainWorld() {
          samples + R"(</samples></heightfield>
   <object type="Sphere" name="Beacon" static="true"><radius>0.3</radius>)" +
          Transform(0, 3.0, 1.6) + R"(</object>
+</world>)";
+}
+
+// A field 6 m along x, 4 m along z, flat but for a ridge 0.8 m high
+// along z at x = 0: from the test's camera (along -x, from above x = 6 m)
+// it hides the ground from x = -3 to about -0.3 m.
+std::string RidgeWorld() {
+  return R"(<world name="ViewerRidge">
+  <gravity><x>0</x><y>-9.81</y><z>0</z></gravity>
+  <heightfield rows="3" columns="5"><width>6</width><depth>4</depth>
+    <position><x>0</x><y>0</y><z>0</z></position>
+    <samples>0 0 0.8 0 0  0 0 0.8 0 0  0 0 0.8 0 0</samples></heightfield>
 </world>)";
 }
 
@@ -150,6 +163,7 @@ class ViewerProcessTest : public ::testing::Test {
     dir_ = test_support::FreshTestDir("sp_viewer_process_");
     std::ofstream(dir_ / "shapes.xml") << ShapesWorld();
     std::ofstream(dir_ / "terrain.xml") << TerrainWorld();
+    std::ofstream(dir_ / "ridge.xml") << RidgeWorld();
     xvfb_ = std::make_unique<XvfbServer>(1280, 720, (dir_ / "xvfb.log").string());
   }
   void TearDown() override {
@@ -452,6 +466,62 @@ TEST_F(ViewerProcessTest, BadStatesAreCountedAndIgnoredWithoutACrash) {
   // The bodies are still drawn from the sim's good states.
   ExpectBodiesWhereTheStateSays(ReadPng(shot), bus, ScreenshotStep("viewer.log"),
                                 {"Crate", "Drum", "Pill", "Bob"});
+  Quit(bus.lcm());
+  EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
+}
+
+// A 0.3 x 0.4 m rut 5 cm deep in the field at (x, 0), 2 cm cells.
+soil_ruts_t RidgeRut(int64_t simulation_id, double x) {
+  soil_ruts_t m{};
+  m.simulation_id = simulation_id;
+  m.snapshot = true;
+  m.parts = 1;
+  m.up[1] = 1;
+  m.u_axis[0] = 1;
+  m.cell_size = 0.02;
+  m.ground = soil_ruts_t::GROUND_HEIGHTFIELD;
+  const auto u0 = static_cast<int32_t>(std::lround(x / 0.02));
+  for (int32_t u = u0 - 7; u < u0 + 8; ++u)
+    for (int32_t w = -10; w < 10; ++w) {
+      m.u.push_back(u);
+      m.w.push_back(w);
+      m.depth.push_back(0.05f);
+    }
+  m.num_cells = static_cast<int32_t>(m.depth.size());
+  return m;
+}
+
+// Ruts lie in the ground: what stands before them hides them (here a
+// ridge of the field), and the ground around them does not.
+TEST_F(ViewerProcessTest, ARidgeHidesTheRutBehindItAndNotTheOneBefore) {
+  const std::string url = BusUrl(8);
+  Listener bus(url);
+  auto sim = StartSim("ridge.xml", url, "sim.log");
+  ASSERT_TRUE(bus.Until([&] { return bus.has_model; }, 15)) << Read("sim.log");
+  const std::string shot = (dir_ / "ridge.png").string();
+  auto viewer = StartViewer(url, "viewer.log", {"--hide", "hud,grid", "--screenshot", shot,
+                                                "--after", "3"});
+  ASSERT_TRUE(WaitForText("viewer.log", "model of simulation", 20, &bus)) << Read("viewer.log");
+  // Both ruts in one message: the field's snapshot.
+  soil_ruts_t ruts = RidgeRut(bus.model.simulation_id, 2.25);
+  const soil_ruts_t behind = RidgeRut(bus.model.simulation_id, -2.25);
+  ruts.u.insert(ruts.u.end(), behind.u.begin(), behind.u.end());
+  ruts.w.insert(ruts.w.end(), behind.w.begin(), behind.w.end());
+  ruts.depth.insert(ruts.depth.end(), behind.depth.begin(), behind.depth.end());
+  ruts.num_cells = static_cast<int32_t>(ruts.depth.size());
+  bus.lcm().publish(channels::kSoilRuts, &ruts);
+  ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << Read("viewer.log");
+  ASSERT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
+  const RgbImage image = ReadPng(shot);
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  // Each rut's floor against the ground beside it (1.2 m along z, at the
+  // same x: the same slope of the field before the camera).
+  auto contrast = [&](double x) {
+    return ColorDistance(At(image, Pixel(Eigen::Vector3d(x, -0.05, 0), up)),
+                         At(image, Pixel(Eigen::Vector3d(x, 0, 1.2), up)));
+  };
+  EXPECT_GT(contrast(2.25), 40) << "the rut before the ridge is not drawn";
+  EXPECT_LT(contrast(-2.25), 12) << "the rut behind the ridge shows through it";
   Quit(bus.lcm());
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
 }

@@ -15,6 +15,7 @@ GlWindow::GlWindow(const std::string& title, int width, int height, bool vsync, 
   SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 1);
   SDL_GL_SetAttribute(SDL_GL_DOUBLEBUFFER, 1);
   SDL_GL_SetAttribute(SDL_GL_DEPTH_SIZE, 24);
+  SDL_GL_SetAttribute(SDL_GL_STENCIL_SIZE, 8);  // the ruts' openings (renderer.cpp)
   const Uint32 flags = SDL_WINDOW_OPENGL | static_cast<Uint32>(hidden ? SDL_WINDOW_HIDDEN
                                                                      : SDL_WINDOW_RESIZABLE);
   window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, width,

@@ -214,7 +214,8 @@ void Renderer::ReleaseModel() {
   heightfield_.reset();
   heightfield_grid_.positions.clear();
   for (RutLayer& layer : ruts_) {
-    layer.mesh.reset();
+    layer.floor.reset();
+    layer.opening.reset();
     layer.generation = -1;
   }
 }
@@ -245,7 +246,7 @@ void Renderer::Draw(const Scene& scene, const Viewpoint& viewpoint, const Toggle
   glViewport(0, 0, width, height);
   const Color sky = SkyColor();
   glClearColor(sky[0], sky[1], sky[2], 1);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
 
   glMatrixMode(GL_PROJECTION);
   glLoadMatrixd(viewpoint.projection.data());
@@ -369,7 +370,7 @@ void Renderer::DrawGround(const Scene& scene, const Viewpoint& viewpoint, const 
   }
 }
 
-void Renderer::DrawRuts(const Scene& scene) {
+bool Renderer::RebuildRuts(const Scene& scene) {
   const auto now = std::chrono::steady_clock::now();
   bool any = false;
   for (int8_t ground : {soil_ruts_t::GROUND_PLANE, soil_ruts_t::GROUND_HEIGHTFIELD}) {
@@ -377,32 +378,59 @@ void Renderer::DrawRuts(const Scene& scene) {
     RutLayer& layer = ruts_[static_cast<size_t>(ground)];
     // A cleared map (a new simulation) goes at once; growth waits its turn.
     if (ruts.generation() != layer.generation &&
-        (ruts.cells() == 0 || !layer.mesh || now - layer.built >= kRutRebuildInterval)) {
+        (ruts.cells() == 0 || !layer.floor || now - layer.built >= kRutRebuildInterval)) {
       layer.generation = ruts.generation();
       layer.built = now;
-      layer.mesh.reset();
+      layer.floor.reset();
+      layer.opening.reset();
       // Ruts on the heightfield come only with a model that has one.
       const heightfield_t* field =
           ground == soil_ruts_t::GROUND_HEIGHTFIELD ? &scene.model().heightfield : nullptr;
-      if (ruts.cells() > 0)
-        layer.mesh = std::make_unique<BufferMesh>(
+      if (ruts.cells() > 0) {
+        layer.floor = std::make_unique<BufferMesh>(
             RutMesh(ruts, Eigen::Vector3f(kPlaneColor[0], kPlaneColor[1], kPlaneColor[2]), field));
+        layer.opening = std::make_unique<BufferMesh>(RutOpeningMesh(ruts, field));
+      }
     }
-    any = any || layer.mesh;
+    any = any || layer.floor;
   }
-  if (!any) return;
-  // Lowered below the ground, which would hide them: drawn over it (the
-  // depth test always passes) but writing their own depth, so that a
-  // wheel sunk in a rut shows down to the rut's floor. The bodies come
-  // next. A rut's far edge faces the camera, its near edge away: culled,
-  // it does not cover the floor.
+  return any;
+}
+
+void Renderer::DrawRuts(const Scene& scene) {
+  if (!RebuildRuts(scene)) return;
+  // Lowered below the ground, which would hide them. First the openings
+  // on the ground, a little toward the camera, mark in the stencil where
+  // they are seen (terrain before them fails the depth test); then the
+  // floors are drawn there only, over the ground (the depth test always
+  // passes) but writing their own depth, so that a wheel sunk in a rut
+  // shows down to the rut's floor and the bodies drawn next hide it. A
+  // rut's far edge faces the camera, its near edge away: culled, it does
+  // not cover the floor. (The stencil is cleared with the frame; without
+  // a stencil buffer the floors are drawn whole.)
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_ALWAYS, 1, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  glDisable(GL_LIGHTING);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(-1, -4);
+  for (const RutLayer& layer : ruts_)
+    if (layer.opening) layer.opening->Draw();
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glStencilFunc(GL_EQUAL, 1, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glEnable(GL_LIGHTING);
   glEnable(GL_CULL_FACE);
   glDepthFunc(GL_ALWAYS);
   for (const RutLayer& layer : ruts_)
-    if (layer.mesh) layer.mesh->Draw();
+    if (layer.floor) layer.floor->Draw();
   glDepthFunc(GL_LEQUAL);
   glDisable(GL_CULL_FACE);
+  glDisable(GL_STENCIL_TEST);
 }
 
 void Renderer::DrawBodies(const Scene& scene, const Toggles& toggles) {

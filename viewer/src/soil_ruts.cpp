@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -136,37 +137,59 @@ double CornerDepth(const RutMap& ruts, int64_t u, int64_t w) {
   return 0.25 * sum;
 }
 
-}  // namespace
+// The corners of the ruts' cells: on the untouched ground as drawn (the
+// plane, or the field's surface above the grid's base plane; the field's
+// frame: x along u_axis, y up), or lowered into it by CornerDepth.
+class CellCorners {
+ public:
+  CellCorners(const RutMap& ruts, const heightfield_t* field) : ruts_(ruts), field_(field) {}
 
-Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color, const heightfield_t* field) {
-  Mesh mesh;
-  const Eigen::Vector3d up = ruts.up();
-  // The untouched surface above a point of the grid's plane: the plane
-  // itself, or the field's surface (its frame: x along u_axis, y up).
-  const Eigen::Vector3d field_z = ruts.u_axis().cross(up);
-  auto surface = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
-    if (field == nullptr) return p;
-    const Eigen::Vector3d d = p - ruts.origin();
-    return p + HeightfieldSurface(*field, d.dot(ruts.u_axis()), d.dot(field_z)) * up;
-  };
+  std::array<Eigen::Vector3d, 4> Of(std::pair<int32_t, int32_t> cell, bool lowered) const {
+    const int64_t u = cell.first, w = cell.second;
+    const Eigen::Vector3d c = ruts_.CellCentre(cell.first, cell.second);
+    std::array<Eigen::Vector3d, 4> corners = {Surface(c - a_ - b_), Surface(c + a_ - b_),
+                                              Surface(c + a_ + b_), Surface(c - a_ + b_)};
+    if (lowered) {
+      corners[0] -= CornerDepth(ruts_, u, w) * up_;
+      corners[1] -= CornerDepth(ruts_, u + 1, w) * up_;
+      corners[2] -= CornerDepth(ruts_, u + 1, w + 1) * up_;
+      corners[3] -= CornerDepth(ruts_, u, w + 1) * up_;
+    }
+    return corners;
+  }
+
+ private:
+  Eigen::Vector3d Surface(const Eigen::Vector3d& p) const {
+    if (field_ == nullptr) return p;
+    const Eigen::Vector3d d = p - ruts_.origin();
+    return p + HeightfieldSurface(*field_, d.dot(ruts_.u_axis()), d.dot(field_z_)) * up_;
+  }
+
+  const RutMap& ruts_;
+  const heightfield_t* field_;
+  const Eigen::Vector3d up_ = ruts_.up(), field_z_ = ruts_.u_axis().cross(up_);
   // Half a cell along each axis of the grid.
-  const Eigen::Vector3d a = 0.5 * ruts.cell_size() * ruts.u_axis();
-  const Eigen::Vector3d b = 0.5 * ruts.cell_size() * up.cross(ruts.u_axis());
+  const Eigen::Vector3d a_ = 0.5 * ruts_.cell_size() * ruts_.u_axis(),
+                        b_ = 0.5 * ruts_.cell_size() * up_.cross(ruts_.u_axis());
+};
+
+// One square per cell, lowered or not (CellCorners): two triangles facing
+// up with the cell's normal across its diagonals, coloured `color`,
+// lowered ones darkened by a third and by half at 5 cm deep and deeper.
+Mesh CellSquares(const RutMap& ruts, const heightfield_t* field, bool lowered,
+                 const Eigen::Vector3f& color) {
+  Mesh mesh;
+  const CellCorners corners_of(ruts, field);
   mesh.positions.reserve(4 * ruts.cells());
   mesh.normals.reserve(4 * ruts.cells());
   mesh.colors.reserve(4 * ruts.cells());
   mesh.indices.reserve(6 * ruts.cells());
   for (const auto& [cell, depth] : ruts.depths()) {
-    const int64_t u = cell.first, w = cell.second;
-    const Eigen::Vector3d c = ruts.CellCentre(cell.first, cell.second);
-    const Eigen::Vector3d corners[4] = {surface(c - a - b) - CornerDepth(ruts, u, w) * up,
-                                        surface(c + a - b) - CornerDepth(ruts, u + 1, w) * up,
-                                        surface(c + a + b) - CornerDepth(ruts, u + 1, w + 1) * up,
-                                        surface(c - a + b) - CornerDepth(ruts, u, w + 1) * up};
-    // One normal per cell, across its diagonals.
+    const std::array<Eigen::Vector3d, 4> corners = corners_of.Of(cell, lowered);
     const Eigen::Vector3f normal =
         (corners[2] - corners[0]).cross(corners[3] - corners[1]).normalized().cast<float>();
-    const float shade = 1.0f - std::min(0.5f, 0.33f + 0.17f * std::min(1.0f, depth / 0.05f));
+    const float shade =
+        lowered ? 1.0f - std::min(0.5f, 0.33f + 0.17f * std::min(1.0f, depth / 0.05f)) : 1.0f;
     const auto first = static_cast<uint32_t>(mesh.positions.size());
     for (const Eigen::Vector3d& corner : corners) {
       mesh.positions.push_back(corner.cast<float>());
@@ -176,6 +199,16 @@ Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color, const heightfield
     for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(first + k);
   }
   return mesh;
+}
+
+}  // namespace
+
+Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color, const heightfield_t* field) {
+  return CellSquares(ruts, field, true, color);
+}
+
+Mesh RutOpeningMesh(const RutMap& ruts, const heightfield_t* field) {
+  return CellSquares(ruts, field, false, Eigen::Vector3f::Ones());
 }
 
 }  // namespace simpartner::viewer

@@ -63,10 +63,14 @@ struct JointReadout {
   Eigen::Vector3d force2 = Eigen::Vector3d::Zero(), torque2 = Eigen::Vector3d::Zero();
 };
 
+// The soil grounds of a world: at most one of each.
+enum class SoilGround { kPlane, kHeightfield };
+
 // A wheel on soft soil in the last step (docs/soil.md): the soil model's
 // figures at the state the step began with, which gave the step's forces.
 struct WheelSoilReadout {
   int body = -1;         // the wheel's flat body (a body has one geom)
+  SoilGround ground = SoilGround::kPlane;  // the soil it pressed
   double sinkage = 0.0;  // [m] lowest rim point below the untouched surface
   double slip = 0.0;     // [-] 1 - v / (r omega) driving, r omega / v - 1 braking
   Eigen::Vector3d normal_force = Eigen::Vector3d::Zero();  // [N] world frame

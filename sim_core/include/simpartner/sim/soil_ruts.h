@@ -33,16 +33,16 @@ class SoilRuts {
   // A cell is sent again once it is this much deeper than when last sent.
   static constexpr float kDepthResolution = 0.0005f;  // [m]
 
-  // A world whose only soil is its surface plane (the grid lies on the
-  // surface of the first wheel stamped).
+  // A world whose only soil is its surface plane. The plane's grid lies
+  // on the surface the first wheel on it reports.
   SoilRuts() = default;
-  // The soil grounds of `world` (which must outlive this): its surface
-  // plane and its heightfield where their material is a soil.
+  // The soil grounds of `world`: its surface plane, and its heightfield
+  // where that is of soil (its grid lies on the field's base plane).
   explicit SoilRuts(const model::World& world);
 
-  // Stamps each wheel's tread into the grid of the ground it presses:
-  // the heightfield when its untouched surface point lies on the field,
-  // else the plane; a wheel on neither is left out.
+  // Stamps each wheel's tread into the grid of the ground the engine says
+  // it pressed; a wheel on a heightfield is left out when the world's
+  // heightfield is not of soil.
   void Stamp(const std::vector<WheelSoilReadout>& wheels);
   void Clear();
 
@@ -75,21 +75,11 @@ class SoilRuts {
     std::unordered_map<uint64_t, Cell> cells;
     std::vector<uint64_t> queued;
   };
-  // The grid of the ground `wheel` presses (its frame set), or null.
+  // The grid of the ground `wheel` pressed (its frame set), or null.
   Grid* GridOf(const WheelSoilReadout& wheel);
   void Press(Grid* grid, const Eigen::Vector3d& point, float depth);
   soil_ruts_t Header(const Grid& grid, bool snapshot) const;
 
-  bool OnPlane(const WheelSoilReadout& wheel) const;
-  bool OnField(const WheelSoilReadout& wheel) const;
-
-  // The soil plane's normal and its point nearest the origin, as the
-  // engine reports them (plane_known_), or whichever the first wheel
-  // reports (a SoilRuts made without a world).
-  bool plane_is_soil_ = true, plane_known_ = false;
-  Eigen::Vector3d plane_up_ = Eigen::Vector3d::UnitY(), plane_origin_ = Eigen::Vector3d::Zero();
-  const model::Heightfield* field_ = nullptr;  // of soil, or none
-  Eigen::Isometry3d field_pose_ = Eigen::Isometry3d::Identity();
   // Indexed by soil_ruts_t::GROUND_*.
   std::array<Grid, 2> grids_ = {Grid(soil_ruts_t::GROUND_PLANE),
                                  Grid(soil_ruts_t::GROUND_HEIGHTFIELD)};

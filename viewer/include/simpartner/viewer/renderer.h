@@ -80,6 +80,9 @@ class Renderer {
   void ReleaseModel();
   void DrawGround(const Scene& scene, const Viewpoint& viewpoint, const Toggles& toggles);
   void DrawRuts(const Scene& scene);
+  // Rebuilds the ruts' meshes that are due (kRutRebuildInterval); true
+  // when there are ruts to draw.
+  bool RebuildRuts(const Scene& scene);
   void DrawBodies(const Scene& scene, const Toggles& toggles);
   void DrawOverlays(const Scene& scene, const Viewpoint& viewpoint, const Toggles& toggles);
   void DrawHud(const Hud& hud, int width, int height);
@@ -93,9 +96,10 @@ class Renderer {
   std::vector<unsigned> body_lists_;  // one display list per body (0: nothing to draw)
   std::unique_ptr<BufferMesh> heightfield_;
   Lines heightfield_grid_;
-  // The mesh of the scene's ruts of one ground, of generation `generation`.
+  // The meshes of the scene's ruts of one ground (RutMesh, RutOpeningMesh),
+  // of generation `generation`.
   struct RutLayer {
-    std::unique_ptr<BufferMesh> mesh;
+    std::unique_ptr<BufferMesh> floor, opening;
     int64_t generation = -1;
     std::chrono::steady_clock::time_point built{};
   };

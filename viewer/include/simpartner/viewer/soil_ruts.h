@@ -76,5 +76,9 @@ class RutMap {
 // third, and by half at 5 cm deep and deeper.
 Mesh RutMesh(const RutMap& ruts, const Eigen::Vector3f& color,
              const heightfield_t* field = nullptr);
+// The ruts' opening: the same squares on the untouched ground as drawn
+// (white). The renderer draws a rut's floor only where its opening is
+// seen, so terrain in front hides the rut.
+Mesh RutOpeningMesh(const RutMap& ruts, const heightfield_t* field = nullptr);
 
 }  // namespace simpartner::viewer
