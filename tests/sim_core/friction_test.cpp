@@ -30,6 +30,17 @@ std::string SlidingCubeWorld(double v0, double heading) {
          std::to_string(v0 * std::sin(heading)) + "</vz></translationalVelocity></object></world>";
 }
 
+// A thin 10 kg plate (1 x 0.02 x 1 m), so that a push hardly shifts the
+// load between its corners, on a floor of mu 0.5, sliding at (vx, 0, vz).
+std::string SlidingPlateWorld(double vx, double vz) {
+  return "<world name=\"Slide\"><surface material=\"floor\"><a>0</a><b>1</b><c>0</c><d>0</d>"
+         "</surface><material name=\"floor\"><mu>0.5</mu></material>"
+         "<object type=\"Box\" name=\"Plate\" material=\"floor\"><mass>10</mass>" +
+         Vec("size", 1, 0.02, 1) + Transform(0, 0.01, 0) + "<translationalVelocity><vx>" +
+         ShortestNumber(vx) + "</vx><vy>0</vy><vz>" + ShortestNumber(vz) +
+         "</vz></translationalVelocity></object></world>";
+}
+
 TEST(Friction, SlidingDistanceIsTheSameAtEveryHeading) {
   constexpr double kV0 = 10.0, kMu = 0.5, kG = 9.81;
   const double expected = kV0 * kV0 / (2.0 * kMu * kG);  // 10.19 m
@@ -83,16 +94,7 @@ TEST(Friction, SlowSlidePushedSidewaysTurnsAsCoulombsCone) {
     SCOPED_TRACE("step " + std::to_string(stepsize) + " s");
     Parameters params;
     params.stepsize = stepsize;
-    // A thin plate, so that the push hardly shifts the load between its
-    // corners.
-    const std::string world =
-        "<world name=\"Slide\"><surface material=\"floor\"><a>0</a><b>1</b><c>0</c><d>0</d>"
-        "</surface><material name=\"floor\"><mu>0.5</mu></material>"
-        "<object type=\"Box\" name=\"Plate\" material=\"floor\"><mass>10</mass>" +
-        Vec("size", 1, 0.02, 1) + Transform(0, 0.01, 0) +
-        "<translationalVelocity><vx>0.002</vx><vy>0</vy><vz>0</vz></translationalVelocity>"
-        "</object></world>";
-    auto sim = MakeSim(world, {}, params);
+    auto sim = MakeSim(SlidingPlateWorld(kV0, 0.0), {}, params);
     const int steps = static_cast<int>(std::lround(kT / stepsize));
     for (int i = 0; i < steps; ++i) {
       sim->engine().AddForce(0, Eigen::Vector3d(push.x(), 0.0, push.y()));
@@ -135,14 +137,7 @@ PushedSlide SlideAcrossAPush(double v0, double stepsize, double load_factor) {
   const double seconds = 10.0 * v0 / (kMu * load_factor * kG);
   Parameters params;
   params.stepsize = stepsize;
-  const std::string world =
-      "<world name=\"Pushed\"><surface material=\"floor\"><a>0</a><b>1</b><c>0</c><d>0</d>"
-      "</surface><material name=\"floor\"><mu>0.5</mu></material>"
-      "<object type=\"Box\" name=\"Plate\" material=\"floor\"><mass>10</mass>" +
-      Vec("size", 1, 0.02, 1) + Transform(0, 0.01, 0) +
-      "<translationalVelocity><vx>0</vx><vy>0</vy><vz>" + ShortestNumber(v0) +
-      "</vz></translationalVelocity></object></world>";
-  auto sim = MakeSim(world, {}, params);
+  auto sim = MakeSim(SlidingPlateWorld(0.0, v0), {}, params);
   const double load = load_factor * kMass * kG;
   PushedSlide run;
   const int steps = static_cast<int>(std::lround(seconds / stepsize));
