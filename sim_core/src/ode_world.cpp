@@ -438,6 +438,14 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
     surface.rho2 = rolling;
     surface.rhoN = 0.0;
   }
+  // What one step of this pair's friction can take off a slip (the cone,
+  // below): the pair's, so looked up once, for its first sliding point.
+  double one_step_stops = -1.0;
+  const auto slip_one_step_stops = [&] {
+    if (one_step_stops < 0.0)
+      one_step_stops = combined.mu * params_.stepsize * LoadPerMass(o1, b1, o2, b2);
+    return one_step_stops;
+  };
   for (int i = 0; i < n; ++i) {
     dContact& contact = contact_buffer_[static_cast<size_t>(i)];
     contact.surface = surface;
@@ -481,7 +489,7 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
         //   step. A new contact has no load yet and is held across for
         //   that step, as a sticking one is.
         const double slip_speed = SlipVelocity(o1, o2, contact.geom).norm();
-        if (slip_speed > combined.mu * params_.stepsize * LoadPerMass(o1, b1, o2, b2)) {
+        if (slip_speed > slip_one_step_stops()) {
           contact.surface.mode |= dContactMu2;
           contact.surface.mu2 = 0.0;
         } else if (const LastContact* point = last();
