@@ -7,7 +7,7 @@
 #include <cstring>
 
 #include "mujoco_mjcf.h"
-#include "simpartner/sim/simulation.h"
+#include "simpartner/model/flat_model.h"
 
 namespace simpartner::sim {
 namespace {
@@ -419,7 +419,7 @@ std::vector<std::string> MujocoWorld::SuspectBodies() const {
     bool finite = true;
     for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(d_->xpos[3 * id + k]);
     for (int k = 0; k < 6; ++k) finite = finite && std::isfinite(d_->cvel[6 * id + k]);
-    if (!finite) out.push_back(QualifiedBodyName(model_, static_cast<int>(b)));
+    if (!finite) out.push_back(model::QualifiedBodyName(model_, static_cast<int>(b)));
   }
   return out;
 }

@@ -105,23 +105,16 @@ OdeWorld::OdeWorld(const model::FlatModel& model, const Parameters& params)
   } catch (const OdeError& e) {
     // No destructor runs for a constructor that throws: the ODE objects
     // made so far are abandoned, as for a world that dies stepping.
+    const std::string body =
+        building_body_ >= 0 ? model::QualifiedBodyName(model_, building_body_) : "";
     const std::string during =
-        building_body_ >= 0 ? "building body '" + BodyName(static_cast<size_t>(building_body_)) + "'"
-                            : std::string("building the world");
+        body.empty() ? std::string("building the world") : "building body '" + body + "'";
     // ODE says why in a message just before the assertion (dMassCheck:
     // "inertia must be positive definite"); keep the last one.
     const std::string why = messages_.empty() ? "" : " after \"" + messages_.back() + "\"";
     throw OdeError(e.ode_message() + why, during,
-                   building_body_ >= 0
-                       ? std::vector<std::string>{BodyName(static_cast<size_t>(building_body_))}
-                       : std::vector<std::string>{});
+                   body.empty() ? std::vector<std::string>{} : std::vector<std::string>{body});
   }
-}
-
-std::string OdeWorld::BodyName(size_t body) const {
-  const model::FlatBody& b = model_.bodies[body];
-  if (b.robot < 0) return b.name;
-  return model_.world->robots[static_cast<size_t>(b.robot)].name + "/" + b.name;
 }
 
 void OdeWorld::Build() {
@@ -181,7 +174,7 @@ void OdeWorld::Build() {
     // whatever wheel touches it".
     SP_CHECK_MSG(owner < 0 || info.has_spin_axis ||
                      info.surface.friction_direction != model::FrictionDirection::kRolling,
-                 "body '" + BodyName(static_cast<size_t>(owner)) +
+                 "body '" + model::QualifiedBodyName(model_, owner) +
                      "' with a rolling material has no spin axis; the loader should have "
                      "refused it");
     geom_info_.push_back(info);
@@ -366,7 +359,7 @@ std::vector<std::string> OdeWorld::SuspectBodies() const {
     if (!finite || p.cwiseAbs().maxCoeff() > model::limits::kMaxCoordinate ||
         v.norm() > model::limits::kMaxLinearSpeed || w.norm() > model::limits::kMaxAngularSpeed ||
         !(mass >= model::limits::kMinMass && mass <= model::limits::kMaxMass))
-      names.push_back(BodyName(i));
+      names.push_back(model::QualifiedBodyName(model_, static_cast<int>(i)));
   }
   return names;
 }
@@ -537,7 +530,7 @@ bool OdeWorld::CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2) {
     const auto body = static_cast<size_t>(g1.body);
     if (g1.body >= 0 && !rigid_on_soil_said_[body]) {
       rigid_on_soil_said_[body] = true;
-      messages_.push_back("body '" + BodyName(body) +
+      messages_.push_back("body '" + model::QualifiedBodyName(model_, g1.body) +
                           "' touches soil but is not a cylinder (a wheel): it meets the soil as "
                           "rigid ground (docs/soil.md)");
     }

@@ -64,12 +64,6 @@ constexpr size_t kMaxWarnings = 64;
 
 }  // namespace
 
-std::string QualifiedBodyName(const model::FlatModel& model, int body) {
-  const model::FlatBody& b = model.bodies[static_cast<size_t>(body)];
-  if (b.robot < 0) return b.name;
-  return model.world->robots[static_cast<size_t>(b.robot)].name + "/" + b.name;
-}
-
 Simulation::Simulation(model::World world, Parameters params, int64_t simulation_id)
     : world_(std::move(world)),
       params_(std::move(params)),
@@ -453,7 +447,7 @@ void Simulation::CheckHealth() {
     const double v = b.linear_velocity.norm();
     const double w = b.angular_velocity.norm();
     if (!finite || v > params_.maxLinearVelocity || w > params_.maxAngularVelocity) {
-      bad.push_back(QualifiedBodyName(flat_, static_cast<int>(i)));
+      bad.push_back(model::QualifiedBodyName(flat_, static_cast<int>(i)));
       if (worst.empty()) {
         worst = !finite ? "non-finite state"
                         : "speed " + FormatNumber(v, 10) + " m/s, rotation " + FormatNumber(w, 10) +

@@ -129,7 +129,6 @@ class OdeWorld : public PhysicsEngine {
   // whose state is out of range.
   OdeError Fail(const OdeError& raised, const std::string& during);
   std::vector<std::string> SuspectBodies() const;
-  std::string BodyName(size_t body) const;
 
   double CastRayUnguarded(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                           double range, int exclude_body);

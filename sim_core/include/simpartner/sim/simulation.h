@@ -142,7 +142,4 @@ class Simulation {
   SensorNoise noise_;
 };
 
-// Human-readable name of a body for messages: "robot/body" or "body".
-std::string QualifiedBodyName(const model::FlatModel& model, int body);
-
 }  // namespace simpartner::sim
