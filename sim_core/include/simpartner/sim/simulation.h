@@ -111,9 +111,10 @@ class Simulation {
   void ReadBodies();
   void FillWheelSoil(state_t* state) const;
   void CheckHealth();
-  // A reading of an Imu, Gnss, Encoder, Lidar or Contact sensor.
-  std::vector<double> ReadNewSensor(int index, const BodyReadout& body,
-                                    const Eigen::Isometry3d& mount);
+  // What a reading of sensor `index` at this step is made from.
+  SensorInput SensorInputOf(int index);
+  // The reading's values, by the sensor's kind.
+  std::vector<double> ReadValues(const SensorInput& in, const SensorState& state);
   void RememberImuVelocities();
   void WalkImuBiases();
   void AddWarning(int8_t severity, const std::string& source, const std::string& message,
