@@ -65,8 +65,8 @@ class Simulation {
   // an accepted one is queued for its step and replied to when applied.
   std::optional<command_reply_t> Submit(const command_t& command);
 
-  // Applies the commands due, runs the controllers, steps ODE once and
-  // checks the state. Returns false (and takes no step) once faulted.
+  // Applies the commands due, runs the controllers, steps the engine once
+  // and checks the state. Returns false (and takes no step) once faulted.
   bool Step();
 
   // What the last steps produced, for the node to publish.
