@@ -10,7 +10,7 @@
 //                instead of dWorldStep: what our own faster stepper gives
 //   ours mj      Simulation::Step with --engine=mujoco (our MuJoCo engine:
 //                the model built in memory, our contact, motor and stop
-//                mappings, sim_core/.../mujoco_world.h)
+//                mappings, sim_core/src/mujoco_world.h)
 //   ours mj+pub  the same through SimNode, publishing as the process runs
 //   mujoco       the exported MJCF (simpartner-convert) through MuJoCo's C
 //                API with its defaults (Euler, pyramidal cone, Newton)

@@ -1,6 +1,7 @@
 // Microseconds per step of the physics process, next to bare ODE stepping of
 // the same world in the same run, so our overhead is a ratio:
-//   bare      dSpaceCollide + dWorldStep/QuickStep + dJointGroupEmpty only
+//   bare      the engine alone (PhysicsEngine::BareStep): ODE's dSpaceCollide
+//             + dWorldStep/QuickStep + dJointGroupEmpty, or MuJoCo's mj_step
 //   sim       Simulation::Step (commands, controllers, step, health check)
 //   sim+enc   the same plus SIM_STATE filled and encoded (our part of publishing)
 //   sync pub  the same plus SIM_STATE filled, encoded and published on LCM
@@ -36,8 +37,7 @@
 #include "simpartner/model/flat_model.h"
 #include "simpartner/model/loader.h"
 #include "simpartner/sim/bus_sender.h"
-#include "simpartner/sim/mujoco_world.h"
-#include "simpartner/sim/ode_world.h"
+#include "simpartner/sim/engine.h"
 #include "simpartner/sim/simulation.h"
 
 namespace {
@@ -102,30 +102,6 @@ double PeakRssMb() {
   return 0.0;
 }
 
-// The bare loop: the same ODE world with the actuated joints' motors set
-// once, a near callback with fixed contact parameters, and nothing else.
-struct Bare {
-  dWorldID world;
-  dJointGroupID group;
-  int max_contacts;
-  double mu;
-  static void Near(void* data, dGeomID a, dGeomID b) {
-    auto* self = static_cast<Bare*>(data);
-    dBodyID b1 = dGeomGetBody(a), b2 = dGeomGetBody(b);
-    if (!b1 && !b2) return;
-    if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
-    dContact contacts[64];
-    const int n = dCollide(a, b, self->max_contacts, &contacts[0].geom, sizeof(dContact));
-    for (int i = 0; i < n; ++i) {
-      contacts[i].surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
-      contacts[i].surface.mu = self->mu;
-      contacts[i].surface.soft_erp = 0.2;
-      contacts[i].surface.soft_cfm = 1e-5;
-      dJointAttach(dJointCreateContact(self->world, self->group, &contacts[i]), b1, b2);
-    }
-  }
-};
-
 double MicrosPerStep(Clock::duration d, int steps) {
   return std::chrono::duration<double, std::micro>(d).count() / steps;
 }
@@ -134,25 +110,11 @@ double MicrosPerStep(Clock::duration d, int steps) {
 
 namespace {
 
-double BareOde(sim::OdeWorld& ode, const Parameters& params, int steps) {
-  Bare bare{ode.world(), dJointGroupCreate(0), params.maxContacts, params.contactMu};
+// The engine alone on the sim's built world (PhysicsEngine::BareStep):
+// its own contact defaults, the motors as the set-up before left them.
+double Bare(sim::PhysicsEngine& engine, int steps) {
   const auto start = Clock::now();
-  for (int n = 0; n < steps; ++n) {
-    dSpaceCollide(ode.space(), &bare, &Bare::Near);
-    if (params.stepper == "quick") dWorldQuickStep(bare.world, params.stepsize);
-    else dWorldStep(bare.world, params.stepsize);
-    dJointGroupEmpty(bare.group);
-  }
-  const double us = MicrosPerStep(Clock::now() - start, steps);
-  dJointGroupDestroy(bare.group);
-  return us;
-}
-
-// MuJoCo's mj_step on the engine's model: its own contact defaults, the
-// servos as the set-up before left them.
-double BareMujoco(sim::MujocoWorld& mujoco, int steps) {
-  const auto start = Clock::now();
-  for (int n = 0; n < steps; ++n) mujoco.BareStep();
+  for (int n = 0; n < steps; ++n) engine.BareStep();
   return MicrosPerStep(Clock::now() - start, steps);
 }
 
@@ -243,9 +205,7 @@ int main(int argc, char** argv) {
             if (m.name == actuator.name && joint >= 0)
               sim.engine().SetMotor(joint, 0, m.velocity, m.fmax);
         }
-        bare_us = params.engine == "mujoco"
-                      ? BareMujoco(dynamic_cast<sim::MujocoWorld&>(sim.engine()), steps)
-                      : BareOde(dynamic_cast<sim::OdeWorld&>(sim.engine()), params, steps);
+        bare_us = Bare(sim.engine(), steps);
       }
       double sim_us = 0, pub_us = 0;
       bool faulted = false, motors_ok = true;

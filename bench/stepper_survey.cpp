@@ -19,22 +19,19 @@
 // a robot at rest that vibrates at mm/s puts that noise into every contact
 // and joint force a user reads, which is what the simulator is for.
 //   bench/stepper_survey [--seconds-scale S] [world.xml ...]
-#include <ode/ode.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <set>
 #include <string>
 #include <vector>
 
 #include "simpartner/command_line.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/model/loader.h"
-#include "simpartner/sim/ode_world.h"
+#include "simpartner/sim/engine.h"
 #include "simpartner/sim/simulation.h"
 
 namespace {
@@ -65,48 +62,13 @@ struct Outcome {
   double wall_seconds = 0;
 };
 
-// Every joint of the world, found through the bodies of the space's geoms
-// (ODE has no joint iterator on a world).
-std::vector<dJointID> AllJoints(dSpaceID space) {
-  std::set<dJointID> joints;
-  const int n = dSpaceGetNumGeoms(space);
-  for (int i = 0; i < n; ++i) {
-    dBodyID body = dGeomGetBody(dSpaceGetGeom(space, i));
-    if (!body) continue;
-    for (int j = 0; j < dBodyGetNumJoints(body); ++j) {
-      dJointID joint = dBodyGetJoint(body, j);
-      if (dJointGetType(joint) != dJointTypeContact) joints.insert(joint);
-    }
-  }
-  return {joints.begin(), joints.end()};
-}
-
-// Distance between the joint's anchor as seen from body 1 and from body 2:
-// zero for an exactly satisfied constraint.
-double AnchorError(dJointID joint) {
-  dVector3 a{}, b{};
-  switch (dJointGetType(joint)) {
-    case dJointTypeHinge:
-      dJointGetHingeAnchor(joint, a);
-      dJointGetHingeAnchor2(joint, b);
-      break;
-    case dJointTypeBall:
-      dJointGetBallAnchor(joint, a);
-      dJointGetBallAnchor2(joint, b);
-      break;
-    case dJointTypeUniversal:
-      dJointGetUniversalAnchor(joint, a);
-      dJointGetUniversalAnchor2(joint, b);
-      break;
-    case dJointTypeHinge2:
-      dJointGetHinge2Anchor(joint, a);
-      dJointGetHinge2Anchor2(joint, b);
-      break;
-    default:
-      return 0.0;
-  }
-  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                   (a[2] - b[2]) * (a[2] - b[2]));
+// The largest distance between a joint's anchor as its two bodies hold
+// it: zero for constraints exactly satisfied.
+double MaxAnchorError(const sim::PhysicsEngine& engine, size_t joints) {
+  double worst = 0.0;
+  for (size_t j = 0; j < joints; ++j)
+    worst = std::max(worst, engine.ReadJoint(static_cast<int>(j)).anchor_error);
+  return worst;
 }
 
 command_t Command(const std::string& target, std::vector<double> values) {
@@ -142,9 +104,6 @@ Outcome Run(const model::World& world, const Parameters& params, const Scenario&
     for (const char* axle : {"Axle1Motor", "Axle2Motor", "Axle3Motor", "Axle4Motor"})
       submit(axle, {1000, 1.5});
   }
-  // An ODE survey: the ODE engine (the default) behind the interface.
-  const std::vector<dJointID> joints =
-      AllJoints(dynamic_cast<sim::OdeWorld&>(sim.engine()).space());
   const auto start_pose = sim.engine().ReadBody(chassis).position;
   Outcome out;
   const auto t0 = std::chrono::steady_clock::now();
@@ -155,7 +114,8 @@ Outcome Run(const model::World& world, const Parameters& params, const Scenario&
       out.fault_step = sim.step();
       break;
     }
-    for (dJointID j : joints) out.max_joint_error = std::max(out.max_joint_error, AnchorError(j));
+    out.max_joint_error =
+        std::max(out.max_joint_error, MaxAnchorError(sim.engine(), flat.joints.size()));
     if (sim.time() < scenario.settle) continue;
     const auto chassis_state = sim.engine().ReadBody(chassis);
     // y is up in the WorkPartner files.

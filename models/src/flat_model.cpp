@@ -148,4 +148,10 @@ FlatModel Flatten(const World& world) {
   return flat;
 }
 
+std::string QualifiedBodyName(const FlatModel& model, int body) {
+  const FlatBody& b = model.bodies[static_cast<size_t>(body)];
+  if (b.robot < 0) return b.name;
+  return model.world->robots[static_cast<size_t>(b.robot)].name + "/" + b.name;
+}
+
 }  // namespace simpartner::model

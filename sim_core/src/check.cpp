@@ -11,7 +11,8 @@ CommandLineSpec SimCommandLine() {
   spec.program = "simpartner-sim";
   spec.summary =
       "The SimPartner physics process: loads the parameters, the world (parameter 'environment') "
-      "and its robots, steps ODE at a fixed step and serves the simulation over LCM. World and "
+      "and its robots, steps the physics engine (ODE or MuJoCo, parameter 'engine') at a "
+      "fixed step and serves the simulation over LCM. World and "
       "robot files are found as given, else under $SIMPARTNER_DATA, the source tree (a build's "
       "programs) or the install's share/simpartner, also by file name alone "
       "(--environment=maze.xml).";
@@ -34,7 +35,7 @@ CommandLineSpec SimCommandLine() {
       "Exit status: 0 the run ended (its duration, SIM_CONTROL quit, SIGINT or SIGTERM); 1 an "
       "error while running; 2 bad input (parameters, world, robot), nothing started; 3 another "
       "simulation is on the bus, nothing started; 4 the run faulted (an exploding or non-finite "
-      "state, or ODE gave up) before its --duration, which a faulted sim cannot reach without a "
+      "state, or the engine gave up) before its --duration, which a faulted sim cannot reach without a "
       "reset.";
   spec.parameters = ParameterUse{{parameter_sections::kWorld, parameter_sections::kStepping,
                                   parameter_sections::kContact, parameter_sections::kRunning,

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "simpartner/sim/mujoco_world.h"
-#include "simpartner/sim/ode_world.h"
+#include "mujoco_world.h"
+#include "ode_world.h"
 #include "simpartner/text.h"
 
 namespace simpartner::sim {

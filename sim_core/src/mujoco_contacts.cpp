@@ -7,16 +7,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "simpartner/sim/mujoco_world.h"
+#include "contact_rules.h"
+#include "mujoco_world.h"
 
 namespace simpartner::sim {
 namespace {
 
-// Below this slip speed [m/s] a contact has no slip direction (ODE side:
-// kSlipDirectionSpeed).
-constexpr double kSlipDirectionSpeed = 1e-4;
-// A wheel whose axis is within this sine of the contact normal lies flat.
-constexpr double kMinRollingSine = 1e-3;
 // MuJoCo's cone needs a positive torsional friction where ODE has none,
 // and positive coefficients where one of ours is 0.
 constexpr double kTorsionalFriction = 1e-9;  // [m]
@@ -50,24 +46,13 @@ Eigen::Vector3d MujocoWorld::PointVelocity(int mj_body, const Eigen::Vector3d& p
   return V(cvel + 3) + V(cvel).cross(point - at);
 }
 
-bool MujocoWorld::RollingDirection(const mjContact& contact,
-                                   const model::SurfaceProperties& combined,
-                                   Eigen::Vector3d* direction) const {
-  const GeomInfo& g1 = geoms_[static_cast<size_t>(contact.geom1)];
-  const GeomInfo& g2 = geoms_[static_cast<size_t>(contact.geom2)];
-  if (combined.friction_direction != model::FrictionDirection::kRolling ||
-      g1.has_spin_axis == g2.has_spin_axis)
-    return false;
-  // Perpendicular to the normal and to the wheel's spin axis.
-  const int geom = g1.has_spin_axis ? contact.geom1 : contact.geom2;
-  const GeomInfo& wheel = g1.has_spin_axis ? g1 : g2;
+std::optional<Eigen::Vector3d> MujocoWorld::WorldSpinAxis(int geom) const {
+  const GeomInfo& info = geoms_[static_cast<size_t>(geom)];
+  if (!info.has_spin_axis) return std::nullopt;
   Eigen::Matrix3d r;
   for (int row = 0; row < 3; ++row)
     for (int col = 0; col < 3; ++col) r(row, col) = d_->geom_xmat[9 * geom + 3 * row + col];
-  const Eigen::Vector3d rolling = V(contact.frame).cross(r * wheel.spin_axis);
-  if (rolling.norm() <= kMinRollingSine) return false;  // a wheel lying flat rolls nowhere
-  *direction = rolling.normalized();
-  return true;
+  return Eigen::Vector3d(r * info.spin_axis);
 }
 
 void MujocoWorld::SetUpContacts() {
@@ -81,6 +66,7 @@ void MujocoWorld::SetUpContacts() {
           d_->contact[k].geom2 == d_->contact[i].geom2)
         ++points[static_cast<size_t>(i)];
   contact_surface_.assign(static_cast<size_t>(d_->ncon), model::SurfaceProperties{});
+  contact_rolling_.assign(static_cast<size_t>(d_->ncon), Eigen::Vector3d::Zero());
   applied_.clear();
   for (int i = 0; i < d_->ncon; ++i) {
     mjContact& contact = d_->contact[i];
@@ -88,13 +74,16 @@ void MujocoWorld::SetUpContacts() {
         geoms_[static_cast<size_t>(contact.geom1)].surface,
         geoms_[static_cast<size_t>(contact.geom2)].surface);
     // mu2 is read across a rolling direction only (as on ODE): a contact
-    // without one is isotropic, mu against the slip.
-    Eigen::Vector3d along;
-    const bool rolls = combined.mu2 != combined.mu && RollingDirection(contact, combined, &along);
+    // without one is isotropic, mu against the slip (Coulomb's cone, which
+    // needs no frame of its own when mu2 = mu).
+    const std::optional<Eigen::Vector3d> rolling = RollingDirection(
+        combined, V(contact.frame), WorldSpinAxis(contact.geom1), WorldSpinAxis(contact.geom2));
+    if (rolling) contact_rolling_[static_cast<size_t>(i)] = *rolling;
+    const bool rolls = rolling && combined.mu2 != combined.mu;
     if (!rolls) combined.mu2 = combined.mu;
     contact_surface_[static_cast<size_t>(i)] = combined;
     SetUpMaterial(combined, points[static_cast<size_t>(i)], &contact);
-    if (contact.dim > 1) SetUpFriction(i, combined, rolls ? &along : nullptr);
+    if (contact.dim > 1) SetUpFriction(i, combined, rolls ? &*rolling : nullptr);
   }
 }
 

@@ -1,4 +1,4 @@
-#include "simpartner/sim/mujoco_world.h"
+#include "mujoco_world.h"
 
 #include <mujoco/mujoco.h>
 
@@ -6,8 +6,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "contact_rules.h"
 #include "mujoco_mjcf.h"
-#include "simpartner/sim/simulation.h"
+#include "simpartner/model/flat_model.h"
 
 namespace simpartner::sim {
 namespace {
@@ -412,20 +413,48 @@ void MujocoWorld::CheckWarnings() {
 }
 
 std::vector<std::string> MujocoWorld::SuspectBodies() const {
-  std::vector<std::string> out;
+  std::vector<BodyState> moving;
   for (size_t b = 0; b < body_id_.size(); ++b) {
-    const int id = body_id_[b];
-    if (id <= 0) continue;
-    bool finite = true;
-    for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(d_->xpos[3 * id + k]);
-    for (int k = 0; k < 6; ++k) finite = finite && std::isfinite(d_->cvel[6 * id + k]);
-    if (!finite) out.push_back(QualifiedBodyName(model_, static_cast<int>(b)));
+    if (body_id_[b] <= 0) continue;
+    const BodyReadout readout = ReadBody(static_cast<int>(b));
+    BodyState state;
+    state.body = static_cast<int>(b);
+    state.position = readout.position;
+    const Eigen::Quaterniond& q = readout.orientation;
+    state.orientation = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+    state.linear_velocity = readout.linear_velocity;
+    state.angular_velocity = readout.angular_velocity;
+    moving.push_back(state);
+  }
+  return sim::SuspectBodies(model_, moving);
+}
+
+std::vector<ContactReadout> MujocoWorld::ReadContacts() const {
+  std::vector<ContactReadout> out;
+  for (int i = 0; i < d_->ncon && static_cast<size_t>(i) < contact_rolling_.size(); ++i) {
+    const mjContact& contact = d_->contact[i];
+    ContactReadout readout;
+    readout.body1 = flat_body_[static_cast<size_t>(m_->geom_bodyid[contact.geom1])];
+    readout.body2 = flat_body_[static_cast<size_t>(m_->geom_bodyid[contact.geom2])];
+    readout.position = V(contact.pos);
+    readout.normal = V(contact.frame);
+    readout.rolling_direction = contact_rolling_[static_cast<size_t>(i)];
+    out.push_back(readout);
   }
   return out;
 }
 
 EngineError MujocoWorld::Fail(const std::string& message, const std::string& during) {
   dead_ = true;
+  // The bodies' positions and velocities of the state MuJoCo was left
+  // with: a step that failed may have stopped before its kinematics, or
+  // after MuJoCo reset the model (a huge or non-finite number), which
+  // zeroes them until they are computed again.
+  try {
+    UpdateReadouts();
+  } catch (const EngineError&) {
+    // what MuJoCo cannot compute is judged as it stands
+  }
   return EngineError("MuJoCo", message, during, SuspectBodies());
 }
 

@@ -1,5 +1,6 @@
-#include "simpartner/sim/ode_world.h"
+#include "ode_world.h"
 
+#include "contact_rules.h"
 #include "ode_convert.h"
 #include "ode_soil.h"
 #include "ray_heightfield.h"
@@ -21,12 +22,6 @@ namespace simpartner::sim {
 namespace {
 
 constexpr size_t kFeedbackChunk = 1024;
-// [m/s] below this a contact counts as sticking and keeps ODE's friction
-// directions (the direction of a smaller slip is noise).
-constexpr double kSlipDirectionSpeed = 1e-4;
-// |normal x spin axis| below this (a wheel within 0.6 degrees of lying
-// flat) leaves a "rolling" contact without a rolling direction.
-constexpr double kMinRollingSine = 0.01;
 
 // ODE's messages (dMessage: "LCP internal error", ODE goes on) go into the
 // sink of the OdeWorld stepping on this thread (set only during Step), and
@@ -105,23 +100,16 @@ OdeWorld::OdeWorld(const model::FlatModel& model, const Parameters& params)
   } catch (const OdeError& e) {
     // No destructor runs for a constructor that throws: the ODE objects
     // made so far are abandoned, as for a world that dies stepping.
+    const std::string body =
+        building_body_ >= 0 ? model::QualifiedBodyName(model_, building_body_) : "";
     const std::string during =
-        building_body_ >= 0 ? "building body '" + BodyName(static_cast<size_t>(building_body_)) + "'"
-                            : std::string("building the world");
+        body.empty() ? std::string("building the world") : "building body '" + body + "'";
     // ODE says why in a message just before the assertion (dMassCheck:
     // "inertia must be positive definite"); keep the last one.
     const std::string why = messages_.empty() ? "" : " after \"" + messages_.back() + "\"";
     throw OdeError(e.ode_message() + why, during,
-                   building_body_ >= 0
-                       ? std::vector<std::string>{BodyName(static_cast<size_t>(building_body_))}
-                       : std::vector<std::string>{});
+                   body.empty() ? std::vector<std::string>{} : std::vector<std::string>{body});
   }
-}
-
-std::string OdeWorld::BodyName(size_t body) const {
-  const model::FlatBody& b = model_.bodies[body];
-  if (b.robot < 0) return b.name;
-  return model_.world->robots[static_cast<size_t>(b.robot)].name + "/" + b.name;
 }
 
 void OdeWorld::Build() {
@@ -181,7 +169,7 @@ void OdeWorld::Build() {
     // whatever wheel touches it".
     SP_CHECK_MSG(owner < 0 || info.has_spin_axis ||
                      info.surface.friction_direction != model::FrictionDirection::kRolling,
-                 "body '" + BodyName(static_cast<size_t>(owner)) +
+                 "body '" + model::QualifiedBodyName(model_, owner) +
                      "' with a rolling material has no spin axis; the loader should have "
                      "refused it");
     geom_info_.push_back(info);
@@ -349,26 +337,20 @@ OdeWorld::~OdeWorld() {
 }
 
 std::vector<std::string> OdeWorld::SuspectBodies() const {
-  std::vector<std::string> names;
+  std::vector<BodyState> moving;
   for (size_t i = 0; i < bodies_.size(); ++i) {
     const dBodyID b = bodies_[i].body;
     if (b == nullptr) continue;
-    const Eigen::Vector3d p = FromOde(dBodyGetPosition(b));
-    const Eigen::Vector3d v = FromOde(dBodyGetLinearVel(b));
-    const Eigen::Vector3d w = FromOde(dBodyGetAngularVel(b));
+    BodyState state;
+    state.body = static_cast<int>(i);
+    state.position = FromOde(dBodyGetPosition(b));
     const dReal* q = dBodyGetQuaternion(b);
-    const bool finite = p.allFinite() && v.allFinite() && w.allFinite() &&
-                        std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]) &&
-                        std::isfinite(q[3]);
-    // A mass outside the loader's range (only a world built past the
-    // loader has one) is what breaks the solver even with a finite state.
-    const double mass = model_.bodies[i].source->mass;
-    if (!finite || p.cwiseAbs().maxCoeff() > model::limits::kMaxCoordinate ||
-        v.norm() > model::limits::kMaxLinearSpeed || w.norm() > model::limits::kMaxAngularSpeed ||
-        !(mass >= model::limits::kMinMass && mass <= model::limits::kMaxMass))
-      names.push_back(BodyName(i));
+    state.orientation = Eigen::Vector4d(q[0], q[1], q[2], q[3]);
+    state.linear_velocity = FromOde(dBodyGetLinearVel(b));
+    state.angular_velocity = FromOde(dBodyGetAngularVel(b));
+    moving.push_back(state);
   }
-  return names;
+  return sim::SuspectBodies(model_, moving);
 }
 
 OdeError OdeWorld::Fail(const OdeError& raised, const std::string& during) {
@@ -459,10 +441,14 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
     // across a rolling direction only: across a slip's own direction it
     // would act only while sticking, where a slip has none, and held a
     // slide from turning (materials say so at load, docs/contacts.md).
-    Eigen::Vector3d direction;
-    const bool rolls = combined.friction_direction == model::FrictionDirection::kRolling &&
-                       RollingDirection(g1, g2, o1, o2, contact.geom, &direction);
-    const bool slides = !rolls && SlipDirection(o1, o2, contact.geom, &direction);
+    const Eigen::Vector3d normal = FromOde(contact.geom.normal);
+    const std::optional<Eigen::Vector3d> rolling_direction =
+        RollingDirection(combined, normal, WorldSpinAxis(g1, o1), WorldSpinAxis(g2, o2));
+    const std::optional<Eigen::Vector3d> slip_direction =
+        rolling_direction ? std::nullopt : SlipDirection(SlipVelocity(o1, o2, contact.geom));
+    const bool rolls = rolling_direction.has_value(), slides = slip_direction.has_value();
+    const Eigen::Vector3d direction =
+        rolls ? *rolling_direction : slides ? *slip_direction : Eigen::Vector3d::Zero();
     // Looked up only where it is used: a slow slide, or a sticking contact.
     const auto last = [&] { return NearestLastContact(o1, o2, FromOde(contact.geom.pos)); };
     if (rolls || slides) {
@@ -504,7 +490,6 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
       // pyramid's mu N the cone's bound on it (with ODE's directions a
       // force at 45 degrees to them held up to sqrt(2) mu N), and the
       // slide it starts is along it.
-      const Eigen::Vector3d normal = FromOde(contact.geom.normal);
       const Eigen::Vector3d held = point->friction - point->friction.dot(normal) * normal;
       if (held.norm() > 1e-9 * (1.0 + point->load)) {
         const Eigen::Vector3d along = held.normalized();
@@ -521,9 +506,9 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
     dJointAttach(joint, b1, b2);
     dJointFeedback* feedback = NextFeedback();
     dJointSetFeedback(joint, feedback);
-    contact_records_.push_back(
-        ContactRecord{g1.body, g2.body, feedback, o1, o2, FromOde(contact.geom.pos),
-                      FromOde(contact.geom.normal)});
+    contact_records_.push_back(ContactRecord{g1.body, g2.body, feedback, o1, o2,
+                                             FromOde(contact.geom.pos), normal,
+                                             rolls ? direction : Eigen::Vector3d::Zero()});
   }
   contact_count_ += n;
 }
@@ -537,7 +522,7 @@ bool OdeWorld::CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2) {
     const auto body = static_cast<size_t>(g1.body);
     if (g1.body >= 0 && !rigid_on_soil_said_[body]) {
       rigid_on_soil_said_[body] = true;
-      messages_.push_back("body '" + BodyName(body) +
+      messages_.push_back("body '" + model::QualifiedBodyName(model_, g1.body) +
                           "' touches soil but is not a cylinder (a wheel): it meets the soil as "
                           "rigid ground (docs/soil.md)");
     }
@@ -550,7 +535,8 @@ bool OdeWorld::CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2) {
   dJointFeedback* feedback = NextFeedback();
   dJointSetFeedback(joint, feedback);
   contact_records_.push_back(ContactRecord{g1.body, -1, feedback, o1, o2,
-                                           FromOde(contact.geom.pos), FromOde(contact.geom.normal)});
+                                           FromOde(contact.geom.pos), FromOde(contact.geom.normal),
+                                           Eigen::Vector3d::Zero()});
   ++contact_count_;
   // The soil's plain forces act at the wheel's centre (the geom's position).
   const Eigen::Vector3d centre = FromOde(dGeomGetPosition(o1));
@@ -563,24 +549,15 @@ bool OdeWorld::CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2) {
   return true;
 }
 
-bool OdeWorld::RollingDirection(const GeomInfo& g1, const GeomInfo& g2, dGeomID o1, dGeomID o2,
-                                const dContactGeom& contact, Eigen::Vector3d* direction) const {
-  // Perpendicular to the normal and to the wheel's spin axis. The wheel is
-  // the one geom of the two with a spin axis; two wheels touching (or two
-  // bodies that do not spin) have no common rolling direction.
-  if (g1.has_spin_axis == g2.has_spin_axis) return false;
-  const bool first_is_wheel = g1.has_spin_axis;
-  const dGeomID wheel = first_is_wheel ? o1 : o2;
-  const Eigen::Vector3d& axis_in_geom = first_is_wheel ? g1.spin_axis : g2.spin_axis;
-  const dReal* r = dGeomGetRotation(wheel);
+std::optional<Eigen::Vector3d> OdeWorld::WorldSpinAxis(const GeomInfo& info,
+                                                       dGeomID geom) const {
+  if (!info.has_spin_axis) return std::nullopt;
+  const dReal* r = dGeomGetRotation(geom);
   Eigen::Vector3d axis;
   for (int row = 0; row < 3; ++row)
-    axis[row] = r[row * 4] * axis_in_geom.x() + r[row * 4 + 1] * axis_in_geom.y() +
-                r[row * 4 + 2] * axis_in_geom.z();
-  const Eigen::Vector3d rolling = FromOde(contact.normal).cross(axis);
-  if (rolling.norm() <= kMinRollingSine) return false;  // a wheel lying flat rolls nowhere
-  *direction = rolling.normalized();
-  return true;
+    axis[row] = r[row * 4] * info.spin_axis.x() + r[row * 4 + 1] * info.spin_axis.y() +
+                r[row * 4 + 2] * info.spin_axis.z();
+  return axis;
 }
 
 Eigen::Vector3d OdeWorld::SlipVelocity(dGeomID o1, dGeomID o2, const dContactGeom& contact) const {
@@ -595,12 +572,39 @@ Eigen::Vector3d OdeWorld::SlipVelocity(dGeomID o1, dGeomID o2, const dContactGeo
   return slip;
 }
 
-bool OdeWorld::SlipDirection(dGeomID o1, dGeomID o2, const dContactGeom& contact,
-                             Eigen::Vector3d* direction) const {
-  const Eigen::Vector3d slip = SlipVelocity(o1, o2, contact);
-  if (slip.norm() <= kSlipDirectionSpeed) return false;
-  *direction = slip.normalized();
-  return true;
+std::vector<ContactReadout> OdeWorld::ReadContacts() const {
+  std::vector<ContactReadout> out;
+  out.reserve(contact_records_.size());
+  for (const ContactRecord& record : contact_records_)
+    out.push_back(ContactReadout{record.body1, record.body2, record.position, record.normal,
+                                 record.rolling});
+  return out;
+}
+
+void OdeWorld::BareNearCallback(void* data, dGeomID o1, dGeomID o2) {
+  auto* self = static_cast<OdeWorld*>(data);
+  const dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
+  if (b1 == nullptr && b2 == nullptr) return;
+  if (b1 != nullptr && b2 != nullptr && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
+  std::vector<dContact>& contacts = self->contact_buffer_;
+  const int n = dCollide(o1, o2, static_cast<int>(contacts.size()), &contacts[0].geom,
+                         sizeof(dContact));
+  for (int i = 0; i < n; ++i) {
+    dContact& contact = contacts[static_cast<size_t>(i)];
+    contact.surface = dSurfaceParameters{};
+    contact.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+    contact.surface.mu = self->params_.contactMu;
+    contact.surface.soft_erp = 0.2;
+    contact.surface.soft_cfm = 1e-5;
+    dJointAttach(dJointCreateContact(self->world_, self->contacts_, &contact), b1, b2);
+  }
+}
+
+void OdeWorld::BareStep() {
+  dSpaceCollide(space_, this, &OdeWorld::BareNearCallback);
+  if (params_.stepper == "quick") dWorldQuickStep(world_, params_.stepsize);
+  else dWorldStep(world_, params_.stepsize);
+  dJointGroupEmpty(contacts_);
 }
 
 void OdeWorld::Step() {
@@ -822,14 +826,28 @@ JointReadout OdeWorld::ReadJoint(int index) const {
     out.continuous_position[a] = joint.continuous[a];
     out.rate[a] = JointRate(index, a);
   }
-  dVector3 anchor = {0, 0, 0, 0};
+  dVector3 anchor = {0, 0, 0, 0}, anchor2 = {0, 0, 0, 0};
+  bool has_anchor2 = true;
   switch (joint.kind) {
-    case model::JointKind::kHinge: dJointGetHingeAnchor(joint.joint, anchor); break;
-    case model::JointKind::kBall: dJointGetBallAnchor(joint.joint, anchor); break;
-    case model::JointKind::kUniversal: dJointGetUniversalAnchor(joint.joint, anchor); break;
-    case model::JointKind::kHinge2: dJointGetHinge2Anchor(joint.joint, anchor); break;
+    case model::JointKind::kHinge:
+      dJointGetHingeAnchor(joint.joint, anchor);
+      dJointGetHingeAnchor2(joint.joint, anchor2);
+      break;
+    case model::JointKind::kBall:
+      dJointGetBallAnchor(joint.joint, anchor);
+      dJointGetBallAnchor2(joint.joint, anchor2);
+      break;
+    case model::JointKind::kUniversal:
+      dJointGetUniversalAnchor(joint.joint, anchor);
+      dJointGetUniversalAnchor2(joint.joint, anchor2);
+      break;
+    case model::JointKind::kHinge2:
+      dJointGetHinge2Anchor(joint.joint, anchor);
+      dJointGetHinge2Anchor2(joint.joint, anchor2);
+      break;
     case model::JointKind::kFixed:
     case model::JointKind::kSlider: {
+      has_anchor2 = false;  // no anchor: the first body's origin stands for it
       const dBodyID b = dJointGetBody(joint.joint, 0);
       if (b != nullptr) {
         const dReal* p = dBodyGetPosition(b);
@@ -841,6 +859,7 @@ JointReadout OdeWorld::ReadJoint(int index) const {
     }
   }
   out.anchor = FromOde(anchor);
+  if (has_anchor2) out.anchor_error = (FromOde(anchor2) - out.anchor).norm();
   const model::FlatJoint& flat = model_.joints[static_cast<size_t>(index)];
   if (flat.body1 < 0 && flat.body2 >= 0) {
     // Attached as (world, body): ODE swapped it to (body, world), so the

@@ -46,6 +46,39 @@ void WalkImuBias(const model::Sensor& sensor, const SensorNoise& noise, int inde
   }
 }
 
+std::vector<double> ReadPosition(const SensorInput& in) {
+  const Eigen::Vector3d p = in.mount.translation();
+  const Eigen::Quaterniond q(in.mount.linear());
+  return {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z()};
+}
+
+std::vector<double> ReadVelocity(const SensorInput& in) {
+  const Eigen::Vector3d v = PointVelocity(in.body, in.mount.translation());
+  const Eigen::Vector3d& w = in.body.angular_velocity;
+  return {v.x(), v.y(), v.z(), w.x(), w.y(), w.z()};
+}
+
+std::vector<double> ReadForceTorque(const SensorInput& in) {
+  const JointReadout j = in.engine->ReadJoint(in.sensor->joint);
+  return {j.force2.x(), j.force2.y(), j.force2.z(), j.torque2.x(), j.torque2.y(), j.torque2.z()};
+}
+
+std::vector<double> ReadScanner(const SensorInput& in, const ScannerSettings& settings) {
+  // Rays around the sensor's z axis in its z-x plane, evenly from
+  // -halfSpan to +halfSpan.
+  std::vector<double> out(static_cast<size_t>(settings.rays));
+  for (int k = 0; k < settings.rays; ++k) {
+    const double angle = settings.rays == 1 ? 0.0
+                                            : -settings.half_span +
+                                                  2.0 * settings.half_span * k / (settings.rays - 1);
+    const Eigen::Vector3d direction =
+        in.mount.linear() * Eigen::Vector3d(std::sin(angle), 0.0, std::cos(angle));
+    out[static_cast<size_t>(k)] =
+        in.engine->CastRay(in.mount.translation(), direction, settings.range, in.sensor->body);
+  }
+  return out;
+}
+
 std::vector<double> ReadImu(const SensorInput& in, const ImuMemory& memory, double stepsize) {
   // Acceleration of the mount point as the integrator made it: the change
   // of its velocity over the last step (lever-arm terms included, as the

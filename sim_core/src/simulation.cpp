@@ -64,12 +64,6 @@ constexpr size_t kMaxWarnings = 64;
 
 }  // namespace
 
-std::string QualifiedBodyName(const model::FlatModel& model, int body) {
-  const model::FlatBody& b = model.bodies[static_cast<size_t>(body)];
-  if (b.robot < 0) return b.name;
-  return model.world->robots[static_cast<size_t>(b.robot)].name + "/" + b.name;
-}
-
 Simulation::Simulation(model::World world, Parameters params, int64_t simulation_id)
     : world_(std::move(world)),
       params_(std::move(params)),
@@ -453,7 +447,7 @@ void Simulation::CheckHealth() {
     const double v = b.linear_velocity.norm();
     const double w = b.angular_velocity.norm();
     if (!finite || v > params_.maxLinearVelocity || w > params_.maxAngularVelocity) {
-      bad.push_back(QualifiedBodyName(flat_, static_cast<int>(i)));
+      bad.push_back(model::QualifiedBodyName(flat_, static_cast<int>(i)));
       if (worst.empty()) {
         worst = !finite ? "non-finite state"
                         : "speed " + FormatNumber(v, 10) + " m/s, rotation " + FormatNumber(w, 10) +
@@ -502,65 +496,13 @@ sensor_reading_t Simulation::ReadSensor(int index) {
   r.sensor = index;
   r.name = sensor.name;
   r.kind = model::ToLcm(sensor.source->kind);
-  Eigen::Isometry3d mount_world = Eigen::Isometry3d::Identity();
-  BodyReadout body;
-  if (sensor.body >= 0) {
-    body = engine_->ReadBody(sensor.body);
-    Eigen::Isometry3d body_pose = Eigen::Isometry3d::Identity();
-    body_pose.linear() = body.orientation.toRotationMatrix();
-    body_pose.translation() = body.position;
-    mount_world = body_pose * sensor.source->mount;
-  }
-  switch (sensor.source->kind) {
-    case model::SensorKind::kEcho:
-      r.text = state.echo_text;
-      break;
-    case model::SensorKind::kPosition: {
-      const Eigen::Quaterniond q(mount_world.linear());
-      r.values = {mount_world.translation().x(), mount_world.translation().y(),
-                  mount_world.translation().z(), q.w(), q.x(), q.y(), q.z()};
-      break;
-    }
-    case model::SensorKind::kVelocity: {
-      const Eigen::Vector3d v =
-          body.linear_velocity +
-          body.angular_velocity.cross(mount_world.translation() - body.position);
-      r.values = {v.x(), v.y(), v.z(), body.angular_velocity.x(), body.angular_velocity.y(),
-                  body.angular_velocity.z()};
-      break;
-    }
-    case model::SensorKind::kForceTorque: {
-      const JointReadout j = engine_->ReadJoint(sensor.joint);
-      r.values = {j.force2.x(), j.force2.y(), j.force2.z(),
-                  j.torque2.x(), j.torque2.y(), j.torque2.z()};
-      break;
-    }
-    case model::SensorKind::kCamera:
-      break;  // never asked for: its commands are refused, it has no period
-    case model::SensorKind::kScanner: {
-      // Rays around the sensor's z axis in its z-x plane, evenly from
-      // -halfSpan to +halfSpan.
-      r.values.resize(static_cast<size_t>(state.rays));
-      for (int k = 0; k < state.rays; ++k) {
-        const double angle =
-            state.rays == 1 ? 0.0 : -state.half_span + 2.0 * state.half_span * k / (state.rays - 1);
-        const Eigen::Vector3d direction =
-            mount_world.linear() * Eigen::Vector3d(std::sin(angle), 0.0, std::cos(angle));
-        r.values[static_cast<size_t>(k)] =
-            engine_->CastRay(mount_world.translation(), direction, state.range, sensor.body);
-      }
-      break;
-    }
-    default:
-      r.values = ReadNewSensor(index, body, mount_world);
-      break;
-  }
+  if (sensor.source->kind == model::SensorKind::kEcho) r.text = state.echo_text;
+  r.values = ReadValues(SensorInputOf(index), state);
   r.num_values = static_cast<int32_t>(r.values.size());
   return r;
 }
 
-std::vector<double> Simulation::ReadNewSensor(int index, const BodyReadout& body,
-                                              const Eigen::Isometry3d& mount) {
+SensorInput Simulation::SensorInputOf(int index) {
   const model::FlatSensor& sensor = flat_.sensors[static_cast<size_t>(index)];
   const SensorState& state = sensors_[static_cast<size_t>(index)];
   SensorInput in;
@@ -573,16 +515,32 @@ std::vector<double> Simulation::ReadNewSensor(int index, const BodyReadout& body
   // Its noise is that of sampling at its rate; with publishing off (rate
   // 0, on request only), at the rate its file gives.
   in.rate = state.rate > 0 ? state.rate : sensor.source->rate;
-  in.body = body;
-  in.mount = mount;
-  switch (sensor.source->kind) {
+  if (sensor.body >= 0) {
+    in.body = engine_->ReadBody(sensor.body);
+    Eigen::Isometry3d body_pose = Eigen::Isometry3d::Identity();
+    body_pose.linear() = in.body.orientation.toRotationMatrix();
+    body_pose.translation() = in.body.position;
+    in.mount = body_pose * sensor.source->mount;
+  }
+  return in;
+}
+
+std::vector<double> Simulation::ReadValues(const SensorInput& in, const SensorState& state) {
+  switch (in.sensor->source->kind) {
+    case model::SensorKind::kEcho: return {};  // its text
+    case model::SensorKind::kCamera: return {};  // never asked: simpartner-camera renders it
+    case model::SensorKind::kPosition: return ReadPosition(in);
+    case model::SensorKind::kVelocity: return ReadVelocity(in);
+    case model::SensorKind::kForceTorque: return ReadForceTorque(in);
+    case model::SensorKind::kScanner:
+      return ReadScanner(in, ScannerSettings{state.rays, state.half_span, state.range});
     case model::SensorKind::kImu: return ReadImu(in, state.imu_memory, params_.stepsize);
     case model::SensorKind::kGnss: return ReadGnss(in);
     case model::SensorKind::kEncoder: return ReadEncoder(in);
     case model::SensorKind::kLidar: return ReadLidar(in);
     case model::SensorKind::kContact: return ReadContact(in);
-    default: return {};
   }
+  return {};
 }
 
 void Simulation::FillState(state_t* s) const {

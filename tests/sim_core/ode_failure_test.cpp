@@ -1,7 +1,8 @@
 // Beyond the loader's ranges, ODE's own fatal errors: each value that made
 // ODE abort the sim (SimPartner issue 10) is built here directly as model
-// structs, bypassing the loader's checks, and must end in an OdeError
-// naming ODE's message and the bodies, not in abort(). Each case runs in a
+// structs, bypassing the loader's checks, and must end in an EngineError
+// naming ODE's message and the bodies, not in abort(), through the engine
+// interface (engine.h) as the sim builds it. Each case runs in a
 // child process (gtest's death-test machinery), so that an abort fails the
 // test instead of killing the test binary; after the error the child builds
 // and steps a healthy world, so a failed world does not break the process.
@@ -9,6 +10,8 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <ode/ode.h>
+
 #include <functional>
 #include <memory>
 #include <ostream>
@@ -17,14 +20,13 @@
 
 #include "simpartner/model/model.h"
 #include "simpartner/model/flat_model.h"
-#include "simpartner/sim/ode_world.h"
-#include "simpartner/sim/simulation.h"
+#include "simpartner/sim/engine.h"
 
 namespace simpartner::sim {
 namespace {
 
 // Ends a death-test child without LeakSanitizer's check at exit: a world
-// ODE failed in is abandoned, not freed, on purpose (ode_world.h), and
+// ODE failed in is abandoned, not freed, on purpose (sim_core/src/ode_world.h), and
 // would be reported as a leak under the sanitizers.
 [[noreturn]] void ExitChild(int status) {
   std::fflush(stderr);
@@ -136,18 +138,18 @@ std::vector<CrashCase> CrashCases() {
 }
 
 // Runs in the child: builds and steps the case's world until ODE fails;
-// exits 0 after an OdeError (and a healthy world stepped afterwards), 3
+// exits 0 after an EngineError (and a healthy world stepped afterwards), 3
 // when ODE did not fail, 4 on any other exception.
 [[noreturn]] void RunCrashCase(const CrashCase& c) {
   const model::World world = c.world();
   const model::FlatModel flat = model::Flatten(world);
-  const Parameters params;
+  const Parameters params;  // engine=ode, the default
   try {
-    std::unique_ptr<OdeWorld> ode = std::make_unique<OdeWorld>(flat, params);
+    std::unique_ptr<PhysicsEngine> ode = MakeEngine(flat, params);
     for (int n = 0; n < 5000; ++n) ode->Step();
     std::fprintf(stderr, "no ODE error in 5000 steps\n");
     ExitChild(3);
-  } catch (const OdeError& e) {
+  } catch (const EngineError& e) {
     std::fprintf(stderr, "%s\n", e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "other exception: %s\n", e.what());
@@ -157,16 +159,16 @@ std::vector<CrashCase> CrashCases() {
   model::World healthy = Ground();
   healthy.objects.push_back(Box("Cube", 1, {1, 1, 1}, {0, 0.5, 0}));
   const model::FlatModel healthy_flat = model::Flatten(healthy);
-  OdeWorld ode(healthy_flat, params);
-  for (int n = 0; n < 1000; ++n) ode.Step();
-  const double y = ode.ReadBody(0).position.y();
+  const std::unique_ptr<PhysicsEngine> ode = MakeEngine(healthy_flat, params);
+  for (int n = 0; n < 1000; ++n) ode->Step();
+  const double y = ode->ReadBody(0).position.y();
   std::fprintf(stderr, "healthy world after: cube at y = %.3f\n", y);
   ExitChild(std::abs(y - 0.5) < 0.01 ? 0 : 5);
 }
 
 class OdeFailure : public ::testing::TestWithParam<CrashCase> {};
 
-TEST_P(OdeFailure, IsAnOdeErrorNotAnAbort) {
+TEST_P(OdeFailure, IsAnEngineErrorNotAnAbort) {
   const CrashCase& c = GetParam();
   EXPECT_EXIT(RunCrashCase(c), ::testing::ExitedWithCode(0),
               "ODE failed: .*" + c.during + "(.|\n)*healthy world after: cube at y = 0.5");
@@ -187,15 +189,15 @@ TEST(OdeFailureDeadWorld, StepAfterAFailureThrowsAgain) {
         w.objects.push_back(Box("Far2", 1, {1, 1, 1}, {1e10, 0.5, 3}));
         const model::FlatModel flat = model::Flatten(w);
         const Parameters params;
-        OdeWorld ode(flat, params);
+        const std::unique_ptr<PhysicsEngine> ode = MakeEngine(flat, params);
         try {
-          ode.Step();
-        } catch (const OdeError&) {
+          ode->Step();
+        } catch (const EngineError&) {
         }
-        if (!ode.dead()) ExitChild(6);
+        if (!ode->dead()) ExitChild(6);
         try {
-          ode.Step();
-        } catch (const OdeError& e) {
+          ode->Step();
+        } catch (const EngineError& e) {
           std::fprintf(stderr, "%s\n", e.what());
           ExitChild(0);
         }
@@ -204,20 +206,30 @@ TEST(OdeFailureDeadWorld, StepAfterAFailureThrowsAgain) {
       ::testing::ExitedWithCode(0), "failed in an earlier step and cannot go on");
 }
 
-// The handlers are installed once per process and again only when
-// something replaced them.
-TEST(OdeHandlers, InstallIsIdempotentAndRestoresThem) {
-  InstallOdeHandlers();
-  dMessageFunction* const debug = dGetDebugHandler();
-  dMessageFunction* const error = dGetErrorHandler();
-  ASSERT_NE(debug, nullptr);
-  ASSERT_NE(error, nullptr);
-  InstallOdeHandlers();
-  EXPECT_EQ(dGetDebugHandler(), debug);
-  EXPECT_EQ(dGetErrorHandler(), error);
-  dSetDebugHandler(nullptr);
-  InstallOdeHandlers();
-  EXPECT_EQ(dGetDebugHandler(), debug);
+// ODE keeps its error handlers per process, and another library in the
+// process may replace them (ODE's defaults abort()). A world built after
+// that still turns ODE's errors into an EngineError: each engine
+// reinstalls ours. In a child, as the failed world is abandoned.
+TEST(OdeHandlers, AWorldBuiltAfterAnotherLibraryReplacedThemStillThrows) {
+  EXPECT_EXIT(
+      {
+        dSetErrorHandler(nullptr);
+        dSetDebugHandler(nullptr);
+        dSetMessageHandler(nullptr);
+        model::World w = Ground();
+        w.objects.push_back(Box("Heavy", 1e308, {1, 1, 1}, {0, 0.5, 0}));
+        const model::FlatModel flat = model::Flatten(w);
+        const Parameters params;
+        try {
+          const std::unique_ptr<PhysicsEngine> ode = MakeEngine(flat, params);
+          for (int n = 0; n < 5000; ++n) ode->Step();
+        } catch (const EngineError& e) {
+          std::fprintf(stderr, "%s\n", e.what());
+          ExitChild(0);
+        }
+        ExitChild(3);
+      },
+      ::testing::ExitedWithCode(0), "ODE failed: .*; bodies: Heavy");
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // RayHeightfield (sim_core/src/ray_heightfield.h) against ODE's own ray test
 // on the same heightfield: the same first hit for 2,000 rays from above, at
-// every angle, over a bumpy field placed off the origin.
+// every angle, over a bumpy field placed off the origin. ODE is the oracle
+// here, an outside party: the test builds its field with ODE's own calls
+// from the model, and reaches the sim's ODE engine only through engine.h.
 #include <gtest/gtest.h>
 
 #include <ode/ode.h>
@@ -8,11 +10,12 @@
 #include <cmath>
 #include <random>
 #include <cstdio>
+#include <memory>
 #include <sstream>
 #include <vector>
 
 #include "../../sim_core/src/ray_heightfield.h"
-#include "simpartner/sim/ode_world.h"
+#include "simpartner/sim/engine.h"
 #include "test_worlds.h"
 
 namespace simpartner::sim {
@@ -45,19 +48,41 @@ double OdeRay(dGeomID field, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
   return nearest;
 }
 
+// The world's heightfield as ODE's own geom: its samples as given, ODE's
+// field being y up with rows along z (the world's frame in these files).
+class OdeField {
+ public:
+  explicit OdeField(const model::Heightfield& h) {
+    dInitODE2(0);
+    data_ = dGeomHeightfieldDataCreate();
+    dGeomHeightfieldDataBuildDouble(data_, h.samples.data(), 1, h.width, h.depth, h.columns,
+                                    h.rows, h.scale, h.offset, h.thickness, 0);
+    geom_ = dCreateHeightfield(nullptr, data_, 1);
+    dGeomSetPosition(geom_, h.position.x(), h.position.y(), h.position.z());
+  }
+  ~OdeField() {
+    dGeomDestroy(geom_);
+    dGeomHeightfieldDataDestroy(data_);
+  }
+  OdeField(const OdeField&) = delete;
+  OdeField& operator=(const OdeField&) = delete;
+  dGeomID geom() const { return geom_; }
+
+ private:
+  dHeightfieldDataID data_ = nullptr;
+  dGeomID geom_ = nullptr;
+};
+
 TEST(RayHeightfield, FindsTheHitOdesRayTestFinds) {
   const model::World world = testing::LoadInline(BumpyWorld());
   ASSERT_TRUE(world.heightfield);
   const model::FlatModel flat = model::Flatten(world);
-  Parameters params;
-  OdeWorld ode(flat, params);
-  dGeomID field = nullptr;
-  for (int k = 0; k < dSpaceGetNumGeoms(ode.space()); ++k)
-    if (dGeomGetClass(dSpaceGetGeom(ode.space(), k)) == dHeightfieldClass)
-      field = dSpaceGetGeom(ode.space(), k);
-  ASSERT_NE(field, nullptr);
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = world.heightfield->position;
+  Parameters params;  // engine=ode, the default
+  const std::unique_ptr<PhysicsEngine> ode = MakeEngine(flat, params);
+  const OdeField ode_field(*world.heightfield);
+  const dGeomID field = ode_field.geom();
+  const Eigen::Isometry3d pose = world.HeightfieldPose();
+  ASSERT_TRUE(pose.linear().isIdentity(1e-12)) << "the field is y up, as ODE's";
 
   std::mt19937 random(11);
   std::uniform_real_distribution<double> x(-3.5, 5.5), z(-4.5, 0.5), y(1.2, 3.0), unit(-1, 1);
@@ -80,7 +105,7 @@ TEST(RayHeightfield, FindsTheHitOdesRayTestFinds) {
   std::printf("%d of %d rays hit; ODE's first contact was not the nearest for %d\n", hits,
               compared, first_not_nearest);
   // Through the engine's interface too (the lidar's path).
-  EXPECT_NEAR(ode.CastRay(Eigen::Vector3d(1.0, 3.0, -2.0), Eigen::Vector3d(0, -1, 0), 10.0, -1),
+  EXPECT_NEAR(ode->CastRay(Eigen::Vector3d(1.0, 3.0, -2.0), Eigen::Vector3d(0, -1, 0), 10.0, -1),
               OdeRay(field, Eigen::Vector3d(1.0, 3.0, -2.0), Eigen::Vector3d(0, -1, 0), 10.0),
               1e-9);
 }

@@ -5,7 +5,7 @@
 namespace simpartner::validate {
 
 // An entry cites what it rests on: the engine's header comment
-// (sim_core/include/simpartner/sim/mujoco_world.h), its sources'
+// (sim_core/src/mujoco_world.h), its sources'
 // comments, docs/engines.md, docs/contacts.md. Add one only when that
 // model explains the figure, and take it out when the engine changes the
 // model it rests on (docs/engines.md is the MuJoCo engine's; links are

@@ -70,4 +70,7 @@ struct FlatModel {
 // world must outlive the result (it points into it).
 FlatModel Flatten(const World& world);
 
+// A body's name for messages: "robot/body", or "body" for a world object.
+std::string QualifiedBodyName(const FlatModel& model, int body);
+
 }  // namespace simpartner::model

@@ -1,7 +1,8 @@
 // Actuator control laws and the parsing of actuator commands. Pure logic,
-// no ODE: the simulation feeds joint positions and rates in and applies the
-// motor outputs (velocity target and force limit per axis) to ODE's joint
-// motors, so these rules are tested on their own.
+// no physics engine: the simulation feeds joint positions and rates in and
+// applies the motor outputs (velocity target and force limit per axis) to
+// the engine's joint motors (PhysicsEngine::SetMotor), so these rules are
+// tested on their own.
 #pragma once
 
 #include <string>

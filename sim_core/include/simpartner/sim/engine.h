@@ -1,7 +1,10 @@
 // The physics engine behind a Simulation: what the controllers, sensors,
 // health check and publishing need of it, and nothing of any engine's own
-// types. Two implementations: ODE (ode_world.h, the original's engine and
-// the default) and MuJoCo (mujoco_world.h). docs/engines.md compares them.
+// types. Two implementations, each in sim_core/src with its engine's
+// headers private to it: ODE (ode_world.h, the original's engine and the
+// default) and MuJoCo (mujoco_world.h); MakeEngine builds either. The
+// contact rules both apply live once, in contact_rules.h.
+// docs/engines.md compares them.
 //
 // Frames are ours for both: the world frame of the files (y up for the
 // original's worlds), body frames as in the robot files, joint values
@@ -57,10 +60,24 @@ struct JointReadout {
   double continuous_position[3] = {0, 0, 0};
   double rate[3] = {0, 0, 0};
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+  // [m] between the anchor as body1 and as body2 hold it: how far the
+  // constraint is from satisfied (0 where an engine's joints are exact in
+  // joint coordinates, as MuJoCo's are).
+  double anchor_error = 0.0;
   // What the joint applies to body1 and body2 (torques about each body's
   // centre of mass); zero on the static world's side.
   Eigen::Vector3d force1 = Eigen::Vector3d::Zero(), torque1 = Eigen::Vector3d::Zero();
   Eigen::Vector3d force2 = Eigen::Vector3d::Zero(), torque2 = Eigen::Vector3d::Zero();
+};
+
+// One contact point of the last step as the engine set it up.
+struct ContactReadout {
+  int body1 = -1, body2 = -1;  // flat bodies; -1 = the ground or a static object
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // world
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();    // unit, world
+  // The rolling direction the contact rules gave it (unit, its sign
+  // arbitrary: friction acts along a line), zero when it has none.
+  Eigen::Vector3d rolling_direction = Eigen::Vector3d::Zero();
 };
 
 // The soil grounds of a world: at most one of each.
@@ -111,6 +128,9 @@ class PhysicsEngine {
   // The wheels that pressed soil in the last step; none on rigid ground
   // and on an engine without soil.
   virtual std::vector<WheelSoilReadout> ReadWheelSoil() const { return {}; }
+  // The contact points of the last step (tests compare the engines' rules
+  // with them; a debugging view could draw them).
+  virtual std::vector<ContactReadout> ReadContacts() const = 0;
 
   // Adds a force [N] at the centre of mass for the coming step only.
   virtual void AddForce(int body, const Eigen::Vector3d& force) = 0;
@@ -124,6 +144,11 @@ class PhysicsEngine {
   // is hit); geometry of exclude_body is ignored (the scanner's housing).
   virtual double CastRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                          double range, int exclude_body) = 0;
+
+  // The engine's own step on this built world with the motors as set and
+  // none of our contact rules: the "bare" baseline of bench/sim_bench.
+  // Leaves the readouts of Step undefined; for benchmarks only.
+  virtual void BareStep() = 0;
 };
 
 // Sets the stops the files give each joint axis (infinite: none) on a

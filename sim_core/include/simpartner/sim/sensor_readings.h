@@ -1,6 +1,7 @@
-// The readings of the sensor kinds of issue 27 (Imu, Gnss, Encoder, Lidar,
-// Contact), with their noise. Value layouts: docs/sensors.md and
-// lcmtypes/sensor_reading_t.lcm. The thesis's kinds stay in simulation.cpp.
+// The reading of each sensor kind at one step, with its noise where it has
+// any; Simulation::ReadSensor picks one by the sensor's kind. Value
+// layouts: docs/sensors.md and lcmtypes/sensor_reading_t.lcm. An Echo
+// reads its text (no values); a Camera is read by simpartner-camera.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -41,6 +42,17 @@ Eigen::Vector3d PointVelocity(const BodyReadout& body, const Eigen::Vector3d& po
 void WalkImuBias(const model::Sensor& sensor, const SensorNoise& noise, int index, int64_t step,
                  double stepsize, ImuMemory* memory);
 
+// A Scanner's rays, as its commands last set them.
+struct ScannerSettings {
+  int rays = 11;
+  double half_span = 0.1;  // [rad]
+  double range = 10.0;     // [m]
+};
+
+std::vector<double> ReadPosition(const SensorInput& in);
+std::vector<double> ReadVelocity(const SensorInput& in);
+std::vector<double> ReadForceTorque(const SensorInput& in);
+std::vector<double> ReadScanner(const SensorInput& in, const ScannerSettings& settings);
 std::vector<double> ReadImu(const SensorInput& in, const ImuMemory& memory, double stepsize);
 std::vector<double> ReadGnss(const SensorInput& in);
 std::vector<double> ReadEncoder(const SensorInput& in);

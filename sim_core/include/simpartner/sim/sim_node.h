@@ -47,7 +47,7 @@ class SimNode {
 
   // Runs until SIM_CONTROL quit, stop_fd or the duration parameter.
   // Returns the process exit status: 0, or kFaultedExitStatus when a
-  // duration was set and the health check (or ODE) faulted the run first:
+  // duration was set and the health check (or the engine) faulted the run first:
   // a faulted sim takes no step until a reset, so its duration would never
   // come.
   int Run();

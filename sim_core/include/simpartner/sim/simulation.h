@@ -65,8 +65,8 @@ class Simulation {
   // an accepted one is queued for its step and replied to when applied.
   std::optional<command_reply_t> Submit(const command_t& command);
 
-  // Applies the commands due, runs the controllers, steps ODE once and
-  // checks the state. Returns false (and takes no step) once faulted.
+  // Applies the commands due, runs the controllers, steps the engine once
+  // and checks the state. Returns false (and takes no step) once faulted.
   bool Step();
 
   // What the last steps produced, for the node to publish.
@@ -111,9 +111,10 @@ class Simulation {
   void ReadBodies();
   void FillWheelSoil(state_t* state) const;
   void CheckHealth();
-  // A reading of an Imu, Gnss, Encoder, Lidar or Contact sensor.
-  std::vector<double> ReadNewSensor(int index, const BodyReadout& body,
-                                    const Eigen::Isometry3d& mount);
+  // What a reading of sensor `index` at this step is made from.
+  SensorInput SensorInputOf(int index);
+  // The reading's values, by the sensor's kind.
+  std::vector<double> ReadValues(const SensorInput& in, const SensorState& state);
   void RememberImuVelocities();
   void WalkImuBiases();
   void AddWarning(int8_t severity, const std::string& source, const std::string& message,
@@ -141,8 +142,5 @@ class Simulation {
   std::vector<warning_t> warnings_;
   SensorNoise noise_;
 };
-
-// Human-readable name of a body for messages: "robot/body" or "body".
-std::string QualifiedBodyName(const model::FlatModel& model, int body);
 
 }  // namespace simpartner::sim

@@ -1,6 +1,6 @@
-// The sensor kinds of issue 27 in robot files (Imu, Gnss, Encoder, Lidar,
-// Contact) and the world's geodetic origin: what a good file gives, and
-// every bad value refused at its own line. Lines are found in the XML by a
+// The sensor kinds with parameters in robot files (Imu, Gnss, Encoder,
+// Lidar, Contact) and the world's geodetic origin: what a good file gives,
+// and every bad value refused at its own line. Lines are found in the XML by a
 // marker, never taken from the loader.
 #include <gtest/gtest.h>
 
@@ -35,7 +35,7 @@ std::string RobotWith(const std::string& sensors) {
 )" + sensors + "\n</robot>";
 }
 
-TEST(NewSensors, EveryKindWithItsParametersAndDefaults) {
+TEST(SensorKinds, EveryKindWithItsParametersAndDefaults) {
   const std::string xml = RobotWith(R"(
   <sensor type="Imu" name="Imu"><bodyRef>Top</bodyRef><rate>200</rate>
     <parameter name="accelNoiseDensity">0.002</parameter>
@@ -72,7 +72,7 @@ TEST(NewSensors, EveryKindWithItsParametersAndDefaults) {
   EXPECT_EQ(s[4].parameters[contact_param::kThreshold], 0.0);
 }
 
-TEST(NewSensors, SimModelCarriesKindsParamsAndTheGeodeticOrigin) {
+TEST(SensorKinds, SimModelCarriesKindsParamsAndTheGeodeticOrigin) {
   const std::string world_xml = R"(<world name="W">
   <geodeticOrigin><latitude>60.1867</latitude><longitude>24.8283</longitude><altitude>12.5</altitude></geodeticOrigin>
   <robot name="R" file="bot.xml"/>
@@ -114,7 +114,7 @@ void ExpectRefused(const std::string& sensor, const std::string& marker, const s
   EXPECT_NE(d.message.find(words), std::string::npos) << d.message;
 }
 
-TEST(NewSensors, BadParametersAreRefusedAtTheirLine) {
+TEST(SensorKinds, BadParametersAreRefusedAtTheirLine) {
   ExpectRefused(R"(<sensor type="Imu" name="I"><bodyRef>Top</bodyRef><rate>100</rate>
     <parameter name="accelNoiseDensity">-0.1</parameter></sensor>)",
                 "-0.1", "accelNoiseDensity -0.1 m/s^2/sqrt(Hz) is out of range [0, 10]");
@@ -163,7 +163,7 @@ TEST(NewSensors, BadParametersAreRefusedAtTheirLine) {
                 "threshold\">2", "parameter 'threshold' is given twice");
 }
 
-TEST(NewSensors, UnknownKindIsRefusedByTheDtdAtItsLine) {
+TEST(SensorKinds, UnknownKindIsRefusedByTheDtdAtItsLine) {
   const std::string xml = RobotWith(R"(<sensor type="Sonar" name="S"><bodyRef>Top</bodyRef></sensor>)");
   const RobotLoadResult result = ParseRobot(xml, "bad.xml");
   EXPECT_FALSE(result.robot);
@@ -173,7 +173,7 @@ TEST(NewSensors, UnknownKindIsRefusedByTheDtdAtItsLine) {
   EXPECT_NE(d.message.find("Sonar"), std::string::npos) << d.message;
 }
 
-TEST(NewSensors, GeodeticOriginOutOfRangeIsRefusedAtItsLine) {
+TEST(SensorKinds, GeodeticOriginOutOfRangeIsRefusedAtItsLine) {
   const std::string xml = R"(<world name="W">
   <geodeticOrigin><latitude>91</latitude><longitude>0</longitude><altitude>0</altitude></geodeticOrigin>
 </world>)";

@@ -1,15 +1,19 @@
-// ODE objects built from a model::FlatModel: bodies, geoms, joints, the collision
-// space, plane and heightfield. One Step() is collide, step, empty the
-// contact group (ODE's demo_buggy loop), with contact forces summed per body
-// from joint feedback. Everything given to ODE was validated by the loader
-// (models/README.md, "Physical ranges"); what ODE still cannot integrate
-// (a state that explodes within one step) ends in an OdeError, not abort().
+// The ODE engine: ODE objects built from a model::FlatModel: bodies, geoms,
+// joints, the collision space, plane and heightfield. One Step() is
+// collide, step, empty the contact group (ODE's demo_buggy loop), with
+// contact forces summed per body from joint feedback. Everything given to
+// ODE was validated by the loader (models/README.md, "Physical ranges");
+// what ODE still cannot integrate (a state that explodes within one step)
+// ends in an OdeError, not abort(). Internal to sim_core: ODE's headers
+// and types stay in its sim_core/src/ode_*.cpp files (engine.h is the
+// public face, MakeEngine builds it).
 #pragma once
 
 #include <ode/ode.h>
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,16 +83,16 @@ class OdeWorld : public PhysicsEngine {
   void SetMotor(int joint, int axis, double velocity, double max_force) override;
   void SetStops(int joint, int axis, double lo, double hi) override;
 
+  std::vector<ContactReadout> ReadContacts() const override;
+
   // Distance along the ray to the first geom hit (range when nothing is
   // hit); geoms of exclude_body are ignored (the scanner's own housing).
   double CastRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double range,
                  int exclude_body) override;
 
-  // Raw handles for the benchmark's bare-ODE comparison.
-  // Note: this world steps with its own threading implementation (see
-  // threading_ below).
-  dWorldID world() const { return world_; }
-  dSpaceID space() const { return space_; }
+  // ODE's collide (plain contacts of the world's contactMu), step, empty
+  // the group: the bare column of bench/sim_bench.
+  void BareStep() override;
 
  private:
   struct Body {
@@ -110,6 +114,7 @@ class OdeWorld : public PhysicsEngine {
     dJointFeedback* feedback;
     dGeomID geom1, geom2;            // geom1 has a body; normal points into it
     Eigen::Vector3d position, normal;
+    Eigen::Vector3d rolling = Eigen::Vector3d::Zero();  // contact_rules.h; zero: none
   };
   // One contact point as it ended the last step: what an isotropic
   // contact at about the same place needs to approximate Coulomb's cone
@@ -129,11 +134,11 @@ class OdeWorld : public PhysicsEngine {
   // whose state is out of range.
   OdeError Fail(const OdeError& raised, const std::string& during);
   std::vector<std::string> SuspectBodies() const;
-  std::string BodyName(size_t body) const;
 
   double CastRayUnguarded(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                           double range, int exclude_body);
   static void NearCallback(void* data, dGeomID o1, dGeomID o2);
+  static void BareNearCallback(void* data, dGeomID o1, dGeomID o2);
   void Collide(dGeomID o1, dGeomID o2);
   model::SurfaceProperties Surface(const std::string& material) const;
   dJointFeedback* NextFeedback();
@@ -165,16 +170,10 @@ class OdeWorld : public PhysicsEngine {
     Eigen::Vector3d spin_axis = Eigen::Vector3d::Zero();
     bool has_spin_axis = false;
   };
-  // The rolling direction (unit) of the one geom of the two that spins;
-  // false when neither or both do, or its wheel lies flat on the contact.
-  bool RollingDirection(const GeomInfo& g1, const GeomInfo& g2, dGeomID o1, dGeomID o2,
-                        const dContactGeom& contact, Eigen::Vector3d* direction) const;
+  // The geom's spin axis in the world frame, none when it has none.
+  std::optional<Eigen::Vector3d> WorldSpinAxis(const GeomInfo& info, dGeomID geom) const;
   // The sliding velocity of o1 against o2 at the contact, in its plane.
   Eigen::Vector3d SlipVelocity(dGeomID o1, dGeomID o2, const dContactGeom& contact) const;
-  // Along the sliding velocity of o1 against o2 at the contact; false when
-  // it slides slower than kSlipDirectionSpeed (sticking).
-  bool SlipDirection(dGeomID o1, dGeomID o2, const dContactGeom& contact,
-                     Eigen::Vector3d* direction) const;
   std::vector<GeomInfo> geom_info_;  // dGeomGetData = index + 1
   std::vector<dContact> contact_buffer_;
   // Contact feedback storage in fixed chunks so addresses stay valid while

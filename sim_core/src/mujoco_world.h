@@ -14,8 +14,9 @@
 //     to a force limit) as a stiff velocity servo integrated implicitly,
 //     or the limit force itself when the servo would pass it;
 //   - stops: MuJoCo joint limits with the same per-step law as contacts.
-// MuJoCo's headers stay in sim_core/src/mujoco_*.cpp (the world,
-// its contacts, its MJCF).
+// The contact rules are ODE's and ours, in contact_rules.h, applied as
+// they are on ODE. Internal to sim_core: MuJoCo's headers stay in
+// sim_core/src/mujoco_*.cpp (the world, its contacts, its MJCF).
 #pragma once
 
 #include <Eigen/Dense>
@@ -55,6 +56,7 @@ class MujocoWorld : public PhysicsEngine {
   JointReadout ReadJoint(int joint) const override;
   double JointPosition(int joint, int axis) const override;
   double JointRate(int joint, int axis) const override;
+  std::vector<ContactReadout> ReadContacts() const override;
   void AddForce(int body, const Eigen::Vector3d& force) override;
   void SetMotor(int joint, int axis, double velocity, double max_force) override;
   void SetStops(int joint, int axis, double lo, double hi) override;
@@ -63,7 +65,7 @@ class MujocoWorld : public PhysicsEngine {
 
   // MuJoCo's own mj_step on this model with the motors as set, none of
   // our contact set-up: the bare column of bench/sim_bench.
-  void BareStep();
+  void BareStep() override;
 
  private:
   // One of our joints in MuJoCo: up to two MuJoCo joints (one per axis) in
@@ -158,10 +160,8 @@ class MujocoWorld : public PhysicsEngine {
   void CollectJointForces();
   // Velocity of a point fixed to a MuJoCo body (0 = the world).
   Eigen::Vector3d PointVelocity(int mj_body, const Eigen::Vector3d& point) const;
-  // The rolling direction of a "rolling" pair's one spinning geom, as the
-  // ODE side picks it; false when neither or both spin, or it lies flat.
-  bool RollingDirection(const mjContact_& contact, const model::SurfaceProperties& combined,
-                        Eigen::Vector3d* direction) const;
+  // The geom's spin axis in the world frame, none when it has none.
+  std::optional<Eigen::Vector3d> WorldSpinAxis(int geom) const;
   void CheckWarnings();
   EngineError Fail(const std::string& message, const std::string& during);
   std::vector<std::string> SuspectBodies() const;
@@ -187,6 +187,7 @@ class MujocoWorld : public PhysicsEngine {
   std::vector<Eigen::Vector3d> contact_force_, contact_torque_;
   std::vector<JointReadout> joint_forces_;   // per flat joint, of the last step
   std::vector<model::SurfaceProperties> contact_surface_;  // per MuJoCo contact
+  std::vector<Eigen::Vector3d> contact_rolling_;  // per MuJoCo contact; zero: none
   std::vector<AppliedFriction> applied_;                    // this step's applied friction
   struct LastLoad_ {
     int geom1, geom2;
