@@ -119,6 +119,7 @@ Verdict Scene::OfferModel(const model_t& model) {
     // The periodic re-announcement: sensor settings may have changed.
     model_->sensors = model.sensors;
     model_->num_sensors = model.num_sensors;
+    outline_ = OutlineOf(*model_);
     return v;
   }
   model_ = model;
