@@ -101,6 +101,11 @@ void RunObserver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& c
   model_t model;
   if (DecodeSigned(channel, buffer->data, buffer->data_size, signer(), &model, &refused_)) return;
   if (model_) return;  // the periodic announcement of the same model
+  if (const auto problem = CheckModel(model)) {
+    refused_.Count(channel, problem->message);
+    return;
+  }
+  outline_ = OutlineOf(model);
   for (size_t f = 0; f < figures_.size(); ++f)
     for (const body_t& b : model.bodies)
       if (b.name == figures_[f].body && accumulators_[f].body < 0) accumulators_[f].body = b.id;
@@ -111,6 +116,11 @@ void RunObserver::OnState(const lcm::ReceiveBuffer* buffer, const std::string& c
   state_t state;
   if (DecodeSigned(channel, buffer->data, buffer->data_size, signer(), &state, &refused_)) return;
   if (model_ && state.simulation_id != model_->simulation_id) return;
+  // A state not taken is a gap in the stream, as a lost one is.
+  if (const auto problem = CheckState(state, model_ ? &outline_ : nullptr)) {
+    refused_.Count(channel, problem->message);
+    return;
+  }
   // Every step, in order (the sim publishes each, stateEvery 1): a gap or
   // a step out of order makes the hash no longer the run's.
   if (state.step != last_step_ + 1 && !(last_step_ < 0 && state.step == 1)) complete_ = false;

@@ -21,6 +21,7 @@
 
 #include "simpartner/batch/batch_file.h"
 #include "simpartner/bus_decode.h"
+#include "simpartner/message_checks.h"
 #include "simpartner/model_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/sync_reply_t.hpp"
@@ -83,6 +84,7 @@ class RunObserver {
   std::vector<Figure> figures_;
   std::vector<Accumulator> accumulators_;
   std::optional<model_t> model_;
+  ModelOutline outline_;  // of model_: what its states must fit
   BadMessageCounter refused_;
   uint64_t hash_ = 1469598103934665603ull;  // FNV-1a offset basis
   bool complete_ = true;

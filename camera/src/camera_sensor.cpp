@@ -15,7 +15,9 @@ namespace {
 
 constexpr int kParams = 6;  // width, height, fov, near, far, depth (sensor_t.lcm)
 
-// The first problem of a camera's announcement, or "".
+// The first reason this camera cannot be rendered, or "". The model has
+// passed CheckModel (message_checks.h) in the scene: its mount is a unit
+// quaternion at a finite point and its step size is positive.
 std::string CameraProblem(const model_t& model, const sensor_t& s) {
   if (s.num_params != kParams)
     return "has " + std::to_string(s.num_params) + " params, a camera has " +
@@ -40,13 +42,6 @@ std::string CameraProblem(const model_t& model, const sensor_t& s) {
     return "body = " + std::to_string(s.body) + " is not a body of the model";
   if (!(s.rate > 0 && std::isfinite(s.rate)))
     return "rate = " + FormatNumber(s.rate, 10) + " Hz: a camera needs a rate above 0";
-  const Eigen::Quaterniond q(s.orientation[0], s.orientation[1], s.orientation[2],
-                             s.orientation[3]);
-  if (!std::isfinite(q.norm()) || std::abs(q.norm() - 1) > 1e-3)
-    return "orientation is not a unit quaternion";
-  for (double p : s.position)
-    if (!std::isfinite(p)) return "position is not finite";
-  if (!(model.step_size > 0)) return "the model's step_size is not positive";
   return "";
 }
 

@@ -130,6 +130,11 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     auto model = std::make_shared<model_t>();
     std::lock_guard<std::mutex> lock(mutex_);
     if (refused(DecodeFromBus(channel, data, size, model.get(), &bad_messages_, &print))) return;
+    if (const auto problem = CheckModel(*model)) {
+      nonsense("model of simulation " + std::to_string(model->simulation_id) + ": " +
+               problem->message);
+      return;
+    }
     // Another simulation's model (a second sim on the bus, a stale or
     // forged one) is not a restart of ours (simulation_follower.h).
     if (follower_.OnModel(model->simulation_id, model->sender, Clock::now()) ==
@@ -172,6 +177,10 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     status_t status;
     std::lock_guard<std::mutex> lock(mutex_);
     if (refused(DecodeFromBus(channel, data, size, &status, &bad_messages_, &print))) return;
+    if (const auto problem = CheckStatus(status)) {
+      nonsense(problem->message);
+      return;
+    }
     last_heard_ = Clock::now();
     if (!HeardFromAttached(status.simulation_id)) return;  // not our sim's status
     if (status.run_state == status_t::RUN_STOPPED) follower_.Ended(status.simulation_id);
@@ -183,6 +192,10 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     std::lock_guard<std::mutex> lock(mutex_);
     if (refused(DecodeFromBus(channel, data, size, &reply, &bad_messages_, &print))) return;
     if (reply.sender != sender_) return;  // every client sees every reply
+    if (const auto problem = CheckCommandReply(reply)) {
+      nonsense(problem->message);
+      return;
+    }
     replies_[reply.request_id] = reply;
     while (replies_.size() > kMaxKeptReplies) replies_.erase(replies_.begin());
     changed_.notify_all();
@@ -201,12 +214,8 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
       std::lock_guard<std::mutex> lock(mutex_);
       if (refused(DecodeFromBus(channel, data, size, &reading, &bad_messages_, &print))) return;
       if (!catalog_ || reading.simulation_id != catalog_->simulation_id()) return;
-      const bool known = reading.sensor >= 0 &&
-                         static_cast<size_t>(reading.sensor) < model_->sensors.size() &&
-                         model_->sensors[static_cast<size_t>(reading.sensor)].name == reading.name;
-      if (!known) {
-        nonsense("reading of sensor " + std::to_string(reading.sensor) + " '" + reading.name +
-                 "', which the model does not have");
+      if (const auto problem = CheckSensorReading(reading, &outline_)) {
+        nonsense(problem->message);
         return;
       }
       readings_[reading.sensor] = reading;
@@ -221,23 +230,15 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
 }
 
 bool Client::AcceptState(const state_t& state, const std::string& channel) {
-  if (catalog_) {
-    // Another simulation's states (a new one announces itself with
-    // SIM_MODEL first) and states that do not fit the model are not the
-    // state of the sim we talk to.
-    if (state.simulation_id != catalog_->simulation_id()) return false;
-    if (state.bodies.size() != model_->bodies.size() ||
-        state.joints.size() != model_->joints.size()) {
-      const std::string description =
-          channel + ": state of step " + std::to_string(state.step) + " has " +
-          std::to_string(state.bodies.size()) + " bodies and " +
-          std::to_string(state.joints.size()) + " joints, the model " +
-          std::to_string(model_->bodies.size()) + " and " + std::to_string(model_->joints.size()) +
-          "; ignored";
-      if (bad_messages_.Count(channel, description))
-        std::cerr << "simpartner client: " << description << "\n";
-      return false;
-    }
+  // Another simulation's states (a new one announces itself with SIM_MODEL
+  // first) and states that do not fit the model are not the state of the
+  // sim we talk to.
+  if (catalog_ && state.simulation_id != catalog_->simulation_id()) return false;
+  if (const auto problem = CheckState(state, catalog_ ? &outline_ : nullptr)) {
+    const std::string description = channel + ": " + problem->message + "; ignored";
+    if (bad_messages_.Count(channel, description))
+      std::cerr << "simpartner client: " << description << "\n";
+    return false;
   }
   const bool reply = channel == channels::kStateReply;
   if (reply) {
@@ -299,6 +300,7 @@ std::shared_ptr<const Catalog> Client::LearnModel(
   }
   const std::shared_ptr<const Catalog> catalog = newest_catalog_;
   model_ = newest_model_;
+  outline_ = OutlineOf(*model_);
   catalog_ = catalog;
   catalog_known_ = true;
   readings_.clear();

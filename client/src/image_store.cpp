@@ -1,7 +1,7 @@
 #include "simpartner/client/image_store.h"
 
 #include "simpartner/channels.h"
-#include "simpartner/image_fit.h"
+#include "simpartner/message_checks.h"
 
 namespace simpartner::client {
 
@@ -19,9 +19,10 @@ bool ImageStore::Offer(const void* data, size_t size) {
     return false;
   }
   if (!model_ || image->simulation_id != model_->simulation_id) return false;
-  if (const auto misfit = ImageMisfit(*image, *model_)) {
+  if (const auto problem = CheckImage(*image, model_.get())) {
     const std::string description = std::string(channels::kImage) + ": image of step " +
-                                    std::to_string(image->step) + ": " + *misfit + "; ignored";
+                                    std::to_string(image->step) + ": " + problem->message +
+                                    "; ignored";
     if (counter_->Count(channels::kImage, description)) report_(description);
     return false;
   }

@@ -8,6 +8,7 @@
 #include "simpartner/channels.h"
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
+#include "simpartner/message_checks.h"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/text.h"
@@ -16,37 +17,7 @@
 namespace simpartner::logger {
 namespace {
 
-constexpr size_t kNameBytes = 255;    // VARCHAR(255)
-constexpr size_t kEngineBytes = 32;   // VARCHAR(32) of Simulation.engine
-constexpr size_t kPathBytes = 1024;   // VARCHAR(1024)
-constexpr size_t kTextBytes = 65535;  // TEXT
 constexpr auto kModelRequestPeriod = std::chrono::milliseconds(250);
-
-// First non-finite value of an array, as "field[i] = value", or "". The
-// name is only built for the message (this runs for every body and joint
-// of every state).
-template <size_t N, class Name>
-std::string NonFiniteIn(const double (&values)[N], const Name& field) {
-  for (size_t i = 0; i < N; ++i)
-    if (!std::isfinite(values[i])) return field() + "[" + std::to_string(i) + "] = " + FormatNumber(values[i]);
-  return "";
-}
-
-template <size_t N>
-std::string NonFinite(const double (&values)[N], const std::string& field) {
-  return NonFiniteIn(values, [&field] { return field; });
-}
-
-std::string CheckName(const std::string& text, const std::string& field, size_t max_bytes) {
-  if (!FitsText(text, max_bytes))
-    return field + " is not valid UTF-8 of at most " + std::to_string(max_bytes) + " bytes (" +
-           std::to_string(text.size()) + " bytes)";
-  return "";
-}
-
-bool InRange(int64_t index, int64_t size, bool none_allowed) {
-  return (none_allowed && index == -1) || (index >= 0 && index < size);
-}
 
 }  // namespace
 
@@ -56,48 +27,8 @@ uint64_t ReceiverStats::BadMessages() const {
   return n;
 }
 
-bool FitsText(const std::string& text, size_t max_bytes) {
-  if (text.size() > max_bytes) return false;
-  size_t i = 0;
-  const size_t n = text.size();
-  while (i < n) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    size_t extra;
-    uint32_t code;
-    if (c < 0x80) {
-      if (c == 0) return false;  // NUL ends C strings on the way
-      ++i;
-      continue;
-    } else if ((c & 0xE0) == 0xC0) {
-      extra = 1;
-      code = c & 0x1F;
-    } else if ((c & 0xF0) == 0xE0) {
-      extra = 2;
-      code = c & 0x0F;
-    } else if ((c & 0xF8) == 0xF0) {
-      extra = 3;
-      code = c & 0x07;
-    } else {
-      return false;
-    }
-    for (size_t k = 1; k <= extra; ++k) {
-      if (i + k >= n) return false;
-      const unsigned char cc = static_cast<unsigned char>(text[i + k]);
-      if ((cc & 0xC0) != 0x80) return false;
-      code = (code << 6) | (cc & 0x3F);
-    }
-    // Overlong forms, surrogates and values past U+10FFFF.
-    if ((extra == 1 && code < 0x80) || (extra == 2 && code < 0x800) ||
-        (extra == 3 && code < 0x10000) || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF))
-      return false;
-    i += extra + 1;
-  }
-  return true;
-}
-
 ModelShape ShapeOf(const model_t& model) {
-  return ModelShape{model.num_bodies, model.num_joints, model.num_sensors,
-                    std::max(1, model.state_every), model.step_size};
+  return ModelShape{OutlineOf(model), std::max(1, model.state_every), model.step_size};
 }
 
 int64_t StepAllowance(double step_size, int64_t elapsed_us, double factor) {
@@ -113,167 +44,6 @@ double SpeedAllowance(double target_speed, double real_time_factor) {
     return std::min(kStepAllowanceFactor, std::max({2.0, 2 * target_speed, 2 * measured}));
   if (measured <= 0) return kStepAllowanceFactor;
   return std::min(kStepAllowanceFactor, std::max(10.0, 4 * measured));
-}
-
-std::string CheckModel(const model_t& m) {
-  std::string p;
-  if (m.state_every < 1) return "state_every = " + std::to_string(m.state_every) + " (must be >= 1)";
-  if (!std::isfinite(m.step_size) || m.step_size <= 0)
-    return "step_size = " + FormatNumber(m.step_size) + " (must be a positive number)";
-  if (!(p = NonFinite(m.gravity, "gravity")).empty()) return p;
-  if (!(p = CheckName(m.host, "host", kNameBytes)).empty()) return p;
-  if (!(p = CheckName(m.sender, "sender", kNameBytes)).empty()) return p;
-  if (!(p = CheckName(m.engine, "engine", kEngineBytes)).empty()) return p;
-  if (!(p = CheckName(m.world_file, "world_file", kPathBytes)).empty()) return p;
-  if (!(p = CheckName(m.world_name, "world_name", kNameBytes)).empty()) return p;
-  if (!(p = CheckName(m.parameters, "parameters", kTextBytes)).empty()) return p;
-  const int64_t robots = m.num_robots, bodies = m.num_bodies, joints = m.num_joints;
-  for (size_t i = 0; i < m.robots.size(); ++i) {
-    const robot_t& r = m.robots[i];
-    const std::string f = "robots[" + std::to_string(i) + "]";
-    if (!(p = CheckName(r.name, f + ".name", kNameBytes)).empty()) return p;
-    if (!(p = CheckName(r.model, f + ".model", kNameBytes)).empty()) return p;
-    if (!(p = CheckName(r.file, f + ".file", kPathBytes)).empty()) return p;
-    if (!std::isfinite(r.total_mass)) return f + ".total_mass = " + FormatNumber(r.total_mass);
-  }
-  for (size_t i = 0; i < m.materials.size(); ++i) {
-    const material_t& mat = m.materials[i];
-    const std::string f = "materials[" + std::to_string(i) + "]";
-    if (!(p = CheckName(mat.name, f + ".name", kNameBytes)).empty()) return p;
-    for (const auto& [value, field] :
-         {std::pair<double, const char*>{mat.mu, ".mu"}, {mat.mu2, ".mu2"},
-          {mat.bounce, ".bounce"}, {mat.bounce_velocity, ".bounce_velocity"},
-          {mat.soft_erp, ".soft_erp"}, {mat.soft_cfm, ".soft_cfm"},
-          {mat.stiffness, ".stiffness"}, {mat.damping, ".damping"},
-          {mat.rolling_friction, ".rolling_friction"}, {mat.soil_n, ".soil_n"},
-          {mat.soil_kc, ".soil_kc"}, {mat.soil_kphi, ".soil_kphi"},
-          {mat.soil_cohesion, ".soil_cohesion"}, {mat.soil_friction_angle, ".soil_friction_angle"},
-          {mat.soil_shear_modulus, ".soil_shear_modulus"},
-          {mat.soil_unloading_stiffness, ".soil_unloading_stiffness"},
-          {mat.soil_viscosity, ".soil_viscosity"}})
-      if (!std::isfinite(value)) return f + field + " = " + FormatNumber(value);
-    if (!(p = CheckName(mat.soil_name, f + ".soil_name", kNameBytes)).empty()) return p;
-    if (mat.friction_direction != material_t::FRICTION_SLIP &&
-        mat.friction_direction != material_t::FRICTION_ROLLING)
-      return f + ".friction_direction = " + std::to_string(mat.friction_direction) +
-             " (FRICTION_SLIP or FRICTION_ROLLING)";
-  }
-  for (size_t i = 0; i < m.bodies.size(); ++i) {
-    const body_t& b = m.bodies[i];
-    const std::string f = "bodies[" + std::to_string(i) + "]";
-    if (!InRange(b.robot, robots, true)) return f + ".robot = " + std::to_string(b.robot) + " (no such robot)";
-    if (!(p = CheckName(b.name, f + ".name", kNameBytes)).empty()) return p;
-    if (!(p = CheckName(b.material, f + ".material", kNameBytes)).empty()) return p;
-    if (!std::isfinite(b.mass)) return f + ".mass = " + FormatNumber(b.mass);
-    if (!(p = NonFinite(b.geometry.size, f + ".geometry.size")).empty()) return p;
-    if (!(p = NonFinite(b.com, f + ".com")).empty()) return p;
-    if (!(p = NonFinite(b.inertia, f + ".inertia")).empty()) return p;
-  }
-  for (size_t i = 0; i < m.joints.size(); ++i) {
-    const joint_t& j = m.joints[i];
-    const std::string f = "joints[" + std::to_string(i) + "]";
-    if (!InRange(j.robot, robots, true)) return f + ".robot = " + std::to_string(j.robot) + " (no such robot)";
-    if (!InRange(j.body1, bodies, true)) return f + ".body1 = " + std::to_string(j.body1) + " (no such body)";
-    if (!InRange(j.body2, bodies, true)) return f + ".body2 = " + std::to_string(j.body2) + " (no such body)";
-    if (!(p = CheckName(j.name, f + ".name", kNameBytes)).empty()) return p;
-    if (!(p = NonFinite(j.anchor, f + ".anchor")).empty()) return p;
-    for (int a = 0; a < 3; ++a) {
-      if (!(p = NonFinite(j.axis[a], f + ".axis[" + std::to_string(a) + "]")).empty()) return p;
-      if (std::isnan(j.lo_stop[a]) || std::isnan(j.hi_stop[a]))
-        return f + ".lo_stop/hi_stop[" + std::to_string(a) + "] is NaN";
-    }
-  }
-  for (size_t i = 0; i < m.sensors.size(); ++i) {
-    const sensor_t& s = m.sensors[i];
-    const std::string f = "sensors[" + std::to_string(i) + "]";
-    if (!InRange(s.robot, robots, true)) return f + ".robot = " + std::to_string(s.robot) + " (no such robot)";
-    if (!InRange(s.body, bodies, true)) return f + ".body = " + std::to_string(s.body) + " (no such body)";
-    if (!InRange(s.joint, joints, true)) return f + ".joint = " + std::to_string(s.joint) + " (no such joint)";
-    if (!(p = CheckName(s.name, f + ".name", kNameBytes)).empty()) return p;
-    if (!std::isfinite(s.rate)) return f + ".rate = " + FormatNumber(s.rate);
-  }
-  for (size_t i = 0; i < m.actuators.size(); ++i) {
-    const actuator_t& a = m.actuators[i];
-    const std::string f = "actuators[" + std::to_string(i) + "]";
-    if (!InRange(a.robot, robots, true)) return f + ".robot = " + std::to_string(a.robot) + " (no such robot)";
-    if (!InRange(a.joint, joints, true)) return f + ".joint = " + std::to_string(a.joint) + " (no such joint)";
-    if (!(p = CheckName(a.name, f + ".name", kNameBytes)).empty()) return p;
-  }
-  return "";
-}
-
-namespace {
-
-// The wheels on soil of a state: each names a body of the model, and its
-// figures are finite.
-std::string CheckWheelSoil(const state_t& s, const ModelShape& shape) {
-  std::string p;
-  for (size_t w = 0; w < s.wheel_soil.size(); ++w) {
-    const wheel_soil_t& ws = s.wheel_soil[w];
-    const std::string at = "wheel_soil[" + std::to_string(w) + "].";
-    if (!InRange(ws.body, shape.bodies, false))
-      return at + "body = " + std::to_string(ws.body) + " but the model of simulation " +
-             std::to_string(s.simulation_id) + " has " + std::to_string(shape.bodies) + " bodies";
-    const double scalars[] = {ws.sinkage, ws.slip, ws.thrust, ws.drawbar_pull, ws.load,
-                              ws.axle_torque};
-    const char* names[] = {"sinkage", "slip", "thrust", "drawbar_pull", "load", "axle_torque"};
-    for (size_t k = 0; k < 6; ++k)
-      if (!std::isfinite(scalars[k])) return at + names[k] + " = " + FormatNumber(scalars[k]);
-    if (!(p = NonFinite(ws.normal_force, at + "normal_force")).empty()) return p;
-    if (!(p = NonFinite(ws.shear_force, at + "shear_force")).empty()) return p;
-  }
-  return "";
-}
-
-}  // namespace
-
-std::string CheckState(const state_t& s, const ModelShape& shape) {
-  if (s.num_bodies != shape.bodies)
-    return "num_bodies = " + std::to_string(s.num_bodies) + " but the model of simulation " +
-           std::to_string(s.simulation_id) + " has " + std::to_string(shape.bodies);
-  if (s.num_joints != shape.joints)
-    return "num_joints = " + std::to_string(s.num_joints) + " but the model of simulation " +
-           std::to_string(s.simulation_id) + " has " + std::to_string(shape.joints);
-  if (s.step < 0) return "step = " + std::to_string(s.step) + " (negative)";
-  if (!std::isfinite(s.sim_time)) return "sim_time = " + FormatNumber(s.sim_time);
-  std::string p;
-  for (size_t i = 0; i < s.bodies.size(); ++i) {
-    const body_state_t& b = s.bodies[i];
-    auto f = [i](const char* field) {
-      return [i, field] { return "bodies[" + std::to_string(i) + "]." + field; };
-    };
-    if (!(p = NonFiniteIn(b.position, f("position"))).empty()) return p;
-    if (!(p = NonFiniteIn(b.orientation, f("orientation"))).empty()) return p;
-    if (!(p = NonFiniteIn(b.contact_force, f("contact_force"))).empty()) return p;
-    if (!(p = NonFiniteIn(b.contact_torque, f("contact_torque"))).empty()) return p;
-    const double norm = std::sqrt(b.orientation[0] * b.orientation[0] +
-                                  b.orientation[1] * b.orientation[1] +
-                                  b.orientation[2] * b.orientation[2] +
-                                  b.orientation[3] * b.orientation[3]);
-    if (std::abs(norm - 1.0) > 1e-3)
-      return f("orientation")() + " has length " + FormatNumber(norm) + " (a unit quaternion is needed)";
-  }
-  for (size_t j = 0; j < s.joints.size(); ++j) {
-    const joint_state_t& js = s.joints[j];
-    auto f = [j](const char* field) {
-      return [j, field] { return "joints[" + std::to_string(j) + "]." + field; };
-    };
-    if (!(p = NonFiniteIn(js.position, f("position"))).empty()) return p;
-    if (!(p = NonFiniteIn(js.rate, f("rate"))).empty()) return p;
-    if (!(p = NonFiniteIn(js.anchor, f("anchor"))).empty()) return p;
-    if (!(p = NonFiniteIn(js.force1, f("force1"))).empty()) return p;
-    if (!(p = NonFiniteIn(js.torque1, f("torque1"))).empty()) return p;
-  }
-  return CheckWheelSoil(s, shape);
-}
-
-std::string CheckSensorReading(const sensor_reading_t& r, const ModelShape& shape) {
-  if (r.sensor < 0 || r.sensor >= shape.sensors)
-    return "sensor = " + std::to_string(r.sensor) + " but the model of simulation " +
-           std::to_string(r.simulation_id) + " has " + std::to_string(shape.sensors) + " sensors";
-  if (!std::isfinite(r.sim_time)) return "sim_time = " + FormatNumber(r.sim_time);
-  if (!FitsText(r.text, kTextBytes)) return "text is not valid UTF-8 of at most 65535 bytes";
-  return "";
 }
 
 Receiver::Receiver(lcm::LCM* lcm, RecordQueue* queue, ReceiverOptions options, Reporter* reporter)
@@ -664,7 +434,8 @@ void Receiver::Deliver(Record record, const state_t* decoded) {
       decoded = &waited;
     }
     const state_t& s = *decoded;
-    std::string problem = CheckState(s, shape);
+    std::string problem;
+    if (auto bad = CheckState(s, &shape.outline)) problem = bad->message;
     if (problem.empty()) problem = CheckStepRate(s, record.received_us, shape);
     if (!problem.empty()) {
       Invalid(channels::kState, problem);
@@ -692,8 +463,8 @@ void Receiver::Deliver(Record record, const state_t* decoded) {
     if (const auto failure = DecodeLcm(record.payload.data(), record.payload.size(), &r))
       problem = DescribeRefusal(channels::kSensor, sensor_reading_t::getTypeName(),
                                 record.payload.size(), *failure);
-    else
-      problem = CheckSensorReading(r, shape);
+    else if (auto bad = CheckSensorReading(r, &shape.outline))
+      problem = bad->message;
     if (!problem.empty()) {
       Invalid(channels::kSensor, problem);
       return;
@@ -705,22 +476,23 @@ void Receiver::Deliver(Record record, const state_t* decoded) {
 void Receiver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   model_t model;
   if (!Decode(buffer, channel, &model)) return;
-  const std::string problem = CheckModel(model);
-  if (!problem.empty()) {
-    Invalid(channel, "model of simulation " + std::to_string(model.simulation_id) + ": " + problem);
+  if (const auto problem = CheckModel(model)) {
+    Invalid(channel, "model of simulation " + std::to_string(model.simulation_id) + ": " +
+                         problem->message);
     return;
   }
   const ModelShape shape = ShapeOf(model);
   const auto known = models_.find(model.simulation_id);
   if (known != models_.end()) {
-    const ModelShape& k = known->second;
-    if (k.bodies != shape.bodies || k.joints != shape.joints || k.sensors != shape.sensors)
+    const ModelOutline& k = known->second.outline;
+    const ModelOutline& now = shape.outline;
+    if (k.bodies != now.bodies || k.joints != now.joints || k.sensors.size() != now.sensors.size())
       Invalid(channel, "model of simulation " + std::to_string(model.simulation_id) +
-                           " changed its shape (" + std::to_string(shape.bodies) + " bodies, " +
-                           std::to_string(shape.joints) + " joints, " +
-                           std::to_string(shape.sensors) + " sensors instead of " +
+                           " changed its shape (" + std::to_string(now.bodies) + " bodies, " +
+                           std::to_string(now.joints) + " joints, " +
+                           std::to_string(now.sensors.size()) + " sensors instead of " +
                            std::to_string(k.bodies) + ", " + std::to_string(k.joints) + ", " +
-                           std::to_string(k.sensors) + ")");
+                           std::to_string(k.sensors.size()) + ")");
     return;  // announced again
   }
   const auto now = std::chrono::steady_clock::now();
@@ -809,13 +581,8 @@ void Receiver::OnSensor(const lcm::ReceiveBuffer* buffer, const std::string& cha
 void Receiver::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   command_t command;
   if (!Decode(buffer, channel, &command)) return;
-  std::string problem;
-  if (!FitsText(command.sender, kNameBytes)) problem = "sender";
-  else if (!FitsText(command.robot, kNameBytes)) problem = "robot";
-  else if (!FitsText(command.target, kNameBytes)) problem = "target";
-  else if (!FitsText(command.text, kTextBytes)) problem = "text";
-  if (!problem.empty()) {
-    Invalid(channel, problem + " is not valid UTF-8 that fits its column");
+  if (const auto problem = CheckCommand(command)) {
+    Invalid(channel, problem->message);
     return;
   }
   // Logged under the simulation it was meant for when the logger knows
@@ -831,13 +598,8 @@ void Receiver::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& ch
 void Receiver::OnReply(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   command_reply_t reply;
   if (!Decode(buffer, channel, &reply)) return;
-  std::string problem;
-  if (!FitsText(reply.sender, kNameBytes)) problem = "sender";
-  else if (!FitsText(reply.target, kNameBytes)) problem = "target";
-  else if (!FitsText(reply.reason, kTextBytes)) problem = "reason";
-  else if (!FitsText(reply.previous_text, kTextBytes)) problem = "previous_text";
-  if (!problem.empty()) {
-    Invalid(channel, problem + " is not valid UTF-8 that fits its column");
+  if (const auto problem = CheckCommandReply(reply)) {
+    Invalid(channel, problem->message);
     return;
   }
   Deliver(MakeRecord(RecordKind::kCommandReply, reply.simulation_id, buffer));
@@ -846,6 +608,10 @@ void Receiver::OnReply(const lcm::ReceiveBuffer* buffer, const std::string& chan
 void Receiver::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   status_t status;
   if (!Decode(buffer, channel, &status)) return;
+  if (const auto problem = CheckStatus(status)) {
+    Invalid(channel, problem->message);
+    return;
+  }
   follower_.Heard(status.simulation_id, std::chrono::steady_clock::now());
   if (const auto aside = set_aside_.find(status.simulation_id);
       aside != set_aside_.end() && status.run_state == status_t::RUN_STOPPED)

@@ -5,6 +5,7 @@
 #include "simpartner/logger/receiver.h"
 #include "simpartner/logger/sql_text.h"
 #include "simpartner/sensor_kinds.h"
+#include "simpartner/text.h"
 
 namespace simpartner::logger {
 

@@ -12,6 +12,7 @@
 #include "simpartner/bus_decode.h"
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
+#include "simpartner/message_checks.h"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/sender.h"
 #include "simpartner/state_request_t.hpp"
@@ -146,6 +147,13 @@ bool SimNode::DecodeInput(const lcm::ReceiveBuffer* buffer, const std::string& c
 void SimNode::OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
   command_t command;
   if (!DecodeInput(buffer, channel, &command)) return;
+  // Texts that are not UTF-8 or too long are refused as every reader of
+  // SIM_COMMAND refuses them (message_checks.h), before the command's
+  // meaning is judged; its sender cannot be answered by name.
+  if (const auto problem = CheckCommand(command)) {
+    ReportBadMessage(channel, problem->message);
+    return;
+  }
   SubmitCommand(command);
 }
 

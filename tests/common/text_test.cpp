@@ -75,5 +75,15 @@ TEST(ActionSpellingTest, SequenceElementsNameTheirActions) {
   EXPECT_EQ(ActionOfSequenceElement("command"), -1);
 }
 
+TEST(FitsTextTest, Utf8AndLength) {
+  EXPECT_TRUE(FitsText("Wheel1", 255));
+  EXPECT_TRUE(FitsText("Py\xc3\xb6r\xc3\xa4 \xe2\x82\xac \xf0\x9f\x98\x80", 255));
+  EXPECT_FALSE(FitsText(std::string(256, 'a'), 255));
+  EXPECT_FALSE(FitsText("\xc3", 255));              // cut short
+  EXPECT_FALSE(FitsText("\xc0\xaf", 255));          // overlong
+  EXPECT_FALSE(FitsText("\xed\xa0\x80", 255));      // surrogate
+  EXPECT_FALSE(FitsText(std::string("a\0b", 3), 255));
+}
+
 }  // namespace
 }  // namespace simpartner

@@ -2,7 +2,8 @@
 // arbitrary bytes after the type's fingerprint, as anyone on the network
 // can send them. The total decoder must never crash, throw or allocate
 // beyond the datagram's size, and what it accepts must encode back into a
-// message it accepts again, unchanged.
+// message it accepts again, unchanged, and be judged by its type's check
+// (message_checks.h) without a crash.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -12,6 +13,7 @@
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
+#include "simpartner/message_checks.h"
 #include "simpartner/model_request_t.hpp"
 #include "simpartner/model_t.hpp"
 #include "simpartner/sensor_reading_t.hpp"
@@ -19,6 +21,34 @@
 #include "simpartner/status_t.hpp"
 
 using Message = simpartner::SP_FUZZ_TYPE;
+
+namespace {
+
+// The check of each type that has one, alone and against a model outline
+// as large as the message claims.
+template <class T>
+void Judge(const T&) {}
+void Judge(const simpartner::model_t& m) {
+  if (!simpartner::CheckModel(m)) (void)simpartner::OutlineOf(m);
+}
+void Judge(const simpartner::state_t& s) {
+  simpartner::ModelOutline outline;
+  outline.bodies = s.num_bodies;
+  outline.joints = s.num_joints;
+  (void)simpartner::CheckState(s, nullptr);
+  (void)simpartner::CheckState(s, &outline);
+}
+void Judge(const simpartner::sensor_reading_t& r) {
+  simpartner::ModelOutline outline;
+  outline.sensors.resize(4);
+  (void)simpartner::CheckSensorReading(r, nullptr);
+  (void)simpartner::CheckSensorReading(r, &outline);
+}
+void Judge(const simpartner::status_t& s) { (void)simpartner::CheckStatus(s); }
+void Judge(const simpartner::command_t& c) { (void)simpartner::CheckCommand(c); }
+void Judge(const simpartner::command_reply_t& r) { (void)simpartner::CheckCommandReply(r); }
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // The fingerprint is given, so the fuzzer spends its time on the body.
@@ -37,5 +67,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::vector<uint8_t> third(static_cast<size_t>(twice.getEncodedSize()));
   twice.encode(third.data(), 0, static_cast<int>(third.size()));
   if (third != again) __builtin_trap();
+  Judge(message);
   return 0;
 }

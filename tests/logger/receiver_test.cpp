@@ -39,6 +39,7 @@ model_t TwoBodyModel(int64_t simulation_id) {
   m.step_size = 0.001;
   m.state_every = 1;
   m.gravity[1] = -9.81;
+  m.up[1] = 1;
   robot_t r{};
   r.name = "Bot";
   m.robots = {r};
@@ -856,16 +857,6 @@ TEST_F(ReceiverTest, StepsLostDuringASilenceAreItsMissingSteps) {
   EXPECT_EQ(gap.first_step, 11);
   EXPECT_EQ(gap.last_step, 17);
   EXPECT_EQ(gap.missing, 3);
-}
-
-TEST(FitsTextTest, Utf8AndLength) {
-  EXPECT_TRUE(FitsText("Wheel1", 255));
-  EXPECT_TRUE(FitsText("Pyörä \xe2\x82\xac \xf0\x9f\x98\x80", 255));
-  EXPECT_FALSE(FitsText(std::string(256, 'a'), 255));
-  EXPECT_FALSE(FitsText("\xc3", 255));              // cut short
-  EXPECT_FALSE(FitsText("\xc0\xaf", 255));          // overlong
-  EXPECT_FALSE(FitsText("\xed\xa0\x80", 255));      // surrogate
-  EXPECT_FALSE(FitsText(std::string("a\0b", 3), 255));
 }
 
 }  // namespace

@@ -76,7 +76,7 @@ TEST_F(CameraImagesTest, RefusesWhatDoesNotFit) {
   Send(Image("Front", 10, image_t::FORMAT_RGB8, 5));  // 29 bytes for 4x2 RGB8
   EXPECT_EQ(images_.Newest(5), nullptr);
   ASSERT_EQ(reports_.size(), 1u);
-  EXPECT_NE(reports_[0].find("image 'Front' is 4x2 but has 29 bytes of RGB8"), std::string::npos)
+  EXPECT_NE(reports_[0].find("image 'Front': num_bytes 29: 4x2 rgb8 is 24 bytes"), std::string::npos)
       << reports_[0];
   const char garbage[] = "not an image";
   lcm_.publish(channels::kImage, garbage, sizeof garbage);

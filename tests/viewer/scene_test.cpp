@@ -89,7 +89,8 @@ TEST(SceneTest, StateWithMoreBodiesOrJointsThanTheModelIsIgnored) {
   ASSERT_TRUE(v.problem.has_value());
   EXPECT_EQ(v.problem->kind, Rejection::kBodyCount);
   EXPECT_NE(v.problem->message.find("num_bodies = 5"), std::string::npos) << v.problem->message;
-  EXPECT_NE(v.problem->message.find("the model has 2"), std::string::npos) << v.problem->message;
+  EXPECT_NE(v.problem->message.find("the model of simulation 7 has 2"), std::string::npos)
+      << v.problem->message;
 
   state_t fewer_joints = StateFor(m, 2);
   fewer_joints.joints.clear();
@@ -179,15 +180,15 @@ TEST(SceneTest, ModelsThatCannotBeDrawnAreRefusedWithTheField) {
   };
   const Case cases[] = {
       {"negative box size", [](model_t* m) { m->bodies[0].geometry.size[1] = -2; },
-       "bodies[0].geometry.size[1] = -2 (body 'Base')"},
+       "bodies[0].geometry.size[1] = -2 (above 0 to 100000 m) (body 'Base')"},
       {"NaN sphere radius", [](model_t* m) { m->bodies[1].geometry.size[0] = kNaN; },
        "bodies[1].geometry.size[0] = nan (body 'Ball')"},
       {"unknown kind", [](model_t* m) { m->bodies[1].geometry.kind = 42; },
        "bodies[1].geometry.kind = 42"},
       {"joint to a missing body", [](model_t* m) { m->joints[0].body1 = 9; },
-       "joints[0] ('Swing') joins body 9 of 2"},
+       "joints[0].body1 = 9 (no such body), the model has 2 (joint 'Swing')"},
       {"sensor on a missing body", [](model_t* m) { m->sensors[0].body = 2; },
-       "sensors[0] ('Scanner').body = 2 of 2"},
+       "sensors[0].body = 2 (no such body), the model has 2"},
       {"samples do not match rows x columns",
        [](model_t* m) {
          m->heightfield.present = true;
@@ -228,7 +229,8 @@ TEST(SceneTest, ScannerReadingsAreKeptPerSensorAndBadOnesCounted) {
   unknown.sensor = 3;
   Verdict v = scene.OfferSensorReading(unknown);
   ASSERT_TRUE(v.problem.has_value());
-  EXPECT_NE(v.problem->message.find("SIM_SENSOR: sensor = 3 but the model has 1 sensors"),
+  EXPECT_NE(v.problem->message.find(
+                "SIM_SENSOR: sensor = 3 but the model of simulation 7 has 1 sensors"),
             std::string::npos)
       << v.problem->message;
   sensor_reading_t nan_range = ScanFor(m, {1, kNaN});
@@ -276,6 +278,8 @@ TEST(SceneTest, WithoutRobotsTheCameraFollowsWhatMoves) {
   m.robots.clear();
   m.num_robots = 0;
   for (body_t& b : m.bodies) b.robot = -1;
+  for (joint_t& j : m.joints) j.robot = -1;
+  for (sensor_t& s : m.sensors) s.robot = -1;
   m.bodies[0].is_static = true;  // the box stays, the ball moves
   scene.OfferModel(m);
   EXPECT_TRUE(scene.FollowPoint()->isApprox(Eigen::Vector3d(2, 1, 0)));

@@ -111,7 +111,7 @@ TEST(SoilRutsTest, ForgedRutsAreRefusedNamingTheFieldAndValue) {
   Case origin{Ruts(7, false, {{3, 4, 0.01f}}), "SIM_SOIL_RUTS: origin = (nan, 0, 0)"};
   origin.message.origin[0] = kNaN;
   cases.push_back(origin);
-  Case up{Ruts(7, false, {{3, 4, 0.01f}}), "up = (0, 2, 0) (a unit vector is needed)"};
+  Case up{Ruts(7, false, {{3, 4, 0.01f}}), "up = (0, 2, 0) is not a unit vector"};
   up.message.up[1] = 2;
   cases.push_back(up);
   Case axis{Ruts(7, false, {{3, 4, 0.01f}}), "u_axis = (0, 1, 0) is not along the surface"};

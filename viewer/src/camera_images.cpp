@@ -1,6 +1,7 @@
 #include "simpartner/viewer/camera_images.h"
 
 #include "simpartner/channels.h"
+#include "simpartner/message_checks.h"
 
 namespace simpartner::viewer {
 
@@ -25,11 +26,11 @@ void CameraImages::Offer(const void* data, size_t size) {
     return;
   }
   if (shown_.empty() || image.name != shown_ || image.format != image_t::FORMAT_RGB8) return;
-  if (static_cast<int64_t>(image.width) * image.height * 3 != image.num_bytes) {
-    if (bad_sizes_.Count(channels::kImage, "bad size"))
-      report_(std::string(channels::kImage) + ": image '" + image.name + "' is " +
-              std::to_string(image.width) + "x" + std::to_string(image.height) + " but has " +
-              std::to_string(image.num_bytes) + " bytes of RGB8; ignored");
+  // The model's camera is the scene's to know; the image must be whole.
+  if (const auto problem = CheckImage(image, nullptr)) {
+    if (bad_sizes_.Count(channels::kImage, problem->message))
+      report_(std::string(channels::kImage) + ": image '" + image.name + "': " + problem->message +
+              "; ignored");
     return;
   }
   newest_ = std::move(image);

@@ -8,17 +8,6 @@ namespace simpartner::viewer {
 namespace {
 
 constexpr size_t kMaxRecentProblems = 8;
-// A unit quaternion sent as doubles is unit to ~1e-15; 1e-3 lets through
-// any honest rounding and catches a zero or unnormalised orientation.
-constexpr double kQuaternionTolerance = 1e-3;
-// Bounds on what a model may ask the viewer to build, so that a damaged
-// message cannot make it allocate gigabytes.
-constexpr int64_t kMaxHeightfieldSamples = 16 * 1024 * 1024;
-constexpr double kMaxSize = 1e5;  // [m]
-
-bool Finite3(const double v[3]) {
-  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
-}
 
 Eigen::Quaterniond Quat(const double q[4]) { return Eigen::Quaterniond(q[0], q[1], q[2], q[3]); }
 
@@ -34,15 +23,28 @@ double BoundingRadius(const geometry_t& g) {
   }
 }
 
-std::string BodyLabel(const model_t& m, int i) {
-  return "body '" + m.bodies[static_cast<size_t>(i)].name + "'";
+// Which element of the model a problem is in, as the viewer names it:
+// " (body 'Arm'" (the caller adds to it and closes it), or "" for a field
+// of no body or joint.
+std::string ElementLabel(const MessageProblem& problem, const model_t& model) {
+  const auto in = [&](const auto& elements, const char* word) -> std::string {
+    if (problem.index < 0 || static_cast<size_t>(problem.index) >= elements.size()) return "";
+    return std::string(" (") + word + " '" + elements[static_cast<size_t>(problem.index)].name + "'";
+  };
+  if (problem.array == "bodies") return in(model.bodies, "body");
+  if (problem.array == "joints") return in(model.joints, "joint");
+  return "";
 }
 
-// First non-finite entry of a 3-vector field, as "name[k] = value".
-std::optional<std::string> NonFinite(const char* field, const double v[3], int n = 3) {
-  for (int k = 0; k < n; ++k)
-    if (!std::isfinite(v[k])) return std::string(field) + "[" + std::to_string(k) + "] = " + FormatNumber(v[k]);
-  return std::nullopt;
+// The viewer's count of a state's problem (its HUD and summary line).
+Rejection StateRejection(const MessageProblem& problem) {
+  switch (problem.fault) {
+    case MessageFault::kCountMismatch:
+      return problem.field == "num_joints" ? Rejection::kJointCount : Rejection::kBodyCount;
+    case MessageFault::kNotUnit: return Rejection::kBadQuaternion;
+    case MessageFault::kNonFinite: return Rejection::kNonFinite;
+    default: return Rejection::kBadState;
+  }
 }
 
 }  // namespace
@@ -58,98 +60,9 @@ const char* RejectionName(Rejection r) {
     case Rejection::kBadModel: return "bad model";
     case Rejection::kBadReading: return "bad reading";
     case Rejection::kBadRuts: return "bad ruts";
+    case Rejection::kBadState: return "bad state";
   }
   return "?";
-}
-
-std::optional<std::string> CheckModel(const model_t& m) {
-  if (m.num_bodies != static_cast<int32_t>(m.bodies.size()) || m.num_bodies < 0)
-    return "num_bodies = " + std::to_string(m.num_bodies) + " but " +
-           std::to_string(m.bodies.size()) + " bodies";
-  if (!Finite3(m.up) || std::abs(Eigen::Vector3d(m.up[0], m.up[1], m.up[2]).norm() - 1) > 1e-3)
-    return "up = (" + FormatNumber(m.up[0]) + ", " + FormatNumber(m.up[1]) + ", " + FormatNumber(m.up[2]) +
-           ") is not a unit vector";
-  if (m.has_plane) {
-    for (int k = 0; k < 4; ++k)
-      if (!std::isfinite(m.plane[k])) return "plane[" + std::to_string(k) + "] = " + FormatNumber(m.plane[k]);
-    if (Eigen::Vector3d(m.plane[0], m.plane[1], m.plane[2]).norm() < 1e-9)
-      return "plane normal (a, b, c) is zero";
-  }
-  for (int i = 0; i < m.num_bodies; ++i) {
-    const body_t& b = m.bodies[static_cast<size_t>(i)];
-    const std::string where = "bodies[" + std::to_string(i) + "]";
-    const geometry_t& g = b.geometry;
-    int sizes = 0;
-    switch (g.kind) {
-      case geometry_t::KIND_NONE: sizes = 0; break;
-      case geometry_t::KIND_BOX: sizes = 3; break;
-      case geometry_t::KIND_SPHERE: sizes = 1; break;
-      case geometry_t::KIND_CYLINDER:
-      case geometry_t::KIND_CAPSULE: sizes = 2; break;
-      default:
-        return where + ".geometry.kind = " + std::to_string(g.kind) + " (" + BodyLabel(m, i) +
-               ") is not a known kind";
-    }
-    for (int k = 0; k < sizes; ++k) {
-      // A capsule's cylinder part may be 0 long (a sphere).
-      const bool may_be_zero = g.kind == geometry_t::KIND_CAPSULE && k == 1;
-      if (!std::isfinite(g.size[k]) || g.size[k] < 0 || (g.size[k] == 0 && !may_be_zero) ||
-          g.size[k] > kMaxSize)
-        return where + ".geometry.size[" + std::to_string(k) + "] = " + FormatNumber(g.size[k]) + " (" +
-               BodyLabel(m, i) + ")";
-    }
-    if (auto bad = NonFinite("initial_position", b.initial_position))
-      return where + "." + *bad + " (" + BodyLabel(m, i) + ")";
-    const double qn = Quat(b.initial_orientation).norm();
-    if (!std::isfinite(qn) || std::abs(qn - 1) > kQuaternionTolerance)
-      return where + ".initial_orientation has length " + FormatNumber(qn) + " (" + BodyLabel(m, i) + ")";
-    if (b.robot < -1 || b.robot >= m.num_robots)
-      return where + ".robot = " + std::to_string(b.robot) + " (" + BodyLabel(m, i) + ") but " +
-             std::to_string(m.num_robots) + " robots";
-  }
-  for (size_t j = 0; j < m.joints.size(); ++j) {
-    const joint_t& joint = m.joints[j];
-    for (int32_t body : {joint.body1, joint.body2})
-      if (body < -1 || body >= m.num_bodies)
-        return "joints[" + std::to_string(j) + "] ('" + joint.name + "') joins body " +
-               std::to_string(body) + " of " + std::to_string(m.num_bodies);
-    if (auto bad = NonFinite("anchor", joint.anchor))
-      return "joints[" + std::to_string(j) + "]." + *bad;
-  }
-  for (size_t s = 0; s < m.sensors.size(); ++s) {
-    const sensor_t& sensor = m.sensors[s];
-    if (sensor.body < -1 || sensor.body >= m.num_bodies)
-      return "sensors[" + std::to_string(s) + "] ('" + sensor.name + "').body = " +
-             std::to_string(sensor.body) + " of " + std::to_string(m.num_bodies);
-    if (auto bad = NonFinite("position", sensor.position))
-      return "sensors[" + std::to_string(s) + "]." + *bad;
-    if (!std::isfinite(Quat(sensor.orientation).norm()) || Quat(sensor.orientation).norm() < 1e-9)
-      return "sensors[" + std::to_string(s) + "].orientation is not a rotation";
-    for (double p : sensor.params)
-      if (!std::isfinite(p)) return "sensors[" + std::to_string(s) + "].params has " + FormatNumber(p);
-  }
-  const heightfield_t& h = m.heightfield;
-  if (h.present) {
-    if (h.rows < 2 || h.columns < 2)
-      return "heightfield is " + std::to_string(h.rows) + " x " + std::to_string(h.columns) +
-             " samples (at least 2 x 2)";
-    const int64_t count = static_cast<int64_t>(h.rows) * h.columns;
-    if (count > kMaxHeightfieldSamples)
-      return "heightfield has " + std::to_string(count) + " samples (at most " +
-             std::to_string(kMaxHeightfieldSamples) + ")";
-    if (h.num_samples != count || static_cast<int64_t>(h.samples.size()) != count)
-      return "heightfield.num_samples = " + std::to_string(h.num_samples) + " but rows x columns = " +
-             std::to_string(count);
-    for (double v : {h.width, h.depth})
-      if (!std::isfinite(v) || v <= 0 || v > kMaxSize)
-        return "heightfield width/depth = " + FormatNumber(v);
-    if (!std::isfinite(h.scale) || !std::isfinite(h.offset) || !Finite3(h.position))
-      return "heightfield scale/offset/position is not finite";
-    for (size_t k = 0; k < h.samples.size(); ++k)
-      if (!std::isfinite(h.samples[k]))
-        return "heightfield.samples[" + std::to_string(k) + "] = " + FormatNumber(h.samples[k]);
-  }
-  return std::nullopt;
 }
 
 Verdict Scene::Reject(Rejection kind, const std::string& channel, const std::string& message) {
@@ -186,10 +99,10 @@ std::string Scene::RejectionSummary() const {
 
 Verdict Scene::OfferModel(const model_t& model) {
   if (auto problem = CheckModel(model)) {
-    Verdict v = Reject(Rejection::kBadModel, "SIM_MODEL",
-                       *problem + " (simulation " + std::to_string(model.simulation_id) +
-                           "): model ignored");
-    return v;
+    const std::string label = ElementLabel(*problem, model);
+    return Reject(Rejection::kBadModel, "SIM_MODEL",
+                  problem->message + (label.empty() ? "" : label + ")") + " (simulation " +
+                      std::to_string(model.simulation_id) + "): model ignored");
   }
   // Another simulation's model (a second sim on the bus, a stale or forged
   // one) does not replace the one shown (simulation_follower.h).
@@ -206,9 +119,11 @@ Verdict Scene::OfferModel(const model_t& model) {
     // The periodic re-announcement: sensor settings may have changed.
     model_->sensors = model.sensors;
     model_->num_sensors = model.num_sensors;
+    outline_ = OutlineOf(*model_);
     return v;
   }
   model_ = model;
+  outline_ = OutlineOf(model);
   ++model_generation_;
   state_.reset();
   status_.reset();
@@ -228,7 +143,8 @@ Verdict Scene::OfferSoilRuts(const soil_ruts_t& ruts) {
     return Reject(Rejection::kOtherSimulation, "SIM_SOIL_RUTS",
                   "simulation_id = " + std::to_string(ruts.simulation_id) + ", the model is of " +
                       std::to_string(model_->simulation_id) + ": ignored");
-  auto problem = CheckRuts(ruts);
+  std::optional<std::string> problem;
+  if (auto bad = CheckSoilRuts(ruts)) problem = bad->message;
   if (!problem) problem = CheckRutsGround(ruts, *model_, Up());
   if (problem)
     return Reject(Rejection::kBadRuts, "SIM_SOIL_RUTS",
@@ -259,47 +175,11 @@ Verdict Scene::OfferState(state_t&& s) {
     v.want_model = !follower_.IsOther(s.simulation_id);  // its model came and was not taken
     return v;
   }
-  if (s.num_bodies != m.num_bodies || static_cast<int32_t>(s.bodies.size()) != m.num_bodies)
-    return Reject(Rejection::kBodyCount, "SIM_STATE",
-                  "num_bodies = " + std::to_string(s.num_bodies) + " (step " +
-                      std::to_string(s.step) + "), the model has " + std::to_string(m.num_bodies) +
-                      ": ignored");
-  if (s.num_joints != m.num_joints || static_cast<int32_t>(s.joints.size()) != m.num_joints)
-    return Reject(Rejection::kJointCount, "SIM_STATE",
-                  "num_joints = " + std::to_string(s.num_joints) + " (step " +
-                      std::to_string(s.step) + "), the model has " + std::to_string(m.num_joints) +
-                      ": ignored");
-  if (!std::isfinite(s.sim_time))
-    return Reject(Rejection::kNonFinite, "SIM_STATE", "sim_time = " + FormatNumber(s.sim_time) + ": ignored");
-  for (int i = 0; i < s.num_bodies; ++i) {
-    const body_state_t& b = s.bodies[static_cast<size_t>(i)];
-    const std::string where = "bodies[" + std::to_string(i) + "].";
-    for (auto field : {std::make_pair("position", b.position),
-                       std::make_pair("contact_force", b.contact_force)}) {
-      if (auto bad = NonFinite(field.first, field.second))
-        return Reject(Rejection::kNonFinite, "SIM_STATE",
-                      where + *bad + " (" + BodyLabel(m, i) + ", step " + std::to_string(s.step) +
-                          "): ignored");
-    }
-    for (int k = 0; k < 4; ++k)
-      if (!std::isfinite(b.orientation[k]))
-        return Reject(Rejection::kNonFinite, "SIM_STATE",
-                      where + "orientation[" + std::to_string(k) + "] = " + FormatNumber(b.orientation[k]) +
-                          " (" + BodyLabel(m, i) + ", step " + std::to_string(s.step) + "): ignored");
-    const double qn = Quat(b.orientation).norm();
-    if (std::abs(qn - 1) > kQuaternionTolerance)
-      return Reject(Rejection::kBadQuaternion, "SIM_STATE",
-                    where + "orientation has length " + FormatNumber(qn) + " (" + BodyLabel(m, i) +
-                        ", step " + std::to_string(s.step) + "): ignored");
-  }
-  for (int j = 0; j < s.num_joints; ++j) {
-    const joint_state_t& js = s.joints[static_cast<size_t>(j)];
-    const std::string where = "joints[" + std::to_string(j) + "].";
-    for (auto field : {std::make_pair("anchor", js.anchor), std::make_pair("force1", js.force1)})
-      if (auto bad = NonFinite(field.first, field.second))
-        return Reject(Rejection::kNonFinite, "SIM_STATE",
-                      where + *bad + " (joint '" + m.joints[static_cast<size_t>(j)].name +
-                          "', step " + std::to_string(s.step) + "): ignored");
+  if (auto problem = CheckState(s, &outline_)) {
+    const std::string label = ElementLabel(*problem, m);
+    return Reject(StateRejection(*problem), "SIM_STATE",
+                  problem->message + (label.empty() ? " (step " : label + ", step ") +
+                      std::to_string(s.step) + "): ignored");
   }
   state_ = std::move(s);
   ++states_accepted_;
@@ -311,10 +191,8 @@ Verdict Scene::OfferState(state_t&& s) {
 
 Verdict Scene::OfferStatus(const status_t& status) {
   Verdict v;
-  if (!std::isfinite(status.sim_time) || !std::isfinite(status.real_time_factor))
-    return Reject(Rejection::kNonFinite, "SIM_STATUS",
-                  "sim_time = " + FormatNumber(status.sim_time) + ", real_time_factor = " +
-                      FormatNumber(status.real_time_factor) + ": ignored");
+  if (auto problem = CheckStatus(status))
+    return Reject(Rejection::kNonFinite, "SIM_STATUS", problem->message + ": ignored");
   v.accepted = true;
   follower_.Heard(status.simulation_id, SimulationFollower::Clock::now());
   if (status.run_state == status_t::RUN_STOPPED) follower_.Ended(status.simulation_id);
@@ -337,21 +215,10 @@ Verdict Scene::OfferSensorReading(const sensor_reading_t& r) {
     // are ignored along with its states, which are counted.
     return v;
   }
-  const std::string what = "sensor " + std::to_string(r.sensor) + " ('" + r.name + "')";
-  if (r.sensor < 0 || r.sensor >= model_->num_sensors)
-    return Reject(Rejection::kBadReading, "SIM_SENSOR",
-                  "sensor = " + std::to_string(r.sensor) + " but the model has " +
-                      std::to_string(model_->num_sensors) + " sensors: ignored");
-  const sensor_t& sensor = model_->sensors[static_cast<size_t>(r.sensor)];
-  if (sensor.kind != r.kind)
-    return Reject(Rejection::kBadReading, "SIM_SENSOR",
-                  what + ": kind = " + std::to_string(r.kind) + ", the model says " +
-                      std::to_string(sensor.kind) + ": ignored");
-  for (size_t k = 0; k < r.values.size(); ++k)
-    if (!std::isfinite(r.values[k]))
-      return Reject(Rejection::kNonFinite, "SIM_SENSOR",
-                    what + ": values[" + std::to_string(k) + "] = " + FormatNumber(r.values[k]) +
-                        ": ignored");
+  if (auto problem = CheckSensorReading(r, &outline_))
+    return Reject(problem->fault == MessageFault::kNonFinite ? Rejection::kNonFinite
+                                                             : Rejection::kBadReading,
+                  "SIM_SENSOR", problem->message + ": ignored");
   v.accepted = true;
   if (r.kind == sensor_t::KIND_SCANNER) {
     scans_[r.sensor] = r;

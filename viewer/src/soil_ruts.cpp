@@ -12,10 +12,6 @@
 namespace simpartner::viewer {
 namespace {
 
-bool AllFinite(const double (&v)[3]) {
-  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
-}
-
 Eigen::Vector3d Vec(const double (&v)[3]) { return Eigen::Vector3d(v[0], v[1], v[2]); }
 
 std::string Triple(const double (&v)[3]) {
@@ -23,31 +19,6 @@ std::string Triple(const double (&v)[3]) {
 }
 
 }  // namespace
-
-std::optional<std::string> CheckRuts(const soil_ruts_t& m) {
-  if (m.parts < 1 || m.part < 0 || m.part >= m.parts)
-    return "part = " + std::to_string(m.part) + " of parts = " + std::to_string(m.parts);
-  for (const auto& [name, v] : {std::pair<const char*, const double(&)[3]>{"origin", m.origin},
-                                {"up", m.up},
-                                {"u_axis", m.u_axis}})
-    if (!AllFinite(v)) return std::string(name) + " = " + Triple(v);
-  for (const auto& [name, v] :
-       {std::pair<const char*, const double(&)[3]>{"up", m.up}, {"u_axis", m.u_axis}})
-    if (std::abs(Vec(v).norm() - 1.0) > 1e-3)
-      return std::string(name) + " = " + Triple(v) + " (a unit vector is needed)";
-  if (std::abs(Vec(m.up).dot(Vec(m.u_axis))) > 1e-3)
-    return "u_axis = " + Triple(m.u_axis) + " is not along the surface of up = " + Triple(m.up);
-  if (!(m.cell_size >= 0.001 && m.cell_size <= 1.0))
-    return "cell_size = " + FormatNumber(m.cell_size) + " (1 mm to 1 m)";
-  if (m.ground != soil_ruts_t::GROUND_PLANE && m.ground != soil_ruts_t::GROUND_HEIGHTFIELD)
-    return "ground = " + std::to_string(m.ground) + " (0 the plane, 1 the heightfield)";
-  for (size_t i = 0; i < m.depth.size(); ++i)
-    if (!(m.depth[i] > 0.0f && m.depth[i] <= kMaxRutDepth))
-      return "depth[" + std::to_string(i) + "] = " + FormatNumber(m.depth[i]) + " (cell " +
-             std::to_string(m.u[i]) + ", " + std::to_string(m.w[i]) + "; 0 < depth <= " +
-             FormatNumber(kMaxRutDepth) + " m)";
-  return std::nullopt;
-}
 
 std::optional<std::string> CheckRutsGround(const soil_ruts_t& m, const model_t& model,
                                            const Eigen::Vector3d& up) {

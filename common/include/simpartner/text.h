@@ -3,6 +3,7 @@
 // about a value reads the same whichever program prints it.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -22,5 +23,9 @@ std::string ShortestNumber(double value);
 
 // value with a fixed number of decimals (%.Nf). Non-finite as FormatNumber.
 std::string FormatFixed(double value, int decimals);
+
+// Valid UTF-8 of at most max_bytes bytes, without NUL: what a bus message's
+// text may be (message_checks.h) and what a VARCHAR/TEXT column takes.
+bool FitsText(const std::string& text, size_t max_bytes);
 
 }  // namespace simpartner

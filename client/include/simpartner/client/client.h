@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "simpartner/bus_decode.h"
+#include "simpartner/message_checks.h"
 #include "simpartner/client/catalog.h"
 #include "simpartner/client/command.h"
 #include "simpartner/client/errors.h"
@@ -264,6 +265,7 @@ class Client {
   std::condition_variable step_changed_;
   std::shared_ptr<const Catalog> catalog_;
   std::shared_ptr<const model_t> model_;         // learned
+  ModelOutline outline_;                         // of model_: what states and readings fit
   std::shared_ptr<const model_t> newest_model_;  // last seen on the bus
   std::shared_ptr<const Catalog> newest_catalog_;  // built from it (it is valid)
   std::optional<state_t> state_;

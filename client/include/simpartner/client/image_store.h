@@ -1,6 +1,6 @@
 // The newest camera images (image_t on SIM_IMAGE) a Client keeps: per
 // camera of the model, the newest colour and the newest depth image. An
-// image is kept only when it decodes and fits the model (image_fit.h: a
+// image is kept only when it decodes and passes CheckImage (message_checks.h: a
 // camera of this simulation, its format, its declared resolution, its byte
 // count); any other is dropped with a line naming the channel, the field
 // and its value (the first of each kind, then every 1000th). Not

@@ -28,6 +28,7 @@
 #include <string>
 
 #include "simpartner/bus_decode.h"
+#include "simpartner/message_checks.h"
 #include "simpartner/bus_signing.h"
 #include "simpartner/logger/record_queue.h"
 #include "simpartner/logger/reporter.h"
@@ -107,23 +108,15 @@ struct ReceiverStats {
   uint64_t BadMessages() const;
 };
 
-// Shape of a simulation's model that its other messages must fit.
+// What a simulation's other messages must fit (CheckState and
+// CheckSensorReading, message_checks.h) and its step timing.
 struct ModelShape {
-  int32_t bodies = 0;
-  int32_t joints = 0;
-  int32_t sensors = 0;
+  ModelOutline outline;
   int32_t state_every = 1;
   double step_size = 0.001;  // [s]
 };
 
-// Problems of a decoded message, or "" when it can be written. Each names
-// the field and value.
-std::string CheckModel(const model_t& model);
-std::string CheckState(const state_t& state, const ModelShape& shape);
-std::string CheckSensorReading(const sensor_reading_t& reading, const ModelShape& shape);
 ModelShape ShapeOf(const model_t& model);
-// Valid UTF-8 of at most max_bytes bytes (what a VARCHAR/TEXT column takes).
-bool FitsText(const std::string& text, size_t max_bytes);
 
 class Receiver {
  public:

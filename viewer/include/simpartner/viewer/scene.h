@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "simpartner/message_checks.h"
 #include "simpartner/model_t.hpp"
 #include "simpartner/sensor_reading_t.hpp"
 #include "simpartner/simulation_follower.h"
@@ -40,8 +41,9 @@ enum class Rejection {
   kBadModel,           // a SIM_MODEL the viewer cannot draw (sizes, indices)
   kBadReading,         // a SIM_SENSOR reading that does not fit its sensor
   kBadRuts,            // a SIM_SOIL_RUTS message that does not fit (soil_ruts.h)
+  kBadState,           // a SIM_STATE out of range otherwise (a negative step, a wheel of no body)
 };
-inline constexpr int kRejectionKinds = 9;
+inline constexpr int kRejectionKinds = 10;
 const char* RejectionName(Rejection r);
 
 // One ignored message, described for stderr and the HUD.
@@ -123,6 +125,7 @@ class Scene {
   Verdict Reject(Rejection kind, const std::string& channel, const std::string& message);
 
   std::optional<model_t> model_;
+  ModelOutline outline_;  // of model_, what its states and readings must fit
   SimulationFollower follower_;  // which SIM_MODEL is the shown sim's
   int64_t version_ = 0;
   int64_t model_generation_ = 0;
@@ -135,10 +138,5 @@ class Scene {
   std::array<int64_t, kRejectionKinds> rejected_{};
   std::deque<Problem> recent_problems_;
 };
-
-// Checks that a SIM_MODEL can be drawn: finite positive sizes, a
-// heightfield whose sample count matches rows x columns, indices in range.
-// Returns the first problem ("bodies[3].geometry.size[0] = -1 (body 'Arm')").
-std::optional<std::string> CheckModel(const model_t& model);
 
 }  // namespace simpartner::viewer

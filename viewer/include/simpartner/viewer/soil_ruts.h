@@ -18,13 +18,7 @@
 
 namespace simpartner::viewer {
 
-// A rut message the viewer can use: the surface frame finite with unit,
-// perpendicular axes, a cell size of 1 mm to 1 m, part within parts, a
-// known ground, each depth finite, above 0 and at most kMaxRutDepth.
-// Returns the first problem ("depth[3] = -0.5 (cell 12, -4)").
-inline constexpr double kMaxRutDepth = 10.0;  // [m]
-std::optional<std::string> CheckRuts(const soil_ruts_t& message);
-// A checked message's ground is one of `model`'s (whose up is `up`), the
+// A message that passed CheckSoilRuts (message_checks.h): its ground is one of `model`'s (whose up is `up`), the
 // grid on it: the plane's normal and a point of it, or the heightfield's
 // frame (HeightfieldPose). Returns the first problem.
 std::optional<std::string> CheckRutsGround(const soil_ruts_t& message, const model_t& model,
@@ -36,7 +30,7 @@ class RutMap {
   // cells takes 60,000); beyond it new cells are left out.
   static constexpr size_t kMaxCells = 1000000;
 
-  // Takes a checked message (CheckRuts) of this map's ground: a
+  // Takes a checked message (CheckSoilRuts) of this map's ground: a
   // snapshot's first part, or a message on another surface or cell size,
   // replaces every cell; the rest deepen theirs. Returns false when cells
   // were left out (full).
