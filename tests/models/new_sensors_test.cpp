@@ -1,4 +1,4 @@
-// The sensor kinds of issue 27 in robot files (Imu, Gnss, Encoder, Lidar,
+// The field sensor kinds in robot files (Imu, Gnss, Encoder, Lidar,
 // Contact) and the world's geodetic origin: what a good file gives, and
 // every bad value refused at its own line. Lines are found in the XML by a
 // marker, never taken from the loader.

@@ -180,7 +180,7 @@ void WriteHeader(std::ostream& out, const std::vector<ExperimentResult>& results
       << "applies at, `Simulation::Step`), as fast as possible, with step " << params.stepsize
       << " s (ODE: the " << params.stepper
       << " stepper) unless an experiment says otherwise, on each engine with the same "
-      << "settings. Tolerances are the team's (issue 5), the same for every engine; where a "
+      << "settings. Tolerances are the team's, the same for every engine; where a "
       << "target is physically wrong, the experiment's section says why, and the check still "
       << "fails. µs per step is the wall time of `Simulation::Step` alone, the mean over all "
       << "the experiment's steps.\n\n";

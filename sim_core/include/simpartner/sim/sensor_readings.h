@@ -1,4 +1,4 @@
-// The readings of the sensor kinds of issue 27 (Imu, Gnss, Encoder, Lidar,
+// The readings of the field sensor kinds (Imu, Gnss, Encoder, Lidar,
 // Contact), with their noise. Value layouts: docs/sensors.md and
 // lcmtypes/sensor_reading_t.lcm. The thesis's kinds stay in simulation.cpp.
 #pragma once
