@@ -1,4 +1,4 @@
-// What lock-step costs (issue 24): a controller in this process (the
+// What lock-step costs: a controller in this process (the
 // client library's LockStep) against a real simpartner-sim, paused at
 // start and run as fast as possible (speed 0).
 //   1. The protocol alone: ticks per second and the wall time of one tick
@@ -9,15 +9,19 @@
 //   2. WorkPartner gen3 (flat_ground.xml) with a controller sending its
 //      four wheels and the Turner joint a command every tick: steps per
 //      second and the multiple of real time, at period 1 and 10, for C++
-//      and for Python (sim.lockstep, a python3 child).
+//      and for Python (sim.lockstep, a child under the module's interpreter).
 // Prints figures; docs/benchmarks.md keeps them.
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -134,8 +138,16 @@ void Gen3Cpp(int port, int64_t period, int64_t steps, bool commands) {
             static_cast<double>(f.steps), f.wall, f.step_size);
 }
 
-// A python3 child running sim.lockstep; it prints its own rate.
+// A Python child running sim.lockstep, under the interpreter the module is
+// built for (SP_PYTHON_EXECUTABLE, bench/CMakeLists.txt); it prints its
+// wall time as its last line. A child that fails is reported with its exit
+// status and everything it wrote.
 void Gen3Python(int port, int64_t period, int64_t steps) {
+  const std::string what = "gen3, Python, period " + std::to_string(period);
+  if (std::string(SP_PYTHON_EXECUTABLE).empty()) {
+    std::printf("%s: the Python module is not built\n", what.c_str());
+    return;
+  }
   const std::string url = Url(port, 0);
   ChildProcess sim(SimArgv("flat_ground.xml", url), "/dev/null");
   const std::string script =
@@ -151,23 +163,28 @@ void Gen3Python(int port, int64_t period, int64_t steps) {
       "print(time.monotonic() - start)\n";
   const std::string out = "/tmp/lockstep_bench_py." + std::to_string(::getpid());
   ChildProcess python({"/usr/bin/env", "PYTHONPATH=" + std::string(SP_BINARY_DIR) + "/python",
-                       "/usr/bin/python3", "-c", script, url, std::to_string(period),
+                       SP_PYTHON_EXECUTABLE, "-c", script, url, std::to_string(period),
                        std::to_string(steps / period)},
                       out);
-  const auto status = python.Wait(std::chrono::minutes(10));
-  double wall = 0;
-  if (FILE* f = std::fopen(out.c_str(), "r")) {
-    if (std::fscanf(f, "%lf", &wall) != 1) wall = 0;
-    std::fclose(f);
-  }
+  const std::optional<int> status = python.Wait(std::chrono::minutes(10));
+  std::ostringstream output;
+  output << std::ifstream(out).rdbuf();
   std::remove(out.c_str());
-  if (!status || *status != 0 || wall <= 0) {
-    std::printf("gen3, Python, period %lld: the python3 child failed (status %d)\n",
-                static_cast<long long>(period), status ? *status : -1);
+  std::string text = output.str();
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  const std::string last = text.substr(text.rfind('\n') + 1);  // npos + 1 == 0
+  char* end = nullptr;
+  const double wall = std::strtod(last.c_str(), &end);
+  const bool timed = !last.empty() && *end == '\0' && wall > 0;
+  if (!status || *status != 0 || !timed) {
+    const std::string how = !status ? "was still running after 10 minutes (killed)"
+                            : *status != 0 ? "exited with status " + std::to_string(*status)
+                                           : "exited with status 0 without its wall time";
+    std::printf("%s: %s -c <script> %s; its output:\n%s\n", what.c_str(), SP_PYTHON_EXECUTABLE,
+                how.c_str(), text.empty() ? "(none)" : text.c_str());
     return;
   }
-  PrintRate("gen3, Python, period " + std::to_string(period), static_cast<double>(steps), wall,
-            0.001);
+  PrintRate(what, static_cast<double>(steps), wall, 0.001);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// How fast a logged run comes back out of the database (issue 23): a gen3
+// How fast a logged run comes back out of the database: a gen3
 // run on flat ground (26 bodies, 25 joints at every 1 ms step; straight on,
 // then in a left turn) is logged by the logger's writer into a private
 // MariaDB server, then read
@@ -209,8 +209,8 @@ void RowByRow(const PrivateServer& server, double sim_seconds) {
 // whole run by its id, the middle third, one body.
 void Python(const PrivateServer& server, double sim_seconds) {
   const std::string module_dir = std::string(SP_BINARY_DIR) + "/python";
-  if (!std::filesystem::exists(module_dir)) {
-    std::cout << "  (no Python module in " << module_dir << ")\n";
+  if (std::string(SP_PYTHON_EXECUTABLE).empty()) {
+    std::cout << "  (the Python module is not built in " << module_dir << ")\n";
     return;
   }
   const std::string log = server.dir() + "/python.log";
@@ -234,16 +234,18 @@ void Python(const PrivateServer& server, double sim_seconds) {
       "timed('Python read_logged(%d), the whole run' % sim, sim)\n"
       "timed('Python read_logged, start=%g, end=%g' % (first, last), start=first, end=last)\n"
       "timed('Python read_logged, bodies=\"Wheel1\", joints=[]', bodies='Wheel1', joints=[])\n";
-  ChildProcess python({"/usr/bin/python3", "-c", script, server.reader_options(),
+  ChildProcess python({SP_PYTHON_EXECUTABLE, "-c", script, server.reader_options(),
                        std::to_string(sim_seconds / 3), std::to_string(2 * sim_seconds / 3)},
                       log);
   const int status = python.Wait(std::chrono::minutes(10)).value_or(-1);
   std::ifstream in(log);
   std::cout << in.rdbuf();
-  if (status != 0) std::cout << "  (python3 ended with status " << status << ")\n";
+  if (status != 0)
+    std::cout << "  (" SP_PYTHON_EXECUTABLE " ended with status " << status
+              << (status == -1 ? ", still running after 10 minutes" : "") << ")\n";
 }
 
-// 4. The plots of issue 23, drawn into PNGs in the server's directory.
+// 4. The wheel-force and track plots, drawn into PNGs in the server's directory.
 void Plots(const PrivateServer& server, double sim_seconds) {
   std::unique_ptr<DbConnection> db = Reader(server);
   for (const PlotKind kind : {PlotKind::kWheelForces, PlotKind::kTrack}) {

@@ -1,4 +1,4 @@
-// Figures of the database logger (issue 6), each on a private MariaDB
+// Figures of the database logger, each on a private MariaDB
 // server started for the run in a temporary directory:
 //   1. insert methods on a 9-column Pose-like table: one INSERT per row
 //      (what the original did), multi-row INSERTs of 1000 rows in

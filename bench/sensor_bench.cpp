@@ -1,4 +1,4 @@
-// What the field sensors of issue 27 cost per step: the shipped gen3 (or
+// What the field sensors cost per step: the shipped gen3 (or
 // the world given) stepped with
 //   none        the thesis's sensors only (the new kinds taken out)
 //   imu+gnss+enc  plus its IMU (100 Hz), GNSS (10 Hz) and four wheel

@@ -1,10 +1,12 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Drive WorkPartner (gen3, flat_ground.xml) in a left turn for a few seconds
 and plot the live run with matplotlib: the chassis track seen from above
 (the ground is the x-z plane, y up) and the wheels' rates.
 
 Usage: drive_and_plot.py [--lcm-url URL] [--seconds S] [--out FILE.png]
-With no display (or with --out) the plot goes to a PNG (Agg backend)."""
+With no display (or with --out) the plot goes to a PNG (Agg backend).
+Run it with the python3 the module was built for (Debian's /usr/bin/python3,
+docs/python.md), not another first on PATH."""
 import argparse
 import os
 

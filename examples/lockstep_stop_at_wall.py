@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """A closed loop in lock-step, in Python: drive WorkPartner (gen2 or gen3)
 towards the wall of models/worlds/scanner_wall.xml and slow down from what
 its laser scanner sees, to stand 1 m from the wall.
@@ -6,6 +6,8 @@ its laser scanner sees, to stand 1 m from the wall.
 Started on a paused sim (simpartner-sim --startPaused=1 ...), the run is
 fully determined by this controller: the same at any speed, on any
 machine. Usage: lockstep_stop_at_wall.py [--lcm-url URL]
+Run it with the python3 the module was built for (Debian's /usr/bin/python3,
+docs/python.md), not another first on PATH.
 """
 import argparse
 

@@ -408,10 +408,42 @@ py::dict ReadLogged(const py::object& simulation, const std::string& db_options,
   return result;
 }
 
+// Refuses an interpreter the module cannot work in, at import and naming
+// the one it was built for (SP_PYTHON_EXECUTABLE, python/CMakeLists.txt).
+// Another python3 first on PATH (a pyenv shim) of the same version loads
+// the module, whose ABI tag it shares, but has no Debian numpy: without
+// this check the import succeeded and the first array failed.
+void RequireTheInterpreterBuiltFor() {
+  const py::module_ sys = py::module_::import("sys");
+  const py::tuple version = sys.attr("version_info");
+  const std::string running = py::str(sys.attr("executable")).cast<std::string>() + " (Python " +
+                              py::str(version[0]).cast<std::string>() + "." +
+                              py::str(version[1]).cast<std::string>() + "." +
+                              py::str(version[2]).cast<std::string>() + ")";
+  std::string problem;
+  if (version[0].cast<int>() != PY_MAJOR_VERSION || version[1].cast<int>() != PY_MINOR_VERSION) {
+    problem = "is not Python " + std::to_string(PY_MAJOR_VERSION) + "." +
+              std::to_string(PY_MINOR_VERSION);
+  } else {
+    try {
+      py::module_::import("numpy");
+    } catch (const py::error_already_set& e) {
+      problem = "cannot import numpy, which the module's arrays need (" +
+                py::str(e.value()).cast<std::string>() + ")";
+    }
+  }
+  if (!problem.empty())
+    throw py::import_error("simpartner was built for " SP_PYTHON_EXECUTABLE
+                           " (Python " SP_PYTHON_VERSION "); this interpreter, " +
+                           running + ", " + problem + ". Run it with " SP_PYTHON_EXECUTABLE ".");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(simpartner, m) {
+  RequireTheInterpreterBuiltFor();
   m.doc() = "SimPartner: drive a running simpartner-sim over LCM and read logged simulations";
+  m.attr("BUILT_FOR_PYTHON") = SP_PYTHON_EXECUTABLE;
   namespace client = simpartner::client;
   auto client_error = py::register_exception<client::ClientError>(m, "ClientError", PyExc_RuntimeError);
   // The subclasses: registered after the base so that each maps to its own.

@@ -1,4 +1,4 @@
-// Wheels on soft soil inside ODE's step (issue 28, docs/soil.md): for a
+// Wheels on soft soil inside ODE's step (docs/soil.md): for a
 // wheel (a cylinder geom) on a ground plane or heightfield of soil (under
 // the wheel: its tangent plane there), one contact joint
 // whose rows carry the soil's force of this state, linearized so that

@@ -66,4 +66,20 @@ expect_refusal "--kind: value 'flood' is not refused or garbage" flood_bench --k
 # Far from anything: no guess, the list of what it takes.
 expect_refusal "unknown option '--zzzzzzzz'; it takes: --count --lcm-url --help" latency_bench --zzzzzzzz
 
+# bench/run_all, the commands behind docs/benchmarks.md: its help, a
+# misspelled option and figure name refused before anything runs, and each
+# of its names given on the page as the way to rerun that section.
+run_all=$source_dir/bench/run_all
+expect_help run_all "Reruns the commands behind the figures" "$run_all" --help
+expect_misspelling "run_all --onyl" "--only" "$run_all" --onyl soil
+expect_misspelling "run_all --only camra" "camera" "$run_all" --only camra
+run "$run_all" --list --build /nonexistent
+[[ $status -eq 0 && $out == *"/nonexistent/bench/sim_bench --steps 3000"* ]] ||
+  fail "run_all --list exited $status or does not name the build tree's sim_bench: $out"
+page=$(<"$source_dir/docs/benchmarks.md")
+for name in $(awk '{print $1}' <<<"$out" | sort -u); do
+  [[ $page == *"--only $name"* || $page == *"--only "*",$name"* ]] ||
+    fail "run_all's $name is not named on docs/benchmarks.md (bench/run_all --only $name)"
+done
+
 finish "all bench command lines answered as expected"

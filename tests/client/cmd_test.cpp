@@ -239,7 +239,7 @@ TEST_F(CmdTest, StatusNamesThePhysicsEngine) {
 
 // Two sims on one bus: a control reaches only the sim the command is
 // attached to, the one whose SIM_STATUS it heard first or the one --sim
-// names, and the other keeps running (issue 25: one quit stopped two
+// names, and the other keeps running (one quit once stopped two
 // sims). The sims send their model once a minute, so the command hears
 // none, as one started between two models does: before, its control then
 // carried simulation id 0, which every sim obeys.

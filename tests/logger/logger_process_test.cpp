@@ -544,7 +544,7 @@ TEST_F(LoggerProcessTest, AStoppedServerIsReportedAndNothingIsLost) {
 // The server killed with SIGKILL mid-run (no shutdown: InnoDB recovers on
 // the next start, and the logger's last transaction may or may not have
 // committed) and started again on the same data directory 2 s later:
-// every step is in the database exactly once, none in LogGap (issue 14).
+// every step is in the database exactly once, none in LogGap.
 TEST_F(LoggerProcessTest, ServerKilledAndRestartedLosesAndRepeatsNothing) {
   ChildProcess& logger = StartLogger();
   ASSERT_TRUE(WaitForReady(0));
@@ -570,7 +570,7 @@ TEST_F(LoggerProcessTest, ServerKilledAndRestartedLosesAndRepeatsNothing) {
   ExpectSpoolEmpty();
 }
 
-// The stock LCM tools (issue 14): lcm-logger records a real run while
+// The stock LCM tools: lcm-logger records a real run while
 // simpartner-logger logs it live; lcm-logplayer replays the recording into
 // a second logger writing a second database. Both hold the same rows: the
 // same count in every table and the same checksum over Pose and JointPose.

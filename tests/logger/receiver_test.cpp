@@ -542,7 +542,7 @@ size_t Occurrences(const std::string& text, const std::string& part) {
 
 const char kConflictLine[] = "two different SIM_STATEs for one step";
 
-// Issue 25: without a key, a forged state for step 101 (x = 99) comes
+// Without a key, a forged state for step 101 (x = 99) comes
 // while the sim is at step 100, within the step allowance; the sim's own
 // step 101 comes after it. The first stays first (the writer keeps the
 // first of a step); the second, different, is a conflict, counted and

@@ -95,7 +95,7 @@ TEST(CheckProcess, BrokenRobotIsReportedInBothFiles) {
       << "stderr:\n" << run.err;
 }
 
-// Issue 27: a sensor parameter out of range stops --check at its line.
+// A field sensor's parameter out of range stops --check at its line.
 TEST(CheckProcess, BadSensorParameterIsRefusedAtItsLine) {
   const fs::path world = kSource / "tests/models/broken/robot_imu_negative_noise.xml";
   const fs::path robot = kSource / "tests/models/broken/robots/imu_negative_noise.xml";
@@ -137,7 +137,7 @@ TEST(CheckProcess, PrintParametersShowsTheFileWithTheOverrides) {
   EXPECT_EQ(bad.out, "");
 }
 
-// SimPartner issue 10: values that --check passed and that then made ODE
+// Values that --check once passed and that then made ODE
 // abort the sim. Each is refused by --check itself (exit 2) with the
 // diagnostic at its line naming the allowed range.
 struct CheckRangeCase {
@@ -152,7 +152,7 @@ std::string Transformation(const std::string& x, const std::string& y) {
          "</T13><T20>0</T20><T21>0</T21><T22>1</T22><T23>0</T23></transformation>";
 }
 
-TEST(CheckProcess, Issue10ValuesAreRefusedWithTheirRange) {
+TEST(CheckProcess, ValuesThatAbortedOdeAreRefusedWithTheirRange) {
   const std::string box = "<size><x>1</x><y>1</y><z>1</z></size>";
   const std::string at_rest = Transformation("0", "0.5");
   const std::vector<CheckRangeCase> cases = {

@@ -621,7 +621,7 @@ TEST(ShippedRobots, LegacyPortsAreUniqueAndStableAcrossGenerations) {
       }
     };
     // The original addressed every sensor by port; the sensors that came
-    // after it (issue 27's field sensors, the Camera) have none.
+    // after it (the field sensors, the Camera) have none.
     for (const Sensor& s : r.sensors) {
       if (NeedsRate(s.kind) || s.kind == SensorKind::kCamera)
         EXPECT_EQ(s.port, 0) << s.name;

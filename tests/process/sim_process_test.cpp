@@ -458,7 +458,7 @@ TEST_P(SimProcessEngineTest, StockLcmLoggerAndLogplayerCarryTheStream) {
   player.Wait(std::chrono::milliseconds(5000));
 }
 
-// Issue 28: a wheel rolling onto sand leaves a rut; a listener started a
+// Soil: a wheel rolling onto sand leaves a rut; a listener started a
 // second later asks for the model and gets the ruts so far with it
 // (SIM_SOIL_RUTS), then their changes.
 TEST_F(SimProcessTest, ALateListenerGetsTheRutsWithTheModel) {

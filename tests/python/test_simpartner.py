@@ -1,11 +1,13 @@
 """The simpartner Python module against a real simpartner-sim on the bus
 (udpm, ttl=0, a port of its own) and a real private MariaDB written by a real
-simpartner-logger. Run by ctest with PYTHONPATH at the build's module."""
+simpartner-logger. Run by ctest with the interpreter the module was built
+for and PYTHONPATH at the build's module."""
 import functools
 import math
 import os
 import shutil
 import subprocess
+import sys
 import tempfile
 import time
 import unittest
@@ -56,6 +58,29 @@ def stop(process):
         except subprocess.TimeoutExpired:
             process.kill()
             process.wait()
+
+
+class InterpreterTest(unittest.TestCase):
+    """The module refuses, at import, an interpreter it cannot work in and
+    names the one it was built for (a pyenv python3 first on PATH of the
+    same version loaded it and failed at the first array: no numpy)."""
+
+    def test_ctest_runs_the_interpreter_the_module_was_built_for(self):
+        self.assertEqual(os.path.realpath(simpartner.BUILT_FOR_PYTHON),
+                         os.path.realpath(sys.executable))
+
+    def test_an_interpreter_without_numpy_is_refused_by_name(self):
+        # -S: no site packages, so Debian's numpy is out of reach as it is
+        # for another interpreter; PYTHONPATH still finds the module.
+        done = subprocess.run([sys.executable, "-S", "-c", "import simpartner"],
+                              env=dict(os.environ), capture_output=True, text=True,
+                              timeout=60)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("ImportError: simpartner was built for " + simpartner.BUILT_FOR_PYTHON +
+                      " (Python ", done.stderr)
+        self.assertIn("cannot import numpy, which the module's arrays need "
+                      "(No module named 'numpy'). Run it with " + simpartner.BUILT_FOR_PYTHON,
+                      done.stderr)
 
 
 class BusTest(unittest.TestCase):
@@ -232,8 +257,7 @@ class ExampleTest(unittest.TestCase):
             env.pop("DISPLAY", None)
             out = os.path.join(work, "run.png")
             done = subprocess.run(
-                ["python3" if not os.path.exists("/usr/bin/python3") else "/usr/bin/python3",
-                 SOURCE_DIR + "/examples/drive_and_plot.py", "--lcm-url", url, "--seconds", "3",
+                [sys.executable, SOURCE_DIR + "/examples/drive_and_plot.py", "--lcm-url", url, "--seconds", "3",
                  "--out", out],
                 env=env, capture_output=True, text=True, timeout=240)
             self.assertEqual(done.returncode, 0, done.stderr)
@@ -354,7 +378,7 @@ class ReadmeAndLockStepExampleTest(unittest.TestCase):
              "--environment=" + SOURCE_DIR + "/models/worlds/" + world, "--lcm-url", url]
             + list(extra), stdout=log, stderr=subprocess.STDOUT, env=child_env())
         try:
-            return subprocess.run(["/usr/bin/python3"] + script_args, env=dict(os.environ),
+            return subprocess.run([sys.executable] + script_args, env=dict(os.environ),
                                   capture_output=True, text=True, timeout=240)
         finally:
             stop(sim_process)

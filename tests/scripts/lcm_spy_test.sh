@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/lcm-spy's per-field view and plots (issue 14): under a private
+# scripts/lcm-spy's per-field view and plots: under a private
 # Xvfb, with a real simpartner-sim on its own port (ttl=0), lcm-spy lists
 # SIM_STATE; a double click on that row opens its per-field view, a click
 # on the sparkline of bodies[0].position[0] opens a jchart2d chart of it.

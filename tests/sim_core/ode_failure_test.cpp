@@ -1,6 +1,6 @@
 // Beyond the loader's ranges, ODE's own fatal errors: each value that made
-// ODE abort the sim (SimPartner issue 10) is built here directly as model
-// structs, bypassing the loader's checks, and must end in an EngineError
+// ODE abort the sim (before the loader refused it) is built here directly as
+// model structs, bypassing the loader's checks, and must end in an EngineError
 // naming ODE's message and the bodies, not in abort(), through the engine
 // interface (engine.h) as the sim builds it. Each case runs in a
 // child process (gtest's death-test machinery), so that an abort fails the
@@ -174,7 +174,7 @@ TEST_P(OdeFailure, IsAnEngineErrorNotAnAbort) {
               "ODE failed: .*" + c.during + "(.|\n)*healthy world after: cube at y = 0.5");
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue10Cases, OdeFailure, ::testing::ValuesIn(CrashCases()),
+INSTANTIATE_TEST_SUITE_P(ValuesThatAbortedOde, OdeFailure, ::testing::ValuesIn(CrashCases()),
                          [](const ::testing::TestParamInfo<CrashCase>& info) {
                            return info.param.name;
                          });

@@ -1,4 +1,4 @@
-// The sensor kinds of issue 27 against closed forms, on both engines: an
+// The field sensor kinds against closed forms, on both engines: an
 // IMU at rest reads g up, in free fall 0, on a turntable omega and
 // omega^2 r; noise statistics match the configured densities; encoders
 // count floor(angle cpr / 2 pi); GNSS reads the local position and its

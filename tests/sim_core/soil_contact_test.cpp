@@ -1,4 +1,4 @@
-// A wheel on soft soil inside ODE's step (issue 28): a 50 kg cylinder
+// A wheel on soft soil inside ODE's step: a 50 kg cylinder
 // lowered slowly onto Wong's dry sand comes to rest at the sinkage where
 // Bekker's pressure over its arc carries its weight, computed here apart
 // from the sim (Simpson's rule and bisection), at 0.5, 1 and 2 ms steps.
@@ -262,7 +262,7 @@ RigResult RunRig(const model::SoilParameters& soil, double slip, double omega,
   return out;
 }
 
-// Issue 28 (c) and (d): drawbar pull and sinkage of the rig's wheel at
+// Drawbar pull and sinkage of the rig's wheel at
 // slip 0.05 to 0.6 against Wong's rigid-wheel integrals for the same load
 // (soil_closed_forms.h), and the same figures at 0.5 and 2 ms steps.
 // The sim sums 64 points of the arc and remembers the ruts in 2 mm cells:

@@ -157,7 +157,7 @@ TEST(RollingWheel, DrawbarPullAgainstSlipIsWongsIntegral) {
   }
 }
 
-// Issue 28 (f): a second pass over the same track sinks less. The first
+// Multipass: a second pass over the same track sinks less. The first
 // wheel sank z0 into untouched soil; the track it leaves is flat along its
 // length with its floor at z0 - p(z0) / k_u (the rebound). A second wheel
 // with the same load meets the stiff reloading line down to z0 and fresh

@@ -1,6 +1,6 @@
 // The validation experiments, shortened where they run for minutes (fewer
 // laps, a shorter scan, three gait cycles, the test track's planks alone),
-// with the team's tolerances from issue 5. Targets are written here
+// with the team's tolerances. Targets are written here
 // from SPEC 8 and from physics, never taken from sp_validate.
 //
 // Where a SPEC 8 target is physically wrong (docs/validation explains
@@ -127,7 +127,7 @@ TEST(Validation, CircleEqualSpeedsIsotropicSlidesOutsideTheSteeringsCircle) {
 }
 
 // 1.00 / 1.10 m/s with the thesis's friction: tighter than the thesis's own
-// 0.03 % at the point it measured (issue 13); the world CFM on the friction
+// 0.03 % at the point it measured; the world CFM on the friction
 // rows made this +0.11 %.
 TEST(Validation, CircleDifferentialSpeedsWithTheThesisFrictionWithinThreeHundredthsOfAPercent) {
   const ExperimentResult r = RunNamed("circle_differential");
@@ -171,7 +171,7 @@ TEST(Validation, PoleTaskSetsThePoleOnTheSecondPair) {
 
 // gen4 is calibrated on the mean of the real robot's four runs (SPEC 8's
 // loads). The runs' cross weights (W2 + W4) - (W1 + W3) were 237, 219, 182
-// and 172 N (issue 13): the mean of four is known to s / 2 on the cross
+// and 172 N (the team's records of the runs): the mean of four is known to s / 2 on the cross
 // weight and s / 8 on a wheel (a change D of the cross weight moves each
 // wheel by D / 4), s the runs' sample standard deviation (30.6 N). The
 // calibration must hold in the sim within that; SPEC 8 asks for 2 %.
@@ -408,7 +408,7 @@ TEST(Validation, PassivePendulumCreatesNoEnergy) {
   EXPECT_NEAR(r.Measured("period"), 2 * M_PI * std::sqrt(2.0 / (3 * kG)) * 1.18034, 0.005 * 1.93);
 }
 
-// Issue 28's soil experiments (shortened: fewer soils, loads and slips).
+// The soil experiments (shortened: fewer soils, loads and slips).
 // Targets from the shipped library's figures (models/soils/wong2008.xml)
 // and the closed forms written out here.
 TEST(Validation, WheelOnDrySandRestsAtBekkersSinkage) {
@@ -468,7 +468,7 @@ TEST(Validation, SecondPassInTheRutSinksLess) {
   EXPECT_TRUE(r.Passed());
 }
 
-// Issue 28 (e), quick: gen3 on the shipped dry sand. The rear wheels run
+// soil_robot, quick: gen3 on the shipped dry sand. The rear wheels run
 // in the front wheels' ruts, so they sink to about the ruts' depth, not to
 // a fresh wheel's (25.5 mm at their load, the closed form), and the robot
 // goes slower than on hard ground.
@@ -482,7 +482,7 @@ TEST(Validation, Gen3OnSandMatchesTheSingleWheelInItsRuts) {
   EXPECT_TRUE(r.Passed());
 }
 
-// Issue 27: the sensor rig's closed forms on both engines (quick: 10 s
+// The sensor rig's closed forms on both engines (quick: 10 s
 // turning, 1,000 IMU samples, the statistical tolerances widened to match).
 TEST(Validation, SensorRigMeetsItsClosedFormsOnBothEngines) {
   for (const char* engine : {"ode", "mujoco"}) {

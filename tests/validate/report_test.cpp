@@ -347,6 +347,11 @@ TEST(ValidateCommandLine, ListsEveryExperimentOfSpec8AndOurs) {
     EXPECT_NE(out.find(std::string(name) + (std::string(name) == "skid" ? " (slow)" : "")),
               std::string::npos)
         << name;
+  // Titles say what an experiment is, not which tracker entry asked for it.
+  EXPECT_EQ(out.find("Issue"), std::string::npos) << out;
+  EXPECT_NE(out.find("soil_sinkage"), std::string::npos);
+  EXPECT_NE(out.find("On soil: a rigid wheel's static sinkage"), std::string::npos) << out;
+  EXPECT_NE(out.find("Field sensors: IMU, encoder, lidar and GNSS"), std::string::npos) << out;
 }
 
 TEST(ValidateCommandLine, UnknownExperimentIsNamed) {

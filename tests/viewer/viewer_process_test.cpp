@@ -590,7 +590,7 @@ TEST_F(ViewerProcessTest, KeysPauseStepResetAndResumeTheSim) {
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
 }
 
-// The stock LCM tools (issue 14): lcm-logger records 3 s of a real sim;
+// The stock LCM tools: lcm-logger records 3 s of a real sim;
 // after the sim is gone, lcm-logplayer replays the recording into a fresh
 // viewer, which learns the model from it and draws the replayed states
 // where they say.

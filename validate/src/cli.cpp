@@ -108,11 +108,12 @@ CommandLineSpec ValidateCommandLine() {
   CommandLineSpec spec;
   spec.program = "simpartner-validate";
   spec.summary =
-      "Reruns the original's validation experiments (SPEC 8), two more and issue 28's on soil "
-      "through the sim library, headless and as fast as possible, and compares each with its "
-      "analytic or real-robot target: one line per check (experiment, engine when there are "
-      "several, what, measured, target, tolerance, PASS/FAIL; NOT APPLICABLE on an engine that "
-      "cannot run it); exit status 1 if any check fails on any engine it ran.";
+      "Reruns the original's validation experiments (SPEC 8), ours beyond them, the soil "
+      "experiments and the field sensors' rig through the sim library, headless and as fast "
+      "as possible, and compares each with its analytic or real-robot target: one line per "
+      "check (experiment, engine when there are several, what, measured, target, tolerance, "
+      "PASS/FAIL; NOT APPLICABLE on an engine that cannot run it); exit status 1 if any check "
+      "fails on any engine it ran.";
   spec.options = {
       Text("only", "NAME[,NAME]", "run only these experiments (see --list); may be repeated"),
       Switch("fast", "skip the slow experiments (long gaits, test track)"),

@@ -17,7 +17,7 @@ namespace {
 // of its four test runs (SPEC 8's notes), which gen4 is calibrated on.
 constexpr double kRealWheelLoads[4] = {579.15, 774.90, 669.12, 676.03};
 // The cross weight (W2 + W4) - (W1 + W3) of each of the four runs [N]
-// (issue 13; SPEC 8 gives only the means): what varies between runs of
+// (the team's records; SPEC 8 gives only the means): what varies between runs of
 // the same robot, held at slightly different leg lengths each time.
 constexpr double kRunCrossWeights[4] = {237.0, 219.0, 182.0, 172.0};
 
@@ -144,7 +144,7 @@ ExperimentResult Gen4StaticLoads(const Context& context) {
       row("diagonal 1 + 3", pair(load, 0, 2), pair(kRealWheelLoads, 0, 2)) +
       row("diagonal 2 + 4", pair(load, 1, 3), pair(kRealWheelLoads, 1, 3)) +
       "\n**Against each real run.** The runs differ in their cross weight "
-      "(W2 + W4) - (W1 + W3) (issue 13; SPEC 8 gives only the means). Simulated: " +
+      "(W2 + W4) - (W1 + W3) (the team's records; SPEC 8 gives only the means). Simulated: " +
       FormatFixed(cross, 1) + " N.\n\n"
       "| run | cross weight [N] | simulated - run [N] | in run-to-run SDs |\n|---|---|---|---|\n" +
       run_rows +

@@ -1,4 +1,4 @@
-// Issue 27's field sensors against closed forms, on any engine: the
+// The field sensors against closed forms, on any engine: the
 // shipped sensor rig (models/worlds/sensor_rig.xml) at rest, then its
 // table turned at 2 rad/s (sequences/sensor_rig_spin.xml).
 #include <algorithm>

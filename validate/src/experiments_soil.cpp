@@ -1,4 +1,4 @@
-// Issue 28's experiments on soil: a single rigid wheel (soil_rig.h) on
+// The experiments on soil: a single rigid wheel (soil_rig.h) on
 // soils of the shipped library, against Wong's rigid-wheel closed forms
 // (soil_closed_forms.h, computed apart from the sim's code). ODE only: on
 // an engine without soil each reports what the engine lacks.

@@ -1,4 +1,4 @@
-// Issue 28 (e): WorkPartner gen3 driven straight on the shipped soil
+// WorkPartner gen3 driven straight on the shipped soil
 // worlds (dry sand, snow) and on hard ground, against the single rigid
 // wheel's closed forms (soil_closed_forms.h) at the loads the robot puts
 // on its wheels. ODE only: on an engine without soil it reports so.

@@ -1,4 +1,4 @@
-// The parameters of the sensor kinds added for issue 27 (Imu, Gnss,
+// The parameters of the field sensor kinds (Imu, Gnss,
 // Encoder, Lidar, Contact): one table per kind gives each parameter's name
 // in the robot file, unit, default and accepted range. The loader checks
 // files against it, SIM_MODEL carries the values in its order

@@ -1,4 +1,4 @@
-// Wheel-soil mechanics (issue 28, docs/soil.md): the stresses a rigid
+// Wheel-soil mechanics (docs/soil.md): the stresses a rigid
 // wheel meets on soft soil, from the state of this step.
 //
 // Along the wheel's rim in its mid-plane, from where it enters the soil

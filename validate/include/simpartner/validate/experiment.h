@@ -1,7 +1,7 @@
-// The validation experiments of SPEC 8, the two beyond the original and
-// issue 28's on soil: each runs a shipped world (the soil rigs: a world of
-// its own beside them) through the sim library (sp_sim_core) exactly
-// as simpartner-sim would, drives the robot with timed commands and
+// The validation experiments of SPEC 8, ours beyond them, the soil
+// experiments and the field sensors' rig: each runs a shipped world (the
+// soil rigs: a world of its own beside them) through the sim library
+// (sp_sim_core) exactly as simpartner-sim would, drives the robot with timed commands and
 // compares what happened with the analytic or real-robot target.
 #pragma once
 
@@ -98,15 +98,15 @@ ExperimentResult Gen4StaticLoads(const Context& context);
 ExperimentResult TestTrack(const Context& context);
 ExperimentResult RollingSphere(const Context& context);
 ExperimentResult PendulumEnergy(const Context& context);
-// Issue 28's single wheel on soil (experiments_soil.cpp), ODE only.
+// A single rigid wheel on soil (experiments_soil.cpp), ODE only.
 ExperimentResult SoilSinkage(const Context& context);
 ExperimentResult SoilCompaction(const Context& context);
 ExperimentResult SoilTraction(const Context& context);
 ExperimentResult SoilStepSize(const Context& context);
 ExperimentResult SoilMultiPass(const Context& context);
-// Issue 28 (e): gen3 on the shipped soil worlds (experiments_soil_robot.cpp).
+// gen3 on the shipped soil worlds (experiments_soil_robot.cpp).
 ExperimentResult SoilRobot(const Context& context);
-// Issue 27's field sensors on the sensor rig (experiments_sensors.cpp).
+// The field sensors on the sensor rig (experiments_sensors.cpp).
 ExperimentResult Sensors(const Context& context);
 
 }  // namespace simpartner::validate

@@ -1,4 +1,4 @@
-// The single-wheel rigs of terramechanics (issue 28), as worlds written
+// The single-wheel rigs of terramechanics, as worlds written
 // here, read by the loader beside the shipped worlds (so that their
 // <soil library=...> is the shipped models/soils/wong2008.xml) and run
 // through the sim library. The wheel is a Cylinder of radius 0.3 m and
