@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "simpartner/rotation_between.h"
+
 namespace simpartner::model {
 
 const char* ToString(GeometryKind kind) {
@@ -173,7 +175,7 @@ Eigen::Isometry3d World::HeightfieldPose() const {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   if (!heightfield) return pose;
   pose.linear() =
-      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), Up()).toRotationMatrix();
+      RotationBetween(Eigen::Vector3d::UnitY(), Up()).toRotationMatrix();
   pose.translation() = heightfield->position;
   return pose;
 }

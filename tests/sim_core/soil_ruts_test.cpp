@@ -116,9 +116,8 @@ const Eigen::Vector3d kFieldAt(2.0, 0.5, -1.5);
 const Eigen::Vector3d kWheelOnField(0.7, 0.0, -0.4);  // field frame; y from the field
 
 Eigen::Matrix3d FieldTurn() {
-  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(),
-                                            Eigen::Vector3d(-std::sin(kTilt), std::cos(kTilt), 0))
-      .toRotationMatrix();
+  // y turned to (-sin, cos, 0): a turn by kTilt about z.
+  return Eigen::AngleAxisd(kTilt, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
 
 // The field's height at (x, z) of its frame, worked out from its samples.

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <functional>
 
+#include "simpartner/rotation_between.h"
+
 namespace simpartner::viewer {
 namespace {
 
@@ -28,8 +30,7 @@ void FlatQuad(Mesh* m, const V3& a, const V3& b, const V3& c, const V3& d) {
 
 // Rotation taking y to `up` (as the sim turns the heightfield).
 Eigen::Matrix3d UpRotation(const Eigen::Vector3d& up) {
-  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), up.normalized())
-      .toRotationMatrix();
+  return RotationBetween(Eigen::Vector3d::UnitY(), up).toRotationMatrix();
 }
 
 // Orthonormal in-plane axes (u, v) and unit normal n of a*x + b*y + c*z = d.
