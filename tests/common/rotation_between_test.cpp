@@ -35,7 +35,8 @@ TEST(RotationBetween, SameDirectionIsNoTurn) {
 
 // Gravity along +y (a world upside down): a half turn about a normal of y.
 TEST(RotationBetween, OppositeDirectionsAreAHalfTurnAboutANormal) {
-  for (const Eigen::Vector3d& from : {Eigen::Vector3d::UnitY(), Eigen::Vector3d(0.2, -0.5, 0.8)}) {
+  const Eigen::Vector3d froms[] = {Eigen::Vector3d::UnitY(), Eigen::Vector3d(0.2, -0.5, 0.8)};
+  for (const Eigen::Vector3d& from : froms) {
     const Eigen::Quaterniond q = RotationBetween(from, -from);
     EXPECT_NEAR((q * from.normalized() + from.normalized()).norm(), 0.0, 1e-12);
     EXPECT_NEAR(std::abs(q.w()), 0.0, 1e-12);
