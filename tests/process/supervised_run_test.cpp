@@ -333,11 +333,12 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
     const Clock::time_point killed = Clock::now();
     const int64_t killed_us = WallMicros();
     ASSERT_EQ(::kill(old_pid, SIGKILL), 0);
-    // Restarted by the launcher at once (it had run more than 3 s), then
-    // back within 2 s of the kill: it says it works again (the viewer and
-    // teleop learned the model, the logger logs, the sequencer plays).
-    // Measured in the sanitized tree beside the sim, viewer, logger and
-    // server on 2 cores: 0.3-1.2 s; the figures printed are the measurement.
+    // Restarted by the launcher at once (it had run more than 3 s; its line
+    // for the death says so, below), then it says it works again (the
+    // viewer and teleop learned the model, the logger logs, the sequencer
+    // plays). How soon is a figure, printed, not a bound: the sanitized
+    // viewer's start-up alone took 4.7 s with the other core busy, where it
+    // takes 0.3-1.2 s on a quiet machine.
     ASSERT_TRUE(bus.Until([&] { return AnnouncedPid(RunLog(), v.name) != old_pid; }, 10)) << RunLog();
     const double restarted_after = SecondsSince(killed);
     ASSERT_TRUE(bus.Until([&] { return Count(Log(v.name), v.back_sign) > signs_before; }, 10))
@@ -345,7 +346,6 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
     const double back_after = SecondsSince(killed);
     const pid_t new_pid = AnnouncedPid(RunLog(), v.name);
     EXPECT_TRUE(Exists(new_pid));
-    EXPECT_LT(restarted_after, 2.0) << RunLog();
     // A crash mid-run is restarted without the start-up back-off: the
     // launcher's line for this death says so.
     {
@@ -355,7 +355,6 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
       const std::string line = log.substr(death, log.find('\n', death) - death);
       EXPECT_NE(line.find("; restarting now"), std::string::npos) << line;
     }
-    EXPECT_LT(back_after, 2.0) << RunLog();
     double rows_after = -1;
     if (v.name == "logger") {
       // Rows flow again (the model is re-announced every second).
