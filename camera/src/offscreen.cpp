@@ -1,9 +1,8 @@
 #include "simpartner/camera/offscreen.h"
 
 // Framebuffer objects (GL 3.0, ARB_framebuffer_object) are called
-// directly: libGL (glvnd) exports them, and llvmpipe and every desktop
-// driver have them.
-#define GL_GLEXT_PROTOTYPES 1
+// directly (GL_GLEXT_PROTOTYPES, sp_render's definition): libGL (glvnd)
+// exports them, and llvmpipe and every desktop driver have them.
 #include <SDL2/SDL_opengl.h>
 
 #include <stdexcept>

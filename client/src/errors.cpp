@@ -5,7 +5,7 @@
 namespace simpartner::client {
 namespace {
 
-std::string Seconds(double seconds) {
+std::string SecondsText(double seconds) {
   char text[32];
   std::snprintf(text, sizeof text, "%g s", seconds);
   return text;
@@ -41,13 +41,13 @@ Refused::Refused(std::string target, std::string reason, int64_t request_id)
       request_id_(request_id) {}
 
 Timeout::Timeout(std::string awaited, double seconds, std::string url, std::string hint)
-    : ClientError("no " + awaited + " within " + Seconds(seconds) + " on " + url +
+    : ClientError("no " + awaited + " within " + SecondsText(seconds) + " on " + url +
                   (hint.empty() ? "" : "; " + hint)),
       awaited_(std::move(awaited)),
       seconds_(seconds) {}
 
 NoSim::NoSim(std::string url, double seconds)
-    : ClientError(seconds > 0 ? "no sim on " + url + ": no SIM_MODEL within " + Seconds(seconds) +
+    : ClientError(seconds > 0 ? "no sim on " + url + ": no SIM_MODEL within " + SecondsText(seconds) +
                                     " (is simpartner-sim running with this --lcm-url?)"
                               : "no model learned from " + url +
                                     " yet (the client was made with learn_model = false: "

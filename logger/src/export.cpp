@@ -15,10 +15,6 @@
 namespace simpartner::logger {
 namespace {
 
-// Columns of JointPose after the name: anchor x, y, z, then angle, angle2,
-// angle3 (indices 3..5); with stored continuous angles three more at the end.
-constexpr size_t kJointAngleColumn = 3;
-constexpr size_t kJointNumbers = 15;
 
 void CheckRequest(const ExportRequest& request) {
   if (request.every < 1)
@@ -112,13 +108,13 @@ class StepPipeline {
 
  private:
   void Unwrap(ExportRow* row) {
-    if (row->values.size() > kJointNumbers) {
+    if (row->values.size() > kJointColumns) {
       // The stored continuous angle (NaN where a row has none).
-      const bool stored = !std::isnan(row->values[kJointNumbers]);
+      const bool stored = !std::isnan(row->values[kJointColumns]);
       if (stored)
-        std::copy(row->values.begin() + kJointNumbers, row->values.begin() + kJointNumbers + 3,
+        std::copy(row->values.begin() + kJointColumns, row->values.begin() + kJointColumns + 3,
                   row->values.begin() + kJointAngleColumn);
-      row->values.resize(kJointNumbers);
+      row->values.resize(kJointColumns);
       if (stored) return;
     }
     unwrappers_[row->name].Unwrap(&row->values[kJointAngleColumn], rotational_axes_[row->name]);
@@ -220,8 +216,8 @@ uint32_t ReadExport(DbConnection* db, const ExportRequest& request,
     conditions += std::string(joints ? " AND j.name = " : " AND b.name = ") + Quoted(request.name);
   const size_t numbers = request.kind == ExportKind::kPoses    ? 7
                          : request.kind == ExportKind::kForces ? 6
-                         : stored_continuous                   ? kJointNumbers + 3
-                                                               : kJointNumbers;
+                         : stored_continuous                   ? kJointColumns + 3
+                                                               : kJointColumns;
   StepPipeline pipeline(request, std::move(rotational_axes), sink);
   ReadSteps(db, ExportSql(request.kind, std::to_string(simulation), conditions, stored_continuous),
             numbers, &pipeline);

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "joint_unwrap.h"
+#include "simpartner/logger/export.h"
 #include "simpartner/logger/simulations.h"
 #include "simpartner/text.h"
 #include "step_table_fetch.h"
@@ -15,7 +16,6 @@ namespace simpartner::logger {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr size_t kPoseColumns = 7, kJointColumns = 15, kJointAngleColumn = 3;
 
 // A body or joint of the simulation.
 struct Part {

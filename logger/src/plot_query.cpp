@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "simpartner/edit_distance.h"
+#include "simpartner/logger/export.h"
 #include "simpartner/logger/logged_run.h"
 #include "simpartner/logger/simulations.h"
 #include "simpartner/text.h"
@@ -14,7 +15,6 @@
 namespace simpartner::logger {
 namespace {
 
-constexpr size_t kPoseColumns = 7, kJointColumns = 15, kForceColumns = 6;
 
 // Wheel1, wheel_left ...: what wheel-forces draws by default.
 bool IsWheelName(const std::string& name) {

@@ -18,7 +18,7 @@ namespace {
 constexpr double kTorsionalFriction = 1e-9;  // [m]
 constexpr double kLeastFriction = 1e-9;
 
-Eigen::Vector3d V(const mjtNum* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+Eigen::Vector3d Vec(const mjtNum* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
 
 }  // namespace
 
@@ -42,8 +42,8 @@ void MujocoWorld::StepLaw(double erp, double cfm, double inverse_inertia, double
 Eigen::Vector3d MujocoWorld::PointVelocity(int mj_body, const Eigen::Vector3d& point) const {
   if (mj_body <= 0) return Eigen::Vector3d::Zero();
   const mjtNum* cvel = d_->cvel + 6 * mj_body;  // [angular, linear] at the root's subtree com
-  const Eigen::Vector3d at = V(d_->subtree_com + 3 * m_->body_rootid[mj_body]);
-  return V(cvel + 3) + V(cvel).cross(point - at);
+  const Eigen::Vector3d at = Vec(d_->subtree_com + 3 * m_->body_rootid[mj_body]);
+  return Vec(cvel + 3) + Vec(cvel).cross(point - at);
 }
 
 std::optional<Eigen::Vector3d> MujocoWorld::WorldSpinAxis(int geom) const {
@@ -77,7 +77,7 @@ void MujocoWorld::SetUpContacts() {
     // without one is isotropic, mu against the slip (Coulomb's cone, which
     // needs no frame of its own when mu2 = mu).
     const std::optional<Eigen::Vector3d> rolling = RollingDirection(
-        combined, V(contact.frame), WorldSpinAxis(contact.geom1), WorldSpinAxis(contact.geom2));
+        combined, Vec(contact.frame), WorldSpinAxis(contact.geom1), WorldSpinAxis(contact.geom2));
     if (rolling) contact_rolling_[static_cast<size_t>(i)] = *rolling;
     const bool rolls = rolling && combined.mu2 != combined.mu;
     if (!rolls) combined.mu2 = combined.mu;
@@ -106,7 +106,7 @@ void MujocoWorld::SetUpFriction(int index, const model::SurfaceProperties& combi
                                 const Eigen::Vector3d* rolling) {
   mjContact& contact = d_->contact[index];
   if (rolling != nullptr) {
-    const Eigen::Vector3d normal = V(contact.frame);
+    const Eigen::Vector3d normal = Vec(contact.frame);
     const Eigen::Vector3d across = normal.cross(*rolling);
     for (int k = 0; k < 3; ++k) {
       contact.frame[3 + k] = (*rolling)[k];
@@ -133,7 +133,7 @@ MujocoWorld::Slide MujocoWorld::Slides(const mjContact& contact,
   const int nv = m_->nv;
   const Jacobian& jac = RelativeJacobian(contact);
   const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
-  const Eigen::Vector3d normal = V(contact.frame);
+  const Eigen::Vector3d normal = Vec(contact.frame);
   // The slip the step would end with if friction did nothing: the smooth
   // forces' (motors, gravity, applied) acceleration added to today's.
   Eigen::Vector3d slip = jac * qvel + params_.stepsize * (jac * qacc);
@@ -165,7 +165,7 @@ MujocoWorld::Slide MujocoWorld::SlidesBox(mjContact* contact,
   const Eigen::Vector3d slip = jac * qvel + params_.stepsize * (jac * qacc);
   const double mu[2] = {surface.mu, surface.mu2};
   bool slides[2] = {false, false};
-  Eigen::Vector3d direction[2] = {V(contact->frame + 3), V(contact->frame + 6)};
+  Eigen::Vector3d direction[2] = {Vec(contact->frame + 3), Vec(contact->frame + 6)};
   for (int k = 0; k < 2; ++k) {
     const double v = slip.dot(direction[k]);
     if (std::abs(v) <= kSlipDirectionSpeed) continue;
@@ -200,7 +200,7 @@ bool MujocoWorld::Rolls(const mjContact& contact, const model::SurfaceProperties
   const int nv = m_->nv;
   const Jacobian& jac = RelativeJacobian(contact, /*rotation=*/true);
   const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
-  const Eigen::Vector3d normal = V(contact.frame);
+  const Eigen::Vector3d normal = Vec(contact.frame);
   Eigen::Vector3d turn = jac * qvel + params_.stepsize * (jac * qacc);
   turn -= turn.dot(normal) * normal;
   const double speed = turn.norm();
@@ -256,7 +256,7 @@ std::optional<double> MujocoWorld::LastLoad(const mjContact& contact) const {
   // The nearest point of the same pair at the last step (a few per pair).
   std::optional<double> load;
   double nearest = INFINITY;
-  const Eigen::Vector3d at = V(contact.pos);
+  const Eigen::Vector3d at = Vec(contact.pos);
   for (const LastLoad_& last : last_loads_) {
     if (last.geom1 != contact.geom1 || last.geom2 != contact.geom2) continue;
     const double distance = (last.position - at).squaredNorm();

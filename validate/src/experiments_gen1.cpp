@@ -12,7 +12,6 @@
 namespace simpartner::validate {
 namespace {
 
-constexpr double kWheelRadius = 0.235;  // SPEC 7
 constexpr double kAxleDistance = 0.6;   // SPEC 7: a, Turner joint to each axle
 constexpr double kWheelWidth = 0.14;    // workpartner_gen1.xml: the wheels' cylinder length
 

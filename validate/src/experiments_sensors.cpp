@@ -15,7 +15,6 @@
 namespace simpartner::validate {
 namespace {
 
-constexpr double kG = 9.81;
 constexpr double kSpinStart = 1.0, kOmega = 2.0;  // sensor_rig_spin.xml
 constexpr double kImuRadius = 0.8;                // TableImu, sensor_turntable.xml
 constexpr double kCountsPerTurn = 2048;           // SpindleEncoder
@@ -111,7 +110,7 @@ ExperimentResult Sensors(const Context& context) {
   // IMU differentiates its velocity over a sample (10 ms): the chord
   // shortens omega^2 r by (omega dt)^2 / 6 = 7e-5 of it.
   result.checks.push_back(Absolute("TableImu at rest: specific force up vs g",
-                                   Mean(Column(table, 1, 0.2, kSpinStart - 0.1)), kG, 1e-3,
+                                   Mean(Column(table, 1, 0.2, kSpinStart - 0.1)), kGravity, 1e-3,
                                    "m/s^2"));
   const double late = end - 2.0;
   result.checks.push_back(Relative("TableImu turning: rate about the spindle vs omega",

@@ -21,7 +21,7 @@ namespace simpartner::validate {
 namespace {
 
 // gen3's wheels (workpartner_gen3.xml) and the sequence's spin.
-constexpr double kWheelRadius = 0.235, kWheelWidth = 0.14, kSpin = 1.5;
+constexpr double kWheelWidth = 0.14, kSpin = 1.5;
 constexpr double kDriveStart = 2.0;  // gen3_soil_drive.xml
 // The single-wheel rig's agreement with the closed forms (experiments_soil.cpp,
 // soil_traction): the pull within 0.5 % of the load, the sinkage within 0.5 %.

@@ -5,12 +5,11 @@
 
 #include "simpartner/diagnostic.h"
 #include "simpartner/text.h"
+#include "simpartner/validate/experiment.h"
 #include "simpartner/validate/sim_run.h"
 
 namespace simpartner::validate {
 namespace {
-
-constexpr double kWheelRadius = 0.235;  // SPEC 7
 
 // The gait's bodies in the run.
 struct GaitBodies {

@@ -1,7 +1,7 @@
 #include "simpartner/viewer/renderer.h"
 
-// Buffer objects (GL 1.5) are called directly: libGL (glvnd) exports them.
-#define GL_GLEXT_PROTOTYPES 1
+// Buffer objects (GL 1.5) are called directly (GL_GLEXT_PROTOTYPES, this
+// library's definition): libGL (glvnd) exports them.
 #include <SDL2/SDL_opengl.h>
 
 #include <algorithm>

@@ -17,6 +17,13 @@ namespace simpartner::logger {
 
 enum class ExportKind { kPoses, kForces, kJoints };
 
+// How many numbers a body's pose, a body's force and a joint's state have
+// (ExportColumns after time, step and name), and where a joint's angles
+// start among its numbers (after its anchor x, y, z). A joint read with
+// its stored continuous angles has three more at the end.
+inline constexpr size_t kPoseColumns = 7, kForceColumns = 6, kJointColumns = 15;
+inline constexpr size_t kJointAngleColumn = 3;
+
 struct ExportRequest {
   ExportKind kind = ExportKind::kPoses;
   // Simulation.simulationID, "last" (the newest) or "running" (the newest

@@ -16,6 +16,11 @@
 
 namespace simpartner::validate {
 
+// Gravity as the shipped worlds give it [m/s^2], and WorkPartner's wheel
+// radius on every generation (SPEC 7) [m].
+inline constexpr double kGravity = 9.81;
+inline constexpr double kWheelRadius = 0.235;
+
 // Wall time of an experiment's sim steps: Simulation::Step alone, without
 // the analysis between the steps.
 struct StepTiming {
