@@ -3,13 +3,14 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "simpartner/child_process.h"
 
 namespace simpartner::logger {
 
-PrivateServer::PrivateServer(std::string script, std::string dir, bool remove_dir)
-    : script_(std::move(script)), dir_(std::move(dir)), remove_dir_(remove_dir) {
+PrivateServer::PrivateServer(std::string script, std::string dir, bool remove_dir, std::string seed)
+    : script_(std::move(script)), dir_(std::move(dir)), remove_dir_(remove_dir), seed_(std::move(seed)) {
   std::filesystem::create_directories(dir_);
 }
 
@@ -27,7 +28,9 @@ PrivateServer::~PrivateServer() {
 
 void PrivateServer::RunScript(const std::string& command) {
   const std::string log = dir_ + "/script-" + command + ".log";
-  ChildProcess child({"/bin/bash", script_, command, "--datadir", dir_}, log);
+  std::vector<std::string> argv = {"/bin/bash", script_, command, "--datadir", dir_};
+  if (command == "start" && !seed_.empty()) argv.insert(argv.end(), {"--seed", seed_});
+  ChildProcess child(argv, log);
   const std::optional<int> status = child.Wait(std::chrono::seconds(120));
   if (status == 0) return;
   std::ifstream in(log);

@@ -12,12 +12,13 @@
 #include <sstream>
 #include <thread>
 
+#include "../support/mariadb_seed.h"
 #include "../support/processes.h"
-#include "simpartner/child_process.h"
 #include "../support/programs.h"
 #include "../support/slurm.h"
 #include "../support/test_dir.h"
 #include "../support/text_file.h"
+#include "simpartner/child_process.h"
 #include "simpartner/logger/db.h"
 #include "simpartner/logger/private_server.h"
 
@@ -130,7 +131,7 @@ TEST_F(BatchProcessTest, AFailedRunIsReportedAndTheOthersFinish) {
 
 TEST_F(BatchProcessTest, EveryRunIsLoggedIntoOneDatabaseWithItsValues) {
   logger::PrivateServer server(test_support::SourceDir() + "/scripts/mariadb",
-                               (dir_ / "db").string(), false);
+                               (dir_ / "db").string(), false, test_support::MariaDbSeed());
   server.Start();
   const std::string file = Write("logged.xml",
       "  <world>gen1_flat.xml</world>\n  <duration>1</duration>\n"
@@ -201,7 +202,7 @@ TEST_F(BatchProcessTest, OnSlurmTheRunsAreTheRunsRunHere) {
   ASSERT_EQ(here.status, 0) << here.output;
   test_support::PrivateSlurm slurm(dir_ / "slurm");
   logger::PrivateServer server(test_support::SourceDir() + "/scripts/mariadb",
-                               (dir_ / "db").string(), false);
+                               (dir_ / "db").string(), false, test_support::MariaDbSeed());
   server.Start();
   const test_support::ProgramRun there =
       Batch({file, "--db-options", server.logger_options(), "--slurm", "--results",

@@ -17,6 +17,7 @@
 
 #include "../sim_core/test_worlds.h"
 #include "../support/encode.h"
+#include "../support/mariadb_seed.h"
 #include "../support/test_dir.h"
 #include "simpartner/logger/db.h"
 #include "simpartner/logger/private_server.h"
@@ -91,7 +92,7 @@ class ServerTest : public ::testing::Test {
     // Short: the server's socket lives under it (108 bytes at most).
     dir_ = test_support::FreshTestDir("sp_db_", 24);
     server_ = std::make_unique<PrivateServer>(std::string(SP_SOURCE_DIR) + "/scripts/mariadb",
-                                              (dir_ / "db").string(), false);
+                                              (dir_ / "db").string(), false, test_support::MariaDbSeed());
     server_->Start();
   }
   void TearDown() override {

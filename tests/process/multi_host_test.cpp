@@ -23,6 +23,7 @@
 #include <thread>
 
 #include "../support/bus_listener.h"
+#include "../support/mariadb_seed.h"
 #include "../support/netns.h"
 #include "../support/processes.h"
 #include "../support/programs.h"
@@ -131,7 +132,8 @@ TEST_F(MultiHostTest, ThreeHostsWorkAndALinkDownIsReportedAndRecovered) {
   const std::string url = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=1";
 
   // MariaDB on the logger host (socket only, in the test's directory).
-  server_ = std::make_unique<logger::PrivateServer>(SourceDir() + "/scripts/mariadb", (dir_ / "db").string(), false);
+  server_ = std::make_unique<logger::PrivateServer>(SourceDir() + "/scripts/mariadb", (dir_ / "db").string(), false,
+                                                    test_support::MariaDbSeed());
   {
     test_support::ScopedNetns on_logger_host(lan->Namespace("logger"));
     server_->Start();

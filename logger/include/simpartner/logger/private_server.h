@@ -12,8 +12,10 @@ namespace simpartner::logger {
 class PrivateServer {
  public:
   // script: path of scripts/mariadb. dir: created if missing; with
-  // remove_dir the destructor deletes it after stopping the server.
-  PrivateServer(std::string script, std::string dir, bool remove_dir);
+  // remove_dir the destructor deletes it after stopping the server. seed:
+  // when not empty, a new data directory is a copy of the one a server
+  // left there (scripts/mariadb start --seed), not made from nothing.
+  PrivateServer(std::string script, std::string dir, bool remove_dir, std::string seed = {});
   PrivateServer(const PrivateServer&) = delete;
   PrivateServer& operator=(const PrivateServer&) = delete;
   ~PrivateServer();
@@ -38,6 +40,7 @@ class PrivateServer {
   std::string script_;
   std::string dir_;
   bool remove_dir_;
+  std::string seed_;
   bool started_ = false;
 };
 

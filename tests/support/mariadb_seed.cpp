@@ -1,0 +1,84 @@
+#include "mariadb_seed.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "programs.h"
+#include "simpartner/child_process.h"
+
+namespace simpartner::test_support {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string ReadAll(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs argv to its end; throws with its output when it fails.
+void RunToEnd(const std::vector<std::string>& argv, const fs::path& log) {
+  ChildProcess child(argv, log.string());
+  const std::optional<int> status = child.Wait(std::chrono::seconds(120));
+  if (status == 0) return;
+  std::string command;
+  for (const std::string& a : argv) command += (command.empty() ? "" : " ") + a;
+  throw std::runtime_error("MariaDbSeed: '" + command + "' failed (" +
+                           (status ? "exit " + std::to_string(*status) : std::string("timeout")) +
+                           "): " + ReadAll(log));
+}
+
+// Holds an exclusive lock on a file while it lives.
+class FileLock {
+ public:
+  explicit FileLock(const fs::path& path) : fd_(::open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644)) {
+    if (fd_ < 0 || ::flock(fd_, LOCK_EX) != 0)
+      throw std::runtime_error("MariaDbSeed: cannot lock " + path.string());
+  }
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+  ~FileLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+ private:
+  int fd_;
+};
+
+}  // namespace
+
+std::string MariaDbSeed() {
+  const std::string script = SourceDir() + "/scripts/mariadb";
+  const fs::path seed = fs::path(BinaryDir()) / "tests" / "mariadb-seed";
+  // What the seed was made by: another script may make another server.
+  const std::string maker = std::to_string(std::hash<std::string>{}(ReadAll(script)));
+  FileLock lock(seed.string() + ".lock");
+  if (fs::exists(seed / "data" / "mysql") && ReadAll(seed / "made-by") == maker) return seed.string();
+  fs::remove_all(seed);
+  // Made under a short temporary path (the socket's must fit in 108 bytes),
+  // then copied beside the build's other files.
+  const fs::path made = fs::temp_directory_path() / ("sp_seed_" + std::to_string(::getpid()));
+  fs::remove_all(made);
+  fs::create_directories(made);
+  fs::create_directories(seed);
+  RunToEnd({"/bin/bash", script, "start", "--datadir", made.string()}, seed / "start.log");
+  RunToEnd({"/bin/bash", script, "stop", "--datadir", made.string()}, seed / "stop.log");
+  RunToEnd({"/bin/cp", "-a", "--sparse=always", (made / "data").string(), (seed / "data").string()},
+           seed / "copy.log");
+  fs::remove_all(made);
+  std::ofstream(seed / "made-by") << maker;
+  return seed.string();
+}
+
+}  // namespace simpartner::test_support
