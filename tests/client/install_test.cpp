@@ -72,6 +72,7 @@ TEST(Install, OutsideProjectBuildsAgainstTheInstallTreeAndDrivesTheSim) {
   ASSERT_EQ(RunLogged({SP_CMAKE, "-S", std::string(SP_SOURCE_DIR) + "/tests/client/outside_project",
                        "-B", build, "-G", SP_GENERATOR, "-DCMAKE_PREFIX_PATH=" + prefix,
                        "-DCMAKE_BUILD_TYPE=Release", "-DREADME_CONTROLLER=" + controller_file,
+                       std::string("-DCMAKE_CXX_COMPILER=") + SP_OUTSIDE_COMPILER,
                        std::string("-DCMAKE_CXX_FLAGS=") + SP_OUTSIDE_FLAGS,
                        std::string("-DCMAKE_EXE_LINKER_FLAGS=") + SP_OUTSIDE_FLAGS},
                       configure_log),

@@ -25,12 +25,15 @@ def unique_url(offset):
     """This test's bus number `offset`, from tests/support/bus_url.h (a port
     no other process holds), the same for every call with that offset."""
     return subprocess.check_output(
-        [BINARY_DIR + "/tests/sp_test_bus_url", str(offset)], text=True).strip()
+        [BINARY_DIR + "/tests/sp_test_bus_url", str(offset)], text=True,
+        env=child_env()).strip()
 
 
 def child_env():
     # The ASan runtime is preloaded for python3 only (a sanitized tree):
-    # mariadbd must not get it, and the sanitized programs link their own.
+    # mariadbd must not get it, and the sanitized programs link their own
+    # (clang's, linked in, refuses a second one: "incompatible ASan
+    # runtimes").
     env = dict(os.environ)
     env.pop("LD_PRELOAD", None)
     env.pop("ASAN_OPTIONS", None)

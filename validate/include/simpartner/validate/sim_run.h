@@ -95,7 +95,6 @@ class SimRun {
   std::string world_name_;
   std::unique_ptr<sim::Simulation> sim_;
   std::vector<Eigen::Vector3d> com_offsets_;  // body frame
-  double progress_mark_ = 0.0;
   int64_t request_id_ = 0;
   // Commands of the played sequences not yet handed to the sim, in step order.
   struct TimedCommand {
