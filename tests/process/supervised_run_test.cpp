@@ -72,8 +72,17 @@ pid_t AnnouncedPid(const std::string& run_log, const std::string& name) {
   return pid;
 }
 
-// True while a process with this pid exists (zombies included).
-bool Exists(pid_t pid) { return pid > 0 && ::kill(pid, 0) == 0; }
+// True while a process with this pid runs: a zombie has ended (the server,
+// in a session of its own, is reaped by init, here up to a second later).
+bool Running(pid_t pid) {
+  if (pid <= 0) return false;
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return false;
+  // pid (comm) state ...: the comm may hold spaces and parentheses.
+  const size_t close = line.rfind(')');
+  return close != std::string::npos && close + 2 < line.size() && line[close + 2] != 'Z';
+}
 
 // The sim's steps as this test received them: (wall time, simulation, step).
 class StepRecorder : public test_support::BusListener {
@@ -98,6 +107,8 @@ class StepRecorder : public test_support::BusListener {
   }
   int64_t simulation() const { return seen_.empty() ? 0 : seen_.back().simulation; }
   int64_t step() const { return seen_.empty() ? -1 : seen_.back().step; }
+  // The wall time the sim stamped on the newest state read [us].
+  int64_t newest() const { return seen_.empty() ? 0 : seen_.back().when; }
   int64_t LastStepOf(int64_t simulation) const {
     int64_t step = -1;
     for (const Seen& s : seen_)
@@ -132,7 +143,7 @@ class SupervisedRunTest : public ::testing::Test {
       const std::string run_log = RunLog();
       for (const char* name : {"sequencer", "teleop", "sim", "viewer", "logger"}) {
         const pid_t pid = AnnouncedPid(run_log, name);
-        if (Exists(pid)) ::kill(pid, SIGKILL);
+        if (Running(pid)) ::kill(pid, SIGKILL);
       }
     }
     launcher_.reset();
@@ -280,13 +291,11 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
                              "  <pause seconds=\"600\"/>\n"
                              "</sequence>\n";
   StepRecorder bus(url_);
+  // On the display with the viewer's leak suppressions and its driver kept
+  // loaded, as in its own process tests (every child gets them: they
+  // change nothing but what LeakSanitizer can name at exit).
   launcher_ = std::make_unique<ChildProcess>(
-      std::vector<std::string>{
-          "/usr/bin/env", "DISPLAY=" + xvfb.display(),
-          // The viewer's Mesa and D-Bus allocations,
-          // as in their own process tests.
-          "LSAN_OPTIONS=suppressions=" + SourceDir() + "/tests/viewer/lsan.supp",
-          "ASAN_OPTIONS=" + test_support::AsanOptions(),
+      test_support::OnDisplay(xvfb.display(), {
           "/bin/bash", SourceDir() + "/scripts/run", "--bin", BinaryDir(), "--state", (dir_ / "state").string(),
           // Teleop for a game controller (none is plugged in: it follows
           // the sim and waits for one). Its keyboard window was back 0.4 to
@@ -297,7 +306,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
           "--teleop", "--sequence", sequence.string(), "--restart-sim", "--lcm-url", url_,
           // gen1 (0.2 ms of a core per step here, gen3 0.7 ms): real time
           // holds on 2 shared cores beside the viewer, logger and server.
-          "--environment=" + test_support::ShippedWorld("gen1_flat.xml")},
+          "--environment=" + test_support::ShippedWorld("gen1_flat.xml")}),
       (dir_ / "launcher.log").string());
 
   // Everything up: the sim steps, the logger writes rows, the viewer and
@@ -326,7 +335,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
   for (const Victim& v : victims) {
     SCOPED_TRACE(v.name);
     const pid_t old_pid = AnnouncedPid(RunLog(), v.name);
-    ASSERT_TRUE(Exists(old_pid)) << RunLog();
+    ASSERT_TRUE(Running(old_pid)) << RunLog();
     const int signs_before = Count(Log(v.name), v.back_sign);
     const long long rows_before = Query("SELECT COUNT(*) FROM SimulationRow");
     bus.Pump(kWindow);
@@ -345,7 +354,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
         << RunLog() << Log(v.name);
     const double back_after = SecondsSince(killed);
     const pid_t new_pid = AnnouncedPid(RunLog(), v.name);
-    EXPECT_TRUE(Exists(new_pid));
+    EXPECT_TRUE(Running(new_pid));
     // A crash mid-run is restarted without the start-up back-off: the
     // launcher's line for this death says so.
     {
@@ -365,7 +374,12 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
     bus.Pump(std::max(0.0, kWindow - SecondsSince(killed)));
     const int64_t during_end_us = WallMicros();
     const int64_t window_us = static_cast<int64_t>(kWindow * 1e6);
-    bus.Pump(kWindow + 0.5);  // the states of the last window arrive
+    // Every state of the last window read: while the victim came back, this
+    // test read the bus between looks at the logs and fell behind by up to
+    // the socket's buffer (seconds of states on a loaded machine), so a
+    // fixed wait could end before the window's states were read.
+    ASSERT_TRUE(bus.Until([&] { return bus.newest() >= during_end_us + window_us; }, 30))
+        << "no state stamped after the window within 30 s";
     const double before = bus.Rate(first_simulation, killed_us - window_us, killed_us);
     const double during = bus.Rate(first_simulation, killed_us, during_end_us);
     const double after = bus.Rate(first_simulation, during_end_us, during_end_us + window_us);
@@ -433,7 +447,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
       [&] {
         const std::string log = RunLog();
         for (const char* name : kProcesses)
-          if (!Exists(AnnouncedPid(log, name))) return false;
+          if (!Running(AnnouncedPid(log, name))) return false;
         return true;
       },
       20))
@@ -446,7 +460,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
   ASSERT_NE(server_at, std::string::npos) << run_log;
   children.emplace_back("mariadbd",
                         static_cast<pid_t>(std::atol(run_log.c_str() + server_at + server_line.size())));
-  for (const auto& [name, pid] : children) ASSERT_TRUE(Exists(pid)) << name << " " << pid << "\n" << run_log;
+  for (const auto& [name, pid] : children) ASSERT_TRUE(Running(pid)) << name << " " << pid << "\n" << run_log;
   const Clock::time_point terminated = Clock::now();
   launcher_->Signal(SIGTERM);
   const std::optional<int> status = launcher_->Wait(std::chrono::seconds(60));
@@ -455,7 +469,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
   std::cout << "SIGTERM to the launcher: every process ended within " << stop_seconds << " s\n";
   EXPECT_EQ(*status, 0) << RunLog();
   EXPECT_LT(stop_seconds, 30) << RunLog();
-  for (const auto& [name, pid] : children) EXPECT_FALSE(Exists(pid)) << name << " (pid " << pid << ") left running";
+  for (const auto& [name, pid] : children) EXPECT_FALSE(Running(pid)) << name << " (pid " << pid << ") left running";
   // The stop went in order, and the logs are in this run's own directory.
   const std::string final_log = RunLog();
   const size_t sim_stopped = final_log.find("sim stopped");
