@@ -31,8 +31,8 @@
 namespace simpartner::camera {
 namespace {
 
-constexpr int kWidth = 320;
-constexpr int kHeight = 240;
+constexpr int kRenderWidth = 320;
+constexpr int kRenderHeight = 240;
 constexpr double kFovDeg = 60;
 constexpr double kWall = 6.0;  // [m] the wall's near face, x = 6, across the view
 
@@ -49,8 +49,8 @@ std::string Camera(const std::string& name, const std::string& depth) {
       <T20>1</T20><T21>0</T21><T22>0</T22><T23>0</T23>
     </transformation>
     <rate>30</rate>
-    <parameter name="width">)" + std::to_string(kWidth) + R"(</parameter>
-    <parameter name="height">)" + std::to_string(kHeight) + R"(</parameter>
+    <parameter name="width">)" + std::to_string(kRenderWidth) + R"(</parameter>
+    <parameter name="height">)" + std::to_string(kRenderHeight) + R"(</parameter>
     <parameter name="fov">)" + fov.str() + R"(</parameter>
     <parameter name="near">0.1</parameter><parameter name="far">30</parameter>
     <parameter name="depth">)" + depth + R"(</parameter>
@@ -130,10 +130,10 @@ TEST(CameraRender, PlateAtThePinholeAndWallAtItsDepth) {
   ASSERT_EQ(rgb.format, image_t::FORMAT_RGB8);
   ASSERT_EQ(rgb.step, 0);
   double su = 0, sv = 0;
-  int n = 0, left = kWidth, right = -1;
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) {
-      const uint8_t* p = &rgb.data[(static_cast<size_t>(y) * kWidth + x) * 3];
+  int n = 0, left = kRenderWidth, right = -1;
+  for (int y = 0; y < kRenderHeight; ++y)
+    for (int x = 0; x < kRenderWidth; ++x) {
+      const uint8_t* p = &rgb.data[(static_cast<size_t>(y) * kRenderWidth + x) * 3];
       if (p[0] - std::max(p[1], p[2]) > 60) {
         su += x + 0.5;
         sv += y + 0.5;
@@ -145,9 +145,9 @@ TEST(CameraRender, PlateAtThePinholeAndWallAtItsDepth) {
   ASSERT_GT(n, 100) << "the plate is not in the image";
   const double z = kPlateCentre.x() - kPlateSize.x() / 2;
   const double xc = kPlateCentre.z(), yc = -(kPlateCentre.y() - 1.0);
-  const double f = (kWidth / 2.0) / std::tan(kFovDeg * M_PI / 360);
-  EXPECT_NEAR(su / n, kWidth / 2.0 + f * xc / z, 1.0);
-  EXPECT_NEAR(sv / n, kHeight / 2.0 + f * yc / z, 1.0);
+  const double f = (kRenderWidth / 2.0) / std::tan(kFovDeg * M_PI / 360);
+  EXPECT_NEAR(su / n, kRenderWidth / 2.0 + f * xc / z, 1.0);
+  EXPECT_NEAR(sv / n, kRenderHeight / 2.0 + f * yc / z, 1.0);
   EXPECT_NEAR(right - left + 1, f * kPlateSize.z() / z, 1.5);
 
   // The wall: 6 m along the axis at the centre and near the corners (depth
@@ -159,10 +159,10 @@ TEST(CameraRender, PlateAtThePinholeAndWallAtItsDepth) {
     ASSERT_EQ(depth.format, std::string(name) == "Metres" ? image_t::FORMAT_DEPTH_F32
                                                           : image_t::FORMAT_DEPTH_U16);
     ASSERT_EQ(depth.step, 0);
-    for (const auto& [x, y] : {std::pair{kWidth / 2, kHeight / 2}, std::pair{30, 10},
+    for (const auto& [x, y] : {std::pair{kRenderWidth / 2, kRenderHeight / 2}, std::pair{30, 10},
                               std::pair{290, 230}})
       EXPECT_NEAR(DepthAt(depth, x, y), kWall, 0.01) << "at (" << x << ", " << y << ")";
-    const double beside = DepthAt(depth, 5, kHeight / 2);
+    const double beside = DepthAt(depth, 5, kRenderHeight / 2);
     if (depth.format == image_t::FORMAT_DEPTH_F32)
       EXPECT_TRUE(std::isinf(beside)) << beside;
     else

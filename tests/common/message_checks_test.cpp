@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "../support/non_finite.h"
 #include "expect_problem.h"
 #include "simpartner/sensor_t.hpp"
 
@@ -15,12 +16,12 @@ namespace simpartner {
 namespace {
 
 using F = MessageFault;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using test_support::kInf;
+using test_support::kNaN;
 const std::string kBadUtf8("\xff\xfe", 2);
 
 template <class Message>
-struct Case {
+struct MessageCase {
   const char* rule;
   std::function<void(Message*)> damage;
   const char* field;
@@ -30,10 +31,10 @@ struct Case {
 
 // Each case damages `good` and must be refused by `check`.
 template <class Message, class Check>
-void ExpectEachRefused(const Message& good, const std::vector<Case<Message>>& cases,
+void ExpectEachRefused(const Message& good, const std::vector<MessageCase<Message>>& cases,
                        const char* type, Check check) {
   ASSERT_FALSE(check(good)) << check(good)->message;
-  for (const Case<Message>& c : cases) {
+  for (const MessageCase<Message>& c : cases) {
     Message m = good;
     c.damage(&m);
     testing::ExpectProblem(check(m), c.rule, type, c.field, c.fault, c.message);

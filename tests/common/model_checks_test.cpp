@@ -11,13 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "../support/non_finite.h"
 #include "expect_problem.h"
 
 namespace simpartner {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using test_support::kInf;
+using test_support::kNaN;
 const std::string kBadUtf8("\xff\xfe", 2);
 
 // Robot "Bot": box "Base" and sphere "Ball" on hinge "Swing", a scanner on
@@ -89,7 +90,7 @@ model_t GoodModel() {
   return m;
 }
 
-struct Case {
+struct ModelCase {
   const char* rule;
   std::function<void(model_t*)> damage;
   const char* field;     // MessageProblem::field
@@ -103,7 +104,7 @@ TEST(CheckModel, TakesAGoodModel) {
 
 TEST(CheckModel, RefusesEachBrokenRuleNamingTheField) {
   using F = MessageFault;
-  const std::vector<Case> cases = {
+  const std::vector<ModelCase> cases = {
       {"state_every >= 1", [](model_t* m) { m->state_every = 0; }, "state_every",
        "state_every = 0 (must be >= 1)", F::kOutOfRange},
       {"step_size > 0", [](model_t* m) { m->step_size = -1; }, "step_size",
@@ -248,7 +249,7 @@ TEST(CheckModel, RefusesEachBrokenRuleNamingTheField) {
        [](model_t* m) { m->heightfield.samples[4] = std::numeric_limits<float>::infinity(); },
        "heightfield.samples[4]", "heightfield.samples[4] = inf", F::kNonFinite},
   };
-  for (const Case& c : cases) {
+  for (const ModelCase& c : cases) {
     model_t m = GoodModel();
     c.damage(&m);
     testing::ExpectProblem(CheckModel(m), c.rule, "model_t", c.field, c.fault, c.message);

@@ -6,14 +6,15 @@
 #include <limits>
 #include <vector>
 
+#include "../support/non_finite.h"
 #include "expect_problem.h"
 #include "simpartner/message_checks.h"
 
 namespace simpartner {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using test_support::kInf;
+using test_support::kNaN;
 
 ModelOutline TwoBodiesOneJoint() {
   ModelOutline outline;
@@ -40,7 +41,7 @@ state_t GoodState() {
   return s;
 }
 
-struct Case {
+struct StateCase {
   const char* rule;
   std::function<void(state_t*)> damage;
   const char* field;
@@ -56,7 +57,7 @@ TEST(CheckState, TakesAGoodStateWithAndWithoutItsModel) {
 
 TEST(CheckState, RefusesEachBrokenRuleNamingTheField) {
   using F = MessageFault;
-  const std::vector<Case> cases = {
+  const std::vector<StateCase> cases = {
       {"step not negative", [](state_t* s) { s->step = -1; }, "step", "step = -1 (negative)",
        F::kOutOfRange},
       {"sim_time finite", [](state_t* s) { s->sim_time = kNaN; }, "sim_time", "sim_time = nan",
@@ -89,7 +90,7 @@ TEST(CheckState, RefusesEachBrokenRuleNamingTheField) {
       {"wheel shear_force finite", [](state_t* s) { s->wheel_soil[0].shear_force[0] = kNaN; },
        "wheel_soil[0].shear_force[0]", "wheel_soil[0].shear_force[0] = nan", F::kNonFinite},
   };
-  for (const Case& c : cases) {
+  for (const StateCase& c : cases) {
     state_t s = GoodState();
     c.damage(&s);
     testing::ExpectProblem(CheckState(s, nullptr), c.rule, "state_t", c.field, c.fault,
@@ -99,7 +100,7 @@ TEST(CheckState, RefusesEachBrokenRuleNamingTheField) {
 
 TEST(CheckState, RefusesWhatDoesNotFitItsModel) {
   using F = MessageFault;
-  const std::vector<Case> cases = {
+  const std::vector<StateCase> cases = {
       {"as many bodies as the model",
        [](state_t* s) {
          s->bodies.resize(3);
@@ -118,7 +119,7 @@ TEST(CheckState, RefusesWhatDoesNotFitItsModel) {
        F::kBadIndex},
   };
   const ModelOutline model = TwoBodiesOneJoint();
-  for (const Case& c : cases) {
+  for (const StateCase& c : cases) {
     state_t s = GoodState();
     c.damage(&s);
     EXPECT_FALSE(CheckState(s, nullptr)) << c.rule << ": the structure alone is fine";

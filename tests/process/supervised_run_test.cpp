@@ -127,7 +127,7 @@ class StepRecorder : public test_support::BusListener {
 
 // Seconds of each window the sim's step rate is measured over: before a
 // kill, from the kill (the restart included), and after.
-constexpr double kWindow = 3.0;
+constexpr double kWindow = 2.0;
 
 class SupervisedRunTest : public ::testing::Test {
  protected:
