@@ -417,12 +417,14 @@ class DatabaseTest(unittest.TestCase):
     """read_logged: a run logged by a real simpartner-logger into a private server."""
 
     def test_read_a_logged_run(self):
+        # Everything that can fail before the try comes before the server
+        # starts: the finally below is what stops it.
+        url = unique_url(3)
         work = tempfile.mkdtemp(prefix="sp_pydb_")
         server = os.path.join(work, "db")
         script = SOURCE_DIR + "/scripts/mariadb"
         subprocess.run([script, "start", "--datadir", server], check=True, env=child_env(),
                        stdout=subprocess.DEVNULL)
-        url = unique_url(3)
         logger_log = open(os.path.join(work, "logger.log"), "w")
         sim_log = open(os.path.join(work, "sim.log"), "w")
         logger = sim_process = None
