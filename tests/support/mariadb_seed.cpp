@@ -8,35 +8,29 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <sstream>
 #include <stdexcept>
 #include <vector>
 
+#include "processes.h"
 #include "programs.h"
-#include "simpartner/child_process.h"
+#include "text_file.h"
 
 namespace simpartner::test_support {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Runs argv to its end; throws with its output when it fails.
-void RunToEnd(const std::vector<std::string>& argv, const fs::path& log) {
-  ChildProcess child(argv, log.string());
-  const std::optional<int> status = child.Wait(std::chrono::seconds(120));
-  if (status == 0) return;
+// Runs argv to its end (test_support::RunToEnd); throws with its output
+// when it fails.
+void RunOrThrow(const std::vector<std::string>& argv, const fs::path& log) {
+  const ProgramRun run = RunToEnd(argv, log.string(), std::chrono::seconds(120));
+  if (run.status == 0) return;
   std::string command;
   for (const std::string& a : argv) command += (command.empty() ? "" : " ") + a;
   throw std::runtime_error("MariaDbSeed: '" + command + "' failed (" +
-                           (status ? "exit " + std::to_string(*status) : std::string("timeout")) +
-                           "): " + ReadAll(log));
+                           (run.status < 0 ? std::string("still running after 120 s")
+                                           : "exit " + std::to_string(run.status)) +
+                           "): " + run.output);
 }
 
 // Holds an exclusive lock on a file while it lives.
@@ -62,9 +56,9 @@ std::string MariaDbSeed() {
   const std::string script = SourceDir() + "/scripts/mariadb";
   const fs::path seed = fs::path(BinaryDir()) / "tests" / "mariadb-seed";
   // What the seed was made by: another script may make another server.
-  const std::string maker = std::to_string(std::hash<std::string>{}(ReadAll(script)));
+  const std::string maker = std::to_string(std::hash<std::string>{}(ReadText(script)));
   FileLock lock(seed.string() + ".lock");
-  if (fs::exists(seed / "data" / "mysql") && ReadAll(seed / "made-by") == maker) return seed.string();
+  if (fs::exists(seed / "data" / "mysql") && ReadText(seed / "made-by") == maker) return seed.string();
   fs::remove_all(seed);
   // Made under a short temporary path (the socket's must fit in 108 bytes),
   // then copied beside the build's other files.
@@ -72,9 +66,9 @@ std::string MariaDbSeed() {
   fs::remove_all(made);
   fs::create_directories(made);
   fs::create_directories(seed);
-  RunToEnd({"/bin/bash", script, "start", "--datadir", made.string()}, seed / "start.log");
-  RunToEnd({"/bin/bash", script, "stop", "--datadir", made.string()}, seed / "stop.log");
-  RunToEnd({"/bin/cp", "-a", "--sparse=always", (made / "data").string(), (seed / "data").string()},
+  RunOrThrow({"/bin/bash", script, "start", "--datadir", made.string()}, seed / "start.log");
+  RunOrThrow({"/bin/bash", script, "stop", "--datadir", made.string()}, seed / "stop.log");
+  RunOrThrow({"/bin/cp", "-a", "--sparse=always", (made / "data").string(), (seed / "data").string()},
            seed / "copy.log");
   fs::remove_all(made);
   std::ofstream(seed / "made-by") << maker;
