@@ -66,8 +66,15 @@ std::string MariaDbSeed() {
   fs::remove_all(made);
   fs::create_directories(made);
   fs::create_directories(seed);
-  RunOrThrow({"/bin/bash", script, "start", "--datadir", made.string()}, seed / "start.log");
-  RunOrThrow({"/bin/bash", script, "stop", "--datadir", made.string()}, seed / "stop.log");
+  const std::vector<std::string> stop = {"/bin/bash", script, "stop", "--datadir", made.string()};
+  try {
+    RunOrThrow({"/bin/bash", script, "start", "--datadir", made.string()}, seed / "start.log");
+  } catch (const std::runtime_error&) {
+    // A server may run though its start failed later (users, grants).
+    RunToEnd(stop, (seed / "stop.log").string(), std::chrono::seconds(120));
+    throw;
+  }
+  RunOrThrow(stop, seed / "stop.log");
   RunOrThrow({"/bin/cp", "-a", "--sparse=always", (made / "data").string(), (seed / "data").string()},
            seed / "copy.log");
   fs::remove_all(made);
