@@ -12,6 +12,8 @@
 #include <cstring>
 #include <filesystem>
 #include <cstdio>
+#include <deque>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -216,6 +218,34 @@ std::vector<std::string> ReadAvailableLines(int input_fd, std::string* pending, 
   return lines;
 }
 
+// What a script line sets: "button a", "axis leftx", "attach", ...
+std::string ControlOf(const std::string& line) {
+  std::istringstream in(line);
+  std::string verb, name;
+  in >> verb >> name;
+  return verb + " " + name;
+}
+
+// Applies the script's waiting lines in order (false once one says quit).
+// It stops before a line that sets a control already set in this pass: the
+// controller reads the pad once a pass, so a press and its release read
+// together (the loop late on a loaded machine) would be a press never seen.
+// Such a line waits for the next pass.
+bool ApplyScriptLines(VirtualPad& pad, std::deque<std::string>* lines, std::ostream& err) {
+  std::set<std::string> set_now;
+  while (!lines->empty()) {
+    const std::string& line = lines->front();
+    if (!set_now.insert(ControlOf(line)).second) break;
+    try {
+      if (!pad.Apply(line)) return false;
+    } catch (const std::exception& e) {
+      err << "simpartner-teleop-vpad: " << e.what() << std::endl;
+    }
+    lines->pop_front();
+  }
+  return true;
+}
+
 }  // namespace
 
 int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostream& out,
@@ -301,6 +331,7 @@ int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostre
     }
   }
   std::string pending;
+  std::deque<std::string> script_lines;
   bool eof = false;
   int exit_status = 0;
   auto last_status = std::chrono::steady_clock::now();
@@ -315,14 +346,10 @@ int RunTeleop(const std::vector<std::string>& args, bool virtual_pad, std::ostre
       if (!keyboard) gamepad.Handle(event);
     }
     if (virtual_pad) {
-      for (const std::string& line : ReadAvailableLines(script_fd, &pending, &eof)) {
-        try {
-          if (!pad.Apply(line)) running = false;
-        } catch (const std::exception& e) {
-          err << "simpartner-teleop-vpad: " << e.what() << std::endl;
-        }
-      }
-      if (eof) running = false;
+      for (std::string& line : ReadAvailableLines(script_fd, &pending, &eof))
+        script_lines.push_back(std::move(line));
+      if (!ApplyScriptLines(pad, &script_lines, err)) running = false;
+      if (eof && script_lines.empty()) running = false;
       // The virtual pad's values reach the controller in the next pump.
       SDL_PumpEvents();
       while (SDL_PollEvent(&event)) gamepad.Handle(event);

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <thread>
 
 #include "simpartner/channels.h"
@@ -100,6 +101,29 @@ class Bus : public test_support::BusListener {
   }
   double JointPosition(const std::string& joint) const {
     return state.joints[Joint(joint)].position[0];
+  }
+  // Receives until each joint of `pose` rests at its angle (within
+  // `tolerance`, turning slower than 0.05 rad/s): a pose reached in the
+  // sim's own time, however slowly a loaded machine runs it. False after
+  // `seconds`.
+  bool UntilJointsRestAt(const std::map<std::string, double>& pose, double tolerance, double seconds) {
+    return Until(
+        [&] {
+          for (const auto& [joint, angle] : pose) {
+            const joint_state_t& j = state.joints[Joint(joint)];
+            if (std::abs(j.position[0] - angle) > tolerance || std::abs(j.rate[0]) > 0.05) return false;
+          }
+          return true;
+        },
+        seconds);
+  }
+  // "Hip1 0.29 (0.001 rad/s), ..." for a failure's message.
+  std::string JointsText(const std::map<std::string, double>& pose) const {
+    std::ostringstream text;
+    for (const auto& [joint, angle] : pose)
+      text << joint << " " << JointPosition(joint) << " (" << state.joints[Joint(joint)].rate[0]
+           << " rad/s; expected " << angle << ") ";
+    return text.str();
   }
   double MaxWheelRate() const {
     double rate = 0;
@@ -418,33 +442,27 @@ TEST_F(TeleopProcessTest, ButtonsRaiseTheBodyTurnTheTorsoAndOpenTheClaws) {
   auto press = [&](const std::string& button, int times) {
     for (int k = 0; k < times; ++k) {
       Pad("button " + button + " 1\n");
-      bus.Pump(0.25);  // more than a period: each press is seen
+      bus.Pump(0.25);  // paced as a hand would (the pad shows each line to a pass)
       Pad("button " + button + " 0\n");
       bus.Pump(0.25);
     }
   };
   Pad("button rightshoulder 1\n");
   press("dpup", 3);  // body +0.3: hips +-0.3, knees -+0.6
-  bus.Pump(2.0);
-  EXPECT_NEAR(bus.JointPosition("Hip1"), 0.3, 0.05);
-  EXPECT_NEAR(bus.JointPosition("Knee1"), -0.6, 0.05);
-  EXPECT_NEAR(bus.JointPosition("Hip3"), -0.3, 0.05);
-  EXPECT_NEAR(bus.JointPosition("Knee3"), 0.6, 0.05);
+  const std::map<std::string, double> raised = {{"Hip1", 0.3}, {"Knee1", -0.6}, {"Hip3", -0.3}, {"Knee3", 0.6}};
+  EXPECT_TRUE(bus.UntilJointsRestAt(raised, 0.05, 15)) << bus.JointsText(raised);
   // Thigh and calf 0.3 m at 36.87 deg from vertical: straightening each by
   // 0.3 rad lifts the hips by 2 * 0.3 * (cos(0.6435 - 0.3) - cos(0.6435)).
   const double lift = 2 * 0.3 * (std::cos(0.6435 - 0.3) - std::cos(0.6435));
   const double height1 = bus.state.bodies[bus.Body("RearChassis")].position[1];
   EXPECT_NEAR(height1 - height0, lift, 0.03) << "from " << height0 << " to " << height1;
   press("dpdown", 1);
-  bus.Pump(1.5);
-  EXPECT_NEAR(bus.JointPosition("Hip1"), 0.2, 0.05);
+  EXPECT_TRUE(bus.UntilJointsRestAt({{"Hip1", 0.2}}, 0.05, 15)) << bus.JointsText({{"Hip1", 0.2}});
   press("dpleft", 2);  // torso +0.4 rad (to the left)
   press("x", 2);       // claws +0.2: upper up, lower down (open)
-  bus.Pump(2.0);
-  EXPECT_NEAR(bus.JointPosition("TorsoTurn"), 0.4, 0.05);
-  EXPECT_NEAR(bus.JointPosition("RightGripUpper"), 0.2, 0.05);
-  EXPECT_NEAR(bus.JointPosition("RightGripLower"), -0.2, 0.05);
-  EXPECT_NEAR(bus.JointPosition("LeftGripUpper"), 0.2, 0.05);
+  const std::map<std::string, double> turned_open = {
+      {"TorsoTurn", 0.4}, {"RightGripUpper", 0.2}, {"RightGripLower", -0.2}, {"LeftGripUpper", 0.2}};
+  EXPECT_TRUE(bus.UntilJointsRestAt(turned_open, 0.05, 15)) << bus.JointsText(turned_open);
   // Without the dead-man the buttons do nothing; the pose is held.
   Pad("button rightshoulder 0\n");
   press("dpleft", 2);
