@@ -35,6 +35,6 @@ run "$source_dir/scripts/run" --help --bin /nonexistent
 
 # Far from anything: no guess, the list of what it takes.
 run "$source_dir/scripts/fuzz" --zzz
-[[ $status -eq 2 && $out == *"it takes: --seconds --help"* ]] || fail "fuzz --zzz: $status $out"
+[[ $status -eq 2 && $out == *"it takes: --seconds --build-only --help"* ]] || fail "fuzz --zzz: $status $out"
 
 finish "all ${#cases[@]} scripts answer --help and refuse misspellings"
