@@ -2,7 +2,7 @@
 #include <iostream>
 
 #include "simpartner/model/loader.h"
-#include "simpartner/sim/check.h"
+#include "simpartner/sim/sim_command_line.h"
 #include "simpartner/sim/engine.h"
 #include "simpartner/sim/sim_process.h"
 

@@ -1,3 +1,4 @@
+// simpartner-sim's command line and the world it names.
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-#include "simpartner/sim/check.h"
+#include "simpartner/sim/sim_command_line.h"
 
 #include "simpartner/model/loader.h"
 #include "simpartner/model/robot_choice.h"
