@@ -21,6 +21,12 @@ constexpr uint64_t kBatchBytes = 16u << 20;
 constexpr size_t kMinBatchRecords = 50;
 constexpr auto kLinger = std::chrono::milliseconds(50);
 constexpr auto kFailureReminder = std::chrono::seconds(30);
+// On a stop, what the bus socket still holds is read until nothing has
+// come for kStopQuiet (LCM's reader thread passes on a datagram in
+// microseconds), for at most kStopReadLimit: a sim publishing on would
+// otherwise keep the logger from stopping.
+constexpr int kStopQuietMs = 20;
+constexpr auto kStopReadLimit = std::chrono::seconds(2);
 
 std::string Megabytes(uint64_t bytes) {
   char text[32];
@@ -299,6 +305,7 @@ int Logger::Run(int stop_fd) {
       next_status = Clock::now() + Seconds(options_.status_period);
     }
   }
+  ReadWhatTheBusHolds();
   drain_deadline_ = Clock::now() + Seconds(options_.drain_timeout);
   stopping_ = true;
   queue_->Wake();
@@ -306,6 +313,18 @@ int Logger::Run(int stop_fd) {
   writer_.join();
   reporter_->Say("stopped: " + StatusLine());
   return save_failed_ ? 1 : 0;
+}
+
+void Logger::ReadWhatTheBusHolds() {
+  // The messages were sent before the stop came; on a loaded machine the
+  // receive loop can be a socket buffer behind (seconds of states, the
+  // sim's last step and its end among them).
+  const auto until = Clock::now() + kStopReadLimit;
+  pollfd fd{lcm_->getFileno(), POLLIN, 0};
+  while (Clock::now() < until && ::poll(&fd, 1, kStopQuietMs) > 0 && (fd.revents & POLLIN)) {
+    lcm_->handle();
+    receiver_->Tick();
+  }
 }
 
 LoggerStats Logger::Stats() const {

@@ -401,6 +401,28 @@ TEST_F(LoggerProcessTest, StopWhileTheServerIsAwayKeepsEverythingForTheNextRun) 
   EXPECT_NE(ReadText(LoggerLog(1)).find("from an earlier run; writing that first"), std::string::npos);
 }
 
+// A stop finds states still waiting on the bus socket (a logger behind on
+// a loaded machine): they were sent before the stop, so they are logged,
+// and the run's end with them. Here the logger is stopped (SIGSTOP) while
+// the run goes on, and SIGTERM is pending when it wakes.
+TEST_F(LoggerProcessTest, AStopReadsWhatTheBusAlreadyHolds) {
+  ChildProcess& logger = StartLogger();
+  const SimRun run = testing::ArmRun(300, 5);
+  lcm::LCM bus(url_);
+  ASSERT_TRUE(WaitForReady(0));
+  Publish(&bus, channels::kModel, run.model);
+  PublishStates(&bus, run, 1, 10);
+  ASSERT_TRUE(WaitFor([&] { return Steps() == 10; }, 30)) << ReadText(LoggerLog(0));
+  logger.Signal(SIGSTOP);
+  PublishStates(&bus, run, 11, 300);
+  PublishStopped(&bus, run, 300);
+  logger.Signal(SIGTERM);
+  logger.Signal(SIGCONT);
+  EXPECT_EQ(logger.Wait(std::chrono::seconds(60)).value_or(-1), 0);
+  ExpectEveryStepOnce(1, 1, 300, 3, 2);
+  EXPECT_TRUE(Closed(1)) << ReadText(LoggerLog(0));
+}
+
 // The spool on a 2 MB tmpfs, the memory queue 0.5 MB, the server away
 // while 8000 steps come: memory and disk fill up and the logger refuses the
 // rest, says so (how much it kept in memory and on disk, how much it

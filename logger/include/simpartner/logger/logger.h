@@ -99,6 +99,8 @@ class Logger {
 
  private:
   void WriterLoop();
+  // On a stop: handles the messages already waiting on the bus socket.
+  void ReadWhatTheBusHolds();
   void ReportFailure(const std::string& problem, const std::string& key);
   // Receive thread: says when a database call has not returned for
   // stall_report seconds (every few seconds while it waits), and when it
