@@ -594,14 +594,14 @@ TEST_F(LoggerProcessTest, ServerKilledAndRestartedLosesAndRepeatsNothing) {
 
 // The stock LCM tools: lcm-logger records a real run while
 // simpartner-logger logs it live; lcm-logplayer replays the recording into
-// a second logger writing a second database. Both hold the same rows: the
-// same count in every table and the same checksum over Pose and JointPose.
+// a second logger writing a second database. Both hold the same rows of
+// what the recording holds: the same count in every table and the same
+// checksum over Pose, JointPose and the sensor readings.
 // Replayed at 5 times the recorded speed (the logger keeps up; see
 // docs/benchmarks.md for the speeds measured).
 TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
   const std::string recording = (dir_ / "run.lcmlog").string();
-  ChildProcess recorder({"/usr/bin/lcm-logger", "--quiet", "--force", "--lcm-url=" + url_,
-                         recording},
+  ChildProcess recorder({"/usr/bin/lcm-logger", "--quiet", "--force", "--lcm-url=" + url_, recording},
                         (dir_ / "lcm-logger.log").string());
   ChildProcess& live = StartLogger();
   ASSERT_TRUE(WaitForReady(0));
@@ -622,7 +622,10 @@ TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
   ASSERT_EQ(recorder.Wait(std::chrono::seconds(10)).value_or(-1), 0)
       << ReadText((dir_ / "lcm-logger.log").string());
   ExpectEveryStepOnce(1, 1, 6000, 3, 2);
-  // A short recording is lcm-logger's loss, not the replay's: say so.
+  // The stock lcm-logger drops a few messages on a loaded machine (1 to 4
+  // states of 6000 beside other tests, even at nice -10): the replay is
+  // compared with the live run on what the recording holds, and the steps
+  // it lacks must be the replay's gaps. On a whole recording that is all.
   int recorded_states = 0;
   {
     lcm::LogFile file(recording, "r");
@@ -630,7 +633,9 @@ TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
     while (const lcm::LogEvent* event = file.readNextEvent())
       recorded_states += event->channel == channels::kState;
   }
-  ASSERT_EQ(recorded_states, 6000) << "lcm-logger itself lost states while recording";
+  const int64_t lost_states = 6000 - recorded_states;
+  RecordProperty("lcm_logger_lost_states", std::to_string(lost_states));
+  ASSERT_LT(lost_states, 60) << "lcm-logger recorded only " << recorded_states << " of 6000 states";
 
   const std::string replay_db = "simpartner_replay";
   ChildProcess& replayed = StartLogger({"--dbname=" + replay_db});
@@ -648,32 +653,43 @@ TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
   }, 30)) << ReadText(LoggerLog(1));
   EXPECT_EQ(StopLogger(replayed), 0);
 
-  for (const char* table :
-       {"Simulation", "Robot", "Body", "`Joint`", "Sensor", "Actuator", "RobotComponent",
-        "Material", "SimulationRow", "Pose", "ForceAndTorque", "JointPose", "LogGap",
-        "SensorReading", "Command", "CommandReply"}) {
+  for (const char* table : {"Simulation", "Robot", "Body", "`Joint`", "Sensor", "Actuator",
+                            "RobotComponent", "Material", "Command", "CommandReply"}) {
     const std::string sql = std::string("SELECT COUNT(*) FROM ") + table;
     EXPECT_EQ(QueryInt(sql, replay_db), QueryInt(sql)) << table;
   }
+  // The live run's rows of the steps and readings the recording holds.
+  const std::string recorded_steps = " WHERE r.step IN (SELECT step FROM " + replay_db + ".SimulationRow)";
+  for (const char* table : {"Pose", "ForceAndTorque", "JointPose"}) {
+    const std::string sql = std::string("SELECT COUNT(*) FROM ") + table + " JOIN SimulationRow r USING (simulationRowID)";
+    EXPECT_EQ(QueryInt(sql, replay_db), QueryInt(sql + recorded_steps)) << table;
+  }
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow", replay_db), recorded_states);
+  const std::string readings = "SELECT COUNT(*), SUM(CRC32(CONCAT_WS(',', sensorID, step, vals))) FROM SensorReading";
+  EXPECT_EQ(QueryRows(Admin(replay_db).get(), readings),
+            QueryRows(Admin().get(), readings + " WHERE (sensorID, step) IN (SELECT sensorID, step FROM " +
+                                         replay_db + ".SensorReading)"));
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Command"), 1);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
+  EXPECT_EQ(QueryInt("SELECT COALESCE(SUM(missing), 0) FROM LogGap", replay_db), lost_states);
   const std::string same_simulation =
       "SELECT CONCAT_WS(',', simulationID, lastStep, worldName) FROM Simulation";
   std::unique_ptr<DbConnection> live_db = Admin();
   std::unique_ptr<DbConnection> replay = Admin(replay_db);
   EXPECT_EQ(QueryRows(replay.get(), same_simulation), QueryRows(live_db.get(), same_simulation));
-  // 6000 steps of 3 bodies and 2 joints.
-  for (const auto& [checksum, rows] : std::vector<std::pair<std::string, std::string>>{
+  // Steps of 3 bodies and 2 joints.
+  for (const auto& [checksum, per_step] : std::vector<std::pair<std::string, int>>{
            {"SELECT COUNT(*), SUM(CRC32(CONCAT_WS(',', r.simulationID, r.step, p.bodyID, p.x, "
             "p.y, p.z, p.axisX, p.axisY, p.axisZ, p.angle))) FROM Pose p JOIN SimulationRow r "
             "USING (simulationRowID)",
-            "18000"},
+            3},
            {"SELECT COUNT(*), SUM(CRC32(CONCAT_WS(',', r.step, j.jointID, j.angle, j.rate, j.F_x, "
             "j.T_z))) FROM JointPose j JOIN SimulationRow r USING (simulationRowID)",
-            "12000"}}) {
-    const auto live_sum = QueryRows(live_db.get(), checksum);
+            2}}) {
+    const auto live_sum = QueryRows(live_db.get(), checksum + recorded_steps);
     ASSERT_EQ(live_sum.size(), 1u);
-    EXPECT_EQ(live_sum[0].substr(0, live_sum[0].find('\t')), rows) << checksum;
+    EXPECT_EQ(live_sum[0].substr(0, live_sum[0].find('\t')), std::to_string(per_step * recorded_states))
+        << checksum;
     EXPECT_EQ(QueryRows(replay.get(), checksum), live_sum) << checksum;
   }
 }
