@@ -78,6 +78,12 @@ class RunListener : public test_support::BusListener {
     }
     return h;
   }
+  // The sim has said how it is, so it listens: a controller started before
+  // waits only 3 s for the model, and a sanitized sim on a loaded machine
+  // took longer than that to start.
+  bool UntilSimUp() {
+    return Until([&] { return status.utime != 0; }, 30);
+  }
   bool Released(const std::string& controller) const {
     for (const sync_reply_t& r : sync_replies)
       if (r.controller == controller && r.event == sync_reply_t::EVENT_RELEASED) return true;
@@ -134,6 +140,7 @@ class LockStepProcessTest : public ::testing::Test {
     RunListener listener(url);
     inside.reset();
     ChildProcess sim(sim_argv, (dir_ / (name + "_sim.log")).string());
+    if (!listener.UntilSimUp()) ADD_FAILURE() << "no SIM_STATUS within 30 s from the sim of " << name;
     std::vector<std::string> controller = BuiltCommand(
         "drive_to_point",
         {"--lcm-url", url, "--x", kGoal[0], "--z", kGoal[1], "--period", std::to_string(period)});
@@ -229,6 +236,7 @@ TEST_F(LockStepProcessTest, TwoControllersAtDifferentPeriods) {
   ChildProcess sim(SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
                               {"--startPaused=1", "--speed=0"}),
                    (dir_ / "two_sim.log").string());
+  ASSERT_TRUE(listener.UntilSimUp());
   client::ClientOptions options;
   options.url = url;
   options.program = "observer";
@@ -282,6 +290,7 @@ TEST_F(LockStepProcessTest, AStalledControllerIsReleasedAndTheRunGoesOn) {
   ChildProcess sim(SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
                               {"--startPaused=1", "--speed=1", "--lockStepTimeout=1"}),
                    (dir_ / "sim.log").string());
+  ASSERT_TRUE(listener.UntilSimUp());
   const std::string log = (dir_ / "controller.log").string();
   ChildProcess controller(BuiltCommand("drive_to_point", {"--lcm-url", url, "--x", "50", "--z", "0", "--period", "10"}), log);
   ASSERT_TRUE(listener.Until([&] { return listener.states.size() > 500; }, 10));
@@ -322,6 +331,7 @@ TEST_F(LockStepProcessTest, AControllerThatDiesIsReleased) {
   ChildProcess sim(SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
                               {"--startPaused=1", "--speed=0", "--lockStepTimeout=0.5"}),
                    (dir_ / "sim.log").string());
+  ASSERT_TRUE(listener.UntilSimUp());
   ChildProcess controller(BuiltCommand("drive_to_point", {"--lcm-url", url, "--x", "50", "--z", "0", "--period", "1"}),
                           (dir_ / "controller.log").string());
   ASSERT_TRUE(listener.Until([&] { return listener.states.size() > 200; }, 10));
@@ -343,8 +353,7 @@ TEST_F(LockStepProcessTest, ForgedAndDuplicatedMarksChangeNothing) {
   ChildProcess sim(SimCommand(test_support::ShippedWorld("gen1_flat.xml"), url,
                               {"--startPaused=1", "--speed=0"}),
                    (dir_ / "forged_sim.log").string());
-  // The sim listens once it has said how it is.
-  ASSERT_TRUE(listener.Until([&] { return listener.status.utime != 0; }, 10));
+  ASSERT_TRUE(listener.UntilSimUp());
   ChildProcess controller(
       BuiltCommand("drive_to_point",
                    {"--lcm-url", url, "--x", kGoal[0], "--z", kGoal[1], "--period", "10"}),
