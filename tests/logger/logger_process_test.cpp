@@ -622,10 +622,11 @@ TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
   ASSERT_EQ(recorder.Wait(std::chrono::seconds(10)).value_or(-1), 0)
       << ReadText((dir_ / "lcm-logger.log").string());
   ExpectEveryStepOnce(1, 1, 6000, 3, 2);
-  // The stock lcm-logger drops a few messages on a loaded machine (1 to 4
-  // states of 6000 beside other tests, even at nice -10): the replay is
-  // compared with the live run on what the recording holds, and the steps
-  // it lacks must be the replay's gaps. On a whole recording that is all.
+  // The stock lcm-logger drops messages on a loaded machine (1 to 4 states
+  // of 6000 beside other tests, even at nice -10; 235 in a CI run while
+  // our live logger lost none): the replay is compared with the live run
+  // on what the recording holds, and the steps it lacks before its last
+  // are the replay's gaps. On a whole recording that is every row.
   int recorded_states = 0;
   {
     lcm::LogFile file(recording, "r");
@@ -635,7 +636,7 @@ TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
   }
   const int64_t lost_states = 6000 - recorded_states;
   RecordProperty("lcm_logger_lost_states", std::to_string(lost_states));
-  ASSERT_LT(lost_states, 60) << "lcm-logger recorded only " << recorded_states << " of 6000 states";
+  ASSERT_GE(recorded_states, 3000) << "lcm-logger recorded too few states to compare";
 
   const std::string replay_db = "simpartner_replay";
   ChildProcess& replayed = StartLogger({"--dbname=" + replay_db});
@@ -671,12 +672,14 @@ TEST_F(LoggerProcessTest, LcmLogplayerReplayGivesTheRowsOfTheLiveRun) {
                                          replay_db + ".SensorReading)"));
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Command"), 1);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
-  EXPECT_EQ(QueryInt("SELECT COALESCE(SUM(missing), 0) FROM LogGap", replay_db), lost_states);
-  const std::string same_simulation =
-      "SELECT CONCAT_WS(',', simulationID, lastStep, worldName) FROM Simulation";
+  EXPECT_EQ(QueryInt("SELECT COALESCE(SUM(missing), 0) FROM LogGap", replay_db),
+            QueryInt("SELECT MAX(step) - COUNT(*) FROM SimulationRow", replay_db));
+  // (Its last step is the recording's, which can lack the run's end.)
+  const std::string same_simulation = "SELECT CONCAT_WS(',', simulationID, worldName) FROM Simulation";
   std::unique_ptr<DbConnection> live_db = Admin();
   std::unique_ptr<DbConnection> replay = Admin(replay_db);
   EXPECT_EQ(QueryRows(replay.get(), same_simulation), QueryRows(live_db.get(), same_simulation));
+  EXPECT_EQ(QueryInt("SELECT lastStep FROM Simulation"), 6000);
   // Steps of 3 bodies and 2 joints.
   for (const auto& [checksum, per_step] : std::vector<std::pair<std::string, int>>{
            {"SELECT COUNT(*), SUM(CRC32(CONCAT_WS(',', r.simulationID, r.step, p.bodyID, p.x, "
