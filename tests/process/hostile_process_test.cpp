@@ -13,7 +13,6 @@
 
 #include <chrono>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
 
 #include "../logger/logger_test_support.h"
@@ -210,9 +209,10 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   // The sim's own word for its last step: this test's listener can be
   // behind on a loaded machine.
   const std::string sim_log = ReadText(dir_ / "sim.log");
-  const size_t ended = sim_log.find("simpartner-sim: ended at step ");
+  const std::string ended_line = "simpartner-sim: ended at step ";
+  const size_t ended = sim_log.find(ended_line);
   ASSERT_NE(ended, std::string::npos) << sim_log;
-  const int64_t last = std::atoll(sim_log.c_str() + ended + std::strlen("simpartner-sim: ended at step "));
+  const int64_t last = std::atoll(sim_log.c_str() + ended + ended_line.size());
   int64_t rows = -1;
   test_support::WaitFor(
       [&] {
