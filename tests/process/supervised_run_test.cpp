@@ -105,6 +105,7 @@ class StepRecorder : public test_support::BusListener {
     if (first == nullptr || last == first) return 0;
     return static_cast<double>(last->step - first->step) / (1e-6 * static_cast<double>(last->when - first->when));
   }
+  size_t count() const { return seen_.size(); }
   int64_t simulation() const { return seen_.empty() ? 0 : seen_.back().simulation; }
   int64_t step() const { return seen_.empty() ? -1 : seen_.back().step; }
   // The wall time the sim stamped on the newest state read [us].
@@ -376,11 +377,13 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
     const int64_t during_end_us = WallMicros();
     const int64_t window_us = static_cast<int64_t>(kWindow * 1e6);
     // Every state of the last window read: while the victim came back, this
-    // test read the bus between looks at the logs and fell behind by up to
-    // the socket's buffer (seconds of states on a loaded machine), so a
+    // test read the bus between looks at the logs and the database (each a
+    // mariadb client counting the rows logged so far) and fell behind, so a
     // fixed wait could end before the window's states were read.
     ASSERT_TRUE(bus.Until([&] { return bus.newest() >= during_end_us + window_us; }, 30))
-        << "no state stamped after the window within 30 s";
+        << "no state stamped after the window within 30 s: the newest read was stamped "
+        << 1e-6 * static_cast<double>(WallMicros() - bus.newest()) << " s ago, " << bus.count()
+        << " states read";
     const double before = bus.Rate(first_simulation, killed_us - window_us, killed_us);
     const double during = bus.Rate(first_simulation, killed_us, during_end_us);
     const double after = bus.Rate(first_simulation, during_end_us, during_end_us + window_us);

@@ -1,5 +1,6 @@
 #include "bus_listener.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -20,10 +21,25 @@ void BusListener::Listen(const std::string& channel, RawHandler handler, int que
       ->setQueueCapacity(queue_capacity);
 }
 
+void BusListener::ReceiveWaiting(std::chrono::steady_clock::time_point end) {
+  using Clock = std::chrono::steady_clock;
+  if (lcm_.handleTimeout(10) <= 0) return;
+  const Clock::time_point batch_end =
+      std::min(end, Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                       std::chrono::duration<double>(kBatchSeconds)));
+  while (Clock::now() < batch_end && lcm_.handleTimeout(0) > 0) {
+  }
+}
+
 bool BusListener::Until(const std::function<bool()>& condition, double seconds) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (!condition() && std::chrono::steady_clock::now() < end) lcm_.handleTimeout(10);
-  return condition();
+  const auto end = std::chrono::steady_clock::now() +
+                   std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                       std::chrono::duration<double>(seconds));
+  for (;;) {
+    if (condition()) return true;
+    if (std::chrono::steady_clock::now() >= end) return false;
+    ReceiveWaiting(end);
+  }
 }
 
 void BusListener::Pump(double seconds) {

@@ -8,6 +8,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -55,7 +56,10 @@ class BusListener {
   }
 
   // Receives until condition() holds or `seconds` have passed; returns
-  // condition().
+  // condition(). The condition is looked at once per batch of the messages
+  // waiting (at most kBatchSeconds of receiving), not after each: a costly
+  // one (a database query, a log read) would otherwise let the queue grow
+  // faster than it drains.
   bool Until(const std::function<bool()>& condition, double seconds);
   // Receives for `seconds`.
   void Pump(double seconds);
@@ -76,6 +80,10 @@ class BusListener {
     void Receive(const lcm::ReceiveBuffer* buffer, const std::string& channel) { handler(buffer, channel); }
   };
   void Listen(const std::string& channel, RawHandler handler, int queue_capacity);
+  // Waits up to 10 ms for a message, then receives every message waiting,
+  // for at most kBatchSeconds or until `end`.
+  void ReceiveWaiting(std::chrono::steady_clock::time_point end);
+  static constexpr double kBatchSeconds = 0.1;
 
   lcm::LCM lcm_;
   BadMessageCounter refused_;

@@ -5,8 +5,11 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <stdexcept>
+#include <thread>
+#include <vector>
 
 #include "bus_listener.h"
 #include "bus_url.h"
@@ -78,6 +81,25 @@ TEST(BusListener, KeepsWhatDecodesAndCountsWhatDoesNot) {
   EXPECT_EQ(controls[0].action, control_t::ACTION_PAUSE);
   EXPECT_EQ(bus.refused().count(channels::kControl), 1u);
   EXPECT_FALSE(bus.Until([] { return false; }, 0.05));
+}
+
+// A condition that costs 50 ms (a database query, say) is looked at once
+// per batch of waiting messages: 200 messages are read within 2 s, where
+// one look per message would take 10 s.
+TEST(BusListener, ACostlyConditionDoesNotLetTheQueueGrow) {
+  BusListener bus(BusUrl(8));
+  std::vector<control_t> controls;
+  bus.Keep(channels::kControl, &controls);
+  control_t step{};
+  step.action = control_t::ACTION_STEP;
+  step.sender = "support_test";
+  constexpr size_t kMessages = 200;
+  for (size_t i = 0; i < kMessages; ++i) bus.lcm().publish(channels::kControl, &step);
+  const auto costly = [&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    return controls.size() == kMessages;
+  };
+  EXPECT_TRUE(bus.Until(costly, 2)) << controls.size() << " of " << kMessages << " read";
 }
 
 TEST(Encode, WritesWhatTheDecoderReads) {
