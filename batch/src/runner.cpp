@@ -9,6 +9,7 @@
 #include <mutex>
 #include <thread>
 
+#include "simpartner/csv_field.h"
 #include "simpartner/text.h"
 
 namespace simpartner::batch {
@@ -38,13 +39,6 @@ std::string ProgressLine(int finished, int total, int failed, double seconds_per
                        : ", about " + FormatFixed(left / 60, 0) + " min left";
   }
   return line;
-}
-
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
 }
 
 }  // namespace

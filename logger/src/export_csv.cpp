@@ -2,23 +2,11 @@
 // obtained, a header line, then one line per body or joint and step.
 #include <ostream>
 
-#include "csv_field.h"
+#include "simpartner/csv_field.h"
 #include "simpartner/logger/export.h"
 #include "simpartner/logger/sql_text.h"
 
 namespace simpartner::logger {
-
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"')
-      out += "\"\"";
-    else
-      out += c;
-  }
-  return out + "\"";
-}
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <ostream>
 
-#include "csv_field.h"
+#include "simpartner/csv_field.h"
 #include "simpartner/logger/export.h"
 #include "simpartner/logger/simulations.h"
 #include "simpartner/logger/sql_text.h"
