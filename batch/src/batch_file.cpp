@@ -14,6 +14,7 @@
 #include "simpartner/model/loader.h"
 #include "simpartner/model/robot_choice.h"
 #include "simpartner/parameters.h"
+#include "simpartner/programs.h"
 #include "simpartner/text.h"
 #include "simpartner/xml_document.h"
 
@@ -70,6 +71,7 @@ class Reader {
     Controller(xml::Child(root, "controller"), xml::Child(root, "sequence"));
     Seeds(xml::Child(root, "seeds"));
     if (const xmlNode* sweep = xml::Child(root, "sweep")) Sweep(sweep);
+    CheckRunCount(root);
     for (const xmlNode* f : xml::Children(root, "figure")) Figure(f);
     CheckPlaceholders(xml::Child(root, "controller"));
     if (!diagnostics_->empty()) return std::nullopt;
@@ -139,11 +141,24 @@ class Reader {
   void Controller(const xmlNode* controller, const xmlNode* sequence) {
     if (controller) {
       batch_.controller = xml::Text(controller);
-      if (Words(batch_.controller).empty()) Error(controller, "the controller command is empty");
+      const std::vector<std::string> words = Words(batch_.controller);
+      if (words.empty()) Error(controller, "the controller command is empty");
+      else ControllerProgram(controller, words.front());
       return;
     }
     const auto path = Find(sequence, *Attribute(sequence, "file"), "sequence", {"sequences"});
     if (path) batch_.sequence = *path;
+  }
+
+  // The controller's program is found now, as each run will start it (a
+  // placeholder in its name is found at the run).
+  void ControllerProgram(const xmlNode* controller, const std::string& program) {
+    if (program.find('{') != std::string::npos || !FindProgram(program).empty()) return;
+    if (program.find('/') != std::string::npos)
+      Error(controller, "controller program '" + program + "' is not an executable file");
+    else
+      Error(controller, "controller program '" + program +
+                            "' is neither a program of this build or install nor on PATH");
   }
 
   void Seeds(const xmlNode* node) {
@@ -228,6 +243,20 @@ class Reader {
         Error(sweep, "mode list: '" + v.name + "' has " + std::to_string(v.values.size()) +
                          " values, '" + batch_.sweep.front().name + "' " +
                          std::to_string(batch_.sweep.front().values.size()));
+  }
+
+  // At most kMaxRuns runs (counted in double: a grid's product may be huge).
+  void CheckRunCount(const xmlNode* root) {
+    double runs = static_cast<double>(batch_.seeds.size());
+    if (!batch_.sweep.empty() && !batch_.grid)
+      runs *= static_cast<double>(batch_.sweep.front().values.size());
+    else
+      for (const Vary& v : batch_.sweep) runs *= static_cast<double>(v.values.size());
+    if (runs <= kMaxRuns) return;
+    const xmlNode* sweep = xml::Child(root, "sweep");
+    Error(sweep ? sweep : root, "the batch is " + ShortestNumber(runs) +
+                                    " runs (the seeds times the sweep's combinations); at most " +
+                                    std::to_string(kMaxRuns) + ": split it into several batches");
   }
 
   void Figure(const xmlNode* node) {

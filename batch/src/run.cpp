@@ -22,10 +22,11 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-// A program of this build or install, else the name for PATH.
+// `name` found as a shell would (FindProgram: this build or install
+// first), else the name itself, which then cannot start and says so.
 std::string Program(const std::string& name) {
-  const std::string beside = SiblingProgram(name);
-  return beside.empty() ? name : beside;
+  const std::string found = FindProgram(name);
+  return found.empty() ? name : found;
 }
 
 double SecondsSince(Clock::time_point start) {
@@ -54,7 +55,7 @@ std::vector<std::string> ControllerOrSequencer(const BatchFile& batch, const Pla
     return {Program("simpartner-sequencer"), batch.sequence, "--lcm-url", url, "--from-zero",
             "--resume", "--quiet"};
   std::vector<std::string> argv = ControllerArgv(batch, run, url);
-  if (!argv.empty() && argv[0].find('/') == std::string::npos) argv[0] = Program(argv[0]);
+  if (!argv.empty()) argv[0] = Program(argv[0]);
   return argv;
 }
 

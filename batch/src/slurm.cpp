@@ -19,16 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// `name` on PATH, or "".
-std::string OnPath(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path ? path : "");
-  for (std::string dir; std::getline(dirs, dir, ':');)
-    if (!dir.empty() && ::access((fs::path(dir) / name).c_str(), X_OK) == 0)
-      return (fs::path(dir) / name).string();
-  return "";
-}
-
 // Runs a Slurm command to its end; its output. Throws SlurmError when it
 // cannot start, does not end within `timeout`, or fails.
 std::string Call(const std::vector<std::string>& argv, const fs::path& log, double timeout) {
@@ -92,7 +82,7 @@ std::vector<int> Pending(const BatchFile& batch, const std::vector<PlannedRun>& 
 void WaitForJob(const std::string& job, const SlurmOptions& slurm, const fs::path& dir,
                 const BatchFile& batch, const std::vector<PlannedRun>& runs,
                 const std::string& results_dir, std::ostream& progress_out) {
-  const std::string squeue = OnPath("squeue");
+  const std::string squeue = ProgramOnPath("squeue");
   if (squeue.empty()) throw SlurmError("squeue is not on PATH (Debian: slurm-client)");
   for (;;) {
     const std::string queued = Call({squeue, "-h", "-j", job, "-o", "%i"}, dir / "squeue.out",
@@ -111,7 +101,7 @@ void WaitForJob(const std::string& job, const SlurmOptions& slurm, const fs::pat
 BatchOutcome RunOnSlurm(const BatchFile& batch, const std::vector<PlannedRun>& runs,
                         const BatchOptions& options, const SlurmOptions& slurm,
                         std::ostream& progress_out) {
-  const std::string sbatch = OnPath("sbatch");
+  const std::string sbatch = ProgramOnPath("sbatch");
   if (sbatch.empty())
     throw SlurmError("sbatch is not on PATH: Slurm's client is not installed here (Debian: "
                      "slurm-client; on a cluster, run this on a login node)");

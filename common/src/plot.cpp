@@ -16,6 +16,7 @@
 
 #include "simpartner/child_process.h"
 #include "simpartner/diagnostic.h"
+#include "simpartner/programs.h"
 
 namespace simpartner {
 namespace {
@@ -56,16 +57,11 @@ std::string StyleOf(const Series& s, size_t index) {
   return style.str();
 }
 
-// posix_spawn needs a path: the first gnuplot on PATH.
-std::string FindProgram(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path != nullptr ? path : "/usr/bin:/bin");
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
-    if (access(candidate.c_str(), X_OK) == 0) return candidate.string();
-  }
-  return name;
+// posix_spawn needs a path: the first gnuplot on PATH, else the bare name,
+// which then cannot start (RunGnuplot says what to install).
+std::string GnuplotProgram() {
+  const std::string found = ProgramOnPath("gnuplot");
+  return found.empty() ? "gnuplot" : found;
 }
 
 // A scratch directory for gnuplot's data, script and log, removed at the end.
@@ -93,7 +89,7 @@ void RunGnuplot(const fs::path& script, const fs::path& log, const std::string& 
                 std::chrono::milliseconds timeout) {
   int status = -1;
   try {
-    ChildProcess gnuplot({FindProgram("gnuplot"), script.string()}, log.string());
+    ChildProcess gnuplot({GnuplotProgram(), script.string()}, log.string());
     status = gnuplot.Wait(timeout).value_or(-1);
   } catch (const std::exception& e) {
     throw Error(what + ": cannot run gnuplot (install gnuplot-x11, or gnuplot-nox for PNGs only): " +

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 namespace simpartner {
@@ -49,6 +50,28 @@ std::string SiblingProgram(std::string_view name) {
   if (!folder.empty() && IsExecutable(dir / ".." / folder / name))
     return (dir / ".." / folder / name).lexically_normal().string();
   return "";
+}
+
+std::string ProgramOnPath(std::string_view name) {
+  const char* path = std::getenv("PATH");
+  std::string_view folders = path != nullptr ? path : "";
+  while (!folders.empty()) {
+    const size_t colon = folders.find(':');
+    const std::string_view folder = folders.substr(0, colon);
+    folders = colon == std::string_view::npos ? std::string_view() : folders.substr(colon + 1);
+    if (folder.empty()) continue;
+    const fs::path candidate = fs::path(folder) / name;
+    if (IsExecutable(candidate)) return candidate.string();
+  }
+  return "";
+}
+
+std::string FindProgram(std::string_view name) {
+  if (name.empty()) return "";
+  if (name.find('/') != std::string_view::npos)
+    return IsExecutable(fs::path(name)) ? std::string(name) : "";
+  if (std::string beside = SiblingProgram(name); !beside.empty()) return beside;
+  return ProgramOnPath(name);
 }
 
 }  // namespace simpartner

@@ -116,6 +116,47 @@ TEST(BatchFileTest, RefusalsNameTheLineAndWhy) {
   EXPECT_TRUE(has(e, f + "4:")) << e;  // the DTD: an element it does not know
   e = Errors(with("<duration>2<", "<duration>-1<"));
   EXPECT_TRUE(has(e, f + "4: duration: duration '-1': seconds of sim time above 0")) << e;
+  e = Errors(with("drive_to_point", "no_such_controller_program"));
+  EXPECT_TRUE(has(e, f + "5: controller: controller program 'no_such_controller_program' is "
+                         "neither a program of this build or install nor on PATH"))
+      << e;
+  e = Errors(with("drive_to_point", "/nonexistent/controller"));
+  EXPECT_TRUE(has(e, f + "5: controller: controller program '/nonexistent/controller' is not an "
+                         "executable file"))
+      << e;
+}
+
+// A batch is at most kMaxRuns runs: 100 x 101 values are refused with the
+// sweep's line (a grid), 100 x 100 are taken.
+TEST(BatchFileTest, TheNumberOfRunsIsBounded) {
+  auto values = [](int n) {
+    std::string text;
+    for (int i = 0; i < n; ++i) text += (i ? " " : "") + std::to_string(i);
+    return text;
+  };
+  auto sweep = [&](int a, int b) {
+    return File("  <world>gen1_flat.xml</world>\n  <duration>1</duration>\n"
+                "  <controller>drive_to_point --lcm-url {url} --x {a} --z {b}</controller>\n"
+                "  <sweep>\n    <vary name=\"a\" values=\"" + values(a) + "\"/>\n"
+                "    <vary name=\"b\" values=\"" + values(b) + "\"/>\n  </sweep>\n");
+  };
+  const std::string e = Errors(sweep(100, 101));
+  EXPECT_NE(e.find(Name() + ":5: sweep: the batch is 10100 runs (the seeds times the sweep's "
+                            "combinations); at most 10000"),
+            std::string::npos)
+      << e;
+  const BatchParseResult most = ParseBatchFile(sweep(100, 100), Name());
+  ASSERT_TRUE(most.batch) << most.diagnostics.Format();
+  EXPECT_EQ(PlanRuns(*most.batch).size(), 10000u);
+}
+
+// A controller's program is found as a shell finds it: here sh, on PATH
+// only (a batch starts `python3 controller.py ...` so).
+TEST(BatchFileTest, AControllerOnPathIsFound) {
+  std::string text = kGood;
+  text.replace(text.find("drive_to_point"), 14, "sh");
+  const BatchParseResult r = ParseBatchFile(File(text), Name());
+  EXPECT_TRUE(r.batch) << r.diagnostics.Format();
 }
 
 // A regression suite of scenarios: a world per run, a robot per run, each

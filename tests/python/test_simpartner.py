@@ -413,6 +413,60 @@ class ReadmeAndLockStepExampleTest(unittest.TestCase):
         self.assertAlmostEqual(scanner, 1.0, delta=0.01)
 
 
+# A batch's controller that starts examples/lockstep_stop_at_wall.py again
+# with the sanitizer runtime preloaded when the tree is sanitized: the
+# batch's own environment cannot hold it (child_env()), so the test hands
+# it over in variables of its own.
+BATCH_CONTROLLER = """import os, sys
+preload = os.environ.pop("SP_CONTROLLER_PRELOAD", "")
+if preload:
+    os.environ["LD_PRELOAD"] = preload
+    os.environ["ASAN_OPTIONS"] = os.environ.pop("SP_CONTROLLER_ASAN_OPTIONS", "")
+os.execv(sys.executable, [sys.executable, %r] + sys.argv[1:])
+"""
+
+BATCH_FILE = """<?xml version="1.0"?>
+<batch name="python_controller" version="1">
+  <world>scanner_wall.xml</world>
+  <duration>0.5</duration>
+  <controller>python3 %s --lcm-url {url}</controller>
+  <seeds>1 2</seeds>
+</batch>
+"""
+
+
+class BatchTest(unittest.TestCase):
+    """simpartner-batch runs a Python controller given as `python3
+    controller.py`: python3 is found on PATH as a shell finds it."""
+
+    def test_a_controller_started_as_python3(self):
+        work = tempfile.mkdtemp(prefix="sp_pybatch_")
+        try:
+            controller = os.path.join(work, "controller.py")
+            with open(controller, "w") as f:
+                f.write(BATCH_CONTROLLER % (SOURCE_DIR + "/examples/lockstep_stop_at_wall.py"))
+            batch = os.path.join(work, "batch.xml")
+            with open(batch, "w") as f:
+                f.write(BATCH_FILE % controller)
+            env = child_env()
+            # This interpreter's folder first: another python3 earlier on
+            # PATH (pyenv's) has no numpy.
+            env["PATH"] = os.path.dirname(sys.executable) + os.pathsep + env.get("PATH", "")
+            env["SP_CONTROLLER_PRELOAD"] = os.environ.get("LD_PRELOAD", "")
+            env["SP_CONTROLLER_ASAN_OPTIONS"] = os.environ.get("ASAN_OPTIONS", "")
+            checked = subprocess.run([BINARY_DIR + "/batch/simpartner-batch", batch, "--check"],
+                                     env=env, capture_output=True, text=True, timeout=60)
+            self.assertEqual(checked.returncode, 0, checked.stdout + checked.stderr)
+            done = subprocess.run(
+                [BINARY_DIR + "/batch/simpartner-batch", batch, "--results",
+                 os.path.join(work, "results"), "--no-log", "--parallel", "2", "--quiet"],
+                env=env, capture_output=True, text=True, timeout=300)
+            self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
+            self.assertIn("2 run(s) done, 0 failed", done.stdout)
+        finally:
+            shutil.rmtree(work, ignore_errors=True)
+
+
 class DatabaseTest(unittest.TestCase):
     """read_logged: a run logged by a real simpartner-logger into a private server."""
 

@@ -27,4 +27,14 @@ std::string_view ProgramFolder(std::string_view name);
 // caller may then look on PATH).
 std::string SiblingProgram(std::string_view name);
 
+// The first executable `name` in $PATH's folders, as a shell finds it
+// (posix_spawn does not look); empty entries, which a shell reads as the
+// current directory, are passed over. "" when there is none.
+std::string ProgramOnPath(std::string_view name);
+
+// `name` as a program to start: a path (it holds a '/') as given when it
+// is an executable file; else SiblingProgram(name); else
+// ProgramOnPath(name). "" when there is none.
+std::string FindProgram(std::string_view name);
+
 }  // namespace simpartner

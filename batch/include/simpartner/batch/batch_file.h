@@ -46,6 +46,12 @@ struct BatchFile {
   std::vector<Figure> figures;
 };
 
+// The most runs a batch may have: each is a folder, a result file, a row
+// of the summary and, on Slurm, a task of one job array (whose size a
+// cluster's MaxArraySize bounds, 1,001 by default). Larger studies are
+// several batches.
+inline constexpr int kMaxRuns = 10000;
+
 struct BatchParseResult {
   std::optional<BatchFile> batch;  // set only when there were no errors
   DiagnosticList diagnostics;
