@@ -28,11 +28,13 @@ BatchOptions MakeOptions(const CommandLine& args, const BatchFile& batch) {
   options.run.results_dir = args.Text("results", DefaultResults(batch));
   options.run.timeout = args.Number("timeout", 600);
   options.run.log = !args.Has("no-log");
-  for (const char* flag : {"db-options", "dbname", "dbserver"})
-    if (args.Has(flag)) {
-      options.run.logger_args.push_back(std::string("--") + flag);
-      options.run.logger_args.push_back(args.Text(flag));
-    }
+  // simpartner-logger takes its option file as an option, the database and
+  // the server as parameters (--key=value).
+  std::vector<std::string>& logger_args = options.run.logger_args;
+  if (args.Has("db-options"))
+    logger_args.insert(logger_args.end(), {"--db-options", args.Text("db-options")});
+  for (const char* key : {"dbname", "dbserver"})
+    if (args.Has(key)) logger_args.push_back(std::string("--") + key + "=" + args.Text(key));
   const unsigned cores = std::thread::hardware_concurrency();
   options.parallel = static_cast<int>(args.Integer("parallel", cores > 0 ? cores : 1));
   for (const std::string& index : args.All("only")) options.only.push_back(std::stoi(index));

@@ -137,12 +137,15 @@ TEST_F(BatchProcessTest, EveryRunIsLoggedIntoOneDatabaseWithItsValues) {
       "  <world>gen1_flat.xml</world>\n  <duration>1</duration>\n"
       "  <controller>drive_to_point --lcm-url {url} --x {gx} --period 10</controller>\n"
       "  <sweep><vary name=\"gx\" values=\"2 3\"/></sweep>\n");
+  // The database and server named as a user names them: the loggers take
+  // them as parameters (--dbname=X), which they refused as --dbname X.
   const test_support::ProgramRun run =
-      Batch({file, "--db-options", server.logger_options(), "--parallel", "2", "--results",
+      Batch({file, "--db-options", server.logger_options(), "--dbname", "simpartner_batch",
+             "--dbserver", server.socket(), "--parallel", "2", "--results",
              (dir_ / "results").string()},
             "batch.log");
   EXPECT_EQ(run.status, 0) << run.output;
-  auto db = logger::DbConnection::Open(server.AdminTarget("simpartner"), false);
+  auto db = logger::DbConnection::Open(server.AdminTarget("simpartner_batch"), false);
   db->UseDatabase(false);
   for (const char* gx : {"2", "3"}) {
     const std::string tag = std::string("batch=logged run=") + (gx[0] == '2' ? "0" : "1") +
@@ -153,6 +156,30 @@ TEST_F(BatchProcessTest, EveryRunIsLoggedIntoOneDatabaseWithItsValues) {
         "steps of " + tag, -1);
     EXPECT_EQ(steps, 1000) << tag << "\n" << run.output;
   }
+  server.Stop();
+}
+
+// A run whose controller fails at once (false: exit 1) leaves its
+// Simulation row closed: the logger, stopped with the sim, still reads the
+// sim's end from what its socket holds (an audit found such rows open
+// before the logger did).
+TEST_F(BatchProcessTest, AFailedRunLeavesNoOpenSimulation) {
+  logger::PrivateServer server(test_support::SourceDir() + "/scripts/mariadb",
+                               (dir_ / "db").string(), false, test_support::MariaDbSeed());
+  server.Start();
+  const std::string file = Write("failing.xml",
+      "  <world>gen1_flat.xml</world>\n  <duration>1</duration>\n"
+      "  <controller>false --lcm-url {url}</controller>\n");
+  const test_support::ProgramRun run =
+      Batch({file, "--db-options", server.logger_options(), "--results", (dir_ / "results").string()},
+            "batch.log");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("0 run(s) done, 1 failed"), std::string::npos) << run.output;
+  auto db = logger::DbConnection::Open(server.AdminTarget("simpartner"), false);
+  db->UseDatabase(false);
+  EXPECT_EQ(db->QueryInt("SELECT COUNT(*) FROM Simulation", "runs logged", -1), 1) << run.output;
+  EXPECT_EQ(db->QueryInt("SELECT COUNT(*) FROM Simulation WHERE endTime IS NULL", "open runs", -1), 0)
+      << run.output;
   server.Stop();
 }
 
