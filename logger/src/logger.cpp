@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "simpartner/bus_exposure.h"
+#include "simpartner/sender.h"
 
 namespace simpartner::logger {
 namespace {
@@ -21,12 +22,15 @@ constexpr uint64_t kBatchBytes = 16u << 20;
 constexpr size_t kMinBatchRecords = 50;
 constexpr auto kLinger = std::chrono::milliseconds(50);
 constexpr auto kFailureReminder = std::chrono::seconds(30);
-// On a stop, what the bus socket still holds is read until nothing has
-// come for kStopQuiet (LCM's reader thread passes on a datagram in
-// microseconds), for at most kStopReadLimit: a sim publishing on would
-// otherwise keep the logger from stopping.
-constexpr int kStopQuietMs = 20;
-constexpr auto kStopReadLimit = std::chrono::seconds(2);
+// On a stop, what was sent before it is read: until nothing has come for
+// kStopQuietMs (LCM's reader thread passes on a datagram in microseconds),
+// or the followed sim's messages are stamped at or after the stop (a sim
+// publishing on), or for at most kStopReadLimit (a sim whose clock is
+// behind ours). A niced logger on a loaded machine can be seconds of
+// states behind, the run's end among them; scripts/run gives the logger
+// 120 s to stop, drain_timeout's writing included.
+constexpr int kStopQuietMs = 100;
+constexpr auto kStopReadLimit = std::chrono::seconds(30);
 
 std::string Megabytes(uint64_t bytes) {
   char text[32];
@@ -316,15 +320,28 @@ int Logger::Run(int stop_fd) {
 }
 
 void Logger::ReadWhatTheBusHolds() {
-  // The messages were sent before the stop came; on a loaded machine the
-  // receive loop can be a socket buffer behind (seconds of states, the
-  // sim's last step and its end among them).
-  const auto until = Clock::now() + kStopReadLimit;
+  const int64_t stop_us = WallMicros();
+  const auto start = Clock::now();
   pollfd fd{lcm_->getFileno(), POLLIN, 0};
-  while (Clock::now() < until && ::poll(&fd, 1, kStopQuietMs) > 0 && (fd.revents & POLLIN)) {
+  bool caught_up = false;
+  while (!caught_up && Clock::now() - start < kStopReadLimit) {
+    if (::poll(&fd, 1, kStopQuietMs) <= 0 || !(fd.revents & POLLIN)) {
+      caught_up = true;  // the bus is quiet
+      break;
+    }
     lcm_->handle();
     receiver_->Tick();
+    caught_up = receiver_->Stats().newest_stamp_us >= stop_us;
   }
+  const ReceiverStats s = receiver_->Stats();
+  if (!caught_up)
+    reporter_->Say("stop: still receiving after " +
+                   std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kStopReadLimit).count()) +
+                   " s of reading what was sent before the stop; the rest is not logged");
+  if (s.simulation_id != 0 && !s.followed_ended)
+    reporter_->Say("stop: bus simulation " + std::to_string(s.simulation_id) +
+                   " had not ended (no RUN_STOPPED heard; last step " + std::to_string(s.last_step) +
+                   "): it stays open in the database until a logger hears it stop or go silent");
 }
 
 LoggerStats Logger::Stats() const {

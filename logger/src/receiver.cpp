@@ -1,5 +1,6 @@
 #include "simpartner/logger/receiver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <utility>
@@ -303,8 +304,7 @@ void Receiver::FollowSuccessor() {
   set_aside_.erase(aside);
   Follow(*next, model.shape, std::move(model.record));
   if (model.stopped_at) {  // it ran and stopped while set aside
-    ended_.insert(*next);
-    follower_.Ended(*next);
+    MarkEnded(*next);
     Push(MakeEndedRecord(*next, WallMicros(),
                          EndedPayload{*model.stopped_at, EndKind::kStopped, ""}));
   }
@@ -322,8 +322,7 @@ void Receiver::CloseSilent() {
     const std::string reason = std::string(kSilentReasonStart) + "no SIM_STATE or SIM_STATUS for " +
                                seconds + " s and no RUN_STOPPED (last step seen " +
                                std::to_string(clock.step) + ")";
-    ended_.insert(simulation);
-    follower_.Ended(simulation);
+    MarkEnded(simulation);
     clock.closed_silent = true;
     {
       std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -333,6 +332,13 @@ void Receiver::CloseSilent() {
                    "; closing it (it is reopened if the sim is heard again)");
     Push(MakeEndedRecord(simulation, WallMicros(), EndedPayload{clock.step, EndKind::kSilent, reason}));
   }
+}
+
+void Receiver::MarkEnded(int64_t simulation) {
+  ended_.insert(simulation);
+  follower_.Ended(simulation);
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  if (simulation == stats_.simulation_id) stats_.followed_ended = true;
 }
 
 void Receiver::Heard(int64_t simulation) {
@@ -349,6 +355,7 @@ void Receiver::Heard(int64_t simulation) {
       std::lock_guard<std::mutex> lock(stats_mutex_);
       --stats_.simulations_silent;
       ++stats_.simulations_reopened;
+      if (simulation == stats_.simulation_id) stats_.followed_ended = false;
     }
     char text[160];
     std::snprintf(text, sizeof text,
@@ -449,6 +456,7 @@ void Receiver::Deliver(Record record, const state_t* decoded) {
       if (s.simulation_id == stats_.simulation_id) {
         stats_.last_step = s.step;
         stats_.last_publish_us = s.utime;
+        stats_.newest_stamp_us = std::max(stats_.newest_stamp_us, s.utime);
       }
       if (s.step % options_.log_interval != 0) {
         ++stats_.states_skipped;
@@ -535,6 +543,8 @@ void Receiver::Follow(int64_t simulation, const ModelShape& shape, Record model_
     std::lock_guard<std::mutex> lock(stats_mutex_);
     stats_.simulation_id = simulation;
     stats_.last_step = -1;
+    stats_.newest_stamp_us = 0;
+    stats_.followed_ended = ended_.count(simulation) > 0;
   }
   Push(std::move(model_record));
   DeliverWaiting(simulation);
@@ -618,12 +628,16 @@ void Receiver::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& cha
     aside->second.stopped_at = status.step;  // closed when followed
   if (models_.count(status.simulation_id) == 0) return;
   Heard(status.simulation_id);
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    if (status.simulation_id == stats_.simulation_id)
+      stats_.newest_stamp_us = std::max(stats_.newest_stamp_us, status.utime);
+  }
   clocks_[status.simulation_id].speed_allowance =
       SpeedAllowance(status.target_speed, status.real_time_factor);
   if (status.run_state != status_t::RUN_STOPPED) return;
   if (ended_.count(status.simulation_id) > 0) return;
-  ended_.insert(status.simulation_id);
-  follower_.Ended(status.simulation_id);
+  MarkEnded(status.simulation_id);
   Push(MakeEndedRecord(status.simulation_id, WallMicros(),
                        EndedPayload{status.step, EndKind::kStopped, ""}));
 }

@@ -401,26 +401,55 @@ TEST_F(LoggerProcessTest, StopWhileTheServerIsAwayKeepsEverythingForTheNextRun) 
   EXPECT_NE(ReadText(LoggerLog(1)).find("from an earlier run; writing that first"), std::string::npos);
 }
 
-// A stop finds states still waiting on the bus socket (a logger behind on
-// a loaded machine): they were sent before the stop, so they are logged,
-// and the run's end with them. Here the logger is stopped (SIGSTOP) while
-// the run goes on, and SIGTERM is pending when it wakes.
+// A stop finds states still waiting on the bus socket (a logger behind
+// on a loaded machine): they were sent before the stop, so they are
+// logged, and the run's end with them, however long reading them takes.
+// Here the logger is stopped (SIGSTOP) while the run goes on, SIGTERM is
+// pending when it wakes, and then it runs 1 ms in every 100 for 4 s: a
+// logger starved of CPU, which reads the 1,490 waiting states in more
+// than 2 s of wall time.
 TEST_F(LoggerProcessTest, AStopReadsWhatTheBusAlreadyHolds) {
   ChildProcess& logger = StartLogger();
-  const SimRun run = testing::ArmRun(300, 5);
+  const SimRun run = testing::ArmRun(1500, 5);
   lcm::LCM bus(url_);
   ASSERT_TRUE(WaitForReady(0));
   Publish(&bus, channels::kModel, run.model);
   PublishStates(&bus, run, 1, 10);
   ASSERT_TRUE(WaitFor([&] { return Steps() == 10; }, 30)) << ReadText(LoggerLog(0));
   logger.Signal(SIGSTOP);
-  PublishStates(&bus, run, 11, 300);
-  PublishStopped(&bus, run, 300);
+  PublishStates(&bus, run, 11, 1500);
+  PublishStopped(&bus, run, 1500);
   logger.Signal(SIGTERM);
+  const auto starved_until = std::chrono::steady_clock::now() + std::chrono::seconds(4);
+  while (std::chrono::steady_clock::now() < starved_until) {
+    logger.Signal(SIGCONT);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    logger.Signal(SIGSTOP);
+    std::this_thread::sleep_for(std::chrono::milliseconds(99));
+  }
   logger.Signal(SIGCONT);
   EXPECT_EQ(logger.Wait(std::chrono::seconds(60)).value_or(-1), 0);
-  ExpectEveryStepOnce(1, 1, 300, 3, 2);
+  ExpectEveryStepOnce(1, 1, 1500, 3, 2);
   EXPECT_TRUE(Closed(1)) << ReadText(LoggerLog(0));
+}
+
+// A stop while the sim publishes on: the logger stops reading at the
+// first message stamped after the stop (not at its 30 s limit), and says
+// that the simulation stays open (its end was not heard).
+TEST_F(LoggerProcessTest, AStopUnderARunningSimEndsAtOnceAndSaysTheRunIsOpen) {
+  ChildProcess& logger = StartLogger();
+  ASSERT_TRUE(WaitForReady(0));
+  StartSim({});
+  ASSERT_TRUE(WaitFor([&] { return Steps() > 500; }, 30)) << ReadText(LoggerLog(0));
+  const auto stop = Clock::now();
+  EXPECT_EQ(StopLogger(logger), 0);
+  EXPECT_LT(Clock::now() - stop, std::chrono::seconds(15)) << ReadText(LoggerLog(0));
+  const std::string log = ReadText(LoggerLog(0));
+  const size_t open = log.find("stop: bus simulation ");
+  EXPECT_NE(open, std::string::npos) << log;
+  EXPECT_NE(log.find(" had not ended (no RUN_STOPPED heard; last step ", open), std::string::npos) << log;
+  EXPECT_EQ(log.find("stop: still receiving"), std::string::npos) << log;
+  EXPECT_FALSE(Closed(1));
 }
 
 // The spool on a 2 MB tmpfs, the memory queue 0.5 MB, the server away

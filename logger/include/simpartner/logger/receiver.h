@@ -105,6 +105,10 @@ struct ReceiverStats {
   int64_t simulation_id = 0;       // the simulation followed (latest model)
   int64_t last_step = -1;          // its last state received
   int64_t last_publish_us = 0;     // and when the sim published it
+  // The newest publish stamp of the followed simulation's SIM_STATE or
+  // SIM_STATUS (sender's wall clock) [us].
+  int64_t newest_stamp_us = 0;
+  bool followed_ended = false;     // it said RUN_STOPPED or was closed as silent
   uint64_t BadMessages() const;
 };
 
@@ -167,6 +171,8 @@ class Receiver {
   // Says once that the queue takes records again after refusing some.
   void SpoolRecovered();
   void CloseSilent();
+  // `simulation` said RUN_STOPPED or was closed as silent.
+  void MarkEnded(int64_t simulation);
   // The sim of a simulation with a model spoke (SIM_STATE or SIM_STATUS):
   // reopens the simulation if it was closed as silent.
   void Heard(int64_t simulation);
