@@ -11,6 +11,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -42,6 +43,16 @@ namespace simpartner {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Seconds the main thread of `pid` (the sim's stepping loop) has waited
+// for a core: the second figure of /proc/<pid>/schedstat (ns). -1 when
+// it cannot be read.
+double RunQueueWaitSeconds(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/schedstat");
+  double on_cpu_ns = 0, waiting_ns = -1e9;
+  in >> on_cpu_ns >> waiting_ns;
+  return waiting_ns / 1e9;
+}
 using Clock = std::chrono::steady_clock;
 
 using test_support::BuiltCommand;
@@ -217,16 +228,24 @@ TEST_F(MultiHostTest, ThreeHostsWorkAndALinkDownIsReportedAndRecovered) {
                                 "JOIN Simulation s USING (simulationID) WHERE r.step > ";
   ASSERT_TRUE(bus->Until([&] { return Query(pose_rows + "0") > 1000; }, 30)) << Log("logger.log");
 
-  // The link down for 5 s. Wall time and sim time on either side, from
-  // states heard on the sim host itself.
-  // The sim's pace over 3 s before the outage, then across it.
+  // The link down for 5 s. The sim's pace over 3 s before the outage,
+  // then across it, from states heard on the sim host itself: sim time
+  // over the wall time in which its stepping thread was not waiting for a
+  // core, so that a loaded machine's changing share of a core does not
+  // count as the sim slowing down; a send that blocks does. (Behind its
+  // schedule by less than 100 ms the sim catches up: with a core it then
+  // runs faster than real time, so the pace is counted up to 1.)
   const state_t window_start = bus->last;
   const Clock::time_point window_start_at = bus->last_at;
+  const double window_start_wait = RunQueueWaitSeconds(sim->pid());
+  ASSERT_GE(window_start_wait, 0.0) << "no /proc/" << sim->pid() << "/schedstat";
   bus->Pump(3.0);
   const state_t before = bus->last;
   const Clock::time_point before_at = bus->last_at;
-  const double factor_before = (before.sim_time - window_start.sim_time) /
-                               std::chrono::duration<double>(before_at - window_start_at).count();
+  const double before_wait = RunQueueWaitSeconds(sim->pid());
+  const double pace_before = std::min(
+      1.0, (before.sim_time - window_start.sim_time) /
+               (std::chrono::duration<double>(before_at - window_start_at).count() - (before_wait - window_start_wait)));
   lan->SetLink("sim", false);
   std::this_thread::sleep_for(std::chrono::seconds(5));
   lan->SetLink("sim", true);
@@ -235,18 +254,20 @@ TEST_F(MultiHostTest, ThreeHostsWorkAndALinkDownIsReportedAndRecovered) {
   ASSERT_TRUE(bus->Until([&] { return bus->states > first_states_after + 1000; }, 10))
       << "no states after the link came back\n" << Log("sim.log");
   const state_t after = bus->last;
+  const double waited = RunQueueWaitSeconds(sim->pid()) - before_wait;
   const double wall = std::chrono::duration<double>(bus->last_at - before_at).count();
-  const double factor_across = (after.sim_time - before.sim_time) / wall;
-  std::cout << "real-time factor over 3 s before the outage " << factor_before << ", across it "
-            << factor_across << " (" << after.sim_time - before.sim_time << " s of sim time in " << wall
-            << " s wall)\n";
+  const double sim_seconds = after.sim_time - before.sim_time;
+  const double pace_across = std::min(1.0, sim_seconds / (wall - waited));
+  std::cout << "pace (sim time per wall second with a core, at most 1) over 3 s before the outage "
+            << pace_before << ", across it " << pace_across << " (" << sim_seconds << " s of sim time in "
+            << wall << " s wall, " << waited << " s of it waiting for a core)\n";
   EXPECT_GT(wall, 5.0);
-  // Real time is 1; a saturated machine (2 cores, sanitizers, neighbours)
-  // holds the sim lower, here never below 0.4. Failing sends must not slow
-  // it: across the outage at least 90 % of its pace before.
-  EXPECT_GE(factor_before, 0.4) << "the machine cannot keep the sim near real time";
-  EXPECT_GE(factor_across, 0.9 * factor_before) << "the sim slowed down while its sends failed";
-  EXPECT_LE(factor_across, 1.1) << "faster than real time";
+  // Failing sends must not slow the sim: across the outage at least 95 %
+  // of its pace before (a 1 s stall within the outage gives 0.92; quiet
+  // and with a busy loop on each core, the pace was 1 before and across).
+  EXPECT_GE(pace_before, 0.4) << "the sim cannot keep near real time even with a core";
+  EXPECT_GE(pace_across, 0.95 * pace_before) << "the sim slowed down while its sends failed";
+  EXPECT_LE(sim_seconds / wall, 1.1) << "faster than real time";
 
   // stderr: the channel and the cause (the kernel's word for a link down).
   const std::string sim_log = Log("sim.log");
