@@ -109,7 +109,7 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     std::string refusal;
     const std::optional<size_t> message =
         OpenFromBus(channel, data, size, signing_ ? &*signing_ : nullptr, &bad_messages_,
-                    &refusal, &print);
+                    &refusal, &print, &signing_mismatch_);
     if (!message) {
       if (print) std::cerr << "simpartner client: " << refusal << "\n";
       return;
@@ -287,7 +287,7 @@ std::shared_ptr<const Catalog> Client::LearnModel(
   for (;;) {
     if (model_count_ != seen && newest_model_ && accept(*newest_model_)) break;
     const auto now = Clock::now();
-    if (now >= deadline) throw NoSim(options_.url, timeout);
+    if (now >= deadline) throw NoSim(options_.url, timeout, signing_mismatch_.Hint());
     if (now >= next_request) {
       // A request can be lost on a busy bus: ask again.
       lock.unlock();
@@ -446,7 +446,8 @@ state_t Client::RequestState(double timeout) {
       return *state_reply_;
     }
     if (Clock::now() >= deadline)
-      throw Timeout("SIM_STATE_REPLY to a SIM_STATE_REQUEST", timeout, options_.url);
+      throw Timeout("SIM_STATE_REPLY to a SIM_STATE_REQUEST", timeout, options_.url,
+                    signing_mismatch_.Hint());
   }
 }
 
@@ -500,7 +501,7 @@ command_reply_t Client::Command(command_t command, double timeout) {
         replies_.count(id) == 0)
       throw Timeout("reply from the sim to the command for " + target + " (request " +
                         std::to_string(id) + ")",
-                    timeout, options_.url);
+                    timeout, options_.url, signing_mismatch_.Hint());
   }
 }
 
@@ -567,6 +568,11 @@ std::optional<state_t> Client::LatestState() const {
   return state_;
 }
 
+std::string Client::SigningHint() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return signing_mismatch_.Hint();
+}
+
 std::optional<status_t> Client::LatestStatus() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return status_;
@@ -602,7 +608,7 @@ sensor_reading_t Client::WaitForReading(const std::string& sensor, int64_t after
       if (again != readings_.end() && again->second.step > after_step) return again->second;
       throw Timeout("SIM_SENSOR reading of " + target.name + " after step " +
                         std::to_string(after_step),
-                    timeout, options_.url);
+                    timeout, options_.url, signing_mismatch_.Hint());
     }
   }
 }
@@ -649,7 +655,7 @@ image_t Client::WaitForImage(const std::string& camera, int64_t after_step, doub
       throw Timeout(std::string("SIM_IMAGE ") + (kind == ImageKind::kColour ? "colour" : "depth") +
                         " image of " + camera + " after step " + std::to_string(after_step) +
                         " (is simpartner-camera running?)",
-                    timeout, options_.url);
+                    timeout, options_.url, signing_mismatch_.Hint());
     }
   }
 }
@@ -674,7 +680,7 @@ state_t Client::WaitUntilSimTime(double sim_time, double timeout) {
       throw Timeout(std::string("SIM_STATE at sim time ") + text + " s" +
                         (state_ ? " (the sim is at " + std::to_string(state_->sim_time) + " s)"
                                 : std::string(" (no SIM_STATE yet)")),
-                    timeout, options_.url);
+                    timeout, options_.url, signing_mismatch_.Hint());
     }
   }
 }
@@ -685,7 +691,7 @@ status_t Client::WaitForStatus(double timeout) {
   std::unique_lock<std::mutex> lock(mutex_);
   const uint64_t seen = status_count_;
   if (!changed_.wait_until(lock, deadline, [&] { return status_count_ != seen; }))
-    throw Timeout("SIM_STATUS", timeout, options_.url);
+    throw Timeout("SIM_STATUS", timeout, options_.url, signing_mismatch_.Hint());
   return *status_;
 }
 

@@ -283,9 +283,10 @@ int RunControl(const Options& o, std::ostream& out) {
     return o.simulation_id == 0 || s.simulation_id == o.simulation_id;
   });
   if (!before && o.simulation_id != 0)
-    throw Timeout("SIM_STATUS of simulation " + std::to_string(o.simulation_id), o.timeout, o.url);
+    throw Timeout("SIM_STATUS of simulation " + std::to_string(o.simulation_id), o.timeout, o.url,
+                  client.SigningHint());
   if (!before)
-    throw NoSim(o.url, o.timeout);
+    throw NoSim(o.url, o.timeout, client.SigningHint());
   std::function<bool(const status_t&)> done;
   std::string what;
   if (verb == "pause") {
@@ -319,7 +320,7 @@ int RunControl(const Options& o, std::ostream& out) {
   std::optional<status_t> after = client.LatestStatus();
   if (!after || !done(*after)) after = AwaitStatus(client, o.timeout, done);
   if (!after)
-    throw Timeout("SIM_STATUS confirming '" + verb + "'", o.timeout, o.url);
+    throw Timeout("SIM_STATUS confirming '" + verb + "'", o.timeout, o.url, client.SigningHint());
   out << "sim " << FormatStatus(*after, &*before, true) << "\n";
   return kCmdOk;
 }
@@ -383,7 +384,7 @@ int RunStatus(const Options& o, std::ostream& out) {
   std::optional<status_t> previous;  // following: each warning once
   do {
     const auto s = AwaitStatus(client, o.timeout, [](const status_t&) { return true; });
-    if (!s) throw Timeout("SIM_STATUS", o.timeout, o.url);
+    if (!s) throw Timeout("SIM_STATUS", o.timeout, o.url, client.SigningHint());
     out << FormatStatus(*s, previous ? &*previous : nullptr) << "\n" << std::flush;
     previous = s;
     ++printed;

@@ -46,9 +46,10 @@ Timeout::Timeout(std::string awaited, double seconds, std::string url, std::stri
       awaited_(std::move(awaited)),
       seconds_(seconds) {}
 
-NoSim::NoSim(std::string url, double seconds)
+NoSim::NoSim(std::string url, double seconds, std::string hint)
     : ClientError(seconds > 0 ? "no sim on " + url + ": no SIM_MODEL within " + SecondsText(seconds) +
-                                    " (is simpartner-sim running with this --lcm-url?)"
+                                    (hint.empty() ? " (is simpartner-sim running with this --lcm-url?)"
+                                                  : "; " + hint)
                               : "no model learned from " + url +
                                     " yet (the client was made with learn_model = false: "
                                     "call Relearn())"),

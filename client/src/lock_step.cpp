@@ -76,7 +76,7 @@ void LockStep::Join() {
     }
   }
   throw Timeout("SIM_SYNC_REPLY to the JOIN of lock-step controller '" + options_.name + "'",
-                options_.timeout, client_.url());
+                options_.timeout, client_.url(), client_.SigningHint());
 }
 
 void LockStep::ResumeIfPaused() {

@@ -296,8 +296,9 @@ std::string BadMessageCounter::Summary() const {
 
 std::optional<size_t> OpenFromBus(const std::string& channel, const void* data, size_t size,
                                   BusSigning* signing, BadMessageCounter* counter,
-                                  std::string* refusal, bool* print) {
+                                  std::string* refusal, bool* print, SigningMismatch* mismatch) {
   const BusSigning::Opened opened = OpenMessage(signing, channel, data, size);
+  if (mismatch != nullptr) mismatch->Note(signing != nullptr, data, size, opened);
   if (opened.refusal.empty()) return opened.size;
   *refusal = DescribeSignatureRefusal(channel, size, opened.refusal);
   bool should_print = true;

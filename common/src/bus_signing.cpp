@@ -157,7 +157,7 @@ BusSigning::Opened BusSigning::Open(const std::string& channel, const void* data
                                     int64_t now_us) {
   const auto* bytes = static_cast<const uint8_t*>(data);
   if (size < kSignatureBytes || std::memcmp(bytes + size - 4, kMagic, 4) != 0)
-    return {size, "no signature (this bus is signed: SIMPARTNER_BUS_KEY)"};
+    return {size, "no signature (this bus is signed: SIMPARTNER_BUS_KEY)", Verdict::kUnsigned};
   const size_t message = size - kSignatureBytes;
   const uint8_t* trailer = bytes + message;
   const uint64_t link = GetBigEndian(trailer);
@@ -165,19 +165,21 @@ BusSigning::Opened BusSigning::Open(const std::string& channel, const void* data
   uint8_t expected[16];
   Tag(channel, bytes, message, link, timestamp, expected);
   if (CRYPTO_memcmp(expected, trailer + 16, 16) != 0)
-    return {message, "wrong signature (another key, or altered on the way)"};
+    return {message, "wrong signature (another key, or altered on the way)",
+            Verdict::kWrongSignature};
   std::lock_guard<std::mutex> lock(mutex_);
   const auto known = links_.find(link);
   if (known != links_.end()) {
     const std::string refusal = Admit(&known->second, timestamp);
     if (refusal.empty()) known->second.used = ++uses_;
-    return {message, refusal};
+    return {message, refusal, refusal.empty() ? Verdict::kVerified : Verdict::kReplayedOrStale};
   }
   if (std::llabs(timestamp - now_us) > kFreshnessSeconds * 1000000)
     return {message, "stale: a new sender's first message, " +
                          std::to_string((now_us - timestamp) / 1000000) +
                          " s from this host's clock (at most " +
-                         std::to_string(kFreshnessSeconds) + " s: a replayed log?)"};
+                         std::to_string(kFreshnessSeconds) + " s: a replayed log?)",
+            Verdict::kReplayedOrStale};
   if (links_.size() >= kMaxLinks) {
     const auto oldest = std::min_element(
         links_.begin(), links_.end(),
@@ -218,6 +220,38 @@ BusSigning::Opened OpenMessage(BusSigning* signing, const std::string& channel, 
                                size_t size) {
   if (signing == nullptr) return {UnsignedSize(data, size), ""};
   return signing->Open(channel, data, size, WallMicros());
+}
+
+void SigningMismatch::Note(bool has_key, const void* data, size_t size,
+                           const BusSigning::Opened& opened) {
+  has_key_ = has_key;
+  if (!has_key) {
+    if (UnsignedSize(data, size) != size) ++signed_unchecked_;
+    return;
+  }
+  switch (opened.verdict) {
+    case BusSigning::Verdict::kVerified: ++verified_; break;
+    case BusSigning::Verdict::kUnsigned: ++unsigned_refused_; break;
+    case BusSigning::Verdict::kWrongSignature: ++wrong_signature_; break;
+    case BusSigning::Verdict::kReplayedOrStale: break;
+  }
+}
+
+std::string SigningMismatch::Hint() const {
+  const std::string where = std::string(" (") + kBusKeyVariable + "; docs/security.md)";
+  if (!has_key_ && signed_unchecked_ > 0)
+    return "this bus is signed (" + std::to_string(signed_unchecked_) +
+           " messages heard carry a signature) and this program has no key, so the sim refuses "
+           "what it sends: set " + kBusKeyVariable + " to the bus's key file (docs/security.md)";
+  if (has_key_ && wrong_signature_ > 0)
+    return std::to_string(wrong_signature_) + " messages heard did not verify with this program's key" +
+           (verified_ == 0 ? ", and none did: the bus uses another key" : ": another key on the bus") +
+           where;
+  if (has_key_ && unsigned_refused_ > 0 && verified_ == 0)
+    return "the " + std::to_string(unsigned_refused_) +
+           " messages heard are unsigned and this program has a key, so it refuses them: the sim "
+           "runs without one; give it the key, or unset the variable here" + where;
+  return "";
 }
 
 size_t UnsignedSize(const void* data, size_t size) {

@@ -160,5 +160,46 @@ TEST_F(BusKeyFileTest, ThirtyTwoBytesOrSixtyFourHexDigitsInAPrivateFile) {
             std::string::npos);
 }
 
+// What a reader heard tells why it may hear no answer: a signed bus and no
+// key, an unsigned bus and a key, or another key; a bus that matches says
+// nothing.
+TEST(SigningMismatch, NamesASignedBusWithoutAKeyAnUnsignedOneWithAKeyAndAnotherKey) {
+  const int64_t now = WallMicros();
+  BusSigning sim(KeyOf(7));
+  const auto signed_bytes = sim.Sign("SIM_STATUS", kMessage.data(), kMessage.size(), now);
+  auto heard = [&](BusSigning* reader, const std::vector<uint8_t>& bytes, SigningMismatch* mismatch) {
+    mismatch->Note(reader != nullptr, bytes.data(), bytes.size(),
+                   OpenMessage(reader, "SIM_STATUS", bytes.data(), bytes.size()));
+  };
+
+  SigningMismatch no_key;
+  heard(nullptr, kMessage, &no_key);
+  EXPECT_EQ(no_key.Hint(), "") << "an unsigned bus, no key: they match";
+  heard(nullptr, signed_bytes, &no_key);
+  EXPECT_NE(no_key.Hint().find("this bus is signed (1 messages heard carry a signature) and this "
+                               "program has no key"),
+            std::string::npos)
+      << no_key.Hint();
+  EXPECT_NE(no_key.Hint().find("set SIMPARTNER_BUS_KEY"), std::string::npos) << no_key.Hint();
+
+  BusSigning same_key(KeyOf(7)), other_key(KeyOf(9));
+  SigningMismatch right, wrong, unsigned_bus;
+  heard(&same_key, signed_bytes, &right);
+  EXPECT_EQ(right.Hint(), "");
+  heard(&other_key, signed_bytes, &wrong);
+  EXPECT_NE(wrong.Hint().find("1 messages heard did not verify with this program's key, and none "
+                              "did: the bus uses another key (SIMPARTNER_BUS_KEY; docs/security.md)"),
+            std::string::npos)
+      << wrong.Hint();
+  heard(&same_key, kMessage, &unsigned_bus);
+  EXPECT_NE(unsigned_bus.Hint().find("messages heard are unsigned and this program has a key"),
+            std::string::npos)
+      << unsigned_bus.Hint();
+  // Unsigned forgeries on a signed bus whose own messages verify: the bus
+  // matches; the forgeries are counted elsewhere.
+  heard(&same_key, kMessage, &right);
+  EXPECT_EQ(right.Hint(), "");
+}
+
 }  // namespace
 }  // namespace simpartner

@@ -4,7 +4,8 @@
 // model of another simulation and a state, and replays a signed command:
 // nothing changes, and the sim says why it refused each. Without the key
 // (the same sim, no SIMPARTNER_BUS_KEY) the forged quit stops the sim: the
-// test that shows what the key does.
+// test that shows what the key does. A program without the key, or with
+// another, is told so.
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 #include <stdlib.h>
@@ -15,12 +16,14 @@
 #include <thread>
 
 #include "../support/bus_url.h"
+#include "../support/processes.h"
 #include "../support/programs.h"
 #include "../support/sim_process.h"
 #include "../support/test_dir.h"
 #include "../support/wait.h"
 #include "simpartner/channels.h"
 #include "simpartner/client/client.h"
+#include "simpartner/client/cmd.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
 
@@ -123,6 +126,48 @@ TEST_F(SignedBusTest, WithoutTheKeyNothingChangesAndAReplayIsRefused) {
   EXPECT_EQ(status.bad_messages, 5) << log;       // replay, quit, command, model, quit
   keyed.Quit();
   EXPECT_EQ(sim.Wait(std::chrono::seconds(10)), std::optional<int>(0)) << sim.Log();
+}
+
+// A program refused by a signed bus is told why, not that no sim is
+// there: without the key, simpartner-cmd hears the sim (its messages carry
+// signatures) and the sim refuses its pause; with another key it hears
+// nothing it can verify.
+TEST_F(SignedBusTest, AProgramWithoutTheKeyOrWithAnotherIsToldWhy) {
+  ASSERT_EQ(::setenv(kBusKeyVariable, key_.c_str(), 1), 0);
+  const std::string url = BusUrl(3);
+  SimProcess sim(ShippedWorld("gen1_flat.xml"), url, (dir_ / "sim.log").string());
+  ASSERT_TRUE(sim.WaitUntilRunning(30)) << sim.Log();
+  const std::string other_key = (dir_ / "other.key").string();
+  std::ofstream(other_key) << std::string(64, 'd') << "\n";
+  ::chmod(other_key.c_str(), 0600);
+  auto pause = [&](const std::string& log) {
+    return test_support::RunToEnd(
+        test_support::BuiltCommand("simpartner-cmd", {"--lcm-url", url, "--timeout", "2", "pause"}),
+        (dir_ / log).string(), std::chrono::seconds(30));
+  };
+
+  ASSERT_EQ(::unsetenv(kBusKeyVariable), 0);
+  const test_support::ProgramRun keyless = pause("keyless.log");
+  EXPECT_EQ(keyless.status, client::kCmdNoAnswer) << keyless.output;
+  EXPECT_NE(keyless.output.find("no SIM_STATUS confirming 'pause' within 2 s on " + url +
+                                "; this bus is signed ("),
+            std::string::npos)
+      << keyless.output;
+  EXPECT_NE(keyless.output.find("messages heard carry a signature) and this program has no key, so the "
+                                "sim refuses what it sends: set SIMPARTNER_BUS_KEY to the bus's key file"),
+            std::string::npos)
+      << keyless.output;
+
+  ASSERT_EQ(::setenv(kBusKeyVariable, other_key.c_str(), 1), 0);
+  const test_support::ProgramRun wrong = pause("wrong.log");
+  EXPECT_EQ(wrong.status, client::kCmdNoAnswer) << wrong.output;
+  EXPECT_NE(wrong.output.find("no sim on " + url + ": no SIM_MODEL within 2 s; "), std::string::npos)
+      << wrong.output;
+  EXPECT_NE(wrong.output.find("messages heard did not verify with this program's key, and none did: the "
+                              "bus uses another key (SIMPARTNER_BUS_KEY; docs/security.md)"),
+            std::string::npos)
+      << wrong.output;
+  EXPECT_TRUE(sim.running()) << sim.Log();
 }
 
 TEST_F(SignedBusTest, WithoutAKeyTheForgedQuitStopsTheSim) {

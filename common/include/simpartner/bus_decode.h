@@ -126,10 +126,12 @@ std::optional<std::string> DecodeFromBus(const std::string& channel, const void*
 // trailer is dropped unread. Returns the message's size, or counts the
 // refusal in `counter` and returns nothing with the description in
 // *refusal; *print says whether to print it now (CountSignatureRefusal:
-// at most a line a second, with the count since the last).
+// at most a line a second, with the count since the last). `mismatch`,
+// if given, notes what the datagram tells of the bus's signing.
 std::optional<size_t> OpenFromBus(const std::string& channel, const void* data, size_t size,
                                   BusSigning* signing, BadMessageCounter* counter,
-                                  std::string* refusal, bool* print = nullptr);
+                                  std::string* refusal, bool* print = nullptr,
+                                  SigningMismatch* mismatch = nullptr);
 
 // OpenFromBus, then DecodeFromBus: the one call every subscriber makes.
 template <class T>

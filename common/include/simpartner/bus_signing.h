@@ -88,9 +88,16 @@ class BusSigning {
   // The message's size without its signature when it verifies and is
   // fresh; else why not ("no signature", "wrong signature", "replayed:
   // ...", "stale: ..."). `now_us`: the reader's clock.
+  enum class Verdict {
+    kVerified,        // or read without a key
+    kUnsigned,        // no signature trailer
+    kWrongSignature,  // another key, or altered on the way
+    kReplayedOrStale,
+  };
   struct Opened {
     size_t size = 0;
     std::string refusal;  // "" when it verifies
+    Verdict verdict = Verdict::kVerified;
   };
   Opened Open(const std::string& channel, const void* data, size_t size, int64_t now_us);
 
@@ -128,6 +135,29 @@ size_t UnsignedSize(const void* data, size_t size);
 // unread (UnsignedSize). The one step every reader takes.
 BusSigning::Opened OpenMessage(BusSigning* signing, const std::string& channel, const void* data,
                                size_t size);
+
+// Why a reader may hear no answer although messages come: what it heard
+// about signatures. Without a key: messages that carry one (the bus is
+// signed, and the sim refuses what this reader sends unsigned). With a
+// key: messages without one (the sim runs unsigned), or whose signature
+// does not verify (another key). Not thread-safe: the caller's lock.
+class SigningMismatch {
+ public:
+  // After OpenMessage(signing, ...) of one datagram (`has_key`: signing
+  // was set).
+  void Note(bool has_key, const void* data, size_t size, const BusSigning::Opened& opened);
+  // "" when nothing heard suggests a mismatch; else what was heard and
+  // what to do, in a sentence that names SIMPARTNER_BUS_KEY and
+  // docs/security.md.
+  std::string Hint() const;
+
+ private:
+  bool has_key_ = false;
+  uint64_t signed_unchecked_ = 0;  // without a key: messages with a signature
+  uint64_t unsigned_refused_ = 0;  // with a key
+  uint64_t wrong_signature_ = 0;   // with a key
+  uint64_t verified_ = 0;          // with a key
+};
 
 // Publishes `message` on `channel`, signed when `signing` is set. Returns
 // lcm's status (0 when sent).

@@ -161,6 +161,11 @@ class Client {
   // Newest messages, or nothing before the first one.
   std::optional<state_t> LatestState() const;
   std::optional<status_t> LatestStatus() const;
+  // What the client heard that may explain a missing answer: a signed bus
+  // and no key, an unsigned bus and a key, or another key
+  // (SigningMismatch). "" when nothing suggests it. Timeouts and NoSim
+  // carry it.
+  std::string SigningHint() const;
   std::optional<sensor_reading_t> LatestReading(const std::string& sensor) const;
   // Waits for a reading of `sensor` (name as in the model) from a step
   // after `after_step`; throws Timeout, SimRestarted.
@@ -282,6 +287,7 @@ class Client {
   int64_t latest_simulation_id_ = 0;
   SimulationFollower follower_;  // which SIM_MODEL is our sim's (guarded by mutex_)
   std::optional<BusSigning> signing_;  // SIMPARTNER_BUS_KEY: sign and check (thread-safe)
+  SigningMismatch signing_mismatch_;   // guarded by mutex_
   std::optional<Clock::time_point> last_heard_;
   // Held while a callback runs, so that once OnState/OnReading returns the
   // old callback is not running any more.

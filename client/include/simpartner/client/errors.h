@@ -58,7 +58,8 @@ class Timeout : public ClientError {
 // before any Relearn().
 class NoSim : public ClientError {
  public:
-  NoSim(std::string url, double seconds);
+  // hint: what may explain it (the bus's signing), appended.
+  NoSim(std::string url, double seconds, std::string hint = "");
   const std::string& url() const { return url_; }
   double seconds() const { return seconds_; }
 
