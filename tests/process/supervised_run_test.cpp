@@ -34,6 +34,7 @@
 #include "../support/programs.h"
 #include "../support/test_dir.h"
 #include "../support/text_file.h"
+#include "../support/wait.h"
 #include "simpartner/sender.h"
 
 namespace simpartner {
@@ -247,6 +248,36 @@ TEST_F(SupervisedRunTest, KeepDbHintWorksFromAnotherDirectory) {
   EXPECT_NE(listed.output.find("the sim stopped"), std::string::npos) << listed.output;
   EXPECT_EQ(stopped.status, 0) << stopped.output;
   EXPECT_NE(stopped.output.find("stopped"), std::string::npos) << stopped.output;
+}
+
+// kill -9 of the launcher cannot run its stop, so each child it started
+// is stopped by the kernel (SIGTERM when its parent dies): no sim runs on
+// without its launcher, its guard or a duration.
+TEST_F(SupervisedRunTest, KilledLauncherTakesItsProcessesWithIt) {
+  const fs::path sequence = dir_ / "hold.xml";
+  std::ofstream(sequence) << "<?xml version=\"1.0\"?>\n"
+                             "<sequence version=\"2\" name=\"hold\">\n"
+                             "  <pause seconds=\"600\"/>\n"
+                             "</sequence>\n";
+  launcher_ = std::make_unique<ChildProcess>(
+      std::vector<std::string>{"/bin/bash", SourceDir() + "/scripts/run", "--bin", BinaryDir(), "--state",
+                               (dir_ / "state").string(), "--no-viewer", "--no-logger", "--sequence",
+                               sequence.string(), "--lcm-url", url_,
+                               "--environment=" + test_support::ShippedWorld("gen1_flat.xml")},
+      (dir_ / "launcher.log").string());
+  StepRecorder bus(url_);
+  ASSERT_TRUE(bus.Until([&] { return bus.step() > 500; }, 60)) << ReadText(dir_ / "launcher.log");
+  const std::string run_log = RunLog();
+  const pid_t sim = AnnouncedPid(run_log, "sim");
+  const pid_t sequencer = AnnouncedPid(run_log, "sequencer");
+  ASSERT_TRUE(Running(sim) && Running(sequencer)) << run_log;
+  launcher_->Signal(SIGKILL);
+  ASSERT_EQ(launcher_->Wait(std::chrono::seconds(10)).value_or(-1), 128 + SIGKILL);
+  EXPECT_TRUE(test_support::WaitFor([&] { return !Running(sim) && !Running(sequencer); }, 15.0))
+      << "sim " << (Running(sim) ? "still runs" : "ended") << ", sequencer "
+      << (Running(sequencer) ? "still runs" : "ended") << "\n" << RunLog();
+  for (const pid_t pid : {sim, sequencer})
+    if (Running(pid)) ::kill(pid, SIGKILL);
 }
 
 // A process that dies young (within 3 s of its start) is a start-up
