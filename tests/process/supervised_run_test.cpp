@@ -88,9 +88,12 @@ bool Running(pid_t pid) {
 // The sim's steps as this test received them: (wall time, simulation, step).
 class StepRecorder : public test_support::BusListener {
  public:
-  explicit StepRecorder(const std::string& url) : BusListener(url) {
-    Subscribe<state_t>(channels::kState,
-                       [this](const state_t& s) { seen_.push_back({s.utime, s.simulation_id, s.step}); });
+  // queue_capacity: the states LCM holds while the test does not receive;
+  // beyond it, it drops the newest (BusListener).
+  explicit StepRecorder(const std::string& url, int queue_capacity = kQueueCapacity) : BusListener(url) {
+    Subscribe<state_t>(
+        channels::kState, [this](const state_t& s) { seen_.push_back({s.utime, s.simulation_id, s.step}); },
+        queue_capacity);
   }
   // Steps per wall second of `simulation` over [from, to), by the wall
   // time the sim stamped on each state when it published it (the time
@@ -130,6 +133,13 @@ class StepRecorder : public test_support::BusListener {
 // Seconds of each window the sim's step rate is measured over: before a
 // kill, from the kill (the restart included), and after.
 constexpr double kWindow = 2.0;
+// States a recorder that follows the sim's pace holds while the test does
+// not receive. With both cores busy this test read as few as 425 states a
+// second of the sim's 1000; a queue of 100 s of states then let it fall
+// ever further behind (48 s once). A short one drops states instead (LCM
+// drops the newest), which the rates, measured between the sim's own
+// stamps, do not need.
+constexpr int kRecentStates = 200;
 
 class SupervisedRunTest : public ::testing::Test {
  protected:
@@ -323,7 +333,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
                              "  <set target=\"Axle1Motor\" at=\"0.0\">1000.0,0.0</set>\n"
                              "  <pause seconds=\"600\"/>\n"
                              "</sequence>\n";
-  StepRecorder bus(url_);
+  StepRecorder bus(url_, kRecentStates);
   // On the display with the viewer's leak suppressions and its driver kept
   // loaded, as in its own process tests (every child gets them: they
   // change nothing but what LeakSanitizer can name at exit).
@@ -444,6 +454,8 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
   const pid_t old_sim = AnnouncedPid(RunLog(), "sim");
   const int viewer_models = Count(Log("viewer"), "simpartner-viewer: model of simulation");
   const int teleop_models = Count(Log("teleop"), "teleop: simulation ");
+  // Every state from here on, to learn the old simulation's last step.
+  StepRecorder tail(url_);
   bus.Pump(0.5);
   ASSERT_EQ(::kill(old_sim, SIGKILL), 0);
   const Clock::time_point sim_killed = Clock::now();
@@ -451,7 +463,8 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
       << RunLog();
   const int64_t second_simulation = bus.simulation();
   std::cout << "kill -9 sim: the new simulation at step 1000 after " << SecondsSince(sim_killed) << " s\n";
-  const int64_t old_last_step = bus.LastStepOf(first_simulation);
+  ASSERT_TRUE(tail.Until([&] { return tail.simulation() == second_simulation; }, 60));
+  const int64_t old_last_step = tail.LastStepOf(first_simulation);
   EXPECT_NE(AnnouncedPid(RunLog(), "sim"), old_sim);
   ASSERT_TRUE(bus.Until(
       [&] {
