@@ -74,7 +74,12 @@ std::string LogInOneLine(const fs::path& log) {
   return text.size() > 400 ? text.substr(0, 400) + " ..." : text;
 }
 
-// The run's processes, stopped (and reaped) when it goes.
+// The run's processes, stopped (and reaped) when it goes. Each gets
+// SIGTERM if the batch dies, even by kill -9; the controller runs in a
+// process group of its own, stopped whole: what it started goes with it.
+constexpr ChildOptions kRunProcess{/*own_group=*/false, /*stop_with_parent=*/true};
+constexpr ChildOptions kControllerProcess{/*own_group=*/true, /*stop_with_parent=*/true};
+
 struct Processes {
   std::unique_ptr<ChildProcess> logger, sim, controller;
   std::filesystem::path sim_log;
@@ -99,7 +104,7 @@ bool StartLogger(const RunContext& context, const std::string& url, const std::s
   std::vector<std::string> argv = {Program("simpartner-logger"), "--lcm-url", url, "--tag", tag,
                                    "--spool", (dir / "logger-spool").string()};
   argv.insert(argv.end(), context.logger_args.begin(), context.logger_args.end());
-  p->logger = std::make_unique<ChildProcess>(argv, (dir / "logger.log").string());
+  p->logger = std::make_unique<ChildProcess>(argv, (dir / "logger.log").string(), kRunProcess);
   const Clock::time_point start = Clock::now();
   while (SecondsSince(start) < 30) {
     if (FileText(dir / "logger.log").find("logging ") != std::string::npos) return true;
@@ -169,11 +174,12 @@ RunResult RunOne(const BatchFile& batch, const PlannedRun& run, const RunContext
     std::string failure;
     if (!context.log || StartLogger(context, url, result.tag, dir, &p, &failure)) {
       p.sim_log = dir / "sim.log";
-      p.sim = std::make_unique<ChildProcess>(SimArgv(batch, run, url), p.sim_log.string());
+      p.sim = std::make_unique<ChildProcess>(SimArgv(batch, run, url), p.sim_log.string(), kRunProcess);
       failure = JoinPacer(&p, &observer);
       if (failure.empty()) {
         p.controller = std::make_unique<ChildProcess>(ControllerOrSequencer(batch, run, url),
-                                                      (dir / "controller.log").string());
+                                                      (dir / "controller.log").string(),
+                                                      kControllerProcess);
         failure = Follow(context, &p, &observer, start);
       }
     }

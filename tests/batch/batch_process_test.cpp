@@ -214,6 +214,76 @@ TEST_F(BatchProcessTest, ABatchThatGetsNoCpuForAWhileLosesNoState) {
   EXPECT_EQ(rows[0].at("state_hash").size(), 16u) << "a state was lost";
 }
 
+// Every process below `pid` (children, theirs, ...), from /proc.
+std::vector<pid_t> Descendants(pid_t pid) {
+  std::vector<pid_t> found;
+  std::vector<pid_t> todo = {pid};
+  while (!todo.empty()) {
+    const pid_t parent = todo.back();
+    todo.pop_back();
+    for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(parent) + "/task",
+                                                   std::filesystem::directory_options::skip_permission_denied)) {
+      std::ifstream children(task.path() / "children");
+      for (pid_t child; children >> child;) {
+        found.push_back(child);
+        todo.push_back(child);
+      }
+    }
+  }
+  return found;
+}
+
+// A controller that starts a helper (here `sleep`) and writes its pid
+// next to itself, then drives: at the run's end the helper is stopped with
+// it, not left running after the batch (an audit found 8 such).
+TEST_F(BatchProcessTest, AControllersHelpersEndWithItsRun) {
+  const fs::path controller = dir_ / "fork_then_drive.sh";
+  std::ofstream(controller) << "#!/bin/sh\nsleep 600 &\necho $! > \"" << (dir_ / "helper.pid").string()
+                            << "\"\nexec " << test_support::BuiltProgram("drive_to_point") << " \"$@\"\n";
+  fs::permissions(controller, fs::perms::owner_all);
+  const std::string file = Write("helpers.xml",
+      "  <world>gen1_flat.xml</world>\n  <duration>2</duration>\n"
+      "  <controller>" + controller.string() + " --lcm-url {url} --x 1 --period 10</controller>\n");
+  const test_support::ProgramRun run =
+      Batch({file, "--no-log", "--results", (dir_ / "results").string()}, "batch.log");
+  EXPECT_EQ(run.status, 0) << run.output;
+  const pid_t helper = static_cast<pid_t>(std::stol(ReadText(dir_ / "helper.pid")));
+  ASSERT_GT(helper, 0);
+  const bool helper_ran_on = test_support::ProcessRunning(helper);
+  if (helper_ran_on) ::kill(helper, SIGKILL);
+  EXPECT_FALSE(helper_ran_on) << "the controller's helper (pid " << helper << ") outlived the batch";
+}
+
+// kill -9 of the batch cannot run its stop: the kernel sends each process
+// it started SIGTERM (the controller's group goes with the controller).
+TEST_F(BatchProcessTest, AKilledBatchTakesItsProcessesWithIt) {
+  const std::string file = Write("killed.xml",
+      "  <world>gen1_flat.xml</world>\n  <duration>600</duration>\n"
+      "  <controller>drive_to_point --lcm-url {url} --x 100 --period 10</controller>\n");
+  const fs::path results = dir_ / "results";
+  ChildProcess batch(test_support::BuiltCommand("simpartner-batch", {file, "--no-log", "--results", results.string()}),
+                     (dir_ / "batch.log").string());
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(results / "runs" / "0" / "controller.log") && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const std::vector<pid_t> started = Descendants(batch.pid());
+  ASSERT_GE(started.size(), 2u) << "the sim and the controller" << ReadText(dir_ / "batch.log");
+  batch.Signal(SIGKILL);
+  ASSERT_EQ(batch.Wait(std::chrono::seconds(10)), std::optional<int>(128 + SIGKILL));
+  std::vector<pid_t> left;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(15);
+  do {
+    left.clear();
+    for (const pid_t pid : started)
+      if (test_support::ProcessRunning(pid)) left.push_back(pid);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  } while (!left.empty() && std::chrono::steady_clock::now() < deadline);
+  for (const pid_t pid : left) ::kill(pid, SIGKILL);
+  EXPECT_TRUE(left.empty()) << left.size() << " of the batch's " << started.size()
+                            << " processes ran on after it was killed";
+}
+
 // The cluster path on a single-node Slurm of the test's own: the same runs
 // (state hashes) as run here, every task logging into the one server the
 // batch names.

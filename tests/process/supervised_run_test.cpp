@@ -44,6 +44,7 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 using test_support::BinaryDir;
+using test_support::ProcessRunning;
 using test_support::ReadText;
 using test_support::SourceDir;
 
@@ -71,18 +72,6 @@ pid_t AnnouncedPid(const std::string& run_log, const std::string& name) {
     }
   }
   return pid;
-}
-
-// True while a process with this pid runs: a zombie has ended (the server,
-// in a session of its own, is reaped by init, here up to a second later).
-bool Running(pid_t pid) {
-  if (pid <= 0) return false;
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string line;
-  if (!std::getline(stat, line)) return false;
-  // pid (comm) state ...: the comm may hold spaces and parentheses.
-  const size_t close = line.rfind(')');
-  return close != std::string::npos && close + 2 < line.size() && line[close + 2] != 'Z';
 }
 
 // The sim's steps as this test received them: (wall time, simulation, step).
@@ -155,7 +144,7 @@ class SupervisedRunTest : public ::testing::Test {
       const std::string run_log = RunLog();
       for (const char* name : {"sequencer", "teleop", "sim", "viewer", "logger"}) {
         const pid_t pid = AnnouncedPid(run_log, name);
-        if (Running(pid)) ::kill(pid, SIGKILL);
+        if (ProcessRunning(pid)) ::kill(pid, SIGKILL);
       }
     }
     launcher_.reset();
@@ -280,14 +269,14 @@ TEST_F(SupervisedRunTest, KilledLauncherTakesItsProcessesWithIt) {
   const std::string run_log = RunLog();
   const pid_t sim = AnnouncedPid(run_log, "sim");
   const pid_t sequencer = AnnouncedPid(run_log, "sequencer");
-  ASSERT_TRUE(Running(sim) && Running(sequencer)) << run_log;
+  ASSERT_TRUE(ProcessRunning(sim) && ProcessRunning(sequencer)) << run_log;
   launcher_->Signal(SIGKILL);
   ASSERT_EQ(launcher_->Wait(std::chrono::seconds(10)).value_or(-1), 128 + SIGKILL);
-  EXPECT_TRUE(test_support::WaitFor([&] { return !Running(sim) && !Running(sequencer); }, 15.0))
-      << "sim " << (Running(sim) ? "still runs" : "ended") << ", sequencer "
-      << (Running(sequencer) ? "still runs" : "ended") << "\n" << RunLog();
+  EXPECT_TRUE(test_support::WaitFor([&] { return !ProcessRunning(sim) && !ProcessRunning(sequencer); }, 15.0))
+      << "sim " << (ProcessRunning(sim) ? "still runs" : "ended") << ", sequencer "
+      << (ProcessRunning(sequencer) ? "still runs" : "ended") << "\n" << RunLog();
   for (const pid_t pid : {sim, sequencer})
-    if (Running(pid)) ::kill(pid, SIGKILL);
+    if (ProcessRunning(pid)) ::kill(pid, SIGKILL);
 }
 
 // A process that dies young (within 3 s of its start) is a start-up
@@ -378,7 +367,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
   for (const Victim& v : victims) {
     SCOPED_TRACE(v.name);
     const pid_t old_pid = AnnouncedPid(RunLog(), v.name);
-    ASSERT_TRUE(Running(old_pid)) << RunLog();
+    ASSERT_TRUE(ProcessRunning(old_pid)) << RunLog();
     const int signs_before = Count(Log(v.name), v.back_sign);
     const long long rows_before = Query("SELECT COUNT(*) FROM SimulationRow");
     bus.Pump(kWindow);
@@ -397,7 +386,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
         << RunLog() << Log(v.name);
     const double back_after = SecondsSince(killed);
     const pid_t new_pid = AnnouncedPid(RunLog(), v.name);
-    EXPECT_TRUE(Running(new_pid));
+    EXPECT_TRUE(ProcessRunning(new_pid));
     // A crash mid-run is restarted without the start-up back-off: the
     // launcher's line for this death says so.
     {
@@ -501,7 +490,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
       [&] {
         const std::string log = RunLog();
         for (const char* name : kProcesses)
-          if (!Running(AnnouncedPid(log, name))) return false;
+          if (!ProcessRunning(AnnouncedPid(log, name))) return false;
         return true;
       },
       20))
@@ -514,7 +503,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
   ASSERT_NE(server_at, std::string::npos) << run_log;
   children.emplace_back("mariadbd",
                         static_cast<pid_t>(std::atol(run_log.c_str() + server_at + server_line.size())));
-  for (const auto& [name, pid] : children) ASSERT_TRUE(Running(pid)) << name << " " << pid << "\n" << run_log;
+  for (const auto& [name, pid] : children) ASSERT_TRUE(ProcessRunning(pid)) << name << " " << pid << "\n" << run_log;
   const Clock::time_point terminated = Clock::now();
   launcher_->Signal(SIGTERM);
   const std::optional<int> status = launcher_->Wait(std::chrono::seconds(60));
@@ -523,7 +512,7 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
   std::cout << "SIGTERM to the launcher: every process ended within " << stop_seconds << " s\n";
   EXPECT_EQ(*status, 0) << RunLog();
   EXPECT_LT(stop_seconds, 30) << RunLog();
-  for (const auto& [name, pid] : children) EXPECT_FALSE(Running(pid)) << name << " (pid " << pid << ") left running";
+  for (const auto& [name, pid] : children) EXPECT_FALSE(ProcessRunning(pid)) << name << " (pid " << pid << ") left running";
   // The stop went in order, and the logs are in this run's own directory.
   const std::string final_log = RunLog();
   const size_t sim_stopped = final_log.find("sim stopped");

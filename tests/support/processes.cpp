@@ -1,12 +1,23 @@
 #include "processes.h"
 
 #include <cstdlib>
+#include <fstream>
 
 #include "programs.h"
 #include "simpartner/child_process.h"
 #include "text_file.h"
 
 namespace simpartner::test_support {
+
+bool ProcessRunning(pid_t pid) {
+  if (pid <= 0) return false;
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return false;
+  // pid (comm) state ...: the comm may hold spaces and parentheses.
+  const size_t close = line.rfind(')');
+  return close != std::string::npos && close + 2 < line.size() && line[close + 2] != 'Z';
+}
 
 ProgramRun RunToEnd(const std::vector<std::string>& argv, const std::string& log,
                     std::chrono::milliseconds timeout) {

@@ -4,6 +4,8 @@
 // on that display.
 #pragma once
 
+#include <sys/types.h>
+
 #include <chrono>
 #include <string>
 #include <vector>
@@ -21,6 +23,10 @@ struct ProgramRun {
 // Runs argv with its output to the file `log`, waits at most `timeout`.
 ProgramRun RunToEnd(const std::vector<std::string>& argv, const std::string& log,
                     std::chrono::milliseconds timeout);
+
+// True while a process with this pid runs: a zombie has ended (a process
+// in a session of its own is reaped by init, up to a second later).
+bool ProcessRunning(pid_t pid);
 
 // `cmake --install` of this build's `component` ("programs", "client")
 // into `prefix`, run to its end (5 minutes at most).
