@@ -126,6 +126,8 @@ class LockStepProcessTest : public ::testing::Test {
   // gen1 on flat ground, paused, at `speed`, on engine_; drive_to_point with `period`
   // (0: without lock-step). `controller_host` runs the controller in a
   // network namespace (with the sim in `sim_host`) when a LAN is given.
+  // A lock-step run is paced to the test's listener (Pace); one without
+  // is not (a pacer would put it in lock-step).
   RunResult ClosedLoop(double speed, int period, const std::string& name,
                        const test_support::NamespaceLan* lan = nullptr) {
     std::string url = BusUrl(next_bus_++);
@@ -135,29 +137,75 @@ class LockStepProcessTest : public ::testing::Test {
                    {"--startPaused=1", "--speed=" + std::to_string(speed),
                     test_support::EngineFlag(engine_)});
     if (lan) sim_argv = lan->Exec("sim", sim_argv);
-    std::unique_ptr<test_support::ScopedNetns> inside;
-    if (lan) inside = std::make_unique<test_support::ScopedNetns>(lan->Namespace("sim"));
+    // The listener and the pacer hear the sim on its own host.
+    auto on_sim_host = [&] {
+      return lan ? std::make_unique<test_support::ScopedNetns>(lan->Namespace("sim")) : nullptr;
+    };
+    std::unique_ptr<test_support::ScopedNetns> inside = on_sim_host();
     RunListener listener(url);
     inside.reset();
     ChildProcess sim(sim_argv, (dir_ / (name + "_sim.log")).string());
     if (!listener.UntilSimUp()) ADD_FAILURE() << "no SIM_STATUS within 30 s from the sim of " << name;
+    std::unique_ptr<client::Client> pacer;
+    if (period > 0) {
+      inside = on_sim_host();
+      client::ClientOptions options;
+      options.url = url;
+      options.program = "pacer";
+      options.model_timeout = 30;
+      pacer = std::make_unique<client::Client>(options);
+      inside.reset();
+    }
     std::vector<std::string> controller = BuiltCommand(
         "drive_to_point",
         {"--lcm-url", url, "--x", kGoal[0], "--z", kGoal[1], "--period", std::to_string(period)});
     if (lan) controller = lan->Exec("ctl", controller);
     const std::string log = (dir_ / (name + "_controller.log")).string();
     RunResult run;
-    const test_support::ProgramRun done =
-        test_support::RunToEnd(controller, log, std::chrono::seconds(120));
-    run.status = done.status;
-    run.output = WithoutBusWarning(done.output);
-    run.last_tick = LastTick(done.output);
+    if (pacer) {
+      ChildProcess running(controller, log);
+      Pace(*pacer, listener, running);
+      run.status = running.Wait(std::chrono::seconds(120)).value_or(-1);
+    } else {
+      run.status = test_support::RunToEnd(controller, log, std::chrono::seconds(120)).status;
+    }
+    const std::string output = ReadText(log);
+    run.output = WithoutBusWarning(output);
+    run.last_tick = LastTick(output);
     // The states up to the last tick were published before it was answered.
     listener.Until([&] { return listener.states.count(run.last_tick) > 0; }, 5);
     run.hash = listener.Hash(run.last_tick);
     sim.Signal(SIGTERM);
     sim.Wait(std::chrono::seconds(10));
     return run;
+  }
+
+  // Paces the paused sim to `listener` until `controller` has ended: a
+  // lock-step controller of the test's own, a tick every kPacerPeriod
+  // steps, answered with no command once the listener has read the tick's
+  // state. At speed 0 an unpaced sim outran a listener starved of CPU by
+  // more than its 4 MB socket buffer while the test waited for the
+  // controller: states lost, a hash of 0. A silent controller does not
+  // change the run (TwoControllersAtDifferentPeriods).
+  static constexpr int kPacerPeriod = 50;
+  void Pace(client::Client& pacer, RunListener& listener, ChildProcess& controller) {
+    client::LockStepOptions every;
+    every.period = kPacerPeriod;
+    every.resume = false;  // the controller resumes when it has joined
+    every.timeout = 30;
+    try {
+      client::LockStep loop(pacer, every);
+      loop.Next();  // the paused sim's own step, where it waits for the controller
+      while (controller.running()) {
+        const int64_t step = loop.Next().step;
+        if (!listener.Until([&] { return listener.states.count(step) > 0; }, 30)) {
+          ADD_FAILURE() << "the listener did not read the state of step " << step;
+          return;
+        }
+      }
+    } catch (const client::LockStepError& e) {
+      ADD_FAILURE() << e.what();
+    }
   }
 
   std::filesystem::path dir_;
@@ -255,6 +303,10 @@ TEST_F(LockStepProcessTest, TwoControllersAtDifferentPeriods) {
     for (;; ++ticks) {
       const state_t& s = loop.Next();
       ASSERT_EQ(s.step % 7, 0);
+      // Answered once the listener has the tick's state: the observer
+      // paces the sim as Pace does.
+      ASSERT_TRUE(listener.Until([&] { return listener.states.count(s.step) > 0 || s.step == 0; }, 30))
+          << "the listener did not read the state of step " << s.step;
       if (!controller.running() && s.step > alone.last_tick) break;
     }
   } catch (const client::LockStepError& e) {
