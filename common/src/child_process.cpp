@@ -22,7 +22,8 @@ namespace {
 [[noreturn]] void BecomeChild(char* const* argv, const char* log_path, ChildOptions options,
                               pid_t parent, int report) {
   int error = 0;
-  if (options.own_group && ::setpgid(0, 0) != 0) error = errno;
+  if (options.own_session && ::setsid() < 0) error = errno;
+  if (error == 0 && options.own_group && !options.own_session && ::setpgid(0, 0) != 0) error = errno;
   if (error == 0 && options.stop_with_parent) {
     if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) error = errno;
     // The parent may have died before the prctl: then nobody sends it.
@@ -74,7 +75,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
   }
   // The group exists before the caller signals it (the child's own setpgid
   // may not have run yet).
-  if (own_group_) ::setpgid(pid_, pid_);
+  if (own_group_ && !options.own_session) ::setpgid(pid_, pid_);
 }
 
 ChildProcess::~ChildProcess() {

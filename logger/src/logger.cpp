@@ -323,12 +323,10 @@ void Logger::ReadWhatTheBusHolds() {
   const int64_t stop_us = WallMicros();
   const auto start = Clock::now();
   pollfd fd{lcm_->getFileno(), POLLIN, 0};
-  bool caught_up = false;
+  bool caught_up = false;  // the bus went quiet, or the sim's stamps passed the stop
   while (!caught_up && Clock::now() - start < kStopReadLimit) {
-    if (::poll(&fd, 1, kStopQuietMs) <= 0 || !(fd.revents & POLLIN)) {
-      caught_up = true;  // the bus is quiet
-      break;
-    }
+    caught_up = ::poll(&fd, 1, kStopQuietMs) <= 0 || !(fd.revents & POLLIN);
+    if (caught_up) break;
     lcm_->handle();
     receiver_->Tick();
     caught_up = receiver_->Stats().newest_stamp_us >= stop_us;

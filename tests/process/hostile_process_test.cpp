@@ -135,14 +135,14 @@ class HostileProcessTest : public logger::testing::ServerTest {
     url_ = test_support::BusUrl(0);
     world_ = sim::testing::WriteArmWorld(dir_);
   }
-  // Each process in a session of its own, as scripts/run starts them: its
-  // own scheduling group (sched_autogroup), not one shared with the test
-  // runner and its other tests. With a busy loop on each core in the
-  // runner's group, a viewer there heard none of the corpus once.
-  // (setsid does not fork here: the pid is the program's.)
-  std::unique_ptr<ChildProcess> Start(std::vector<std::string> argv, const std::string& log) {
-    argv.insert(argv.begin(), "/usr/bin/setsid");
-    return std::make_unique<ChildProcess>(argv, (dir_ / log).string());
+  // Each process in a session of its own (ChildOptions::own_session), as
+  // scripts/run starts them.
+  // With a busy loop on each core in the runner's group, a viewer there
+  // heard none of the corpus once.
+  std::unique_ptr<ChildProcess> Start(const std::vector<std::string>& argv, const std::string& log) {
+    ChildOptions options;
+    options.own_session = true;
+    return std::make_unique<ChildProcess>(argv, (dir_ / log).string(), options);
   }
 
   std::string url_;

@@ -108,13 +108,12 @@ class MultiHostTest : public ::testing::Test {
     return text.size() > 3000 ? "..." + text.substr(text.size() - 3000) : text;
   }
   std::string Log(const std::string& name) { return ReadText(dir_ / name); }
-  // Each process in a session of its own, as scripts/run starts them: its
-  // own scheduling group (sched_autogroup), not one shared with the test
-  // runner and its other tests. (setsid does not fork here: the pid is the
-  // program's.)
-  std::unique_ptr<ChildProcess> Start(std::vector<std::string> argv, const std::string& log) {
-    argv.insert(argv.begin(), "/usr/bin/setsid");
-    return std::make_unique<ChildProcess>(argv, (dir_ / log).string());
+  // Each process in a session of its own (ChildOptions::own_session), as
+  // scripts/run starts them.
+  std::unique_ptr<ChildProcess> Start(const std::vector<std::string>& argv, const std::string& log) {
+    ChildOptions options;
+    options.own_session = true;
+    return std::make_unique<ChildProcess>(argv, (dir_ / log).string(), options);
   }
   int64_t Query(const std::string& sql) {
     std::unique_ptr<logger::DbConnection> db =

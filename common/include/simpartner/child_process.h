@@ -21,6 +21,11 @@ struct ChildOptions {
   // process with it, even by kill -9 (prctl PR_SET_PDEATHSIG): nothing
   // runs on unsupervised.
   bool stop_with_parent = false;
+  // In a session of its own (setsid), as scripts/run starts the programs:
+  // its own scheduling group (sched_autogroup), not one shared with the
+  // parent and whatever else the parent's session runs. Implies a group
+  // of its own, but Signal reaches only the program unless own_group.
+  bool own_session = false;
 };
 
 class ChildProcess {
