@@ -7,6 +7,7 @@
 #include <set>
 
 #include "parts.h"
+#include "simpartner/model/sensor_budget.h"
 #include "simpartner/model/sensor_parameters.h"
 #include "simpartner/text.h"
 
@@ -279,7 +280,7 @@ void CheckNewSensor(Reader& reader, const xmlNode* node, const std::string& what
                            FormatNumber(p[lidar_param::kLowestElevation], 10) +
                            " rad is above highestElevation " +
                            FormatNumber(p[lidar_param::kHighestElevation], 10) + " rad");
-  const double rays = p[lidar_param::kRays] * p[lidar_param::kLayers];
+  const double rays = RaysPerReading(sensor);
   if (rays > kMaxReadingValues)
     reader.Error(node, what + ": rays x layers = " + FormatNumber(rays, 10) +
                            " is more than the " + FormatNumber(kMaxReadingValues, 10) +
@@ -377,7 +378,8 @@ DeclaredNames NamesDeclared(const xmlNode* root) {
 }
 
 // The robot as a whole: connected, rolling bodies with an axis, mass
-// ratios (only when all else is right), unique ports.
+// ratios (only when all else is right), unique ports, what its sensors
+// send together.
 void CheckRobot(Reader& reader, const xmlNode* root, const Robot& robot,
                 const DiagnosticList& diagnostics) {
   detail::CheckConnected(reader, root);
@@ -392,6 +394,7 @@ void CheckRobot(Reader& reader, const xmlNode* root, const Robot& robot,
   if (diagnostics.empty()) detail::CheckMassRatios(reader, robot.bodies, robot.joints, true);
   std::map<int, std::string> ports;
   detail::CheckUniquePorts(reader, robot, &ports, nullptr, "");
+  for (const std::string& excess : RobotBudgetExcesses(robot)) reader.Error(root, excess);
 }
 
 }  // namespace

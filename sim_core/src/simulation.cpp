@@ -7,6 +7,7 @@
 
 #include "simpartner/check.h"
 #include "simpartner/model/model_message.h"
+#include "simpartner/model/sensor_budget.h"
 #include "simpartner/model/sensor_parameters.h"
 #include "simpartner/sensor_t.hpp"
 #include "simpartner/text.h"
@@ -246,8 +247,7 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
           return reject(what + ": values[0] (rate) = " + FormatNumber(values[0], 10) +
                         " Hz is out of range [0, 10000]");
         if (lidar) {
-          const std::vector<double>& p = sensor.source->parameters;
-          const double rays = p[model::lidar_param::kRays] * p[model::lidar_param::kLayers];
+          const double rays = model::RaysPerReading(*sensor.source);
           if (values[0] * rays > model::kMaxScannerRaysPerSecond)
             return reject(what + ": rate " + FormatNumber(values[0], 10) + " Hz x " +
                           FormatNumber(rays, 10) + " rays = " + FormatNumber(values[0] * rays, 10) +
@@ -343,6 +343,7 @@ void Simulation::ApplyPending(const Pending& pending) {
         read_requests_.push_back(pending.sensor);
         break;
       case command_t::ACTION_SENSOR_PARAMS: {
+        const SensorState before = sensor;
         reply.previous = {sensor.rate};
         if (flat_.sensors[static_cast<size_t>(pending.sensor)].source->kind ==
             model::SensorKind::kScanner) {
@@ -359,6 +360,15 @@ void Simulation::ApplyPending(const Pending& pending) {
           sensor.half_span = pending.values[2];
           sensor.range = pending.values[3];
         }
+        // The robot's other sensors may have changed since the command
+        // came: its budget is checked as it applies.
+        const std::string excess =
+            RobotRaysExcess(flat_.sensors[static_cast<size_t>(pending.sensor)].robot);
+        if (!excess.empty()) {
+          sensor = before;
+          replies_.push_back(Reply(pending.command, false, excess));
+          return;
+        }
         reply.num_previous = static_cast<int32_t>(reply.previous.size());
         reply.previous_text = FormatValues(reply.previous);
         break;
@@ -368,6 +378,20 @@ void Simulation::ApplyPending(const Pending& pending) {
     }
   }
   replies_.push_back(std::move(reply));
+}
+
+std::string Simulation::RobotRaysExcess(int robot) const {
+  std::vector<model::SensorLoad> loads;
+  for (size_t s = 0; s < sensors_.size(); ++s) {
+    const model::FlatSensor& flat = flat_.sensors[s];
+    if (flat.robot != robot || model::RaysPerReading(*flat.source) == 0.0) continue;
+    const double rays = flat.source->kind == model::SensorKind::kScanner
+                            ? sensors_[s].rays
+                            : model::RaysPerReading(*flat.source);
+    loads.push_back({flat.name, sensors_[s].rate * rays});
+  }
+  return model::BudgetExcess(world_.robots[static_cast<size_t>(robot)].name, loads,
+                             model::kMaxRobotRaysPerSecond, "scanners and lidars", "rays/s");
 }
 
 bool Simulation::Step() {

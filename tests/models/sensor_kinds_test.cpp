@@ -163,6 +163,50 @@ TEST(SensorKinds, BadParametersAreRefusedAtTheirLine) {
                 "threshold\">2", "parameter 'threshold' is given twice");
 }
 
+// n lidars of 100 x 10 rays at 100 Hz: 100,000 rays/s each, half of what
+// one sensor may cast.
+std::string Lidars(int n) {
+  std::string sensors;
+  for (int k = 0; k < n; ++k)
+    sensors += "<sensor type=\"Lidar\" name=\"L" + std::to_string(k) +
+               "\"><bodyRef>Top</bodyRef><rate>100</rate><parameter name=\"rays\">100"
+               "</parameter><parameter name=\"layers\">10</parameter></sensor>\n";
+  return sensors;
+}
+
+// A robot's sensors together are held to one sensor's bound (the audit's
+// 20 lidars each at the bound put 18.6 MB/s on the bus): refused at the
+// robot, naming the sum, the largest sensors and the bound.
+TEST(SensorKinds, ARobotsSensorsTogetherStayWithinTheBusBudget) {
+  EXPECT_TRUE(ParseRobot(RobotWith(Lidars(2)), "two.xml").robot);  // 200,000: at the bound
+  const std::string xml = RobotWith(Lidars(20));
+  const RobotLoadResult result = ParseRobot(xml, "twenty.xml");
+  EXPECT_FALSE(result.robot);
+  ASSERT_EQ(result.diagnostics.size(), 1u) << result.diagnostics.Format();
+  const Diagnostic& d = result.diagnostics.items()[0];
+  EXPECT_EQ(d.line, LineOf(xml, "<robot name=\"Bot\">"));
+  EXPECT_NE(d.message.find("robot 'Bot': its scanners and lidars together send 2000000 rays/s "
+                           "(L0 100000, L1 100000, L2 100000 and 17 more), more than the "
+                           "200000 rays/s one robot may put on the bus"),
+            std::string::npos)
+      << d.message;
+
+  // Two cameras of 1280 x 720 at 15 Hz: 13.8 million pixels/s each.
+  std::string cameras;
+  for (const char* name : {"Left", "Right"})
+    cameras += std::string("<sensor type=\"Camera\" name=\"") + name +
+               "\"><bodyRef>Top</bodyRef><rate>15</rate><parameter name=\"width\">1280"
+               "</parameter><parameter name=\"height\">720</parameter></sensor>\n";
+  const RobotLoadResult stereo = ParseRobot(RobotWith(cameras), "stereo.xml");
+  EXPECT_FALSE(stereo.robot);
+  ASSERT_EQ(stereo.diagnostics.size(), 1u) << stereo.diagnostics.Format();
+  EXPECT_NE(stereo.diagnostics.items()[0].message.find(
+                "its cameras together send 27648000 pixels/s (Left 13824000, Right 13824000), "
+                "more than the 20000000 pixels/s"),
+            std::string::npos)
+      << stereo.diagnostics.Format();
+}
+
 TEST(SensorKinds, UnknownKindIsRefusedByTheDtdAtItsLine) {
   const std::string xml = RobotWith(R"(<sensor type="Sonar" name="S"><bodyRef>Top</bodyRef></sensor>)");
   const RobotLoadResult result = ParseRobot(xml, "bad.xml");

@@ -242,5 +242,47 @@ TEST(Sensors, ScannerRangesMatchWallGeometry) {
       sim->Submit(Command("Scanner", command_t::ACTION_SENSOR_PARAMS, {20, 10000, 0.1, 3})));
 }
 
+// A robot's scanners together cast at most what one may (model::
+// kMaxRobotRaysPerSecond). Each command alone is within the scanner's
+// bound; the one that takes the robot over is refused when it applies,
+// naming the robot, and changes nothing.
+TEST(Sensors, ARobotsScannersTogetherStayWithinTheBusBudget) {
+  using testing::Transform;
+  using testing::Vec;
+  std::string scanners;
+  for (const char* name : {"Left", "Right"})
+    scanners += std::string("<sensor type=\"Scanner\" name=\"") + name +
+                "\"><bodyRef>Head</bodyRef></sensor>";
+  const std::string robot = "<robot name=\"Eyes\"><body type=\"Box\" name=\"Head\">"
+                            "<mass>10</mass>" + Vec("size", 0.4, 0.4, 0.4) +
+                            Transform(0, 1, 0) + "</body>" + scanners + "</robot>";
+  const std::string world =
+      "<world><gravity><x>0</x><y>0</y><z>0</z></gravity>"
+      "<robot name=\"R\" file=\"eyes.xml\"/></world>";
+  auto sim = testing::MakeSim(world, {{"eyes.xml", robot}});
+  // 11 rays each: Left at 10,000 Hz casts 110,000 rays/s.
+  ASSERT_FALSE(sim->Submit(Command("Left", command_t::ACTION_SENSOR_PARAMS, {10000})));
+  ASSERT_TRUE(sim->Step());
+  ASSERT_TRUE(sim->TakeReplies().at(0).accepted);
+  // Right at 9,000 Hz: 99,000 alone, 209,000 with Left.
+  ASSERT_FALSE(sim->Submit(Command("Right", command_t::ACTION_SENSOR_PARAMS, {9000})));
+  ASSERT_TRUE(sim->Step());
+  const std::vector<command_reply_t> refused = sim->TakeReplies();
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_FALSE(refused[0].accepted);
+  EXPECT_NE(refused[0].reason.find("robot 'R': its scanners and lidars together send 209000 "
+                                   "rays/s (Left 110000, Right 99000), more than the 200000"),
+            std::string::npos)
+      << refused[0].reason;
+  // Right kept its rate (on request): 8,000 Hz more fits, and it answers
+  // with the rate it had.
+  ASSERT_FALSE(sim->Submit(Command("Right", command_t::ACTION_SENSOR_PARAMS, {8000})));
+  ASSERT_TRUE(sim->Step());
+  const std::vector<command_reply_t> taken = sim->TakeReplies();
+  ASSERT_EQ(taken.size(), 1u);
+  EXPECT_TRUE(taken[0].accepted) << taken[0].reason;
+  EXPECT_EQ(taken[0].previous, (std::vector<double>{0, 11, 0.1, 10}));
+}
+
 }  // namespace
 }  // namespace simpartner::sim

@@ -105,6 +105,9 @@ class Simulation {
   void Build();
   command_reply_t Reply(const command_t& command, bool accepted, const std::string& reason) const;
   void ApplyPending(const Pending& pending);
+  // Why robot's scanners and lidars at their present rates cast more rays
+  // than a robot may (model::BudgetExcess); "" when they do not.
+  std::string RobotRaysExcess(int robot) const;
   // Every body's readout after a step, kept for the health check and
   // FillState (reading a MuJoCo body's velocity is a transform), and the
   // wheels' on soil.
