@@ -99,8 +99,7 @@ void Simulation::Build() {
     state.imu = s.source->kind == model::SensorKind::kImu;
     sensors_.push_back(state);
   }
-  pending_.clear();
-  pending_bytes_ = 0;
+  pending_.Clear();
   step_ = 0;
   faulted_ = false;
   RememberImuVelocities();
@@ -133,12 +132,6 @@ void Simulation::Reset(int64_t simulation_id) {
   AddWarning(warning_t::SEVERITY_INFO, "control", "reset to the initial state");
 }
 
-size_t Simulation::PendingBytes(const Pending& p) {
-  const command_t& c = p.command;
-  return sizeof(Pending) + c.sender.size() + c.robot.size() + c.target.size() + c.text.size() +
-         sizeof(double) * (c.values.size() + p.values.size());
-}
-
 command_reply_t Simulation::Reply(const command_t& command, bool accepted,
                                   const std::string& reason) const {
   command_reply_t reply{};
@@ -165,7 +158,7 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
   if (command.num_values < 0 || static_cast<size_t>(command.num_values) != command.values.size())
     return reject("num_values = " + std::to_string(command.num_values) + " does not match " +
                   std::to_string(command.values.size()) + " values");
-  Pending pending;
+  PendingCommand pending;
   pending.command = command;
   // Find the target: by name (optionally within a robot) or legacy port.
   const bool by_name = !command.target.empty();
@@ -283,31 +276,15 @@ std::optional<command_reply_t> Simulation::Submit(const command_t& command) {
     }
     pending.values = values;
   }
-  // The queue of commands waiting for their step is bounded, so that
-  // commands dated far ahead cannot take the sim's memory. A command for
-  // the next step always goes in: it leaves the queue in that step, so a
-  // queue full of far-future commands cannot lock out control.
-  const size_t bytes = PendingBytes(pending);
-  const bool future = pending.step > step_;
-  if (future &&
-      (pending_.size() >= kMaxPendingCommands || pending_bytes_ + bytes > kMaxPendingBytes))
-    return reject("the queue of commands waiting for their step is full (" +
-                  std::to_string(pending_.size()) + " commands, " +
-                  std::to_string(pending_bytes_ / 1024) + " KiB; at most " +
-                  std::to_string(kMaxPendingCommands) + " commands and " +
-                  std::to_string(kMaxPendingBytes / (1024 * 1024)) +
-                  " MiB): send commands closer to their apply_at_step");
-  pending_bytes_ += bytes;
-  pending.sequence = next_sequence_++;
-  const auto position = std::upper_bound(
-      pending_.begin(), pending_.end(), pending, [](const Pending& a, const Pending& b) {
-        return a.step != b.step ? a.step < b.step : a.sequence < b.sequence;
-      });
-  pending_.insert(position, std::move(pending));
+  // Bounded and shared fairly among senders (command_queue.h).
+  std::vector<DroppedCommand> dropped;
+  const std::string full = pending_.Add(std::move(pending), step_, &dropped);
+  for (const DroppedCommand& d : dropped) replies_.push_back(Reply(d.command, false, d.reason));
+  if (!full.empty()) return reject(full);
   return std::nullopt;
 }
 
-void Simulation::ApplyPending(const Pending& pending) {
+void Simulation::ApplyPending(const PendingCommand& pending) {
   command_reply_t reply = Reply(pending.command, true, "");
   reply.target = pending.command.target;
   reply.applied_at_step = step_;
@@ -398,13 +375,7 @@ bool Simulation::Step() {
   if (faulted_) return false;
   bodies_read_ = false;
   // Commands due in this step, in the order they were sent.
-  size_t due = 0;
-  while (due < pending_.size() && pending_[due].step <= step_) ++due;
-  for (size_t k = 0; k < due; ++k) {
-    ApplyPending(pending_[k]);
-    pending_bytes_ -= PendingBytes(pending_[k]);
-  }
-  pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(due));
+  pending_.TakeDue(step_, [this](const PendingCommand& p) { ApplyPending(p); });
 
   for (size_t a = 0; a < controllers_.size(); ++a) {
     const int joint = flat_.actuators[a].joint;

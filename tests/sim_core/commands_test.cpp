@@ -277,5 +277,54 @@ TEST(CommandQueueTest, TheQueueOfFutureCommandsIsBoundedAndSaysSo) {
   EXPECT_GT(accepted, 250u);
 }
 
+// A command from `sender` dated `step`.
+command_t From(const std::string& sender, int64_t step) {
+  command_t c = Command("ArmMotor", command_t::ACTION_HOLD, {1000}, step);
+  c.sender = sender;
+  return c;
+}
+
+// The queue is shared fairly: one sender's flood (the audit's 10,000
+// commands dated far ahead) cannot refuse another's. The other takes the
+// room of the flood's latest commands until both hold the same share; the
+// flood's dropped commands are answered, saying why.
+TEST(CommandQueueTest, OneSendersFloodCannotRefuseAnothersCommands) {
+  auto sim = MakeArmSim();
+  for (size_t i = 0; i < Simulation::kMaxPendingCommands; ++i)
+    ASSERT_FALSE(sim->Submit(From("flood", 1000000 + static_cast<int64_t>(i))));
+  auto refused = sim->Submit(From("flood", 5));
+  ASSERT_TRUE(refused);
+  EXPECT_NE(refused->reason.find("sender 'flood' holds 10000 commands"), std::string::npos)
+      << refused->reason;
+
+  ASSERT_FALSE(sim->Submit(From("sequencer", 100)));
+  std::vector<command_reply_t> dropped = sim->TakeReplies();
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_FALSE(dropped[0].accepted);
+  EXPECT_EQ(dropped[0].sender, "flood");
+  EXPECT_NE(dropped[0].reason.find("it was full, sender 'flood' holds 10000 commands"),
+            std::string::npos)
+      << dropped[0].reason;
+  // The flood cannot take it back: it holds more.
+  refused = sim->Submit(From("flood", 6));
+  ASSERT_TRUE(refused);
+  EXPECT_NE(refused->reason.find("sender 'flood' holds 9999 commands"), std::string::npos)
+      << refused->reason;
+  // The sequencer gets in up to half of the queue, then is refused too.
+  for (int i = 1; i < 5000; ++i) ASSERT_FALSE(sim->Submit(From("sequencer", 100 + i))) << i;
+  EXPECT_EQ(sim->TakeReplies().size(), 4999u);
+  refused = sim->Submit(From("sequencer", 7));
+  ASSERT_TRUE(refused);
+  EXPECT_NE(refused->reason.find("sender 'sequencer' holds 5000 commands"), std::string::npos)
+      << refused->reason;
+
+  // A reset drops every command of the old simulation: a third sender
+  // gets in without taking anyone's room.
+  sim->Reset(2);
+  sim->TakeReplies();
+  ASSERT_FALSE(sim->Submit(From("teleop", 1000)));
+  EXPECT_TRUE(sim->TakeReplies().empty());
+}
+
 }  // namespace
 }  // namespace simpartner::sim

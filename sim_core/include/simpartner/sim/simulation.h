@@ -16,6 +16,7 @@
 #include "simpartner/model_t.hpp"
 #include "simpartner/parameters.h"
 #include "simpartner/sensor_reading_t.hpp"
+#include "simpartner/sim/command_queue.h"
 #include "simpartner/sim/controllers.h"
 #include "simpartner/model/flat_model.h"
 #include "simpartner/sim/engine.h"
@@ -29,8 +30,8 @@ namespace simpartner::sim {
 class Simulation {
  public:
   // Bounds of the queue of accepted commands waiting for their step.
-  static constexpr size_t kMaxPendingCommands = 10000;
-  static constexpr size_t kMaxPendingBytes = 16u << 20;
+  static constexpr size_t kMaxPendingCommands = CommandQueue::kMaxCommands;
+  static constexpr size_t kMaxPendingBytes = CommandQueue::kMaxBytes;
   // Readings nobody takes (a program stepping a Simulation without
   // publishing) are kept up to this many; beyond it the older half goes.
   static constexpr size_t kMaxUntakenReadings = 8192;
@@ -81,15 +82,6 @@ class Simulation {
   sensor_reading_t ReadSensor(int sensor);
 
  private:
-  struct Pending {
-    int64_t step;                 // apply when step_ == step (before stepping)
-    uint64_t sequence;            // arrival order among equal steps
-    command_t command;
-    int actuator = -1;            // exactly one of actuator/sensor is set
-    int sensor = -1;
-    ParsedCommand parsed;         // actuators
-    std::vector<double> values;   // sensors
-  };
   struct SensorState {
     double rate = 0.0;
     int rays = 11;
@@ -101,10 +93,9 @@ class Simulation {
     ImuMemory imu_memory;
   };
 
-  static size_t PendingBytes(const Pending& pending);
   void Build();
   command_reply_t Reply(const command_t& command, bool accepted, const std::string& reason) const;
-  void ApplyPending(const Pending& pending);
+  void ApplyPending(const PendingCommand& pending);
   // Why robot's scanners and lidars at their present rates cast more rays
   // than a robot may (model::BudgetExcess); "" when they do not.
   std::string RobotRaysExcess(int robot) const;
@@ -134,9 +125,7 @@ class Simulation {
   SoilRuts ruts_;
   std::vector<ActuatorController> controllers_;
   std::vector<SensorState> sensors_;
-  std::vector<Pending> pending_;  // sorted by (step, sequence)
-  size_t pending_bytes_ = 0;      // PendingBytes summed over pending_
-  uint64_t next_sequence_ = 0;
+  CommandQueue pending_;
   int64_t step_ = 0;
   bool faulted_ = false;
   std::vector<command_reply_t> replies_;
