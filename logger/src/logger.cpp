@@ -9,6 +9,7 @@
 
 #include "simpartner/bus_exposure.h"
 #include "simpartner/sender.h"
+#include "simpartner/socket_backlog.h"
 
 namespace simpartner::logger {
 namespace {
@@ -22,14 +23,18 @@ constexpr uint64_t kBatchBytes = 16u << 20;
 constexpr size_t kMinBatchRecords = 50;
 constexpr auto kLinger = std::chrono::milliseconds(50);
 constexpr auto kFailureReminder = std::chrono::seconds(30);
-// On a stop, what was sent before it is read: until nothing has come for
-// kStopQuietMs (LCM's reader thread passes on a datagram in microseconds),
-// or the followed sim's messages are stamped at or after the stop (a sim
+// On a stop, what was sent before it is read: until the bus is quiet, or
+// the followed sim's messages are stamped at or after the stop (a sim
 // publishing on), or for at most kStopReadLimit (a sim whose clock is
-// behind ours). A niced logger on a loaded machine can be seconds of
-// states behind, the run's end among them; scripts/run gives the logger
-// 120 s to stop, drain_timeout's writing included.
-constexpr int kStopQuietMs = 100;
+// behind ours). Quiet is nothing through LCM in kStopQuietPolls polls of
+// kQuietPollMs, each returning within twice its time (a logger stopped or
+// starved of CPU meanwhile was not listening: wall time alone once ended
+// a starved logger's stop with 1,490 states waiting), and no datagram
+// waiting in its sockets. A niced logger on a loaded machine can be
+// seconds of states behind, the run's end among them; scripts/run gives
+// the logger 120 s to stop, drain_timeout's writing included.
+constexpr int kQuietPollMs = 10;
+constexpr int kStopQuietPolls = 10;
 constexpr auto kStopReadLimit = std::chrono::seconds(30);
 
 std::string Megabytes(uint64_t bytes) {
@@ -324,12 +329,21 @@ void Logger::ReadWhatTheBusHolds() {
   const auto start = Clock::now();
   pollfd fd{lcm_->getFileno(), POLLIN, 0};
   bool caught_up = false;  // the bus went quiet, or the sim's stamps passed the stop
+  int quiet_polls = 0;
   while (!caught_up && Clock::now() - start < kStopReadLimit) {
-    caught_up = ::poll(&fd, 1, kStopQuietMs) <= 0 || !(fd.revents & POLLIN);
-    if (caught_up) break;
-    lcm_->handle();
-    receiver_->Tick();
-    caught_up = receiver_->Stats().newest_stamp_us >= stop_us;
+    const auto before = Clock::now();
+    const int ready = ::poll(&fd, 1, kQuietPollMs);
+    if (ready > 0 && (fd.revents & POLLIN)) {
+      quiet_polls = 0;
+      lcm_->handle();
+      receiver_->Tick();
+      caught_up = receiver_->Stats().newest_stamp_us >= stop_us;
+      continue;
+    }
+    const bool listened =
+        ready == 0 && Clock::now() - before <= std::chrono::milliseconds(2 * kQuietPollMs);
+    quiet_polls = listened ? quiet_polls + 1 : 0;
+    caught_up = quiet_polls >= kStopQuietPolls && UnreadUdpBytes().value_or(0) == 0;
   }
   const ReceiverStats s = receiver_->Stats();
   if (!caught_up)
