@@ -28,9 +28,11 @@ class BusExposureTest : public ::testing::Test {
     if (!HasFailure()) fs::remove_all(dir_);
   }
   // simpartner-sim for 0.05 s in the host's namespace, with `environment`
-  // ("NAME=VALUE" each) set; what it printed.
+  // ("NAME=VALUE" each) set and nothing of the test's own that changes
+  // what it says; what it printed.
   std::string RunSim(const test_support::NamespaceLan& lan, std::vector<std::string> environment) {
-    std::vector<std::string> argv = {"env"};
+    std::vector<std::string> argv = {"env", "-u", "SIMPARTNER_BUS_EXPOSURE_SAID", "-u",
+                                     "SIMPARTNER_BUS_KEY"};
     argv.insert(argv.end(), environment.begin(), environment.end());
     const std::vector<std::string> sim = test_support::SimCommand(
         test_support::ShippedWorld("pendulum.xml"), "udpm://239.255.76.67:7667?ttl=0",
