@@ -33,7 +33,8 @@ std::string CameraProblem(const model_t& model, const sensor_t& s) {
       return bad(k, k == 0 ? "width" : "height", "(whole pixels from 1 to 4096)");
   }
   if (!(s.params[2] > 0 && s.params[2] < M_PI)) return bad(2, "fov", "(0, pi)");
-  if (!(s.params[3] > 0 && std::isfinite(s.params[3]))) return bad(3, "near", "(0, inf)");
+  if (!(s.params[3] >= model::kMinCameraNear && std::isfinite(s.params[3])))
+    return bad(3, "near", "[0.001, inf)");
   if (!(s.params[4] > s.params[3] && std::isfinite(s.params[4])))
     return bad(4, "far", "(near, inf)");
   if (!(s.params[5] == 0 || s.params[5] == 1 || s.params[5] == 2))

@@ -225,7 +225,9 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     if (on_reading_) on_reading_(reading);
   } else if (channel == channels::kImage) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (images_.Offer(data, size)) changed_.notify_all();
+    // Only a state of the model's simulation says how far it has come.
+    const bool current = state_ && catalog_ && state_->simulation_id == catalog_->simulation_id();
+    if (images_.Offer(data, size, current ? state_->step : -1)) changed_.notify_all();
   }
 }
 
@@ -248,8 +250,10 @@ bool Client::AcceptState(const state_t& state, const std::string& channel) {
   // A reply may overtake the SIM_STATE of its own step: it never replaces
   // a newer state of the same simulation.
   if (!reply || !state_ || state_->simulation_id != state.simulation_id ||
-      state.step >= state_->step)
+      state.step >= state_->step) {
     state_ = state;
+    images_.StateSeen(state.step);
+  }
   changed_.notify_all();
   step_changed_.notify_all();
   return true;

@@ -8,9 +8,10 @@ namespace simpartner::client {
 void ImageStore::SetModel(std::shared_ptr<const model_t> model) {
   model_ = std::move(model);
   newest_.clear();
+  held_.clear();
 }
 
-bool ImageStore::Offer(const void* data, size_t size) {
+bool ImageStore::Offer(const void* data, size_t size, int64_t newest_state_step) {
   auto image = std::make_shared<image_t>();
   bool print = false;
   if (const auto refusal =
@@ -28,8 +29,27 @@ bool ImageStore::Offer(const void* data, size_t size) {
   }
   const ImageKind kind =
       image->format == image_t::FORMAT_RGB8 ? ImageKind::kColour : ImageKind::kDepth;
-  newest_[{image->camera, kind}] = std::move(image);
+  const Key key{image->camera, kind};
+  if (image->step > newest_state_step) {
+    held_[key] = std::move(image);
+    return false;
+  }
+  newest_[key] = std::move(image);
   return true;
+}
+
+bool ImageStore::StateSeen(int64_t step) {
+  bool kept = false;
+  for (auto it = held_.begin(); it != held_.end();) {
+    if (it->second->step > step) {
+      ++it;
+      continue;
+    }
+    newest_[it->first] = std::move(it->second);
+    it = held_.erase(it);
+    kept = true;
+  }
+  return kept;
 }
 
 std::optional<image_t> ImageStore::Latest(int camera, ImageKind kind) const {

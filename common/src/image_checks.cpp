@@ -46,8 +46,9 @@ MessageCheck CheckPixels(const image_t& image, const MessageRules& rules) {
 }
 
 // The camera index is a camera sensor of the model with the image's name,
-// the format colour or the camera's depth format, and the sides at most
-// the camera's declared resolution.
+// the format colour or the camera's depth format, and the sides the
+// camera's declared resolution (simpartner-camera renders at it or does
+// not start).
 MessageCheck CheckFitsCamera(const image_t& image, const model_t& model,
                              const MessageRules& rules) {
   if (image.camera < 0 || static_cast<size_t>(image.camera) >= model.sensors.size())
@@ -74,7 +75,7 @@ MessageCheck CheckFitsCamera(const image_t& image, const model_t& model,
                                                               " wide"},
         {"height", image.height, kHeightParam, " high"}}) {
     const int64_t declared = static_cast<int64_t>(Param(camera, param));
-    if (side > declared)
+    if (side != declared)
       return rules.Problem(MessageFault::kNotTheModels, field,
                            " " + std::to_string(side) + ": camera '" + camera.name + "' is " +
                                std::to_string(declared) + word);

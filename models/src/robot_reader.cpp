@@ -204,9 +204,10 @@ void SetCameraParameter(Reader& reader, const xmlNode* p, const std::string& nam
     else
       camera->fov = v;
   } else if (name == "near" || name == "far") {
-    if (v <= 0.0 || v > 1e6)
+    if (v < kMinCameraNear || v > 1e6)
       reader.Error(p, what + ": " + name + " " + FormatNumber(v, 10) +
-                          " m is out of range (0, 1e6]");
+                          " m is out of range [" + FormatNumber(kMinCameraNear, 10) +
+                          ", 1e6]");
     else
       (name == "near" ? camera->near : camera->far) = v;
   }

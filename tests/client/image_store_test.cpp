@@ -18,6 +18,8 @@ namespace simpartner::client {
 namespace {
 
 constexpr int64_t kSimulation = 7;
+// The newest state the store is told of, unless a test says otherwise.
+constexpr int64_t kNewestState = 100;
 
 // Sensor 0 a position sensor "Pos"; sensor 1 camera "Front", 64 x 48 with
 // 16-bit depth; sensor 2 camera "Rear", 32 x 24, colour only.
@@ -70,7 +72,7 @@ class ImageStoreTest : public ::testing::Test {
     lcm_.subscribeFunction(
         channels::kImage,
         +[](const lcm::ReceiveBuffer* buffer, const std::string&, ImageStore* store) {
-          store->Offer(buffer->data, buffer->data_size);
+          store->Offer(buffer->data, buffer->data_size, kNewestState);
         },
         &store_);
   }
@@ -112,9 +114,27 @@ TEST_F(ImageStoreTest, KeepsTheNewestColourAndDepthImageOfEachCamera) {
   EXPECT_TRUE(reports_.empty());
 }
 
-TEST_F(ImageStoreTest, ASmallerImageThanDeclaredIsKept) {
-  Send(Image(1, "Front", 3, 32, 24));
-  EXPECT_EQ(store_.LatestStep(1, ImageKind::kColour), 3);
+// simpartner-camera renders at the declared resolution: the audit's
+// forged 64 x 64 image passed as the 640 x 480 camera's.
+TEST_F(ImageStoreTest, AnImageSmallerThanDeclaredIsDropped) {
+  ExpectDropped(Image(1, "Front", 3, 32, 24), "width 32: camera 'Front' is 64 wide");
+  EXPECT_EQ(store_.LatestStep(1, ImageKind::kColour), -1);
+}
+
+// An image of a step no state has shown yet is held, not handed out: the
+// audit's forged image stamped step 1e12 was printed as the camera's
+// reading. When the state comes, the image held for it is kept.
+TEST_F(ImageStoreTest, AnImageAheadOfTheStatesIsHeldUntilItsStateComes) {
+  Send(Image(1, "Front", 90, 64, 48));
+  Send(Image(1, "Front", 1000000000000, 64, 48));
+  Send(Image(2, "Rear", 150, 32, 24));
+  EXPECT_EQ(store_.LatestStep(1, ImageKind::kColour), 90);
+  EXPECT_EQ(store_.LatestStep(2, ImageKind::kColour), -1);
+  EXPECT_FALSE(store_.StateSeen(140));
+  EXPECT_TRUE(store_.StateSeen(150));
+  EXPECT_EQ(store_.LatestStep(2, ImageKind::kColour), 150);
+  EXPECT_EQ(store_.LatestStep(1, ImageKind::kColour), 90);
+  EXPECT_EQ(counter_.total(), 0u);
 }
 
 TEST_F(ImageStoreTest, ForgedImagesAreDroppedNamingTheFieldAndValue) {

@@ -157,20 +157,28 @@ TEST(CheckImage, RefusesWhatDoesNotFitTheModelsCamera) {
           i->num_bytes = 16;
         },
         "format", "format 2: camera 'Eye' has depth-f32", F::kNotTheModels},
-       {"at most the camera's width",
+       {"the camera's width",
         [](image_t* i) {
           i->width = 5;
           i->data.resize(30);
           i->num_bytes = 30;
         },
         "width", "width 5: camera 'Eye' is 4 wide", F::kNotTheModels},
-       {"at most the camera's height",
+       {"the camera's height",
         [](image_t* i) {
           i->height = 3;
           i->data.resize(36);
           i->num_bytes = 36;
         },
-        "height", "height 3: camera 'Eye' is 2 high", F::kNotTheModels}},
+        "height", "height 3: camera 'Eye' is 2 high", F::kNotTheModels},
+       // The audit's forged 64 x 64 image passed as the 640 x 480 camera's.
+       {"the camera's width, not less",
+        [](image_t* i) {
+          i->width = 1;
+          i->data.resize(6);
+          i->num_bytes = 6;
+        },
+        "width", "width 1: camera 'Eye' is 4 wide", F::kNotTheModels}},
       "image_t", [&](const image_t& i) { return CheckImage(i, &model); });
 }
 

@@ -1,7 +1,8 @@
 // The viewer's camera inset on memq: it keeps the newest colour image of
-// the camera shown (by name, of the simulation shown), ignores depth,
-// other cameras and images whose size does not add up, reports bytes that
-// do not decode, and `i` steps through the model's cameras, then none.
+// the camera shown (by name, of the simulation shown), ignores depth and
+// other cameras, refuses images that are not what the model's camera sends
+// and reports bytes that do not decode, shows an image only once a state
+// of its step came, and `i` steps through the model's cameras, then none.
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 
@@ -29,12 +30,17 @@ image_t Image(const std::string& name, int64_t step, int8_t format = image_t::FO
   return image;
 }
 
+// Simulation 5: cameras "Front" and "Rear" of 4 x 2 pixels, colour only.
 model_t TwoCameras() {
   model_t m{};
+  m.simulation_id = 5;
   for (const char* name : {"Front", "Rear"}) {
     sensor_t s{};
+    s.id = static_cast<int32_t>(m.sensors.size());
     s.name = name;
     s.kind = sensor_t::KIND_CAMERA;
+    s.params = {4, 2, 1.0, 0.1, 50, 0};
+    s.num_params = 6;
     m.sensors.push_back(s);
   }
   sensor_t scanner{};
@@ -47,11 +53,16 @@ model_t TwoCameras() {
 
 class CameraImagesTest : public ::testing::Test {
  protected:
-  void Send(const image_t& image) {
+  // Publishes image and judges it as the viewer does, with the newest
+  // state at step newest_state.
+  void Send(image_t image, int64_t newest_state = 1000) {
+    image.camera = image.name == "Rear" ? 1 : 0;
     lcm_.publish(channels::kImage, &image);
     while (lcm_.handleTimeout(0) > 0) {
     }
+    images_.Judge(model_, newest_state);
   }
+  const model_t model_ = TwoCameras();
   lcm::LCM lcm_{"memq://"};
   std::vector<std::string> reports_;
   CameraImages images_{&lcm_, nullptr, [this](const std::string& m) { reports_.push_back(m); },
@@ -70,6 +81,35 @@ TEST_F(CameraImagesTest, KeepsTheNewestColourImageOfTheCameraShown) {
   Send(Image("Front", 20));
   EXPECT_EQ(images_.Newest(5)->step, 20);
   EXPECT_TRUE(reports_.empty());
+}
+
+// The audit's forged image showed in the inset with no camera running.
+// One stamped ahead of the states waits and is never shown; one of the
+// camera's state is shown once that state came.
+TEST_F(CameraImagesTest, AnImageIsShownOnlyOnceItsStateCame) {
+  Send(Image("Front", 10));
+  Send(Image("Front", 1000000000000));
+  EXPECT_EQ(images_.Newest(5)->step, 10);
+  images_.Judge(model_, 2000);
+  EXPECT_EQ(images_.Newest(5)->step, 10);
+  Send(Image("Front", 2500), 2000);
+  EXPECT_EQ(images_.Newest(5)->step, 10);
+  images_.Judge(model_, 2500);
+  EXPECT_EQ(images_.Newest(5)->step, 2500);
+  EXPECT_TRUE(reports_.empty());
+}
+
+TEST_F(CameraImagesTest, AnImageThatIsNotTheCamerasIsRefused) {
+  image_t small = Image("Front", 10);
+  small.width = 1;
+  small.data.resize(6);
+  small.num_bytes = 6;
+  Send(small);
+  EXPECT_EQ(images_.Newest(5), nullptr);
+  ASSERT_EQ(reports_.size(), 1u);
+  EXPECT_NE(reports_[0].find("image 'Front': width 1: camera 'Front' is 4 wide"),
+            std::string::npos)
+      << reports_[0];
 }
 
 TEST_F(CameraImagesTest, RefusesWhatDoesNotFit) {

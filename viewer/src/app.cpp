@@ -97,6 +97,8 @@ class Viewer {
                                       std::chrono::duration<double>(1.0 / options_.scanner_poll_hz));
       }
 
+      if (scene_.has_model())
+        images_.Judge(scene_.model(), scene_.state() ? scene_.state()->step : -1);
       // Nothing new (a paused or stopped sim, no input): keep the picture
       // and spend no CPU on it, but refresh the HUD once a second. Frame
       // counts (--fps 0, --frames) draw every frame.

@@ -26,14 +26,25 @@ void CameraImages::Offer(const void* data, size_t size) {
     return;
   }
   if (shown_.empty() || image.name != shown_ || image.format != image_t::FORMAT_RGB8) return;
-  // The model's camera is the scene's to know; the image must be whole.
-  if (const auto problem = CheckImage(image, nullptr)) {
-    if (bad_sizes_.Count(channels::kImage, problem->message))
-      report_(std::string(channels::kImage) + ": image '" + image.name + "': " + problem->message +
-              "; ignored");
+  offered_ = std::move(image);
+}
+
+void CameraImages::Judge(const model_t& model, int64_t newest_state_step) {
+  if (!offered_) return;
+  if (offered_->simulation_id != model.simulation_id || offered_->name != shown_) {
+    offered_.reset();  // another simulation's, or a camera no longer shown
     return;
   }
-  newest_ = std::move(image);
+  if (const auto problem = CheckImage(*offered_, &model)) {
+    if (bad_sizes_.Count(channels::kImage, problem->message))
+      report_(std::string(channels::kImage) + ": image '" + offered_->name +
+              "': " + problem->message + "; ignored");
+    offered_.reset();
+    return;
+  }
+  if (offered_->step > newest_state_step) return;
+  newest_ = std::move(offered_);
+  offered_.reset();
   ++version_;
 }
 
@@ -45,6 +56,7 @@ void CameraImages::ShowNext(const model_t& model) {
   for (size_t k = 0; k < cameras.size(); ++k)
     if (cameras[k] == shown_) next = k + 1;
   shown_ = next < cameras.size() ? cameras[next] : "";
+  offered_.reset();
   newest_.reset();
   ++version_;
 }

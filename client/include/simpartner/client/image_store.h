@@ -3,8 +3,11 @@
 // image is kept only when it decodes and passes CheckImage (message_checks.h: a
 // camera of this simulation, its format, its declared resolution, its byte
 // count); any other is dropped with a line naming the channel, the field
-// and its value (the first of each kind, then every 1000th). Not
-// thread-safe: the Client calls it under its lock.
+// and its value (the first of each kind, then every 1000th). An image of
+// a step the client has not yet seen a state of is held (the newest per
+// camera and kind) until that state comes: the camera renders states the
+// sim has published, so one stamped ahead of them (the audit's step 1e12)
+// is never handed out. Not thread-safe: the Client calls it under its lock.
 #pragma once
 
 #include <cstddef>
@@ -40,9 +43,12 @@ class ImageStore {
   void SetModel(std::shared_ptr<const model_t> model);
 
   // Decodes one SIM_IMAGE message (already opened: bus_decode.h) and keeps
-  // it when it fits; true when kept. Images of another simulation are
-  // dropped quietly (a second sim on the bus is no fault).
-  bool Offer(const void* data, size_t size);
+  // it when it fits and its step is at most newest_state_step (else holds
+  // it); true when kept. Images of another simulation are dropped quietly
+  // (a second sim on the bus is no fault).
+  bool Offer(const void* data, size_t size, int64_t newest_state_step);
+  // A state of `step` came: the images held for it are kept; true when any.
+  bool StateSeen(int64_t step);
 
   // The newest image of sensor `camera` (index into model_t.sensors).
   std::optional<image_t> Latest(int camera, ImageKind kind) const;
@@ -53,7 +59,9 @@ class ImageStore {
   BadMessageCounter* counter_;
   Reporter report_;
   std::shared_ptr<const model_t> model_;
-  std::map<std::pair<int, ImageKind>, std::shared_ptr<const image_t>> newest_;
+  using Key = std::pair<int, ImageKind>;
+  std::map<Key, std::shared_ptr<const image_t>> newest_;
+  std::map<Key, std::shared_ptr<const image_t>> held_;  // ahead of the states seen
 };
 
 }  // namespace simpartner::client

@@ -149,6 +149,11 @@ inline constexpr int kMaxCameraSide = 4096;
 // float depth, about what one local multicast group carries without loss.
 inline constexpr double kMaxCameraPixelsPerSecond = 2e7;
 
+// The nearest a camera draws [m]: nearer clip planes leave a 24-bit depth
+// buffer no resolution (the depth step at distance z is about
+// z^2 / (near 2^24)), and a robot's camera resolves nothing nearer.
+inline constexpr double kMinCameraNear = 1e-3;
+
 struct CameraSettings {
   int width = 640;                  // [pixels]
   int height = 480;                 // [pixels]

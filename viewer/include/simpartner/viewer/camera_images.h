@@ -2,9 +2,12 @@
 // viewer's inset: the newest colour image of the camera shown, chosen by
 // name (--camera-image) or in turn with a key. Depth images and images of
 // other simulations or cameras are not kept. Decoded like every message
-// (bus_decode.h, signed when the bus is); refused ones are reported
-// through the viewer's reporter, the first of a channel and then every
-// 1000th.
+// (bus_decode.h, signed when the bus is), then checked against the model's
+// camera (CheckImage) and shown only once the viewer has a state of its
+// step: the camera renders states the sim published, so an image ahead
+// of them (a forged one, with no camera running) waits and is never
+// shown. Refused ones are reported through the viewer's reporter, the
+// first of a channel and then every 1000th.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -31,7 +34,12 @@ class CameraImages {
   // The next camera of `model` after the one shown, then none, then the first.
   void ShowNext(const model_t& model);
   const std::string& shown() const { return shown_; }
-  // The newest colour image of the camera shown, of simulation `simulation_id`.
+  // Takes the newest image offered when it fits `model`'s camera (else
+  // reports it) and the viewer has a state of its step (at most
+  // newest_state_step; else it waits for one).
+  void Judge(const model_t& model, int64_t newest_state_step);
+  // The newest colour image of the camera shown that Judge took, of
+  // simulation `simulation_id`.
   const image_t* Newest(int64_t simulation_id) const;
   // Changes with every image kept, so the viewer knows to draw again.
   int64_t version() const { return version_; }
@@ -44,7 +52,8 @@ class CameraImages {
   Reporter report_;
   std::string shown_;
   BadMessageCounter refused_;    // that do not decode or open
-  BadMessageCounter bad_sizes_;  // decoded, but the bytes do not fit the size
+  BadMessageCounter bad_sizes_;  // decoded, but not what the camera sends
+  std::optional<image_t> offered_;  // the newest from the bus, not yet judged
   std::optional<image_t> newest_;
   int64_t version_ = 0;
 };
