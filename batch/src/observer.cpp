@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "simpartner/channels.h"
+#include "simpartner/random_token.h"
 #include "simpartner/sender.h"
 #include "simpartner/state_request_t.hpp"
 #include "simpartner/sync_t.hpp"
@@ -46,6 +47,8 @@ void RunObserver::PublishMark(int8_t action, int64_t period, int64_t tick) {
   mark.utime = WallMicros();
   mark.controller = kPaceName;
   mark.sender = sender_;
+  if (action == sync_t::ACTION_JOIN && join_nonce_.empty()) join_nonce_ = RandomToken();
+  mark.token = action == sync_t::ACTION_JOIN ? join_nonce_ : token_;
   mark.action = action;
   mark.period = period;
   mark.tick = tick;
@@ -87,8 +90,13 @@ void RunObserver::OnSyncReply(const lcm::ReceiveBuffer* buffer, const std::strin
   sync_reply_t reply;
   if (DecodeSigned(channel, buffer->data, buffer->data_size, signer(), &reply, &refused_)) return;
   if (reply.controller != kPaceName || reply.sender != sender_) return;
+  // Replies to marks forged in its name echo another token (sync_reply_t.lcm).
+  if (reply.event != sync_reply_t::EVENT_JOINED &&
+      !SameToken(reply.token, token_.empty() ? join_nonce_ : token_))
+    return;
   if (reply.event == sync_reply_t::EVENT_JOINED) {
     first_tick_ = reply.tick;
+    token_ = reply.token;
   } else if (reply.event == sync_reply_t::EVENT_RELEASED ||
              (reply.event == sync_reply_t::EVENT_REFUSED &&
               reply.reason.find("duplicate") == std::string::npos)) {

@@ -92,6 +92,8 @@ class RunObserver {
   double sim_time_ = 0;
   // Pacing: ticks are multiples of kPacePeriod from first_tick_ on.
   std::string sender_;
+  // Its JOIN's nonce and the token JOINED gave (sync_t.lcm).
+  std::string join_nonce_, token_;
   int64_t first_tick_ = -1, answered_ = -1;
   bool pacing_ = true;  // false once refused or released
   std::string pace_problem_;

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "simpartner/client/errors.h"
+#include "simpartner/random_token.h"
 
 namespace simpartner::client {
 namespace {
@@ -46,6 +47,7 @@ LockStep::~LockStep() {
     sync_t leave{};
     leave.controller = options_.name;
     leave.action = sync_t::ACTION_LEAVE;
+    leave.token = token_;
     client_.PublishSync(leave);
   } catch (...) {
     // Leaving is a courtesy: the sim releases a silent controller anyway.
@@ -58,14 +60,18 @@ void LockStep::Join() {
   join.controller = options_.name;
   join.action = sync_t::ACTION_JOIN;
   join.period = options_.period;
+  join_nonce_ = RandomToken();
+  join.token = join_nonce_;
   const Clock::time_point deadline = Clock::now() + Seconds(options_.timeout);
   while (Clock::now() < deadline) {
     client_.PublishSync(join);
     const Clock::time_point again = std::min(deadline, Clock::now() + kJoinAgain);
     while (Clock::now() < again) {
       if (auto reply = client_.TakeSyncReply(options_.name)) {
+        if (!AboutOwnMark(*reply)) continue;
         if (reply->event == sync_reply_t::EVENT_JOINED) {
           first_tick_ = reply->tick;
+          token_ = reply->token;
           return;
         }
         if (reply->event == sync_reply_t::EVENT_REFUSED)
@@ -103,6 +109,7 @@ void LockStep::SendAnswer(int64_t next_tick) {
   answer_.controller = options_.name;
   answer_.action = sync_t::ACTION_DONE;
   answer_.tick = tick_;
+  answer_.token = token_;
   answer_.commands = client_.TakeLockStepCommands(next_tick);
   answered_.clear();
   for (const command_t& c : answer_.commands) answered_.push_back(c.request_id);
@@ -154,8 +161,17 @@ state_t LockStep::AwaitTick(int64_t tick) {
   }
 }
 
+bool LockStep::AboutOwnMark(const sync_reply_t& reply) const {
+  // A JOINED names no mark of ours; the rest echo the token of the mark
+  // they answer, so that a mark forged in this controller's name (refused
+  // for lack of the token) is not taken for its own.
+  if (reply.event == sync_reply_t::EVENT_JOINED) return token_.empty();
+  return SameToken(reply.token, token_.empty() ? join_nonce_ : token_);
+}
+
 void LockStep::CheckSyncReplies(int64_t tick) {
   while (auto reply = client_.TakeSyncReply(options_.name)) {
+    if (!AboutOwnMark(*reply)) continue;
     if (reply->event == sync_reply_t::EVENT_RELEASED)
       throw LockStepError(options_.name,
                           "released by the sim at tick " + std::to_string(reply->tick) + ": " +

@@ -261,4 +261,10 @@ size_t UnsignedSize(const void* data, size_t size) {
   return size;
 }
 
+uint64_t SigningLink(const void* data, size_t size) {
+  const size_t message = UnsignedSize(data, size);
+  if (message == size) return 0;
+  return GetBigEndian(static_cast<const uint8_t*>(data) + message);
+}
+
 }  // namespace simpartner

@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "simpartner/bus_decode.h"
+#include "simpartner/bus_signing.h"
 #include "simpartner/channels.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/message_checks.h"
@@ -301,7 +302,11 @@ void SimNode::OnSync(const lcm::ReceiveBuffer* buffer, const std::string& channe
     return;
   }
   const int64_t step = sim_->step();
-  LockStep::Outcome outcome = lock_step_.Handle(message, step);
+  // On a signed bus, the link the message verified from: a controller's
+  // marks must come from its JOIN's.
+  LockStep::Origin origin;
+  if (signing_ != nullptr) origin.link = SigningLink(buffer->data, buffer->data_size);
+  LockStep::Outcome outcome = lock_step_.Handle(message, step, origin);
   if (outcome.refused) ReportBadMessage(channel, outcome.reply->reason);
   if (outcome.reply && (!outcome.refused || MayAnswerRefusal())) {
     outcome.reply->simulation_id = sim_->simulation_id();

@@ -245,7 +245,7 @@ std::vector<HostileMessage> HostileCorpus(int64_t simulation_id) {
   {
     auto head = [&](int32_t num_commands) {
       RawMessage m(sync_t::getHash());
-      m.I64(1).I64(simulation_id).Str("ctl").Str("ctl@host:1").I8(sync_t::ACTION_DONE);
+      m.I64(1).I64(simulation_id).Str("ctl").Str("ctl@host:1").Str("").I8(sync_t::ACTION_DONE);
       m.I64(1).I64(5).I32(num_commands);
       return m;
     };

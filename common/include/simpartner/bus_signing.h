@@ -129,6 +129,10 @@ class BusSigning {
 // The message's size without a signature trailer, for a reader without a
 // key: it cannot check the signature and reads the message as unsigned.
 size_t UnsignedSize(const void* data, size_t size);
+// The link id of a signed message (its publishing process's stream), 0
+// for one without a signature trailer. Only what BusSigning::Open has
+// verified says who sent it.
+uint64_t SigningLink(const void* data, size_t size);
 
 // A datagram read from the bus, before decoding: with `signing`, checked
 // (Open, at this host's clock); without, its signature trailer dropped

@@ -65,11 +65,18 @@ class LockStep {
   void ResumeIfPaused();
   void SendAnswer(int64_t next_tick);
   state_t AwaitTick(int64_t tick);
+  // Whether a SIM_SYNC_REPLY in this controller's name answers its own
+  // marks (sync_reply_t.token), not another sender's.
+  bool AboutOwnMark(const sync_reply_t& reply) const;
   void CheckSyncReplies(int64_t tick);
   void CheckPreviousReplies();
 
   Client& client_;
   LockStepOptions options_;
+  // What only this controller holds (sync_t.lcm): its JOIN's nonce, and
+  // the token the sim's JOINED gave, which its DONE and LEAVE carry.
+  std::string join_nonce_;
+  std::string token_;
   int64_t first_tick_ = -1;
   int64_t tick_ = -1;
   state_t state_;

@@ -4,8 +4,17 @@
 // step, and publishes the replies it returns (sync_t.lcm says the
 // protocol). Every refusal names the controller, the tick and why; a
 // refused message changes nothing.
+//
+// Only the controller itself can act for it: its JOINED carries a token
+// from a CSPRNG that its DONE and LEAVE marks must carry, and on a signed
+// bus they must come from the signing link its JOIN came from (the name
+// and sender, which SIM_STATUS publishes, once let any sender leave or
+// answer for it). One sender holds at most kMaxControllersPerSender of the
+// kMaxControllers places, and a controller released for not answering
+// waits before it may join again, twice as long each time.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -19,10 +28,26 @@
 
 namespace simpartner::sim {
 
+// Where a SIM_SYNC message came from: the signing link of a signed bus
+// (0 without a key), and when.
+struct SyncOrigin {
+  uint64_t link = 0;
+  std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now();
+};
+
 class LockStep {
  public:
+  using Clock = std::chrono::steady_clock;
   static constexpr int64_t kMaxPeriod = 1000000;
   static constexpr size_t kMaxControllers = 64;
+  static constexpr size_t kMaxControllersPerSender = 8;
+  // The wait after a first release, doubled with each later one up to the
+  // most; an answer after joining again forgets the releases.
+  static constexpr std::chrono::seconds kRejoinWaitFirst{5};
+  static constexpr std::chrono::seconds kRejoinWaitMost{300};
+  // Released names and senders remembered (the longest-free go first).
+  static constexpr size_t kMaxReleasesRemembered = 256;
+  using Origin = SyncOrigin;
 
   // What a SIM_SYNC message did: the reply to publish (JOINED, LEFT or
   // REFUSED, none for an accepted DONE), and whether it was refused (for
@@ -36,7 +61,7 @@ class LockStep {
   // not taken). A controller joining at step s answers from the first
   // k >= s with k % period == 0 on; when that is s itself, the caller
   // sends it the state of s (SIM_STATE_REPLY), which it may have missed.
-  Outcome Handle(const sync_t& message, int64_t step);
+  Outcome Handle(const sync_t& message, int64_t step, const Origin& origin = Origin{});
 
   // Whether some controller has a tick at `step` (its state must be
   // published, whatever stateEvery says).
@@ -49,9 +74,11 @@ class LockStep {
   // controller has answered.
   std::vector<command_t> TakeAnswers(int64_t step);
   // Releases every controller still waited on at `step`: they are no
-  // longer synchronous (their later marks are refused, naming the tick).
-  // Returns a RELEASED reply for each.
-  std::vector<sync_reply_t> ReleaseWaiting(int64_t step, const std::string& reason);
+  // longer synchronous (their later marks are refused, naming the tick,
+  // and they may join again only after a wait). Returns a RELEASED reply
+  // for each.
+  std::vector<sync_reply_t> ReleaseWaiting(int64_t step, const std::string& reason,
+                                           Clock::time_point now = Clock::now());
   // Every controller goes (a reset: a new simulation).
   void Clear();
 
@@ -61,6 +88,9 @@ class LockStep {
  private:
   struct Controller {
     std::string sender;
+    std::string token;       // its DONE and LEAVE marks carry it
+    std::string join_nonce;  // its JOIN's (a repeated JOIN gets the same answer)
+    uint64_t link = 0;       // the signing link of its JOIN (0: unsigned bus)
     int64_t period = 1;
     int64_t first_tick = 0;
     int64_t last_done = -1;
@@ -69,15 +99,30 @@ class LockStep {
     bool DueAt(int64_t step) const { return step >= first_tick && step % period == 0; }
   };
 
-  Outcome Join(const sync_t& message, int64_t step);
-  Outcome Leave(const sync_t& message);
-  Outcome Done(const sync_t& message, int64_t step);
+  // A controller's or a sender's releases: how many, the last tick, and
+  // until when it may not join.
+  struct Releases {
+    int count = 0;
+    int64_t tick = -1;
+    Clock::time_point not_before;
+  };
+
+  Outcome Join(const sync_t& message, int64_t step, const Origin& origin);
+  Outcome Leave(const sync_t& message, const Origin& origin);
+  Outcome Done(const sync_t& message, int64_t step, const Origin& origin);
+  // Why a mark (DONE or LEAVE) may not act for c, or "".
+  static std::string NotItsOwn(const sync_t& message, const Controller& c, const Origin& origin);
+  // Why message's controller may not join yet (a release's wait), or "".
+  std::string StillWaiting(const sync_t& message, Clock::time_point now) const;
+  static void Remember(std::map<std::string, Releases>* releases, const std::string& key,
+                       int64_t tick, Clock::time_point now);
   static sync_reply_t Reply(const sync_t& message, int8_t event, int64_t period, int64_t tick,
                             std::string reason);
   static Outcome Refuse(const sync_t& message, std::string reason);
 
   std::map<std::string, Controller> controllers_;  // by name: the answers' order
-  std::map<std::string, int64_t> released_;        // name -> the tick it was released at
+  std::map<std::string, Releases> released_;          // by controller name
+  std::map<std::string, Releases> released_senders_;  // by sender
 };
 
 }  // namespace simpartner::sim
