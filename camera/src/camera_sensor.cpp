@@ -22,7 +22,7 @@ std::string CameraProblem(const model_t& model, const sensor_t& s) {
   if (s.num_params != kParams)
     return "has " + std::to_string(s.num_params) + " params, a camera has " +
            std::to_string(kParams) + " (width, height, fov, near, far, depth)";
-  auto bad = [&](int k, const char* what, const char* range) {
+  auto bad = [&](int k, const char* what, const std::string& range) {
     return "params[" + std::to_string(k) + "] (" + what + ") = " +
            FormatNumber(s.params[static_cast<size_t>(k)], 10) + " is out of range " + range;
   };
@@ -34,7 +34,7 @@ std::string CameraProblem(const model_t& model, const sensor_t& s) {
   }
   if (!(s.params[2] > 0 && s.params[2] < M_PI)) return bad(2, "fov", "(0, pi)");
   if (!(s.params[3] >= model::kMinCameraNear && std::isfinite(s.params[3])))
-    return bad(3, "near", "[0.001, inf)");
+    return bad(3, "near", "[" + FormatNumber(model::kMinCameraNear, 10) + ", inf)");
   if (!(s.params[4] > s.params[3] && std::isfinite(s.params[4])))
     return bad(4, "far", "(near, inf)");
   if (!(s.params[5] == 0 || s.params[5] == 1 || s.params[5] == 2))

@@ -58,8 +58,6 @@ class CommandQueue {
   }
 
   void Clear();
-  size_t size() const { return entries_.size(); }
-  size_t bytes() const { return bytes_; }
 
  private:
   struct Holding {
