@@ -39,6 +39,7 @@
 #include "simpartner/sender.h"
 #include "simpartner/state_t.hpp"
 #include "simpartner/viewer/xvfb.h"
+#include "simpartner/bus_signing.h"
 
 namespace {
 
@@ -100,7 +101,8 @@ class ImageWatch {
  private:
   void OnState(const lcm::ReceiveBuffer* buffer, const std::string&) {
     simpartner::state_t state;
-    if (!simpartner::DecodeLcm(buffer->data, buffer->data_size, &state))
+    if (!simpartner::DecodeLcm(buffer->data,
+                               simpartner::UnsignedSize(buffer->data, buffer->data_size), &state))
       state_utime_[state.step] = state.utime;
   }
   void OnImage(const lcm::ReceiveBuffer*, const std::string&, const simpartner::image_t* image) {

@@ -25,6 +25,7 @@
 #include "simpartner/control_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "simpartner/bus_signing.h"
 
 namespace {
 
@@ -95,6 +96,10 @@ int main(int argc, char** argv) {
                                 ? std::string(SP_SOURCE_DIR) + "/models/worlds/flat_ground.xml"
                                 : args.positional()[0];
   lcm::LCM bus(url);
+  // Signed as every process signs (the user's key, or SIMPARTNER_BUS_KEY).
+  std::optional<BusSigning> signing = BusSigning::FromEnvironment(
+      [](const std::string& line) { std::cerr << "drift_bench: " << line << "\n"; });
+  BusSigning* const signer = signing ? &*signing : nullptr;
   if (!bus.good()) {
     std::cerr << "drift_bench: cannot open LCM at " << url << "\n";
     return 1;
@@ -132,7 +137,7 @@ int main(int argc, char** argv) {
   }
   control_t quit{};
   quit.action = control_t::ACTION_QUIT;
-  bus.publish(channels::kControl, &quit);
+  PublishSigned(&bus, channels::kControl, quit, signer);
   sim.Wait(std::chrono::seconds(5));
   if (receiver.received < 2) {
     std::cerr << "drift_bench: no states received\n";

@@ -27,6 +27,7 @@
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
 #include "simpartner/status_t.hpp"
+#include "simpartner/bus_signing.h"
 
 namespace {
 
@@ -44,12 +45,12 @@ struct Handler {
   Observed* seen;
   void OnStatus(const lcm::ReceiveBuffer* b, const std::string& channel) {
     status_t s;
-    if (DecodeFromBus(channel, b->data, b->data_size, &s, &seen->bad)) return;
+    if (DecodeFromBus(channel, b->data, UnsignedSize(b->data, b->data_size), &s, &seen->bad)) return;
     seen->statuses.push_back(s);
   }
   void OnReply(const lcm::ReceiveBuffer* b, const std::string& channel) {
     command_reply_t r;
-    if (DecodeFromBus(channel, b->data, b->data_size, &r, &seen->bad)) return;
+    if (DecodeFromBus(channel, b->data, UnsignedSize(b->data, b->data_size), &r, &seen->bad)) return;
     if (r.sender == "flood_bench/good" && r.accepted) seen->good_replies.push_back(r);
   }
 };
@@ -104,6 +105,10 @@ int main(int argc, char** argv) {
   // A large socket buffer and queue: the test's side must not be what
   // loses the good commands' replies among the flood it also receives.
   lcm::LCM bus(url + (url.find('?') == std::string::npos ? "?" : "&") + "recv_buf_size=4194304");
+  // Signed as every process signs (the user's key, or SIMPARTNER_BUS_KEY).
+  std::optional<BusSigning> signing = BusSigning::FromEnvironment(
+      [](const std::string& line) { std::cerr << "flood_bench: " << line << "\n"; });
+  BusSigning* const signer = signing ? &*signing : nullptr;
   Observed seen;
   Handler handler{&seen};
   bus.subscribe(channels::kStatus, &Handler::OnStatus, &handler)->setQueueCapacity(1000);
@@ -140,7 +145,11 @@ int main(int argc, char** argv) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
       const int64_t due = static_cast<int64_t>(elapsed * rate);
       while (n < due && !stop) {
-        out.publish(channels::kCommand, bytes.data(), static_cast<unsigned>(bytes.size()));
+        // Each signed afresh (a flood from a process with the key): met by
+        // the decoder, as on an unsigned bus, not refused as a replay.
+        const std::vector<uint8_t> datagram =
+            signer ? signer->Sign(channels::kCommand, bytes.data(), bytes.size()) : bytes;
+        out.publish(channels::kCommand, datagram.data(), static_cast<unsigned>(datagram.size()));
         ++n;
       }
       sent = n;
@@ -160,7 +169,7 @@ int main(int argc, char** argv) {
     good.target = "TurnerMotor";
     good.action = command_t::ACTION_HOLD;
     good.apply_at_step = -1;
-    bus.publish(channels::kCommand, &good);
+    PublishSigned(&bus, channels::kCommand, good, signer);
     Pump(&bus, 0.1);
   }
   const size_t flood_to = seen.statuses.size();
@@ -172,7 +181,7 @@ int main(int argc, char** argv) {
   control_t quit{};
   quit.sender = "flood_bench";
   quit.action = control_t::ACTION_QUIT;
-  bus.publish(channels::kControl, &quit);
+  PublishSigned(&bus, channels::kControl, quit, signer);
   sim.Wait(std::chrono::seconds(5));
 
   if (seen.statuses.size() < 4) {

@@ -25,6 +25,7 @@
 #include "simpartner/model_t.hpp"
 #include "simpartner/sender.h"
 #include "simpartner/sim/sim_node.h"
+#include "simpartner/bus_signing.h"
 
 int main(int argc, char** argv) {
   using namespace simpartner;
@@ -52,6 +53,10 @@ int main(int argc, char** argv) {
   ChildProcess sim({binary, "--params", "/dev/null", "--environment=" + world, "--lcm-url", url},
                    "/dev/null");
   lcm::LCM bus(url);
+  // Signed as every process signs (the user's key, or SIMPARTNER_BUS_KEY).
+  std::optional<BusSigning> signing = BusSigning::FromEnvironment(
+      [](const std::string& line) { std::cerr << "latency_bench: " << line << "\n"; });
+  BusSigning* const signer = signing ? &*signing : nullptr;
   model_t model;
   bool have_model = false;
   std::map<int64_t, int64_t> sent;  // request id -> utime
@@ -90,7 +95,7 @@ int main(int argc, char** argv) {
     c.apply_at_step = -1;
     c.utime = WallMicros();
     sent[c.request_id] = c.utime;
-    bus.publish(channels::kCommand, &c);
+    PublishSigned(&bus, channels::kCommand, c, signer);
     const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(gap_us(random));
     while (std::chrono::steady_clock::now() < until) bus.handleTimeout(1);
   }
@@ -98,7 +103,7 @@ int main(int argc, char** argv) {
   while (std::chrono::steady_clock::now() < drain) bus.handleTimeout(10);
   control_t quit{};
   quit.action = control_t::ACTION_QUIT;
-  bus.publish(channels::kControl, &quit);
+  PublishSigned(&bus, channels::kControl, quit, signer);
   if (!sim.Wait(std::chrono::seconds(5))) std::cerr << "latency_bench: the sim did not quit\n";
   std::sort(latencies_ms.begin(), latencies_ms.end());
   if (latencies_ms.empty()) {

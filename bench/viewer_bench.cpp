@@ -28,6 +28,7 @@
 #include "simpartner/channels.h"
 #include "simpartner/child_process.h"
 #include "simpartner/command_line.h"
+#include "simpartner/bus_signing.h"
 #include "simpartner/control_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/viewer/xvfb.h"
@@ -207,7 +208,11 @@ int main(int argc, char** argv) {
   simpartner::control_t quit{};
   quit.action = simpartner::control_t::ACTION_QUIT;
   quit.sender = "viewer_bench";
-  status.lcm().publish(simpartner::channels::kControl, &quit);
+  // Signed as every process signs (the user's key, or SIMPARTNER_BUS_KEY).
+  std::optional<simpartner::BusSigning> signing = simpartner::BusSigning::FromEnvironment(
+      [](const std::string& line) { std::cerr << "viewer_bench: " << line << "\n"; });
+  simpartner::PublishSigned(&status.lcm(), simpartner::channels::kControl, quit,
+                            signing ? &*signing : nullptr);
   sim.Wait(std::chrono::seconds(5));
   std::filesystem::remove_all(dir);
   return 0;

@@ -1,5 +1,6 @@
 #include "simpartner/batch/batch_cli.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <thread>
 
@@ -7,6 +8,7 @@
 #include "simpartner/batch/plan.h"
 #include "simpartner/batch/runner.h"
 #include "simpartner/batch/slurm.h"
+#include "simpartner/bus_signing.h"
 
 namespace simpartner::batch {
 namespace {
@@ -94,6 +96,11 @@ int RunBatchProgram(const CommandLine& args, std::ostream& out, std::ostream& er
   }
   const BatchOptions options = MakeOptions(args, batch);
   fs::create_directories(options.run.results_dir);
+  // One key for every run (its sim, controller, logger and observer, on
+  // this host or a Slurm node), chosen and said here once.
+  const std::string key = ChooseBusKeyFile(
+      [&err](const std::string& line) { err << "simpartner-batch: " << line << "\n"; });
+  ::setenv(kBusKeyVariable, key.empty() ? kNoBusKey : key.c_str(), 1);
   BatchOutcome outcome;
   if (args.Has("slurm")) {
     SlurmOptions slurm;

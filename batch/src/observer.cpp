@@ -20,7 +20,7 @@ RunObserver::RunObserver(const std::string& url, const std::vector<Figure>& figu
       figures_(figures),
       accumulators_(figures.size()),
       sender_(SenderName("simpartner-batch")) {
-  signing_ = BusSigning::FromEnvironment();
+  signing_ = BusSigning::FromEnvironment({});  // the batch said at start which key
   if (!lcm_.good()) throw std::runtime_error("cannot open LCM at '" + url + "'");
   lcm_.subscribe(channels::kModel, &RunObserver::OnModel, this);
   lcm_.subscribe(channels::kState, &RunObserver::OnState, this)->setQueueCapacity(100000);

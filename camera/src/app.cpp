@@ -61,7 +61,8 @@ class CameraProcess {
         stop_fd_(BlockStopSignalsIntoFd()),
         window_("simpartner-camera", 64, 64, false, true),
         lcm_(OpenLcm(options.lcm_url)),
-        signing_(BusSigning::FromEnvironment()),
+        signing_(BusSigning::FromEnvironment(
+            [&err](const std::string& line) { err << "simpartner-camera: " << line << std::endl; })),
         bus_(lcm_.get(), options.lcm_url, &scene_, [this](const std::string& m) { Warn(m); },
              signing_ ? &*signing_ : nullptr, "camera") {
     bus_.SetStateListener([this](const state_t& state) { OnState(state); });

@@ -30,10 +30,11 @@ constexpr size_t kMaxKeptSyncReplies = 64;
 // Colour and depth of a few cameras; older images are of no use.
 constexpr int kImageQueue = 8;
 
-// The bus key of SIMPARTNER_BUS_KEY, if set (bus_signing.h).
+// The bus key (bus_signing.h): the user's, SIMPARTNER_BUS_KEY's, or none.
 std::optional<BusSigning> SigningFromEnvironment() {
   try {
-    return BusSigning::FromEnvironment();
+    return BusSigning::FromEnvironment(
+        [](const std::string& line) { std::cerr << "simpartner client: " << line << "\n"; });
   } catch (const BusKeyError& e) {
     throw ClientError(e.what());
   }

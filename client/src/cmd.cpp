@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "simpartner/bus_signing.h"
 #include "simpartner/client/client.h"
 #include "simpartner/client/image_summary.h"
 #include "simpartner/command_line.h"
@@ -273,6 +274,21 @@ int RunRead(const Options& o, std::ostream& out, const ImageFileWriter& write_im
   return kCmdOk;
 }
 
+// The key file this program signs with (the user's, made now when it was
+// missing), checked, or "none": what another machine needs a copy of
+// (docs/several-machines.md).
+int RunKey(std::ostream& out, std::ostream& err) {
+  try {
+    const std::string path = ChooseBusKeyFile(
+        [&err](const std::string& line) { err << "simpartner-cmd: " << line << "\n"; });
+    if (!path.empty()) BusSigning::LoadKey(path);
+    out << (path.empty() ? std::string(kNoBusKey) : path) << "\n";
+  } catch (const BusKeyError& e) {
+    throw ClientError(e.what());
+  }
+  return kCmdOk;
+}
+
 int RunControl(const Options& o, std::ostream& out) {
   const std::string& verb = o.words[0];
   Client client(MakeClientOptions(o, false));
@@ -431,6 +447,8 @@ CommandLineSpec CmdCommandLine() {
       {"model", {}, "robots, actuators (kind, port, value forms), sensors"},
       {"state", {}, "newest SIM_STATE (or every one)", {"body", "follow", "count"}},
       {"status", {}, "newest SIM_STATUS (or every one)", {"follow", "count"}},
+      {"key", {}, "the bus key file this program signs with (the user's is made when\n"
+                  "missing), or 'none'; copy it to share the bus (docs/several-machines.md)"},
   };
   spec.parameters = ParameterUse{{parameter_sections::kTransport}};
   spec.epilogue =
@@ -457,6 +475,7 @@ int RunCmd(const std::vector<std::string>& args, std::ostream& out, std::ostream
     if (verb == "model") return RunModel(o, out);
     if (verb == "state") return RunState(o, out);
     if (verb == "status") return RunStatus(o, out);
+    if (verb == "key") return RunKey(out, err);
     return RunControl(o, out);  // pause, resume, step, speed, quit
   } catch (const UsageError& e) {
     return ReportUsageError(spec, e.what(), err);

@@ -41,8 +41,9 @@ std::string BusExposureWarning(const std::string& url, bool signed_bus) {
       colon == std::string::npos ? "7667" : url.substr(colon + 1, url.find('?') - colon - 1);
   return "the bus " + url + " takes datagrams from any machine on " + interfaces +
          " (whatever its ttl): anyone there can command the robot. Close it with 'sudo "
-         "scripts/bus-guard on " + port + "', or sign it with a key (SIMPARTNER_BUS_KEY); "
-         "docs/security.md. (" + kBusExposureSaidVariable + "=1 stops this line.)";
+         "scripts/bus-guard on " + port + "', or sign it (leave SIMPARTNER_BUS_KEY unset, or "
+         "name a key file); docs/security.md. (" + kBusExposureSaidVariable +
+         "=1 stops this line.)";
 }
 
 }  // namespace simpartner

@@ -5,11 +5,14 @@
 #include <openssl/evp.h>
 #include <openssl/rand.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 
 #include "simpartner/bounded_file.h"
 #include "simpartner/sender.h"
@@ -76,19 +79,110 @@ BusSigning::Key BusSigning::LoadKey(const std::string& path) {
   return key;
 }
 
-std::optional<BusSigning> BusSigning::FromEnvironment() {
-  const char* path = std::getenv(kBusKeyVariable);
-  if (path == nullptr || *path == '\0') return std::nullopt;
-  return std::optional<BusSigning>(std::in_place, LoadKey(path));
+std::optional<BusSigning> BusSigning::FromEnvironment(const BusKeyNote& say) {
+  const std::string path = ChooseBusKeyFile(say);
+  if (path.empty()) return std::nullopt;
+  return std::optional<BusSigning>(std::in_place, LoadKey(path), path);
 }
 
-BusSigning::BusSigning(const Key& key) : key_(key) {
+std::string UserBusKeyPath() {
+  const char* config = std::getenv("XDG_CONFIG_HOME");
+  if (config != nullptr && config[0] == '/') return std::string(config) + "/simpartner/bus.key";
+  const char* home = std::getenv("HOME");
+  if (home == nullptr || home[0] != '/')
+    throw BusKeyError(std::string("no place for the user's bus key: neither XDG_CONFIG_HOME nor "
+                                  "HOME is an absolute path; set ") +
+                      kBusKeyVariable + " to a key file (docs/security.md)");
+  return std::string(home) + "/.config/simpartner/bus.key";
+}
+
+namespace {
+
+// Why the user's key could not be made, and the way around it.
+BusKeyError CannotMakeKey(const std::string& what, int error) {
+  return BusKeyError(what + ": " + std::strerror(error) + " (or set " + kBusKeyVariable +
+                     " to a key file: docs/security.md)");
+}
+
+// `dir` and its missing parents, each made mode 0700: a key's directory
+// is its user's alone.
+void MakeKeyDirectories(const std::filesystem::path& dir) {
+  std::error_code ignored;
+  if (dir.empty() || std::filesystem::is_directory(dir, ignored)) return;
+  if (dir.has_relative_path() && dir.parent_path() != dir) MakeKeyDirectories(dir.parent_path());
+  if (::mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST)
+    throw CannotMakeKey(dir.string() + ": cannot make the bus key's directory", errno);
+}
+
+// 32 random bytes as 64 hex digits and a newline (a key a person can
+// copy as text), in the new file `fd`.
+bool WriteNewKey(int fd) {
+  BusSigning::Key key{};
+  if (RAND_bytes(key.data(), static_cast<int>(key.size())) != 1) return false;
+  std::string text;
+  for (const uint8_t byte : key) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    text += kHex[byte >> 4];
+    text += kHex[byte & 0xf];
+  }
+  text += '\n';
+  return ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size()) &&
+         ::fsync(fd) == 0;
+}
+
+}  // namespace
+
+bool MakeBusKeyIfMissing(const std::string& path) {
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) == 0) return false;
+  MakeKeyDirectories(std::filesystem::path(path).parent_path());
+  std::string aside = path + ".XXXXXX";
+  const int fd = ::mkstemp(aside.data());  // mode 0600
+  if (fd < 0) throw CannotMakeKey(path + ": cannot write a bus key beside it", errno);
+  const bool written = WriteNewKey(fd);
+  const int write_error = errno;
+  ::close(fd);
+  if (!written) {
+    ::unlink(aside.c_str());
+    throw CannotMakeKey(aside + ": cannot write a bus key", write_error);
+  }
+  // link fails when the name exists: of programs starting at once, the
+  // first to link wins, and the others read its key.
+  const bool linked = ::link(aside.c_str(), path.c_str()) == 0;
+  const int link_error = errno;
+  ::unlink(aside.c_str());
+  if (linked) return true;
+  if (link_error == EEXIST) return false;
+  throw CannotMakeKey(path + ": cannot put the bus key in place", link_error);
+}
+
+std::string ChooseBusKeyFile(const BusKeyNote& say) {
+  const char* chosen = std::getenv(kBusKeyVariable);
+  if (chosen != nullptr && std::strcmp(chosen, kNoBusKey) == 0) {
+    if (say)
+      say(std::string("the bus is unsigned (") + kBusKeyVariable + "=" + kNoBusKey +
+          "): any process that can reach it can command the robot and feed every reader "
+          "(docs/security.md)");
+    return "";
+  }
+  if (chosen != nullptr && *chosen != '\0') return chosen;
+  const std::string path = UserBusKeyPath();
+  if (MakeBusKeyIfMissing(path) && say)
+    say("made the bus key " + path +
+        " (mode 0600): every SimPartner program of this user signs with it; copy it to the "
+        "machines that share the bus (docs/several-machines.md)");
+  return path;
+}
+
+BusSigning::BusSigning(const Key& key, std::string key_file)
+    : key_(key), key_file_(std::move(key_file)) {
   if (RAND_bytes(reinterpret_cast<unsigned char*>(&link_), sizeof link_) != 1)
     throw BusKeyError("OpenSSL has no random bytes for a link id");
 }
 
 BusSigning::BusSigning(BusSigning&& other) noexcept
     : key_(other.key_),
+      key_file_(std::move(other.key_file_)),
       link_(other.link_),
       last_sent_(other.last_sent_),
       links_(std::move(other.links_)),
@@ -96,6 +190,7 @@ BusSigning::BusSigning(BusSigning&& other) noexcept
 
 BusSigning& BusSigning::operator=(BusSigning&& other) noexcept {
   key_ = other.key_;
+  key_file_ = std::move(other.key_file_);
   link_ = other.link_;
   last_sent_ = other.last_sent_;
   links_ = std::move(other.links_);
@@ -241,16 +336,18 @@ std::string SigningMismatch::Hint() const {
   const std::string where = std::string(" (") + kBusKeyVariable + "; docs/security.md)";
   if (!has_key_ && signed_unchecked_ > 0)
     return "this bus is signed (" + std::to_string(signed_unchecked_) +
-           " messages heard carry a signature) and this program has no key, so the sim refuses "
-           "what it sends: set " + kBusKeyVariable + " to the bus's key file (docs/security.md)";
+           " messages heard carry a signature) and this program has no key (" + kBusKeyVariable +
+           "=" + kNoBusKey + "), so the sim refuses what it sends: set " + kBusKeyVariable +
+           " to the bus's key file, or leave it unset (docs/security.md)";
   if (has_key_ && wrong_signature_ > 0)
     return std::to_string(wrong_signature_) + " messages heard did not verify with this program's key" +
            (verified_ == 0 ? ", and none did: the bus uses another key" : ": another key on the bus") +
-           where;
+           " (copy the sim's key file: docs/several-machines.md)" + where;
   if (has_key_ && unsigned_refused_ > 0 && verified_ == 0)
     return "the " + std::to_string(unsigned_refused_) +
            " messages heard are unsigned and this program has a key, so it refuses them: the sim "
-           "runs without one; give it the key, or unset the variable here" + where;
+           "runs without one (" + kBusKeyVariable + "=" + kNoBusKey + "); sign it, or set " +
+           kBusKeyVariable + "=" + kNoBusKey + " here too" + where;
   return "";
 }
 

@@ -102,7 +102,7 @@ Logger::Logger(LoggerOptions options, Reporter* reporter)
   receiver_options.sender = options_.sender;
   receiver_options.sim_silence = options_.sim_silence;
   try {
-    signing_ = BusSigning::FromEnvironment();
+    signing_ = BusSigning::FromEnvironment([this](const std::string& line) { reporter_->Say(line); });
   } catch (const BusKeyError& e) {
     throw Error(e.what());
   }

@@ -49,8 +49,9 @@ StateConflicts::Verdict StateConflicts::Check(int64_t simulation, int64_t step,
       "conflict",
       "bus simulation " + std::to_string(simulation) + ", step " + std::to_string(step) +
           ": two different SIM_STATEs for one step: another sender on the bus forges this "
-          "simulation's states; the first was kept; with SIMPARTNER_BUS_KEY forged states are "
-          "refused (docs/security.md); " + std::to_string(count_) + " conflicting states so far",
+          "simulation's states; the first was kept; on a signed bus (the default, not "
+          "SIMPARTNER_BUS_KEY=none) forged states are refused (docs/security.md); " +
+          std::to_string(count_) + " conflicting states so far",
       now);
   return verdict;
 }

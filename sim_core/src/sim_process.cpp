@@ -18,9 +18,10 @@ namespace simpartner::sim {
 
 int RunSimProcess(model::World world, const Parameters& params, bool allow_other_sims,
                   std::ostream& out, std::ostream& err) {
-  // With a key (SIMPARTNER_BUS_KEY) every message is signed and every
-  // input must be; a bad key file stops here, named.
-  std::optional<BusSigning> signing = BusSigning::FromEnvironment();
+  // Every message is signed and every input must be, unless
+  // SIMPARTNER_BUS_KEY=none; a bad key file stops here, named.
+  std::optional<BusSigning> signing = BusSigning::FromEnvironment(
+      [&err](const std::string& line) { err << "simpartner-sim: " << line << std::endl; });
   BusSigning* const signer = signing ? &*signing : nullptr;
   // SIGINT/SIGTERM end the run like SIM_CONTROL quit (a last SIM_STATUS
   // says RUN_STOPPED, so a logger closes the simulation): they arrive as a
@@ -59,7 +60,7 @@ int RunSimProcess(model::World world, const Parameters& params, bool allow_other
     err << "simpartner-sim: warning: " << open << std::endl;
   out << "simpartner-sim: running (step " << params.stepsize << " s, " << params.stepper
       << " stepper, speed " << params.speed << ") on " << params.lcmUrl
-      << (signer ? ", signed (SIMPARTNER_BUS_KEY)" : "") << std::endl;
+      << (signer ? ", signed with " + signer->key_file() : std::string(", unsigned")) << std::endl;
   ReportMessageSizes(sizes, out);
   // Progress lines only for a person watching; a log gets the summary.
   if (::isatty(STDOUT_FILENO)) node.SetProgressOutput(&out);

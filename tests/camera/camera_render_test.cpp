@@ -112,12 +112,12 @@ TEST(CameraRender, PlateAtThePinholeAndWallAtItsDepth) {
   sim->FillState(&state);
   ASSERT_TRUE(bus.Until(
       [&] {
-        bus.lcm().publish(channels::kModel, &model);
+        bus.Publish(channels::kModel, model);
         return test_support::ReadText(dir / "camera.log").find(": 2 cameras") != std::string::npos;
       },
       20))
       << test_support::ReadText(dir / "camera.log");
-  bus.lcm().publish(channels::kState, &state);
+  bus.Publish(channels::kState, state);
   ASSERT_TRUE(bus.Until([&] { return images["Metres"].size() == 2 && images["Millimetres"].size() == 2; }, 10))
       << test_support::ReadText(dir / "camera.log");
   camera.Signal(SIGTERM);

@@ -282,9 +282,10 @@ TEST_F(ClientProcessTest, ConcurrentSendersAndClientsGetTheirOwnReplies) {
   EXPECT_EQ(sent.load(), 400);
 }
 
-// Anyone on the segment can send to the group: every hostile datagram on
-// the channels the client reads is counted and ignored, none fakes a
-// restart or replaces the state, and the client goes on working.
+// A process with the bus's key (or anyone on the segment, on an unsigned
+// bus) can send to the group: every hostile datagram on the channels the
+// client reads is counted and ignored, none fakes a restart or replaces
+// the state, and the client goes on working.
 TEST_F(ClientProcessTest, HostileInputIsCountedAndIgnored) {
   const std::string url = BusUrl(7);
   SimProcess sim(ShippedWorld("scanner_wall.xml"), url, Log("sim.log"));
@@ -293,13 +294,14 @@ TEST_F(ClientProcessTest, HostileInputIsCountedAndIgnored) {
   const size_t bodies = client.model()->bodies.size();
   lcm::LCM attacker(url);
   ASSERT_TRUE(attacker.good());
+  test_support::SignedPublisher publisher;
   int sent = 0;
   for (const auto& message : test_support::HostileCorpus(catalog->simulation_id())) {
     const std::string& c = message.channel;
     if (c != channels::kModel && c != channels::kState && c != channels::kStatus &&
         c != channels::kCommandReply && c != channels::kSensor)
       continue;
-    attacker.publish(c, message.bytes.data(), static_cast<unsigned>(message.bytes.size()));
+    publisher.PublishBytes(&attacker, c, message.bytes.data(), message.bytes.size());
     ++sent;
   }
   ASSERT_GT(sent, 15);
@@ -359,7 +361,7 @@ TEST_F(ClientProcessTest, CommandsCarryTheSimulationIdAndTheSimChecksIt) {
   listener.Subscribe<command_reply_t>(channels::kCommandReply, [&](const command_reply_t& r) {
     if (r.sender == "elsewhere@test:1") refusal = r;
   });
-  listener.lcm().publish(channels::kCommand, &elsewhere);
+  listener.Publish(channels::kCommand, elsewhere);
   listener.Until([&] { return refusal.has_value(); }, 5);
   ASSERT_TRUE(refusal.has_value());
   EXPECT_FALSE(refusal->accepted);
@@ -373,7 +375,7 @@ TEST_F(ClientProcessTest, CommandsCarryTheSimulationIdAndTheSimChecksIt) {
   quit.sender = "elsewhere@test:1";
   quit.simulation_id = id + 1;
   quit.action = control_t::ACTION_QUIT;
-  listener.lcm().publish(channels::kControl, &quit);
+  listener.Publish(channels::kControl, quit);
   const double t = client.LatestState()->sim_time;
   client.WaitUntilSimTime(t + 0.5, 5.0);
   EXPECT_TRUE(sim.running()) << sim.Log();

@@ -188,11 +188,12 @@ TEST_F(CmdTest, RepliesDoNotRepeatOldWarnings) {
   // A pause meant for another simulation: the sim refuses it and warns
   // ("bus: SIM_CONTROL: action 0 from 'elsewhere' is for simulation_id 42").
   lcm::LCM bus(url);
+  test_support::SignedPublisher publisher;
   control_t stray{};
   stray.simulation_id = 42;
   stray.sender = "elsewhere";
   stray.action = control_t::ACTION_PAUSE;
-  bus.publish(channels::kControl, &stray);
+  publisher.Publish(&bus, channels::kControl, stray);
   const std::string warning = "from 'elsewhere' is for simulation_id 42";
   CmdResult r;
   for (int tries = 0; tries < 20 && !Contains(r.out, warning); ++tries) r = cmd({"status"});
@@ -214,6 +215,7 @@ TEST_F(CmdTest, StatusNamesThePhysicsEngine) {
   const std::string url = BusUrl(15);
   lcm::LCM bus(url);
   ASSERT_TRUE(bus.good());
+  test_support::SignedPublisher publisher;
   for (const auto& [engine, printed] : std::vector<std::pair<std::string, std::string>>{
            {"mujoco", ", engine mujoco, "}, {"", ", engine ode, "}}) {
     status_t status{};
@@ -225,7 +227,7 @@ TEST_F(CmdTest, StatusNamesThePhysicsEngine) {
     std::atomic<bool> done{false};
     std::thread sim([&] {
       while (!done) {
-        bus.publish(channels::kStatus, &status);
+        publisher.Publish(&bus, channels::kStatus, status);
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
       }
     });

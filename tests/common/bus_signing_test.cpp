@@ -5,8 +5,11 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <thread>
 
 #include "../support/test_dir.h"
 #include "simpartner/sender.h"
@@ -160,6 +163,141 @@ TEST_F(BusKeyFileTest, ThirtyTwoBytesOrSixtyFourHexDigitsInAPrivateFile) {
             std::string::npos);
 }
 
+// Which key a program signs with (ChooseBusKeyFile), in an environment the
+// test sets: SIMPARTNER_BUS_KEY and where the user's key lives.
+class BusKeyChoiceTest : public BusKeyFileTest {
+ protected:
+  void SetUp() override {
+    BusKeyFileTest::SetUp();
+    for (const char* name : {kBusKeyVariable, "XDG_CONFIG_HOME", "HOME"})
+      if (const char* value = std::getenv(name)) saved_[name] = value;
+    ::unsetenv(kBusKeyVariable);
+    ::setenv("XDG_CONFIG_HOME", (dir_ / "config").c_str(), 1);
+  }
+  void TearDown() override {
+    for (const char* name : {kBusKeyVariable, "XDG_CONFIG_HOME", "HOME"}) {
+      if (saved_.count(name)) ::setenv(name, saved_[name].c_str(), 1);
+      else ::unsetenv(name);
+    }
+    BusKeyFileTest::TearDown();
+  }
+  // The key file chosen, and what was said.
+  std::pair<std::string, std::vector<std::string>> Choose() {
+    std::vector<std::string> said;
+    const std::string path =
+        ChooseBusKeyFile([&said](const std::string& line) { said.push_back(line); });
+    return {path, said};
+  }
+  std::map<std::string, std::string> saved_;
+};
+
+TEST_F(BusKeyChoiceTest, NothingSetMakesTheUsersKeyOnceAndSaysWhere) {
+  const std::string user_key = (dir_ / "config" / "simpartner" / "bus.key").string();
+  const auto [path, said] = Choose();
+  EXPECT_EQ(path, user_key);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0].rfind("made the bus key " + user_key + " (mode 0600): every SimPartner "
+                          "program of this user signs with it",
+                          0),
+            0u)
+      << said[0];
+  struct stat info {};
+  ASSERT_EQ(::stat(user_key.c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 0777, 0600u);
+  ASSERT_EQ(::stat((dir_ / "config" / "simpartner").c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 0077, 0u);
+  const BusSigning::Key key = BusSigning::LoadKey(user_key);
+  EXPECT_NE(key, KeyOf(0));
+  const auto [again, said_again] = Choose();  // found, not made again
+  EXPECT_EQ(again, user_key);
+  EXPECT_TRUE(said_again.empty());
+  EXPECT_EQ(BusSigning::LoadKey(user_key), key);
+  // An empty variable is no choice either.
+  ::setenv(kBusKeyVariable, "", 1);
+  EXPECT_EQ(Choose().first, user_key);
+}
+
+TEST_F(BusKeyChoiceTest, NoneIsUnsignedAndSaidAKeyFileIsTakenAsItIs) {
+  ::setenv(kBusKeyVariable, kNoBusKey, 1);
+  const auto [none, said] = Choose();
+  EXPECT_EQ(none, "");
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0].rfind("the bus is unsigned (SIMPARTNER_BUS_KEY=none): any process that can "
+                          "reach it can command the robot",
+                          0),
+            0u)
+      << said[0];
+  EXPECT_FALSE(BusSigning::FromEnvironment({}).has_value());
+  const std::string file = Write(std::string(64, 'b'), 0600);
+  ::setenv(kBusKeyVariable, file.c_str(), 1);
+  const auto [chosen, quiet] = Choose();
+  EXPECT_EQ(chosen, file);
+  EXPECT_TRUE(quiet.empty());
+  EXPECT_FALSE(fs::exists(dir_ / "config")) << "the user's key was made though a file was named";
+  const std::optional<BusSigning> signing = BusSigning::FromEnvironment({});
+  ASSERT_TRUE(signing.has_value());
+  EXPECT_EQ(signing->key_file(), file);
+}
+
+// The XDG base directory rule: a relative XDG_CONFIG_HOME is ignored for
+// ~/.config; with no home either, the error says what to set.
+TEST_F(BusKeyChoiceTest, WithoutAnAbsoluteConfigDirectoryHomeIsUsedOrTheErrorSaysWhatToSet) {
+  ::setenv("XDG_CONFIG_HOME", "relative/config", 1);
+  ::setenv("HOME", (dir_ / "home").c_str(), 1);
+  EXPECT_EQ(Choose().first, (dir_ / "home" / ".config" / "simpartner" / "bus.key").string());
+  ::unsetenv("XDG_CONFIG_HOME");
+  ::unsetenv("HOME");
+  try {
+    Choose();
+    ADD_FAILURE() << "no error without a home";
+  } catch (const BusKeyError& e) {
+    EXPECT_NE(std::string(e.what()).find("set SIMPARTNER_BUS_KEY to a key file"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A config directory that cannot be made (here a file stands where it
+// would be: root may write anywhere else): the error names it and the
+// way around.
+TEST_F(BusKeyChoiceTest, WhereTheKeyCannotBeMadeTheErrorNamesThePathAndTheWayAround) {
+  std::ofstream(dir_ / "config") << "a file, not a directory\n";
+  try {
+    Choose();
+    ADD_FAILURE() << "a key was made under a file";
+  } catch (const BusKeyError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (dir_ / "config" / "simpartner").string() +
+                  ": cannot make the bus key's directory: Not a directory (or set "
+                  "SIMPARTNER_BUS_KEY to a key file: docs/security.md)");
+  }
+}
+
+// The programs of a run start at once: of 16 threads making the same key,
+// exactly one makes it, every one then reads that key, and nothing is
+// left beside it.
+TEST_F(BusKeyChoiceTest, ProgramsStartingAtOnceShareOneKey) {
+  const std::string path = (dir_ / "config" / "simpartner" / "bus.key").string();
+  std::vector<int> made(16, 0);
+  std::vector<BusSigning::Key> keys(made.size());
+  std::vector<std::thread> threads;
+  for (size_t i = 0; i < made.size(); ++i)
+    threads.emplace_back([&, i] {
+      made[i] = MakeBusKeyIfMissing(path) ? 1 : 0;
+      keys[i] = BusSigning::LoadKey(path);
+    });
+  for (std::thread& t : threads) t.join();
+  int makers = 0;
+  for (const int m : made) makers += m;
+  EXPECT_EQ(makers, 1);
+  for (const BusSigning::Key& key : keys) EXPECT_EQ(key, keys[0]);
+  size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(dir_ / "config" / "simpartner")) {
+    ++files;
+    EXPECT_EQ(entry.path().filename(), "bus.key");
+  }
+  EXPECT_EQ(files, 1u);
+}
+
 // What a reader heard tells why it may hear no answer: a signed bus and no
 // key, an unsigned bus and a key, or another key; a bus that matches says
 // nothing.
@@ -188,7 +326,8 @@ TEST(SigningMismatch, NamesASignedBusWithoutAKeyAnUnsignedOneWithAKeyAndAnotherK
   EXPECT_EQ(right.Hint(), "");
   heard(&other_key, signed_bytes, &wrong);
   EXPECT_NE(wrong.Hint().find("1 messages heard did not verify with this program's key, and none "
-                              "did: the bus uses another key (SIMPARTNER_BUS_KEY; docs/security.md)"),
+                              "did: the bus uses another key (copy the sim's key file: "
+                              "docs/several-machines.md) (SIMPARTNER_BUS_KEY; docs/security.md)"),
             std::string::npos)
       << wrong.Hint();
   heard(&same_key, kMessage, &unsigned_bus);

@@ -154,10 +154,14 @@ class LoggerProcessTest : public testing::ServerTest {
                        " GROUP BY p.bodyID HAVING COUNT(*) <> " + std::to_string(steps) + ") x"),
               0) << "a body without one pose per step";
   }
-  // The test as a sim: publishes a run's messages on the bus.
+  // The test as a sim: publishes a run's messages on the bus, signed as
+  // a sim signs them.
   template <class M>
   void Publish(lcm::LCM* bus, const char* channel, const M& message) {
-    ASSERT_EQ(bus->publish(channel, &message), 0);
+    ASSERT_EQ(publisher_.Publish(bus, channel, message), 0);
+  }
+  void PublishBytes(lcm::LCM* bus, const char* channel, const void* data, size_t size) {
+    ASSERT_EQ(publisher_.PublishBytes(bus, channel, data, size), 0);
   }
   void PublishStates(lcm::LCM* bus, const SimRun& run, int64_t first, int64_t last) {
     for (int64_t s = first; s <= last; ++s) {
@@ -199,6 +203,7 @@ class LoggerProcessTest : public testing::ServerTest {
   std::vector<std::unique_ptr<ChildProcess>> loggers_;
   std::vector<std::unique_ptr<SimProcess>> sims_;
   std::unique_ptr<test_support::BusListener> sim_states_;  // UntilSimPasses's
+  test_support::SignedPublisher publisher_;  // the test's side, as a sim
   state_t latest_state_{};
 };
 
@@ -315,14 +320,14 @@ TEST_F(LoggerProcessTest, BadMessagesAreCountedReportedAndNeverWritten) {
   Publish(&bus, channels::kModel, run.model);
   PublishStates(&bus, run, 1, 50);
   const uint8_t garbage[] = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
-  bus.publish(channels::kState, garbage, sizeof garbage);
+  PublishBytes(&bus, channels::kState, garbage, sizeof garbage);
   Publish(&bus, channels::kState, run.model);  // a model on SIM_STATE
   state_t fake = run.states[0];
   fake.step = 9000;
   std::vector<uint8_t> bytes = test_support::Encode(fake);
-  bus.publish(channels::kState, bytes.data(), static_cast<unsigned>(bytes.size() - 10));  // truncated
+  PublishBytes(&bus, channels::kState, bytes.data(), bytes.size() - 10);  // truncated
   bytes.push_back(0);
-  bus.publish(channels::kState, bytes.data(), static_cast<unsigned>(bytes.size()));  // padded
+  PublishBytes(&bus, channels::kState, bytes.data(), bytes.size());  // padded
   state_t extra_body = run.states[0];
   extra_body.step = 9001;
   extra_body.bodies.push_back(extra_body.bodies[0]);
@@ -336,8 +341,8 @@ TEST_F(LoggerProcessTest, BadMessagesAreCountedReportedAndNeverWritten) {
   broken_model.simulation_id = 777;
   broken_model.sensors[0].joint = 99;
   Publish(&bus, channels::kModel, broken_model);
-  bus.publish(channels::kCommand, garbage, sizeof garbage);
-  bus.publish(channels::kSensor, garbage, 3);
+  PublishBytes(&bus, channels::kCommand, garbage, sizeof garbage);
+  PublishBytes(&bus, channels::kSensor, garbage, 3);
   PublishStates(&bus, run, 51, 100);
   PublishStopped(&bus, run, 100);
   ASSERT_TRUE(WaitFor([&] { return Closed(1); }, 30)) << ReadText(LoggerLog(0));

@@ -562,7 +562,8 @@ TEST_F(ReceiverTest, AForgedStateBeforeTheRealOneIsCountedAndNamed) {
   EXPECT_EQ(Occurrences(text, kConflictLine), 1u) << text;
   EXPECT_NE(text.find("bus simulation 5, step 101: two different SIM_STATEs for one step: another "
                       "sender on the bus forges this simulation's states; the first was kept; "
-                      "with SIMPARTNER_BUS_KEY forged states are refused (docs/security.md)"),
+                      "on a signed bus (the default, not SIMPARTNER_BUS_KEY=none) forged states "
+                      "are refused (docs/security.md)"),
             std::string::npos) << text;
 }
 

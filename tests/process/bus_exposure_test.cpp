@@ -1,8 +1,9 @@
 // Who can reach the bus, said at start (common/bus_exposure.h): a sim in a
 // network namespace whose only outward interface is a veth (standing for
-// eth0) warns once, naming it and the ways out; with the link down (only
-// loopback), with SIMPARTNER_BUS_EXPOSURE_SAID=1 (scripts/run dealt with
-// it) or with a key (SIMPARTNER_BUS_KEY) it does not. Root only (it makes
+// eth0) warns once on an unsigned bus (SIMPARTNER_BUS_KEY=none), naming
+// it and the ways out; with the link down (only loopback), with
+// SIMPARTNER_BUS_EXPOSURE_SAID=1 (scripts/run dealt with it) or signed
+// (the default, or a key file) it does not. Root only (it makes
 // namespaces).
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -15,6 +16,7 @@
 #include "../support/programs.h"
 #include "../support/sim_process.h"
 #include "../support/test_dir.h"
+#include "simpartner/bus_signing.h"
 
 namespace simpartner {
 namespace {
@@ -52,19 +54,33 @@ TEST_F(BusExposureTest, ASimOnAnOpenBusSaysSoOnceAndNotWhenClosedOrSigned) {
   ASSERT_EQ(::geteuid(), 0u) << "this test makes network namespaces and needs root";
   test_support::NamespaceLan lan("spx", {"host"});
   const std::string veth = lan.Interface("host") + " " + lan.Address("host");
-  const std::string open = RunSim(lan, {});
+  const std::string none = std::string(kBusKeyVariable) + "=" + kNoBusKey;
+  const std::string open = RunSim(lan, {none});
   EXPECT_NE(open.find("warning: the bus udpm://239.255.76.67:7667?ttl=0 takes datagrams from any "
                       "machine on " + veth),
             std::string::npos)
       << open;
-  EXPECT_NE(open.find("'sudo scripts/bus-guard on 7667'"), std::string::npos) << open;
-  const std::string said = RunSim(lan, {"SIMPARTNER_BUS_EXPOSURE_SAID=1"});
+  EXPECT_NE(open.find("'sudo scripts/bus-guard on 7667', or sign it (leave SIMPARTNER_BUS_KEY "
+                      "unset, or name a key file)"),
+            std::string::npos)
+      << open;
+  EXPECT_NE(open.find("simpartner-sim: the bus is unsigned (SIMPARTNER_BUS_KEY=none)"),
+            std::string::npos)
+      << open;
+  const std::string said = RunSim(lan, {"SIMPARTNER_BUS_EXPOSURE_SAID=1", none});
   EXPECT_EQ(said.find("takes datagrams from any machine"), std::string::npos) << said;
   const std::string key = (dir_ / "bus.key").string();
   std::ofstream(key) << std::string(32, 'k');
   ::chmod(key.c_str(), 0600);
   const std::string signed_bus = RunSim(lan, {"SIMPARTNER_BUS_KEY=" + key});
   EXPECT_EQ(signed_bus.find("takes datagrams from any machine"), std::string::npos) << signed_bus;
+  // Nothing configured: signed with the user's key, made now.
+  const std::string by_default = RunSim(lan, {"XDG_CONFIG_HOME=" + (dir_ / "config").string()});
+  EXPECT_EQ(by_default.find("takes datagrams from any machine"), std::string::npos) << by_default;
+  EXPECT_NE(by_default.find("simpartner-sim: made the bus key " +
+                            (dir_ / "config" / "simpartner" / "bus.key").string()),
+            std::string::npos)
+      << by_default;
   // Loopback only (LCM then needs its multicast route there): nobody else
   // can reach the bus.
   lan.SetLink("host", false);
@@ -75,7 +91,7 @@ TEST_F(BusExposureTest, ASimOnAnOpenBusSaysSoOnceAndNotWhenClosedOrSigned) {
                                      std::chrono::seconds(10))
                   .status,
               0);
-  const std::string alone = RunSim(lan, {});
+  const std::string alone = RunSim(lan, {none});
   EXPECT_EQ(alone.find("takes datagrams from any machine"), std::string::npos) << alone;
 }
 

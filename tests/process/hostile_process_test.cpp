@@ -31,6 +31,7 @@
 #include "simpartner/child_process.h"
 #include "simpartner/command_reply_t.hpp"
 #include "simpartner/control_t.hpp"
+#include "simpartner/model_t.hpp"
 #include "simpartner/state_t.hpp"
 #include "simpartner/status_t.hpp"
 #include "simpartner/viewer/xvfb.h"
@@ -85,7 +86,7 @@ void SendCorpus(Observer& bus, const std::vector<Process>& processes, int* undec
   for (const test_support::HostileMessage& m : test_support::HostileCorpus(bus.simulation_id)) {
     std::cout << "sending: " << m.name << " on " << m.channel << " (" << m.bytes.size() << " bytes)\n";
     for (int repeat = 0; repeat < 3; ++repeat) {
-      bus.lcm().publish(m.channel, m.bytes.data(), static_cast<unsigned>(m.bytes.size()));
+      bus.PublishBytes(m.channel, m.bytes.data(), static_cast<unsigned>(m.bytes.size()));
       bus.Pump(0.01);
     }
     if (m.undecodable && (m.channel == channels::kCommand || m.channel == channels::kControl ||
@@ -118,7 +119,7 @@ void ExpectSimStillWorks(Observer& bus, int undecodable_for_sim, const std::file
   good.apply_at_step = -1;
   good.values = {1000, 1000, 1000, 0, 0, 0.5, 20, 0, 0};  // angle 0.5 rad, P = 20
   good.num_values = 9;
-  bus.lcm().publish(channels::kCommand, &good);
+  bus.Publish(channels::kCommand, good);
   ASSERT_TRUE(bus.Until([&] { return !bus.replies.empty(); }, 5));
   EXPECT_TRUE(bus.replies.back().accepted) << bus.replies.back().reason;
   const std::string sim_log = ReadText(log);
@@ -143,6 +144,25 @@ class HostileProcessTest : public logger::testing::ServerTest {
     ChildOptions options;
     options.own_session = true;
     return std::make_unique<ChildProcess>(argv, (dir_ / log).string(), options);
+  }
+
+  // Quits the sim and returns the last step it says it made (-1 when it
+  // did not say): the sim's own word, as this test's listener can be
+  // behind on a loaded machine.
+  int64_t QuitSim(Observer& bus, ChildProcess* sim) {
+    control_t quit{};
+    quit.sender = "hostile-test";
+    quit.action = control_t::ACTION_QUIT;
+    bus.Publish(channels::kControl, quit);
+    EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0) << ReadText(dir_ / "sim.log");
+    const std::string sim_log = ReadText(dir_ / "sim.log");
+    const std::string ended_line = "simpartner-sim: ended at step ";
+    const size_t ended = sim_log.find(ended_line);
+    if (ended == std::string::npos) {
+      ADD_FAILURE() << "the sim did not say its last step:\n" << sim_log;
+      return -1;
+    }
+    return std::atoll(sim_log.c_str() + ended + ended_line.size());
   }
 
   std::string url_;
@@ -207,18 +227,8 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
 
   // The logger: the sim quits; every step it made is in the database once,
   // with a row for each of its 3 bodies and 2 joints, and nothing forged.
-  control_t quit{};
-  quit.sender = "hostile-test";
-  quit.action = control_t::ACTION_QUIT;
-  bus.lcm().publish(channels::kControl, &quit);
-  ASSERT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0) << ReadText(dir_ / "sim.log");
-  // The sim's own word for its last step: this test's listener can be
-  // behind on a loaded machine.
-  const std::string sim_log = ReadText(dir_ / "sim.log");
-  const std::string ended_line = "simpartner-sim: ended at step ";
-  const size_t ended = sim_log.find(ended_line);
-  ASSERT_NE(ended, std::string::npos) << sim_log;
-  const int64_t last = std::atoll(sim_log.c_str() + ended + ended_line.size());
+  const int64_t last = QuitSim(bus, sim.get());
+  ASSERT_GT(last, 0);
   int64_t rows = -1;
   test_support::WaitFor(
       [&] {
@@ -239,6 +249,98 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   EXPECT_EQ(logger->Wait(std::chrono::seconds(60)).value_or(-1), 0) << ReadText(dir_ / "logger.log");
   EXPECT_NE(ReadText(dir_ / "logger.log").find("refused as simpartner.state_t"), std::string::npos)
       << ReadText(dir_ / "logger.log");
+}
+
+// The audit's copied model, on an unsigned bus (SIMPARTNER_BUS_KEY=none,
+// where no key refuses it first): while a sequence plays, with the logger
+// and the viewer following, a process sends 20 copies of the real
+// SIM_MODEL, sender included, with another simulation id. The real
+// simulation never stops publishing, so each follower takes the copy for
+// another simulation: the sequence plays on, the viewer stays on the real
+// model, and the logger logs the real simulation to its last step in its
+// one Simulation row. (Before, the sequencer exited, the logger closed the
+// real row mid-run and opened a phantom one, and the viewer switched.)
+// Beside other tests, unlike the corpus: it sends no flood.
+class CopiedModelTest : public HostileProcessTest {};
+
+constexpr const char* kArmSequence = R"(<sequence version="2">
+  <set target="ArmMotor">1000,1000,1000,0,0,0.5,20,0,0</set>
+  <pause seconds="60"/>
+  <set target="ArmMotor">1000,1000,1000,0,0,0,20,0,0</set>
+</sequence>
+)";
+
+TEST_F(CopiedModelTest, OnAnUnsignedBusACopiedModelChangesNoFollower) {
+  const test_support::UnsignedBus unsigned_bus;
+  Observer bus(url_);
+  model_t model{};
+  bus.KeepLatest<model_t>(channels::kModel, &model);
+  auto logger = Start(BuiltCommand("simpartner-logger",
+                                   {"--params", "/dev/null", "--lcm-url", url_, "--db-options",
+                                    server_->logger_options(), "--spool", (dir_ / "spool").string(),
+                                    "--status-period", "1"}),
+                      "logger.log");
+  ASSERT_TRUE(bus.UntilFileHolds(dir_ / "logger.log", ": logging udpm://", 30))
+      << ReadText(dir_ / "logger.log");
+  auto sim = Start(test_support::SimCommand(world_, url_, {}), "sim.log");
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > 100 && model.simulation_id != 0; }, 30))
+      << ReadText(dir_ / "sim.log");
+  const int64_t real = model.simulation_id;
+  viewer::XvfbServer xvfb(640, 360, (dir_ / "xvfb.log").string());
+  auto viewer = Start(test_support::OnDisplay(
+                          xvfb.display(), BuiltCommand("simpartner-viewer",
+                                                       {"--params", "/dev/null", "--lcm-url", url_,
+                                                        "--width", "640", "--height", "360"})),
+                      "viewer.log");
+  ASSERT_TRUE(bus.UntilFileHolds(dir_ / "viewer.log", "model of simulation " + std::to_string(real), 30))
+      << ReadText(dir_ / "viewer.log");
+  std::ofstream(dir_ / "arm.xml") << kArmSequence;
+  auto sequencer = Start(BuiltCommand("simpartner-sequencer",
+                                      {(dir_ / "arm.xml").string(), "--lcm-url", url_}),
+                         "sequencer.log");
+  ASSERT_TRUE(bus.UntilFileHolds(dir_ / "sequencer.log", "line 2: set ArmMotor", 30))
+      << ReadText(dir_ / "sequencer.log");
+
+  model_t copy = model;
+  copy.simulation_id = real + 1000;
+  for (int i = 0; i < 20; ++i) {
+    bus.lcm().publish(channels::kModel, &copy);  // unsigned, as a forger sends it
+    bus.Pump(0.05);
+  }
+  const int64_t after_copies = bus.last_step;
+  ASSERT_TRUE(bus.Until([&] { return bus.last_step > after_copies + 2000; }, 30));
+
+  EXPECT_TRUE(sequencer->running()) << ReadText(dir_ / "sequencer.log");
+  EXPECT_EQ(ReadText(dir_ / "sequencer.log").find("restarted"), std::string::npos)
+      << ReadText(dir_ / "sequencer.log");
+  EXPECT_EQ(ReadText(dir_ / "viewer.log").find("model of simulation " + std::to_string(copy.simulation_id)),
+            std::string::npos)
+      << ReadText(dir_ / "viewer.log");
+  EXPECT_EQ(ReadText(dir_ / "logger.log").find("a new simulation started"), std::string::npos)
+      << ReadText(dir_ / "logger.log");
+  ASSERT_TRUE(viewer->running()) << ReadText(dir_ / "viewer.log");
+  ASSERT_TRUE(logger->running()) << ReadText(dir_ / "logger.log");
+
+  sequencer->Signal(SIGTERM);
+  EXPECT_EQ(sequencer->Wait(std::chrono::seconds(30)).value_or(-1), 1) << ReadText(dir_ / "sequencer.log");
+  const int64_t last = QuitSim(bus, sim.get());
+  ASSERT_GT(last, 0);
+  EXPECT_TRUE(test_support::WaitFor(
+      [&] {
+        return QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = 1") >= last &&
+               QueryInt("SELECT COUNT(*) FROM Simulation WHERE simulationID = 1 AND lastStep IS "
+                        "NOT NULL") == 1;
+      },
+      60, std::chrono::milliseconds(300)))
+      << ReadText(dir_ / "logger.log");
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1) << "the copy became a simulation";
+  EXPECT_EQ(QueryInt("SELECT lastStep FROM Simulation WHERE simulationID = 1"), last);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = 1"), last);
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);
+  viewer->Signal(SIGTERM);
+  EXPECT_EQ(viewer->Wait(std::chrono::seconds(60)).value_or(-1), 0) << ReadText(dir_ / "viewer.log");
+  logger->Signal(SIGTERM);
+  EXPECT_EQ(logger->Wait(std::chrono::seconds(60)).value_or(-1), 0) << ReadText(dir_ / "logger.log");
 }
 
 // The sim's part on the MuJoCo engine, without a logger or viewer: the

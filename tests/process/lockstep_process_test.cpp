@@ -395,8 +395,10 @@ TEST_F(LockStepProcessTest, AControllerThatDiesIsReleased) {
 
 // Marks for ticks that never happened, another process's marks for the
 // controller's name and replays of old ones: refused and counted, and the
-// run is the very run it is without them.
+// run is the very run it is without them. On an unsigned bus, where only
+// the marks' tokens tell the controller from a forger.
 TEST_F(LockStepProcessTest, ForgedAndDuplicatedMarksChangeNothing) {
+  const test_support::UnsignedBus unsigned_bus;
   const RunResult clean = ClosedLoop(0, 10, "clean");
   ASSERT_EQ(clean.status, 0) << clean.output;
 

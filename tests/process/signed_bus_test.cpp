@@ -2,17 +2,21 @@
 // processes: simpartner-sim and a client holding the key drive the robot
 // as on an open bus; a process without the key sends a quit, a command, a
 // model of another simulation and a state, and replays a signed command:
-// nothing changes, and the sim says why it refused each. Without the key
-// (the same sim, no SIMPARTNER_BUS_KEY) the forged quit stops the sim: the
-// test that shows what the key does. A program without the key, or with
-// another, is told so.
+// nothing changes, and the sim says why it refused each. With nothing
+// configured, the first program makes the user's key and every program
+// signs with it: a forged quit, command, model, state, mark and image
+// change nothing. On an unsigned bus (SIMPARTNER_BUS_KEY=none) the forged
+// quit stops the sim: the test that shows what the key does. A program
+// without the key, or with another, is told so.
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 #include <stdlib.h>
 #include <sys/stat.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <thread>
 
 #include "../support/bus_url.h"
@@ -26,6 +30,9 @@
 #include "simpartner/client/cmd.h"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
+#include "simpartner/image_t.hpp"
+#include "simpartner/state_t.hpp"
+#include "simpartner/sync_t.hpp"
 
 namespace simpartner {
 namespace {
@@ -38,13 +45,18 @@ using test_support::SimProcess;
 class SignedBusTest : public ::testing::Test {
  protected:
   void SetUp() override {
+    for (const char* name : {kBusKeyVariable, "XDG_CONFIG_HOME"})
+      if (const char* value = std::getenv(name)) saved_[name] = value;
     dir_ = test_support::FreshTestDir("sp_signed_", 30);
     key_ = (dir_ / "bus.key").string();
     std::ofstream(key_) << std::string(64, 'c') << "\n";
     ::chmod(key_.c_str(), 0600);
   }
   void TearDown() override {
-    ::unsetenv(kBusKeyVariable);
+    for (const char* name : {kBusKeyVariable, "XDG_CONFIG_HOME"}) {
+      if (saved_.count(name)) ::setenv(name, saved_[name].c_str(), 1);
+      else ::unsetenv(name);
+    }
     if (!HasFailure()) fs::remove_all(dir_);
   }
   // What a process without the key sends: a quit for any simulation.
@@ -56,6 +68,7 @@ class SignedBusTest : public ::testing::Test {
   }
   fs::path dir_;
   std::string key_;
+  std::map<std::string, std::string> saved_;  // the environment the test changes
 };
 
 TEST_F(SignedBusTest, WithoutTheKeyNothingChangesAndAReplayIsRefused) {
@@ -63,7 +76,7 @@ TEST_F(SignedBusTest, WithoutTheKeyNothingChangesAndAReplayIsRefused) {
   const std::string url = BusUrl(1);
   SimProcess sim(ShippedWorld("gen1_flat.xml"), url, (dir_ / "sim.log").string());
   ASSERT_TRUE(sim.WaitUntilRunning(30)) << sim.Log();
-  EXPECT_NE(sim.Log().find("signed (SIMPARTNER_BUS_KEY)"), std::string::npos) << sim.Log();
+  EXPECT_NE(sim.Log().find(", signed with " + key_), std::string::npos) << sim.Log();
   client::ClientOptions options;
   options.url = url;
   options.model_timeout = 10;
@@ -146,15 +159,16 @@ TEST_F(SignedBusTest, AProgramWithoutTheKeyOrWithAnotherIsToldWhy) {
         (dir_ / log).string(), std::chrono::seconds(30));
   };
 
-  ASSERT_EQ(::unsetenv(kBusKeyVariable), 0);
+  ASSERT_EQ(::setenv(kBusKeyVariable, kNoBusKey, 1), 0);
   const test_support::ProgramRun keyless = pause("keyless.log");
   EXPECT_EQ(keyless.status, client::kCmdNoAnswer) << keyless.output;
   EXPECT_NE(keyless.output.find("no SIM_STATUS confirming 'pause' within 2 s on " + url +
                                 "; this bus is signed ("),
             std::string::npos)
       << keyless.output;
-  EXPECT_NE(keyless.output.find("messages heard carry a signature) and this program has no key, so the "
-                                "sim refuses what it sends: set SIMPARTNER_BUS_KEY to the bus's key file"),
+  EXPECT_NE(keyless.output.find("messages heard carry a signature) and this program has no key "
+                                "(SIMPARTNER_BUS_KEY=none), so the sim refuses what it sends: set "
+                                "SIMPARTNER_BUS_KEY to the bus's key file"),
             std::string::npos)
       << keyless.output;
 
@@ -164,18 +178,123 @@ TEST_F(SignedBusTest, AProgramWithoutTheKeyOrWithAnotherIsToldWhy) {
   EXPECT_NE(wrong.output.find("no sim on " + url + ": no SIM_MODEL within 2 s; "), std::string::npos)
       << wrong.output;
   EXPECT_NE(wrong.output.find("messages heard did not verify with this program's key, and none did: the "
-                              "bus uses another key (SIMPARTNER_BUS_KEY; docs/security.md)"),
+                              "bus uses another key (copy the sim's key file: "
+                              "docs/several-machines.md) (SIMPARTNER_BUS_KEY; docs/security.md)"),
             std::string::npos)
       << wrong.output;
   EXPECT_TRUE(sim.running()) << sim.Log();
 }
 
-TEST_F(SignedBusTest, WithoutAKeyTheForgedQuitStopsTheSim) {
+TEST_F(SignedBusTest, OnAnUnsignedBusTheForgedQuitStopsTheSim) {
+  ASSERT_EQ(::setenv(kBusKeyVariable, kNoBusKey, 1), 0);
   const std::string url = BusUrl(2);
   SimProcess sim(ShippedWorld("gen1_flat.xml"), url, (dir_ / "sim.log").string());
   ASSERT_TRUE(sim.WaitUntilRunning(30)) << sim.Log();
+  EXPECT_NE(sim.Log().find("simpartner-sim: the bus is unsigned (SIMPARTNER_BUS_KEY=none)"),
+            std::string::npos)
+      << sim.Log();
   lcm::LCM raw(url);
   ForgeQuit(raw);
+  EXPECT_EQ(sim.Wait(std::chrono::seconds(10)), std::optional<int>(0)) << sim.Log();
+}
+
+// With nothing configured (no SIMPARTNER_BUS_KEY, an empty XDG config
+// directory), the first program makes the user's key, says where, and
+// every program signs with it; simpartner-cmd names the same key. A
+// process without it forges a quit, a command, a model of another
+// simulation, a state far ahead, a lock-step JOIN and a camera image:
+// each is refused at its signature, and nothing changes. (On an unsigned
+// bus the same quit stops the sim: OnAnUnsignedBusTheForgedQuitStopsTheSim.)
+TEST_F(SignedBusTest, WithNoKeyConfiguredEveryProgramSignsAndForgeriesChangeNothing) {
+  const std::string config = (dir_ / "config").string();
+  ASSERT_EQ(::setenv("XDG_CONFIG_HOME", config.c_str(), 1), 0);
+  ASSERT_EQ(::unsetenv(kBusKeyVariable), 0);
+  const std::string made = config + "/simpartner/bus.key";
+  const std::string url = BusUrl(4);
+  SimProcess sim(ShippedWorld("flat_ground.xml"), url, (dir_ / "sim.log").string());
+  ASSERT_TRUE(sim.WaitUntilRunning(30)) << sim.Log();
+  EXPECT_NE(sim.Log().find("simpartner-sim: made the bus key " + made + " (mode 0600)"),
+            std::string::npos)
+      << sim.Log();
+  EXPECT_NE(sim.Log().find(", signed with " + made), std::string::npos) << sim.Log();
+  struct stat info {};
+  ASSERT_EQ(::stat(made.c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 0777, 0600u);
+  EXPECT_EQ(info.st_size, 65);  // 64 hex digits and a newline
+  ASSERT_EQ(::stat((config + "/simpartner").c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 0077, 0u);
+  const test_support::ProgramRun key = test_support::RunToEnd(
+      test_support::BuiltCommand("simpartner-cmd", {"key"}), (dir_ / "key.log").string(),
+      std::chrono::seconds(30));
+  EXPECT_EQ(key.status, 0) << key.output;
+  EXPECT_EQ(key.output, made + "\n");  // and no second key made
+
+  client::ClientOptions options;
+  options.url = url;
+  options.model_timeout = 10;
+  client::Client keyed(options);  // the default too: the same key
+  const int64_t simulation = keyed.catalog()->simulation_id();
+  ASSERT_TRUE(keyed.LatestImage("HeadCamera") == std::nullopt);  // receives images from now on
+  const state_t seen = keyed.WaitUntilSimTime(0.2, 10.0);
+
+  lcm::LCM raw(url);
+  ForgeQuit(raw);
+  command_t command{};
+  command.sender = "forger@elsewhere:1";
+  command.target = keyed.model()->actuators.at(0).name;
+  command.action = command_t::ACTION_HOLD;
+  command.apply_at_step = -1;
+  raw.publish(channels::kCommand, &command);
+  model_t model = *keyed.model();
+  model.simulation_id = simulation + 1;
+  raw.publish(channels::kModel, &model);
+  state_t ahead = seen;
+  ahead.step += 1000;
+  ahead.sim_time += 1.0;
+  raw.publish(channels::kState, &ahead);
+  sync_t join{};
+  join.controller = "forger";
+  join.sender = "forger@elsewhere:1";
+  join.token = "nonce";
+  join.action = sync_t::ACTION_JOIN;
+  join.period = 1;
+  raw.publish(channels::kSync, &join);
+  image_t image{};
+  for (const sensor_t& s : keyed.model()->sensors) {
+    if (s.name != "HeadCamera") continue;
+    image.camera = s.id;
+    image.name = s.name;
+    image.robot = keyed.model()->robots.at(static_cast<size_t>(s.robot)).name;
+    image.width = static_cast<int32_t>(s.params.at(0));
+    image.height = static_cast<int32_t>(s.params.at(1));
+  }
+  ASSERT_EQ(image.width, 640);
+  image.simulation_id = simulation;
+  image.step = seen.step;
+  image.sim_time = seen.sim_time;
+  image.format = image_t::FORMAT_RGB8;
+  image.data.assign(3u * 640u * 480u, 200);
+  image.num_bytes = static_cast<int32_t>(image.data.size());
+  raw.publish(channels::kImage, &image);
+
+  // The sim steps on, with no controller to wait for; the client keeps
+  // its simulation, its states and no image.
+  const state_t later = keyed.WaitUntilSimTime(seen.sim_time + 1.5, 15.0);
+  EXPECT_TRUE(sim.running()) << sim.Log();
+  const status_t status = keyed.WaitForStatus(3.0);
+  EXPECT_TRUE(status.sync_controllers.empty());
+  EXPECT_EQ(status.commands_accepted, 0) << sim.Log();
+  EXPECT_GE(status.bad_messages, 3) << sim.Log();  // the quit, the command, the JOIN
+  EXPECT_EQ(keyed.catalog()->simulation_id(), simulation);
+  EXPECT_FALSE(keyed.PendingRestart().has_value());
+  EXPECT_LT(later.step, ahead.step);
+  EXPECT_FALSE(keyed.LatestImage("HeadCamera").has_value());
+  const std::string summary = keyed.BadMessageSummary();
+  for (const char* channel : {"SIM_MODEL", "SIM_STATE", "SIM_IMAGE"})
+    EXPECT_NE(summary.find(channel), std::string::npos) << channel << " in '" << summary << "'";
+  EXPECT_NE(sim.Log().find("SIM_CONTROL: 72 bytes refused: no signature"), std::string::npos)
+      << sim.Log();
+  keyed.Quit();
   EXPECT_EQ(sim.Wait(std::chrono::seconds(10)), std::optional<int>(0)) << sim.Log();
 }
 

@@ -117,13 +117,13 @@ command_t MakeCommand(const std::string& target, int8_t action, std::vector<doub
   return c;
 }
 
-void Control(lcm::LCM& lcm, int8_t action, int64_t steps = 0, double speed = 0) {
+void Control(test_support::BusListener& bus, int8_t action, int64_t steps = 0, double speed = 0) {
   control_t c{};
   c.action = action;
   c.steps = steps;
   c.speed = speed;
   c.sender = "test";
-  lcm.publish(channels::kControl, &c);
+  bus.Publish(channels::kControl, c);
 }
 
 TEST_P(SimProcessEngineTest, LateSubscriberRebuildsTheModel) {
@@ -134,7 +134,7 @@ TEST_P(SimProcessEngineTest, LateSubscriberRebuildsTheModel) {
   // Ask instead of waiting for the periodic announcement.
   model_request_t request{};
   request.sender = "late-test";
-  bus.lcm().publish(channels::kModelRequest, &request);
+  bus.Publish(channels::kModelRequest, request);
   ASSERT_TRUE(bus.Until([&] { return !bus.models.empty() && bus.last_step > 0; }, kStartSeconds))
       << LogText();
   const model_t& m = bus.models.front();
@@ -151,7 +151,7 @@ TEST_P(SimProcessEngineTest, LateSubscriberRebuildsTheModel) {
   // The periodic announcement also arrives without asking (modelPeriod 1 s).
   const size_t seen = bus.models.size();
   EXPECT_TRUE(bus.Until([&] { return bus.models.size() > seen; }, 2.5));
-  Control(bus.lcm(), control_t::ACTION_QUIT);
+  Control(bus, control_t::ACTION_QUIT);
   EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
 }
 
@@ -164,7 +164,7 @@ TEST_P(SimProcessEngineTest, ModelAndStatusNameTheEngine) {
       << LogText();
   EXPECT_EQ(bus.models.front().engine, GetParam());
   EXPECT_EQ(bus.statuses.front().engine, GetParam());
-  Control(bus.lcm(), control_t::ACTION_QUIT);
+  Control(bus, control_t::ACTION_QUIT);
   EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
 }
 
@@ -198,7 +198,7 @@ TEST_P(SimProcessEngineTest, StalledSimSaysItFellBehindAndKeepsEveryStep) {
   // Every step from the first one received to the last is there once.
   const int64_t first = bus.states.begin()->first, last = bus.states.rbegin()->first;
   EXPECT_EQ(static_cast<int64_t>(bus.states.size()), last - first + 1);
-  Control(bus.lcm(), control_t::ACTION_QUIT);
+  Control(bus, control_t::ACTION_QUIT);
   EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
 }
 
@@ -209,25 +209,25 @@ TEST_P(SimProcessEngineTest, BadInputOnTheBusIsRefusedAndSteppingGoesOn) {
   ASSERT_TRUE(bus.Until([&] { return bus.last_step > 100; }, kStartSeconds)) << LogText();
   // Garbage and a message of another type on SIM_COMMAND and SIM_CONTROL.
   const uint8_t garbage[5] = {1, 2, 3, 4, 5};
-  bus.lcm().publish(channels::kCommand, garbage, sizeof garbage);
+  bus.PublishBytes(channels::kCommand, garbage, sizeof garbage);
   control_t wrong_type{};
-  bus.lcm().publish(channels::kCommand, &wrong_type);
-  bus.lcm().publish(channels::kControl, garbage, sizeof garbage);
+  bus.Publish(channels::kCommand, wrong_type);
+  bus.PublishBytes(channels::kControl, garbage, sizeof garbage);
   // Malformed commands.
   const double nan = std::numeric_limits<double>::quiet_NaN();
   command_t c = MakeCommand("Ghost", command_t::ACTION_SET, {1, 1}, 11);
-  bus.lcm().publish(channels::kCommand, &c);
+  bus.Publish(channels::kCommand, c);
   c = MakeCommand("Spin", command_t::ACTION_SET, {1000, nan}, 12);
-  bus.lcm().publish(channels::kCommand, &c);
+  bus.Publish(channels::kCommand, c);
   c = MakeCommand("Spin", command_t::ACTION_SET, {-1, 1}, 13);
-  bus.lcm().publish(channels::kCommand, &c);
+  bus.Publish(channels::kCommand, c);
   c = MakeCommand("Spin", command_t::ACTION_SET_STOPS, {-5, 5}, 14);
-  bus.lcm().publish(channels::kCommand, &c);
+  bus.Publish(channels::kCommand, c);
   c = MakeCommand("Spin", command_t::ACTION_SET, {1, 2, 3}, 15);
-  bus.lcm().publish(channels::kCommand, &c);
+  bus.Publish(channels::kCommand, c);
   // And one good one.
   c = MakeCommand("Spin", command_t::ACTION_SET, {1000, 2.0}, 16);
-  bus.lcm().publish(channels::kCommand, &c);
+  bus.Publish(channels::kCommand, c);
   ASSERT_TRUE(bus.Until([&] { return bus.replies.size() >= 6; }, 5.0)) << LogText();
   std::map<int64_t, command_reply_t> by_id;
   for (const auto& r : bus.replies) by_id[r.request_id] = r;
@@ -255,7 +255,7 @@ TEST_P(SimProcessEngineTest, BadInputOnTheBusIsRefusedAndSteppingGoesOn) {
             std::string::npos)
       << log;
   EXPECT_NE(log.find("SIM_CONTROL"), std::string::npos) << log;
-  Control(bus.lcm(), control_t::ACTION_QUIT);
+  Control(bus, control_t::ACTION_QUIT);
   EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
 }
 
@@ -267,15 +267,15 @@ TEST_P(SimProcessEngineTest, ControlsTakeEffectAtOnceEvenAtTheSlowestSpeed) {
   SimProcess sim(world_, url, Log(), Flags({"--duration=60", "--statusPeriod=0.2"}));
   Listener bus(url);
   ASSERT_TRUE(bus.Until([&] { return bus.last_step > 50; }, kStartSeconds)) << LogText();
-  Control(bus.lcm(), control_t::ACTION_SET_SPEED, 0, 1e-4);   // refused: below 0.001
-  Control(bus.lcm(), control_t::ACTION_SET_SPEED, 0, 0.001);  // one step a second
+  Control(bus, control_t::ACTION_SET_SPEED, 0, 1e-4);   // refused: below 0.001
+  Control(bus, control_t::ACTION_SET_SPEED, 0, 0.001);  // one step a second
   ASSERT_TRUE(bus.Until(
       [&] { return !bus.statuses.empty() && bus.statuses.back().target_speed == 0.001; }, 2.0))
       << LogText();
   bus.Until([] { return false; }, 0.3);  // now inside a one-second wait
   const int64_t slow_step = bus.last_step;
   const auto sent = Clock::now();
-  Control(bus.lcm(), control_t::ACTION_PAUSE);
+  Control(bus, control_t::ACTION_PAUSE);
   ASSERT_TRUE(bus.Until(
       [&] { return !bus.statuses.empty() && bus.statuses.back().run_state == status_t::RUN_PAUSED; },
       0.5))
@@ -283,8 +283,8 @@ TEST_P(SimProcessEngineTest, ControlsTakeEffectAtOnceEvenAtTheSlowestSpeed) {
   const double pause_latency = std::chrono::duration<double>(Clock::now() - sent).count();
   EXPECT_LT(pause_latency, 0.2);
   EXPECT_LE(bus.last_step, slow_step + 1);
-  Control(bus.lcm(), control_t::ACTION_SET_SPEED, 0, 1.0);
-  Control(bus.lcm(), control_t::ACTION_RESUME);
+  Control(bus, control_t::ACTION_SET_SPEED, 0, 1.0);
+  Control(bus, control_t::ACTION_RESUME);
   ASSERT_TRUE(bus.Until([&] { return bus.last_step > slow_step + 200; }, 1.0))
       << "back to real time after the slow speed";
   const std::string log = LogText();
@@ -292,7 +292,7 @@ TEST_P(SimProcessEngineTest, ControlsTakeEffectAtOnceEvenAtTheSlowestSpeed) {
                      "possible, or 0.001 to 1000 times real time)"),
             std::string::npos)
       << log;
-  Control(bus.lcm(), control_t::ACTION_QUIT);
+  Control(bus, control_t::ACTION_QUIT);
   EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
 }
 
@@ -301,7 +301,7 @@ TEST_P(SimProcessEngineTest, PauseStepResetQuit) {
   SimProcess sim(world_, url, Log(), Flags({"--duration=60"}));
   Listener bus(url);
   ASSERT_TRUE(bus.Until([&] { return bus.last_step > 50; }, kStartSeconds)) << LogText();
-  Control(bus.lcm(), control_t::ACTION_PAUSE);
+  Control(bus, control_t::ACTION_PAUSE);
   ASSERT_TRUE(bus.Until(
       [&] { return !bus.statuses.empty() && bus.statuses.back().run_state == status_t::RUN_PAUSED; },
       3.0));
@@ -309,20 +309,20 @@ TEST_P(SimProcessEngineTest, PauseStepResetQuit) {
   const int64_t paused_at = bus.last_step;
   bus.Until([] { return false; }, 0.5);
   EXPECT_EQ(bus.last_step, paused_at);  // no steps while paused
-  Control(bus.lcm(), control_t::ACTION_STEP, 10);
+  Control(bus, control_t::ACTION_STEP, 10);
   ASSERT_TRUE(bus.Until([&] { return bus.last_step == paused_at + 10; }, 3.0));
   bus.Until([] { return false; }, 0.3);
   EXPECT_EQ(bus.last_step, paused_at + 10);
   const int64_t old_id = bus.last_state_simulation;
-  Control(bus.lcm(), control_t::ACTION_RESET);
-  Control(bus.lcm(), control_t::ACTION_STEP, 5);
+  Control(bus, control_t::ACTION_RESET);
+  Control(bus, control_t::ACTION_STEP, 5);
   ASSERT_TRUE(bus.Until([&] { return bus.last_step == 5; }, kAnswerSeconds));
   EXPECT_NE(bus.last_state_simulation, old_id);
   // A new SIM_MODEL with the new id follows a reset.
   EXPECT_TRUE(bus.Until(
       [&] { return bus.models.back().simulation_id == bus.last_state_simulation; },
       kAnswerSeconds));
-  Control(bus.lcm(), control_t::ACTION_QUIT);
+  Control(bus, control_t::ACTION_QUIT);
   EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
   EXPECT_EQ(bus.Until([&] { return bus.statuses.back().run_state == status_t::RUN_STOPPED; }, 2.0),
             true);
@@ -401,13 +401,13 @@ TEST_P(SimProcessEngineTest, SameStreamAtAnySpeed) {
                    Flags({"--startPaused=1", "--speed=" + speed, "--duration=1.5", "--stateEvery=5"}));
     EXPECT_TRUE(bus.Until([&] { return !bus.models.empty(); }, kStartSeconds)) << LogText();
     command_t c = MakeCommand("Spin", command_t::ACTION_SET, {1000, 5.0}, 1, 100);
-    bus.lcm().publish(channels::kCommand, &c);
+    bus.Publish(channels::kCommand, c);
     c = MakeCommand("ArmMotor", command_t::ACTION_SET, {50, 1.0, 4, 1, 0.1}, 2, 400);
-    bus.lcm().publish(channels::kCommand, &c);
+    bus.Publish(channels::kCommand, c);
     c = MakeCommand("ArmMotor", command_t::ACTION_SET, {50, -1.0, 4, 1, 0.1}, 3, 1000);
-    bus.lcm().publish(channels::kCommand, &c);
+    bus.Publish(channels::kCommand, c);
     bus.Until([] { return false; }, 0.2);
-    Control(bus.lcm(), control_t::ACTION_RESUME);
+    Control(bus, control_t::ACTION_RESUME);
     EXPECT_TRUE(bus.Until([&] { return bus.last_step >= 1500; }, 20.0)) << LogText();
     EXPECT_EQ(sim.Wait(std::chrono::seconds(5)), 0);
     return bus.states;
@@ -509,7 +509,7 @@ TEST_F(SimProcessTest, ALateListenerGetsTheRutsWithTheModel) {
   // loaded machine was not listening yet when one request came.
   bool done = false;
   for (int asked = 0; !done && asked < kStartSeconds; ++asked) {
-    bus.lcm().publish(channels::kModelRequest, &request);
+    bus.Publish(channels::kModelRequest, request);
     done = bus.Until([&] { return !bus.models.empty() && snapshot_done(); }, 1.0);
   }
   ASSERT_TRUE(done) << LogText();
@@ -619,7 +619,7 @@ TEST_F(SimProcessTest, SecondSimOnOneBusRefusesToStart) {
   EXPECT_EQ(bus.last_state_simulation, first_id);
   EXPECT_EQ(ReadText(dir_ / "first.log").find("another simulation"), std::string::npos)
       << ReadText(dir_ / "first.log");
-  Control(bus.lcm(), control_t::ACTION_QUIT);
+  Control(bus, control_t::ACTION_QUIT);
   EXPECT_EQ(first.Wait(std::chrono::seconds(5)), 0);
 }
 
@@ -667,7 +667,7 @@ TEST_F(SimProcessTest, SimsSharingABusSayItAtOnce) {
                                      log_says("second.log", first_id); }, 3.0))
       << ReadText(dir_ / "first.log") << ReadText(dir_ / "second.log");
   EXPECT_LT(std::chrono::duration<double>(Clock::now() - second_heard).count(), 1.5);
-  Control(bus.lcm(), control_t::ACTION_QUIT);  // both hear it
+  Control(bus, control_t::ACTION_QUIT);  // both hear it
   EXPECT_EQ(first.Wait(std::chrono::seconds(5)), 0);
   EXPECT_EQ(second.Wait(std::chrono::seconds(5)), 0);
 }
@@ -684,7 +684,7 @@ TEST_P(SimProcessEngineTest, ForgedSimulationIdsAreReportedOnceNotPerId) {
     status_t forged{};
     forged.simulation_id = 1000000 + i;
     forged.host = "elsewhere";
-    bus.lcm().publish(channels::kStatus, &forged);
+    bus.Publish(channels::kStatus, forged);
     if (i % 500 == 499) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   auto lines = [&] {
@@ -717,7 +717,7 @@ TEST_P(SimProcessEngineTest, ModelRequestsAreAnsweredAtABoundedRate) {
   for (int i = 0; i < 1000; ++i) {
     model_request_t request{};
     request.sender = "flood";
-    bus.lcm().publish(channels::kModelRequest, &request);
+    bus.Publish(channels::kModelRequest, request);
     bus.Until([] { return false; }, 0.002);
   }
   bus.Until([] { return false; }, 0.3);

@@ -379,10 +379,12 @@ TEST_F(SupervisedRunTest, KilledProcessesComeBackSimKeepsItsRateSigtermStopsAll)
     // viewer and teleop learned the model, the logger logs, the sequencer
     // plays). How soon is a figure, printed, not a bound: the sanitized
     // viewer's start-up alone took 4.7 s with the other core busy, where it
-    // takes 0.3-1.2 s on a quiet machine.
+    // takes 0.3-1.2 s on a quiet machine, and beside a busy loop on each
+    // core it had not learned the model 10 s after its restart (the
+    // allowance is that of every start: 30 s).
     ASSERT_TRUE(bus.Until([&] { return AnnouncedPid(RunLog(), v.name) != old_pid; }, 10)) << RunLog();
     const double restarted_after = SecondsSince(killed);
-    ASSERT_TRUE(bus.Until([&] { return Count(Log(v.name), v.back_sign) > signs_before; }, 10))
+    ASSERT_TRUE(bus.Until([&] { return Count(Log(v.name), v.back_sign) > signs_before; }, 30))
         << RunLog() << Log(v.name);
     const double back_after = SecondsSince(killed);
     const pid_t new_pid = AnnouncedPid(RunLog(), v.name);

@@ -319,8 +319,10 @@ TEST_F(SequencerProcessTest, RestartedSimStopsTheSequence) {
 // The attack: 20 forged SIM_MODELs with other simulation ids (a
 // stale sim elsewhere, a replayed log) while a sequence plays. Before, the
 // sequencer stopped ("the sim restarted under the sequence") and under
-// scripts/run played again from line 1; now it plays on.
+// scripts/run played again from line 1; now it plays on. On an unsigned
+// bus, where a key does not refuse them first.
 TEST_F(SequencerProcessTest, ForgedModelsOfOtherSimulationsDoNotStopTheSequence) {
+  const test_support::UnsignedBus unsigned_bus;
   const std::string url = BusUrl(12);
   Listener bus(url, false);
   auto sim = StartSim(url, "gen1_flat.xml", {"--duration=60"}, "sim.log");

@@ -1,6 +1,7 @@
 // The test's side of the bus: typed subscriptions whose messages are
-// decoded as every process decodes them (simpartner/bus_decode.h: what is
-// refused is counted, never handed on), kept or passed to a handler, and
+// opened and decoded as every process does it (simpartner/bus_decode.h:
+// the signature checked with the tests' key, unless on an UnsignedBus;
+// what is refused is counted, never handed on), kept or passed to a handler, and
 // Until(condition, seconds) to receive while waiting. A test derives its
 // own listener from it for the figures it follows (the newest step, the
 // states by step ...).
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "signed_publisher.h"
 #include "simpartner/bus_decode.h"
 
 namespace simpartner::test_support {
@@ -40,7 +42,8 @@ class BusListener {
         channel,
         [this, on = std::move(on_message)](const lcm::ReceiveBuffer* buffer, const std::string& name) {
           T message;
-          if (!DecodeFromBus(name, buffer->data, buffer->data_size, &message, &refused_)) on(message);
+          if (!DecodeSigned(name, buffer->data, buffer->data_size, signer(), &message, &refused_))
+            on(message);
         },
         queue_capacity);
   }
@@ -67,7 +70,17 @@ class BusListener {
   // reading it every 50 ms; false when `seconds` passed first.
   bool UntilFileHolds(const std::filesystem::path& path, const std::string& text, double seconds);
 
-  // For publishing: the test's messages go out on the same bus.
+  // The test's messages, on the same bus, signed as a process signs
+  // (signed_publisher.h).
+  template <class T>
+  int Publish(const std::string& channel, const T& message) {
+    return publisher_.Publish(&lcm_, channel, message);
+  }
+  int PublishBytes(const std::string& channel, const void* data, size_t size) {
+    return publisher_.PublishBytes(&lcm_, channel, data, size);
+  }
+  BusSigning* signer() { return publisher_.signer(); }
+  // For what the test sends unsigned, as a forger without the key would.
   lcm::LCM& lcm() { return lcm_; }
   // The messages refused on this listener's channels, per channel.
   const BadMessageCounter& refused() const { return refused_; }
@@ -86,6 +99,7 @@ class BusListener {
   static constexpr double kBatchSeconds = 0.1;
 
   lcm::LCM lcm_;
+  SignedPublisher publisher_;
   BadMessageCounter refused_;
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
 };

@@ -4,7 +4,8 @@
 // state's step, a colour image of camera CAMERA at its declared
 // resolution, red = column % 256, green = row % 256, blue = 7, and, when the
 // camera declares depth, a depth image of 1 m + 1 mm per column (uint16
-// millimetres or float32 metres, as it declares).
+// millimetres or float32 metres, as it declares). It signs as the camera
+// does (SIMPARTNER_BUS_KEY).
 #include <lcm/lcm-cpp.hpp>
 
 #include <chrono>
@@ -14,6 +15,7 @@
 #include <string>
 
 #include "simpartner/bus_decode.h"
+#include "simpartner/bus_signing.h"
 #include "simpartner/channels.h"
 #include "simpartner/image_t.hpp"
 #include "simpartner/model_t.hpp"
@@ -25,6 +27,7 @@ namespace {
 using namespace simpartner;
 
 struct Heard {
+  BusSigning* signer = nullptr;
   std::optional<model_t> model;
   std::optional<state_t> state;
 };
@@ -75,19 +78,22 @@ int main(int argc, char** argv) {
   }
   lcm::LCM lcm(argv[1]);
   if (!lcm.good()) return 1;
+  std::optional<BusSigning> signing = BusSigning::FromEnvironment({});
+  BusSigning* const signer = signing ? &*signing : nullptr;
   Heard heard;
+  heard.signer = signer;
   lcm.subscribeFunction(
       channels::kModel,
       +[](const lcm::ReceiveBuffer* b, const std::string& c, Heard* h) {
         model_t m;
-        if (!DecodeFromBus(c, b->data, b->data_size, &m, nullptr)) h->model = m;
+        if (!DecodeSigned(c, b->data, b->data_size, h->signer, &m, nullptr)) h->model = m;
       },
       &heard);
   lcm.subscribeFunction(
       channels::kState,
       +[](const lcm::ReceiveBuffer* b, const std::string& c, Heard* h) {
         state_t s;
-        if (!DecodeFromBus(c, b->data, b->data_size, &s, nullptr)) h->state = s;
+        if (!DecodeSigned(c, b->data, b->data_size, h->signer, &s, nullptr)) h->state = s;
       },
       &heard);
   using Clock = std::chrono::steady_clock;
@@ -100,18 +106,18 @@ int main(int argc, char** argv) {
     if (!heard.model) {
       model_request_t request{};
       request.sender = "sp_test_publish_image";
-      lcm.publish(channels::kModelRequest, &request);
+      PublishSigned(&lcm, channels::kModelRequest, request, signer);
       continue;
     }
     if (!heard.state || heard.state->simulation_id != heard.model->simulation_id) continue;
     for (const sensor_t& s : heard.model->sensors) {
       if (s.name != argv[2] || s.kind != sensor_t::KIND_CAMERA) continue;
       const image_t colour = Frame(*heard.model, s, *heard.state, image_t::FORMAT_RGB8);
-      lcm.publish(channels::kImage, &colour);
+      PublishSigned(&lcm, channels::kImage, colour, signer);
       const int depth = static_cast<int>(s.params.at(5));
       if (depth != 0) {
         const image_t image = Frame(*heard.model, s, *heard.state, depth);
-        lcm.publish(channels::kImage, &image);
+        PublishSigned(&lcm, channels::kImage, image, signer);
       }
     }
   }

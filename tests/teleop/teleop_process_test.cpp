@@ -57,7 +57,7 @@ void Control(const std::string& url, int8_t action) {
   control_t control{};
   control.sender = "teleop_process_test";
   control.action = action;
-  ASSERT_EQ(lcm.publish(channels::kControl, &control), 0);
+  ASSERT_EQ(test_support::SignedPublisher().Publish(&lcm, channels::kControl, control), 0);
 }
 
 struct SeenCommand {

@@ -254,11 +254,11 @@ class ViewerProcessTest : public ::testing::Test {
   std::unique_ptr<XvfbServer> xvfb_;
 };
 
-void Quit(lcm::LCM& lcm) {
+void Quit(test_support::BusListener& bus) {
   control_t c{};
   c.action = control_t::ACTION_QUIT;
   c.sender = "viewer-test";
-  lcm.publish(channels::kControl, &c);
+  bus.Publish(channels::kControl, c);
 }
 
 // Fraction of pixels that differ from the sky in the middle 60 % of the
@@ -335,7 +335,7 @@ TEST_F(ViewerProcessTest, ScreenshotShowsEveryBodyWhereItsStateSaysAndWireframeD
   for (size_t i = 0; i < image.pixels.size(); i += 3)
     differing += std::abs(image.pixels[i] - wire_image.pixels[i]) > 30;
   EXPECT_GT(differing, 1000);
-  Quit(bus.lcm());
+  Quit(bus);
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
 }
 
@@ -360,7 +360,7 @@ TEST_F(ViewerProcessTest, LateViewerAsksForTheModelAndDrawsAllOfIt) {
   EXPECT_NE(log.find("4 bodies drawn"), std::string::npos) << log;
   ExpectBodiesWhereTheStateSays(ReadPng(shot), bus, ScreenshotStep("viewer.log"),
                                 {"Crate", "Drum", "Pill", "Bob"});
-  Quit(bus.lcm());
+  Quit(bus);
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
 }
 
@@ -372,7 +372,7 @@ TEST_F(ViewerProcessTest, SimRestartedWithAnotherWorldShowsTheNewModel) {
                                                 "--after", "9"});
   auto first = StartSim("shapes.xml", url, "first.log");
   ASSERT_TRUE(WaitForText("viewer.log", "world 'ViewerShapes'", 20, &bus)) << Read("viewer.log");
-  Quit(bus.lcm());
+  Quit(bus);
   ASSERT_EQ(first->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("first.log");
   auto second = StartSim("terrain.xml", url, "second.log");
   ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << Read("viewer.log");
@@ -405,7 +405,7 @@ TEST_F(ViewerProcessTest, SimRestartedWithAnotherWorldShowsTheNewModel) {
   EXPECT_GT(ColorDistance(field, plane), 30) << "heightfield";
   const RgbImage::Rgb where_bob_was = At(a, Pixel(Eigen::Vector3d(0, 2.4, -1.0), up));
   EXPECT_LT(ColorDistance(where_bob_was, sky), 12) << "the first world's pendulum is still drawn";
-  Quit(bus.lcm());
+  Quit(bus);
   EXPECT_EQ(second->Wait(std::chrono::seconds(10)).value_or(-1), 0);
 }
 
@@ -435,18 +435,18 @@ TEST_F(ViewerProcessTest, BadStatesAreCountedAndIgnoredWithoutACrash) {
     state_t more = good();
     more.bodies.resize(more.bodies.size() + 2);
     more.num_bodies += 2;
-    bus.lcm().publish(channels::kState, &more);
+    bus.Publish(channels::kState, more);
     state_t other = good();
     other.simulation_id = m.simulation_id + 1000 + i;
-    bus.lcm().publish(channels::kState, &other);
+    bus.Publish(channels::kState, other);
     state_t nan = good();
     nan.bodies[1].position[0] = std::nan("");
-    bus.lcm().publish(channels::kState, &nan);
+    bus.Publish(channels::kState, nan);
     state_t zero_quaternion = good();
     zero_quaternion.bodies[0].orientation[0] = 0;
-    bus.lcm().publish(channels::kState, &zero_quaternion);
+    bus.Publish(channels::kState, zero_quaternion);
     const uint8_t garbage[] = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
-    bus.lcm().publish(channels::kState, garbage, sizeof garbage);
+    bus.PublishBytes(channels::kState, garbage, sizeof garbage);
     bus.Pump(0.02);
   }
   ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << Read("viewer.log");
@@ -476,7 +476,7 @@ TEST_F(ViewerProcessTest, BadStatesAreCountedAndIgnoredWithoutACrash) {
   // The bodies are still drawn from the sim's good states.
   ExpectBodiesWhereTheStateSays(ReadPng(shot), bus, ScreenshotStep("viewer.log"),
                                 {"Crate", "Drum", "Pill", "Bob"});
-  Quit(bus.lcm());
+  Quit(bus);
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
 }
 
@@ -519,7 +519,7 @@ TEST_F(ViewerProcessTest, ARidgeHidesTheRutBehindItAndNotTheOneBefore) {
   ruts.w.insert(ruts.w.end(), behind.w.begin(), behind.w.end());
   ruts.depth.insert(ruts.depth.end(), behind.depth.begin(), behind.depth.end());
   ruts.num_cells = static_cast<int32_t>(ruts.depth.size());
-  bus.lcm().publish(channels::kSoilRuts, &ruts);
+  bus.Publish(channels::kSoilRuts, ruts);
   ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << Read("viewer.log");
   ASSERT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
   const RgbImage image = ReadPng(shot);
@@ -532,7 +532,7 @@ TEST_F(ViewerProcessTest, ARidgeHidesTheRutBehindItAndNotTheOneBefore) {
   };
   EXPECT_GT(contrast(2.25), 40) << "the rut before the ridge is not drawn";
   EXPECT_LT(contrast(-2.25), 12) << "the rut behind the ridge shows through it";
-  Quit(bus.lcm());
+  Quit(bus);
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
 }
 
@@ -596,7 +596,7 @@ TEST_F(ViewerProcessTest, KeysPauseStepResetAndResumeTheSim) {
 
   xdotool({"key", "Escape"});
   EXPECT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
-  Quit(bus.lcm());
+  Quit(bus);
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);
 }
 

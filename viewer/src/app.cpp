@@ -56,7 +56,8 @@ class Viewer {
         toggles_(options.toggles),
         window_("SimPartner viewer", options.width, options.height, options.max_fps > 0),
         lcm_(OpenLcm(options.lcm_url)),
-        signing_(BusSigning::FromEnvironment()),
+        signing_(BusSigning::FromEnvironment(
+            [&err](const std::string& line) { err << "simpartner-viewer: " << line << std::endl; })),
         bus_(lcm_.get(), options.lcm_url, &scene_, [this](const std::string& m) { Warn(m); },
              signing_ ? &*signing_ : nullptr),
         images_(lcm_.get(), signing_ ? &*signing_ : nullptr,

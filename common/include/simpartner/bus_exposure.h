@@ -2,7 +2,7 @@
 // once at start by the sim, the logger and every client. LCM listens on
 // 0.0.0.0:PORT whatever the URL's ttl (docs/security.md, "Who can reach the
 // bus"), so any machine on a network this host is on can command the robot
-// unless the bus is signed (SIMPARTNER_BUS_KEY) or scripts/bus-guard drops
+// unless the bus is signed (the default) or scripts/bus-guard drops
 // such datagrams. A launcher that has dealt with it (scripts/run: it turned
 // the guard on, or said so itself) sets SIMPARTNER_BUS_EXPOSURE_SAID=1 for
 // its children, and a user who has read the warning may set it too.

@@ -1,8 +1,9 @@
-// Signed bus messages: with a key, every message a process publishes is
-// signed and every message it reads must carry a valid, fresh signature;
-// without one, nothing changes. Off by default: a deployment gives every
-// process one key file (32 random bytes or 64 hex digits, mode 0600) in
-// SIMPARTNER_BUS_KEY.
+// Signed bus messages: every message a process publishes is signed and
+// every message it reads must carry a valid, fresh signature. On by
+// default: with SIMPARTNER_BUS_KEY unset, a process signs with the user's
+// key (UserBusKeyPath), made on first use; SIMPARTNER_BUS_KEY=FILE names
+// another key file (32 random bytes or 64 hex digits, mode 0600), and
+// SIMPARTNER_BUS_KEY=none makes the bus unsigned, said once at start.
 //
 // The anchor is MAVLink 2's message signing (a link id, a timestamp and a
 // truncated SHA-256 signature, with replay protection). A signed message is
@@ -36,6 +37,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -47,6 +49,11 @@ namespace simpartner {
 
 inline constexpr size_t kSignatureBytes = 36;
 inline constexpr const char* kBusKeyVariable = "SIMPARTNER_BUS_KEY";
+// The value of SIMPARTNER_BUS_KEY that makes a process unsigned, by choice.
+inline constexpr const char* kNoBusKey = "none";
+// Where a program says a line about its key (the program adds its name);
+// empty: nothing is said.
+using BusKeyNote = std::function<void(const std::string& line)>;
 
 class BusKeyError : public std::runtime_error {
  public:
@@ -64,14 +71,14 @@ class BusSigning {
   static constexpr int64_t kReplayWindowMicros = 1000000;
   static constexpr size_t kReplayWindowMessages = 64;
 
-  // The key file named by SIMPARTNER_BUS_KEY, or nothing when the variable
-  // is unset or empty. Throws BusKeyError naming the file and what is
-  // wrong with it (missing, not 32 bytes or 64 hex digits, readable by
-  // others).
-  static std::optional<BusSigning> FromEnvironment();
+  // The key of ChooseBusKeyFile(say), or nothing for "none". Throws
+  // BusKeyError naming the file and what is wrong with it (missing, not
+  // 32 bytes or 64 hex digits, readable by others).
+  static std::optional<BusSigning> FromEnvironment(const BusKeyNote& say);
   static Key LoadKey(const std::string& path);
 
-  explicit BusSigning(const Key& key);
+  // `key_file`: where the key came from, for the lines that name it.
+  explicit BusSigning(const Key& key, std::string key_file = "");
   // Moves the key and the replay state (not while another thread uses it).
   BusSigning(BusSigning&& other) noexcept;
   BusSigning& operator=(BusSigning&& other) noexcept;
@@ -101,11 +108,14 @@ class BusSigning {
   };
   Opened Open(const std::string& channel, const void* data, size_t size, int64_t now_us);
 
+  const std::string& key_file() const { return key_file_; }
+
  private:
   void Tag(const std::string& channel, const uint8_t* data, size_t size, uint64_t link,
            int64_t timestamp, uint8_t out[16]) const;
 
   Key key_;
+  std::string key_file_;
   uint64_t link_;
   std::mutex mutex_;  // a client publishes and reads on two threads
   int64_t last_sent_ = 0;
@@ -125,6 +135,25 @@ class BusSigning {
   std::map<uint64_t, Link> links_;
   uint64_t uses_ = 0;
 };
+
+// The user's bus key: $XDG_CONFIG_HOME/simpartner/bus.key, else
+// ~/.config/simpartner/bus.key (the XDG base directory rule: a relative
+// XDG_CONFIG_HOME is ignored). Throws BusKeyError when HOME is not set
+// either.
+std::string UserBusKeyPath();
+
+// Makes a key file at `path` unless something is there: 32 random bytes
+// as 64 hex digits, mode 0600, its missing directories mode 0700. The
+// programs of a run start at once: the key is written aside and linked
+// into place, so every one of them reads the key that was linked first.
+// True when this call made it; throws BusKeyError naming the path.
+bool MakeBusKeyIfMissing(const std::string& path);
+
+// The key file this process signs with, as SIMPARTNER_BUS_KEY says: the
+// file it names; "" for "none" (unsigned by choice); unset or empty, the
+// user's key, made when missing. Tells `say` that the bus is unsigned,
+// or where the key was made.
+std::string ChooseBusKeyFile(const BusKeyNote& say);
 
 // The message's size without a signature trailer, for a reader without a
 // key: it cannot check the signature and reads the message as unsigned.
