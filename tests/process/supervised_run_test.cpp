@@ -286,7 +286,7 @@ TEST_F(SupervisedRunTest, KilledLauncherTakesItsProcessesWithIt) {
 TEST_F(SupervisedRunTest, ProcessThatKeepsDyingYoungIsRestartedWithGrowingBackOff) {
   const fs::path bin = dir_ / "bin";
   fs::create_directories(bin / "teleop");
-  for (const char* room : {"sim_core", "logger", "viewer", "sequencer"})
+  for (const char* room : {"sim_core", "logger", "viewer", "sequencer", "client"})
     fs::create_directory_symlink(fs::path(BinaryDir()) / room, bin / room);
   const fs::path teleop = bin / "teleop/simpartner-teleop";
   std::ofstream(teleop) << "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\nkill -SEGV $$\n";
