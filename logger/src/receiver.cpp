@@ -79,8 +79,7 @@ bool Receiver::Decode(const lcm::ReceiveBuffer* buffer, const std::string& chann
   }
   if (!failure) return true;
   reporter_->SayLimited(channel + "/malformed",
-                        DescribeRefusal(channel, Message::getTypeName(),
-                                        static_cast<size_t>(buffer->data_size), *failure) +
+                        DescribeRefusal(channel, Message::getTypeName(), *size, *failure) +
                             "; not written (" + std::to_string(count) + " malformed so far)");
   return false;
 }

@@ -249,8 +249,8 @@ TEST_F(SignedBusTest, WithNoKeyConfiguredEveryProgramSignsAndForgeriesChangeNoth
   model.simulation_id = simulation + 1;
   raw.publish(channels::kModel, &model);
   state_t ahead = seen;
-  ahead.step += 1000;
-  ahead.sim_time += 1.0;
+  ahead.step += 1000000;
+  ahead.sim_time += 1000.0;
   raw.publish(channels::kState, &ahead);
   sync_t join{};
   join.controller = "forger";
