@@ -600,11 +600,11 @@ PYBIND11_MODULE(simpartner, m) {
           [](Sim& s) -> py::object {
             const auto st = s.client().LatestStatus();
             if (!st) return py::none();
-            static const char* kStates[] = {"running", "paused", "stopped", "faulted"};
+            static const char* kStates[] = {"running", "paused", "stopped", "faulted", "reset"};
             py::dict d;
             d["step"] = st->step;
             d["time"] = st->sim_time;
-            d["state"] = st->run_state >= 0 && st->run_state < 4 ? kStates[st->run_state] : "unknown";
+            d["state"] = st->run_state >= 0 && st->run_state < 5 ? kStates[st->run_state] : "unknown";
             d["real_time_factor"] = st->real_time_factor;
             return d;
           });

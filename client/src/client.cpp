@@ -138,7 +138,7 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     }
     // Another simulation's model (a second sim on the bus, a stale or
     // forged one) is not a restart of ours (simulation_follower.h).
-    if (follower_.OnModel(model->simulation_id, model->sender, Clock::now()) ==
+    if (follower_.OnModel(model->simulation_id, Clock::now()) ==
         SimulationFollower::Verdict::kOther) {
       nonsense("model of another simulation (id " + std::to_string(model->simulation_id) +
                " from '" + model->sender + "') while simulation " +
@@ -184,7 +184,7 @@ void Client::OnMessage(const void* data, size_t size, const std::string& channel
     }
     last_heard_ = Clock::now();
     if (!HeardFromAttached(status.simulation_id)) return;  // not our sim's status
-    if (status.run_state == status_t::RUN_STOPPED) follower_.Ended(status.simulation_id);
+    if (EndsSimulation(status.run_state)) follower_.Ended(status.simulation_id);
     status_ = status;
     ++status_count_;
     changed_.notify_all();

@@ -41,6 +41,7 @@ const char* RunStateName(int run_state) {
     case status_t::RUN_PAUSED: return "paused";
     case status_t::RUN_STOPPED: return "stopped";
     case status_t::RUN_FAULTED: return "faulted (paused by the health check)";
+    case status_t::RUN_RESET: return "reset (its successor follows)";
     default: return "unknown";
   }
 }

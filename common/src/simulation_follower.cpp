@@ -2,26 +2,30 @@
 
 #include <algorithm>
 
+#include "simpartner/status_t.hpp"
+
 namespace simpartner {
 
-SimulationFollower::Verdict SimulationFollower::OnModel(int64_t id, const std::string& sender,
-                                                        Clock::time_point now) {
+bool EndsSimulation(int8_t run_state) {
+  return run_state == status_t::RUN_STOPPED || run_state == status_t::RUN_RESET;
+}
+
+SimulationFollower::Verdict SimulationFollower::OnModel(int64_t id, Clock::time_point now) {
   if (WasFollowed(id)) {
     if (id == followed_) followed_heard_ = now;
-    if (id == followed_ && !followed_sender_) followed_sender_ = sender;  // attached
     return Verdict::kKnown;
   }
-  const bool same_sender = followed_sender_ && sender == *followed_sender_;
-  if (followed_ == 0 || same_sender || FollowedIsGone(now)) {
-    Follow(id, sender, now);
+  if (followed_ == 0 || FollowedIsGone(now)) {
+    Follow(id, now);
     return Verdict::kFollow;
   }
-  const bool is_new = others_.count(id) == 0;
-  others_[id] = Other{sender, now};
+  // A model is no sign of life (a copy is one): only its states and
+  // status are (Heard).
+  const bool is_new = others_.emplace(id, Clock::time_point{}).second;
   if (is_new && others_.size() > kMaxOthers) {
     const auto oldest = std::min_element(
         others_.begin(), others_.end(),
-        [](const auto& a, const auto& b) { return a.second.heard < b.second.heard; });
+        [](const auto& a, const auto& b) { return a.second < b.second; });
     others_.erase(oldest);
   }
   return Verdict::kOther;
@@ -31,7 +35,7 @@ void SimulationFollower::Heard(int64_t id, Clock::time_point now) {
   if (id == followed_) {
     followed_heard_ = now;
   } else if (const auto other = others_.find(id); other != others_.end()) {
-    other->second.heard = now;
+    other->second = now;
   }
 }
 
@@ -44,26 +48,24 @@ std::optional<int64_t> SimulationFollower::TakeSuccessor(Clock::time_point now) 
   // The newest other heard after the followed one last was.
   const auto newest = std::max_element(
       others_.begin(), others_.end(),
-      [](const auto& a, const auto& b) { return a.second.heard < b.second.heard; });
-  if (!followed_ended_ && newest->second.heard <= followed_heard_) return std::nullopt;
+      [](const auto& a, const auto& b) { return a.second < b.second; });
+  // Silent itself (a copied or stale model, no states behind it): none.
+  if (newest->second == Clock::time_point{} || now - newest->second >= silence_)
+    return std::nullopt;
+  if (!followed_ended_ && newest->second <= followed_heard_) return std::nullopt;
   const int64_t id = newest->first;
-  const std::string sender = newest->second.sender;
-  Follow(id, sender, now);
+  Follow(id, now);
   return id;
 }
 
-void SimulationFollower::Attach(int64_t id, Clock::time_point now) {
-  Follow(id, "", now);
-  followed_sender_.reset();  // the first model of `id` names it
-}
+void SimulationFollower::Attach(int64_t id, Clock::time_point now) { Follow(id, now); }
 
 bool SimulationFollower::FollowedIsGone(Clock::time_point now) const {
   return followed_ended_ || now - followed_heard_ >= silence_;
 }
 
-void SimulationFollower::Follow(int64_t id, const std::string& sender, Clock::time_point now) {
+void SimulationFollower::Follow(int64_t id, Clock::time_point now) {
   followed_ = id;
-  followed_sender_ = sender;
   followed_heard_ = now;
   followed_ended_ = false;
   followed_before_.insert(id);

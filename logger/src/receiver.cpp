@@ -503,7 +503,7 @@ void Receiver::OnModel(const lcm::ReceiveBuffer* buffer, const std::string& chan
     return;  // announced again
   }
   const auto now = std::chrono::steady_clock::now();
-  if (follower_.OnModel(model.simulation_id, model.sender, now) ==
+  if (follower_.OnModel(model.simulation_id, now) ==
       SimulationFollower::Verdict::kOther) {
     SetAside(model, MakeRecord(RecordKind::kModel, model.simulation_id, buffer));
     return;
@@ -634,6 +634,8 @@ void Receiver::OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& cha
   }
   clocks_[status.simulation_id].speed_allowance =
       SpeedAllowance(status.target_speed, status.real_time_factor);
+  // Reset: the next model is its successor's, which closes this one.
+  if (status.run_state == status_t::RUN_RESET) follower_.Ended(status.simulation_id);
   if (status.run_state != status_t::RUN_STOPPED) return;
   if (ended_.count(status.simulation_id) > 0) return;
   MarkEnded(status.simulation_id);

@@ -236,6 +236,10 @@ void SimNode::OnControl(const lcm::ReceiveBuffer* buffer, const std::string& cha
       wake_ = true;
       break;
     case control_t::ACTION_RESET:
+      // The old simulation's last status says it was reset: followers
+      // then take the next model, of the new id, as its successor
+      // (simulation_follower.h), and a copy of the model as another sim.
+      PublishStatus(status_t::RUN_RESET);
       sim_->Reset(WallMicros());
       lock_step_.Clear();  // they were synchronous with the old simulation
       peers_.AddOwnId(sim_->simulation_id());
@@ -570,7 +574,7 @@ size_t SimNode::PublishModel() {
   return static_cast<size_t>(model.getEncodedSize());
 }
 
-void SimNode::PublishStatus() {
+void SimNode::PublishStatus(std::optional<int8_t> run_state) {
   const auto now = Clock::now();
   const double wall = std::chrono::duration<double>(now - last_status_time_).count();
   if (wall > 0.05) {
@@ -590,7 +594,8 @@ void SimNode::PublishStatus() {
   status.simulation_id = sim_->simulation_id();
   status.host = host_;
   status.engine = sim_->params().engine;
-  status.run_state = quit_             ? status_t::RUN_STOPPED
+  status.run_state = run_state         ? *run_state
+                     : quit_           ? status_t::RUN_STOPPED
                      : sim_->faulted() ? status_t::RUN_FAULTED
                      : paused_         ? status_t::RUN_PAUSED
                                        : status_t::RUN_RUNNING;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "simpartner/status_t.hpp"
+
 namespace simpartner {
 namespace {
 
@@ -17,19 +19,34 @@ class SimulationFollowerTest : public ::testing::Test {
   SimulationFollower::Clock::time_point At(int ms) const { return t0_ + milliseconds(ms); }
 };
 
-TEST_F(SimulationFollowerTest, TheFirstModelIsFollowedAndAResetOfItsSenderToo) {
-  EXPECT_EQ(follower_.OnModel(5, "sim@a:1", At(0)), Verdict::kFollow);
-  EXPECT_EQ(follower_.OnModel(5, "sim@a:1", At(10)), Verdict::kKnown);
-  EXPECT_EQ(follower_.OnModel(6, "sim@a:1", At(20)), Verdict::kFollow);  // a reset
+// A new id while the followed simulation still talks is another
+// simulation, even a copy of its own model with its sender (the audit's
+// copied model: the sender is text anyone can write); once it says it
+// was reset (RUN_RESET), the next model is its successor.
+TEST_F(SimulationFollowerTest, TheFirstModelIsFollowedAndAResetOnceItsSimSaysSo) {
+  EXPECT_EQ(follower_.OnModel(5, At(0)), Verdict::kFollow);
+  EXPECT_EQ(follower_.OnModel(5, At(10)), Verdict::kKnown);
+  EXPECT_EQ(follower_.OnModel(6, At(20)), Verdict::kOther);  // a copy, or a reset not yet said
+  EXPECT_EQ(follower_.followed(), 5);
+  EXPECT_TRUE(EndsSimulation(status_t::RUN_RESET));
+  follower_.Ended(5);  // its status said RUN_RESET
+  EXPECT_EQ(follower_.OnModel(6, At(30)), Verdict::kFollow);
   EXPECT_EQ(follower_.followed(), 6);
   EXPECT_TRUE(follower_.WasFollowed(5));
-  EXPECT_EQ(follower_.OnModel(5, "sim@a:1", At(30)), Verdict::kKnown);  // late, still its own
+  EXPECT_EQ(follower_.OnModel(5, At(40)), Verdict::kKnown);  // late, still its own
+}
+
+TEST(EndsSimulation, StoppedAndResetEndIt) {
+  EXPECT_TRUE(EndsSimulation(status_t::RUN_STOPPED));
+  EXPECT_TRUE(EndsSimulation(status_t::RUN_RESET));
+  for (const int8_t other : {status_t::RUN_RUNNING, status_t::RUN_PAUSED, status_t::RUN_FAULTED})
+    EXPECT_FALSE(EndsSimulation(other));
 }
 
 TEST_F(SimulationFollowerTest, AnotherSenderIsAnotherSimulationWhileTheFollowedOneTalks) {
-  follower_.OnModel(5, "sim@a:1", At(0));
+  follower_.OnModel(5, At(0));
   follower_.Heard(5, At(2000));
-  EXPECT_EQ(follower_.OnModel(9, "forger@b:2", At(2100)), Verdict::kOther);
+  EXPECT_EQ(follower_.OnModel(9, At(2100)), Verdict::kOther);
   EXPECT_TRUE(follower_.IsOther(9));
   EXPECT_EQ(follower_.followed(), 5);
   follower_.Heard(9, At(2200));
@@ -40,9 +57,9 @@ TEST_F(SimulationFollowerTest, AnotherSenderIsAnotherSimulationWhileTheFollowedO
 }
 
 TEST_F(SimulationFollowerTest, ASilentOrStoppedSimIsSucceededByTheNewestOther) {
-  follower_.OnModel(5, "sim@a:1", At(0));
-  follower_.OnModel(7, "sim@a:2", At(100));  // the restarted sim, before 5 is silent
-  follower_.OnModel(8, "sim@c:3", At(200));
+  follower_.OnModel(5, At(0));
+  follower_.OnModel(7, At(100));  // the restarted sim, before 5 is silent
+  follower_.OnModel(8, At(200));
   follower_.Heard(7, At(3000));
   follower_.Heard(8, At(2000));
   EXPECT_EQ(follower_.TakeSuccessor(At(3100)), std::optional<int64_t>(7));
@@ -50,13 +67,27 @@ TEST_F(SimulationFollowerTest, ASilentOrStoppedSimIsSucceededByTheNewestOther) {
   EXPECT_FALSE(follower_.IsOther(7));
   // Stopped: the next one at once, a new model too.
   follower_.Ended(7);
-  EXPECT_EQ(follower_.OnModel(10, "sim@d:4", At(3200)), Verdict::kFollow);
+  EXPECT_EQ(follower_.OnModel(10, At(3200)), Verdict::kFollow);
+}
+
+// The audit's phantom: a copy heard once mid-run is not the successor of
+// the followed simulation when it ends; only another heard within the
+// silence is (a sim restarted at once).
+TEST_F(SimulationFollowerTest, AnEndedSimIsNotSucceededByACopyHeardLongAgo) {
+  follower_.OnModel(5, At(0));
+  EXPECT_EQ(follower_.OnModel(9, At(100)), Verdict::kOther);  // a copy: no states behind it
+  follower_.Heard(5, At(5000));
+  follower_.Ended(5);
+  EXPECT_EQ(follower_.TakeSuccessor(At(5100)), std::nullopt);
+  EXPECT_EQ(follower_.followed(), 5);
+  follower_.Heard(9, At(5200));  // it talks after all: a sim
+  EXPECT_EQ(follower_.TakeSuccessor(At(5300)), std::optional<int64_t>(9));
 }
 
 TEST_F(SimulationFollowerTest, ForgedIdsWithoutEndAreRememberedBoundedly) {
-  follower_.OnModel(5, "sim@a:1", At(0));
+  follower_.OnModel(5, At(0));
   for (int64_t id = 100; id < 100 + 10000; ++id)
-    EXPECT_EQ(follower_.OnModel(id, "forger", At(1)), Verdict::kOther);
+    EXPECT_EQ(follower_.OnModel(id, At(1)), Verdict::kOther);
   size_t remembered = 0;
   for (int64_t id = 100; id < 100 + 10000; ++id) remembered += follower_.IsOther(id) ? 1 : 0;
   EXPECT_EQ(remembered, SimulationFollower::kMaxOthers);
@@ -64,15 +95,15 @@ TEST_F(SimulationFollowerTest, ForgedIdsWithoutEndAreRememberedBoundedly) {
 }
 
 // A client that heard a SIM_STATUS first is attached to its simulation:
-// another sim's model is another simulation, the attached one's model
-// names its sender, and a reset from that sender is followed.
+// another sim's model is another simulation, the attached one's model is
+// known, and after it says it was reset the next model is followed.
 TEST_F(SimulationFollowerTest, AnAttachedSimulationIsFollowedBeforeItsModel) {
   follower_.Attach(5, At(0));
   EXPECT_EQ(follower_.followed(), 5);
-  EXPECT_EQ(follower_.OnModel(9, "sim@b:2", At(100)), Verdict::kOther);
-  EXPECT_EQ(follower_.OnModel(6, "", At(150)), Verdict::kOther);  // no sender is no match
-  EXPECT_EQ(follower_.OnModel(5, "sim@a:1", At(200)), Verdict::kKnown);
-  EXPECT_EQ(follower_.OnModel(7, "sim@a:1", At(300)), Verdict::kFollow);  // its reset
+  EXPECT_EQ(follower_.OnModel(9, At(100)), Verdict::kOther);
+  EXPECT_EQ(follower_.OnModel(5, At(200)), Verdict::kKnown);
+  follower_.Ended(5);
+  EXPECT_EQ(follower_.OnModel(7, At(300)), Verdict::kFollow);  // its reset
   EXPECT_EQ(follower_.followed(), 7);
 }
 

@@ -343,7 +343,12 @@ TEST_F(ReceiverTest, StopStatusEndsTheSimulationAndCommandsFollowTheCurrentOne) 
   early.sender = "teleop";
   Publish(channels::kCommand, early);  // before any model: waits for the first
   Publish(channels::kModel, TwoBodyModel(5));
-  Publish(channels::kModel, TwoBodyModel(6));  // the sim restarted
+  status_t reset{};
+  reset.simulation_id = 5;
+  reset.run_state = status_t::RUN_RESET;
+  reset.step = 10;
+  Publish(channels::kStatus, reset);           // the sim was reset:
+  Publish(channels::kModel, TwoBodyModel(6));  // its successor
   command_t late{};
   late.sender = "teleop";
   Publish(channels::kCommand, late);
@@ -705,21 +710,33 @@ TEST_F(ReceiverTest, AnotherSimulationsModelClosesNothingUntilTheSimGoesSilent) 
   EXPECT_EQ(steps_of_6, (std::vector<int64_t>{1, 2, 3, 4, 5, 6}));
 }
 
-// A new simulation from the followed sim's own sender is a reset: followed
-// at once.
-TEST_F(ReceiverTest, ANewSimulationFromTheSameSenderIsAReset) {
+// A new simulation id from the followed sim's own sender while it still
+// talks is a copy (the sender is text anyone can write): another
+// simulation. Once the followed one's status says it was reset, the new
+// model is its successor, followed at once.
+TEST_F(ReceiverTest, AResetIsFollowedOnceItsStatusSaysSoACopyIsNot) {
   Start();
   model_t before = TwoBodyModel(5), after = TwoBodyModel(6);
   before.sender = after.sender = "simpartner-sim@testhost:100";
   Publish(channels::kModel, before);
   Publish(channels::kState, State(5, 1));
-  Publish(channels::kModel, after);
-  Publish(channels::kState, State(6, 1));
+  Publish(channels::kModel, after);  // a copy, another id
   std::vector<int64_t> models;
   for (const Record& r : Queued())
     if (r.kind == RecordKind::kModel) models.push_back(r.simulation_id);
-  EXPECT_EQ(models, (std::vector<int64_t>{5, 6}));
-  EXPECT_EQ(receiver_->Stats().other_simulations, 0u);
+  EXPECT_EQ(models, (std::vector<int64_t>{5}));
+  EXPECT_EQ(receiver_->Stats().other_simulations, 1u);
+  status_t reset{};
+  reset.simulation_id = 5;
+  reset.run_state = status_t::RUN_RESET;
+  reset.step = 1;
+  Publish(channels::kStatus, reset);
+  Publish(channels::kModel, after);
+  Publish(channels::kState, State(6, 1));
+  models.clear();
+  for (const Record& r : Queued())
+    if (r.kind == RecordKind::kModel) models.push_back(r.simulation_id);
+  EXPECT_EQ(models, (std::vector<int64_t>{6}));
 }
 
 // With a key (bus_signing.h), signed messages are logged as the message

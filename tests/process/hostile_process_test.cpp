@@ -333,7 +333,8 @@ TEST_F(CopiedModelTest, OnAnUnsignedBusACopiedModelChangesNoFollower) {
       },
       60, std::chrono::milliseconds(300)))
       << ReadText(dir_ / "logger.log");
-  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1) << "the copy became a simulation";
+  EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM Simulation"), 1)
+      << "the copy became a simulation:\n" << ReadText(dir_ / "logger.log");
   EXPECT_EQ(QueryInt("SELECT lastStep FROM Simulation WHERE simulationID = 1"), last);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM SimulationRow WHERE simulationID = 1"), last);
   EXPECT_EQ(QueryInt("SELECT COUNT(*) FROM LogGap"), 0);

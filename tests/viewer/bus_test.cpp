@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "simpartner/channels.h"
+#include "simpartner/status_t.hpp"
 #include "simpartner/command_t.hpp"
 #include "simpartner/control_t.hpp"
 #include "simpartner/model_request_t.hpp"
@@ -97,11 +98,17 @@ TEST_F(BusTest, UndecodableBytesAreCountedAndReportedOnce) {
   EXPECT_TRUE(scene_.has_model());  // the good model stays
 }
 
+// A reset: the old simulation's last status says so (RUN_RESET), then the
+// new one's states and model come.
 TEST_F(BusTest, ARestartedSimulationIsFollowed) {
   const model_t first = TwoBodyModel(3);
   lcm_.publish(channels::kModel, &first);
   Publish(channels::kState, StateFor(first, 10));
   bus_.Drain(Clock::now());
+  status_t reset{};
+  reset.simulation_id = 3;
+  reset.run_state = status_t::RUN_RESET;
+  lcm_.publish(channels::kStatus, &reset);
   // The new sim's states come before its model reaches us: ask for it.
   const model_t second = TwoBodyModel(4);
   Publish(channels::kState, StateFor(second, 1));

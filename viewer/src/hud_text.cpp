@@ -14,6 +14,7 @@ const char* RunStateName(int8_t run_state) {
     case status_t::RUN_PAUSED: return "PAUSED";
     case status_t::RUN_STOPPED: return "STOPPED";
     case status_t::RUN_FAULTED: return "FAULTED";
+    case status_t::RUN_RESET: return "RESET";
   }
   return "?";
 }

@@ -106,7 +106,7 @@ Verdict Scene::OfferModel(const model_t& model) {
   }
   // Another simulation's model (a second sim on the bus, a stale or forged
   // one) does not replace the one shown (simulation_follower.h).
-  if (follower_.OnModel(model.simulation_id, model.sender, SimulationFollower::Clock::now()) ==
+  if (follower_.OnModel(model.simulation_id, SimulationFollower::Clock::now()) ==
       SimulationFollower::Verdict::kOther)
     return Reject(Rejection::kOtherSimulation, "SIM_MODEL",
                   "simulation " + std::to_string(model.simulation_id) + " from '" + model.sender +
@@ -195,7 +195,7 @@ Verdict Scene::OfferStatus(const status_t& status) {
     return Reject(Rejection::kNonFinite, "SIM_STATUS", problem->message + ": ignored");
   v.accepted = true;
   follower_.Heard(status.simulation_id, SimulationFollower::Clock::now());
-  if (status.run_state == status_t::RUN_STOPPED) follower_.Ended(status.simulation_id);
+  if (EndsSimulation(status.run_state)) follower_.Ended(status.simulation_id);
   // A status of another simulation means the sim restarted (or a paused
   // one is running that we have not heard the model of), unless its model
   // came and was not taken.

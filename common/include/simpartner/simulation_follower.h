@@ -1,17 +1,18 @@
 // Which simulation a process on the bus follows, and what a SIM_MODEL with
 // another simulation id means. Without a key (signed messages) anyone can
 // publish a SIM_MODEL: a stale sim on another host, a replayed log, a
-// forger. A new id is taken as the followed sim's new simulation only when
-//  - it comes from the followed sim's own sender ("program@host:pid", a
-//    reset or reload of the same process), or
-//  - the followed simulation ended (RUN_STOPPED) or went silent: no
-//    SIM_STATE or SIM_STATUS for `silence` (a sim publishes a status at
-//    least every statusPeriod, paused too: a restarted sim);
-// any other new id is another simulation on the bus. Its model is kept
-// aside: if the followed one then ends or goes silent, the newest other
-// heard since becomes the followed one (TakeSuccessor), so a sim restarted
-// at once after a kill is followed without loss. The logger, the
-// sequencer and the viewer share this rule.
+// forger, or a copy of the followed sim's own model, sender and all. A
+// new id is taken as the followed sim's new simulation only when the
+// followed simulation said it ended (RUN_STOPPED: it quit; RUN_RESET: it
+// was reset, and its successor's model follows) or went silent: no
+// SIM_STATE or SIM_STATUS for `silence` (a sim publishes a status at
+// least every statusPeriod, paused too: a restarted sim). While it still
+// publishes, any other new id is another simulation on the bus. Its model
+// is kept aside: if the followed one then ends or goes silent, the other
+// whose states or status came last, within `silence`, becomes the followed
+// one (TakeSuccessor), so a sim restarted at once after a kill is followed
+// without loss, and a copied model with nothing behind it never is. The
+// logger, the sequencer and the viewer share this rule.
 #pragma once
 
 #include <chrono>
@@ -19,9 +20,11 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <string>
 
 namespace simpartner {
+
+// A status saying its simulation is over: RUN_STOPPED or RUN_RESET.
+bool EndsSimulation(int8_t run_state);
 
 class SimulationFollower {
  public:
@@ -39,14 +42,15 @@ class SimulationFollower {
   explicit SimulationFollower(Clock::duration silence = std::chrono::milliseconds(2500))
       : silence_(silence) {}
 
-  Verdict OnModel(int64_t id, const std::string& sender, Clock::time_point now);
+  Verdict OnModel(int64_t id, Clock::time_point now);
   // Follows `id` before its model is heard: a client attached to the sim
   // whose SIM_STATUS or SIM_STATE it heard first, or to the one it was
-  // told. The first SIM_MODEL of `id` names its sender.
+  // told.
   void Attach(int64_t id, Clock::time_point now);
   // A SIM_STATE or SIM_STATUS of `id` came.
   void Heard(int64_t id, Clock::time_point now);
-  // The followed simulation said RUN_STOPPED (or was closed as silent).
+  // The followed simulation is over: its status said so (EndsSimulation),
+  // or it was closed as silent.
   void Ended(int64_t id);
   // When the followed simulation ended or went silent and another was
   // heard since: that one (the newest), now followed; else nullopt.
@@ -60,20 +64,16 @@ class SimulationFollower {
   bool IsOther(int64_t id) const { return others_.count(id) > 0; }
 
  private:
-  struct Other {
-    std::string sender;
-    Clock::time_point heard;
-  };
   bool FollowedIsGone(Clock::time_point now) const;
-  void Follow(int64_t id, const std::string& sender, Clock::time_point now);
+  void Follow(int64_t id, Clock::time_point now);
 
   Clock::duration silence_;
   int64_t followed_ = 0;
-  std::optional<std::string> followed_sender_;  // nothing while attached without a model
   Clock::time_point followed_heard_{};
   bool followed_ended_ = false;
   std::set<int64_t> followed_before_;
-  std::map<int64_t, Other> others_;
+  // When each last sent a state or status (never: the epoch).
+  std::map<int64_t, Clock::time_point> others_;
 };
 
 }  // namespace simpartner

@@ -67,7 +67,9 @@ class SimNode {
   // Parts of a snapshot sent at once (up to 98 kB each; 8 for a 100 m
   // track) overflowed a receiver's default socket buffer and were lost.
   static constexpr std::chrono::milliseconds kRutPartInterval{50};
-  void PublishStatus();
+  // The status now; `run_state` instead of the one the sim is in (the
+  // old simulation's RUN_RESET).
+  void PublishStatus(std::optional<int8_t> run_state = std::nullopt);
 
   // Real-time factors a SIM_CONTROL may ask for (besides <= 0: as fast as
   // possible).
