@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "simpartner/viewer/scene.h"
+#include "simpartner/status_t.hpp"
 #include "viewer_messages.h"
 
 namespace simpartner::viewer {
@@ -161,6 +162,12 @@ TEST(SceneTest, ANewSimulationReplacesModelStateAndScans) {
   EXPECT_TRUE(scene.has_state());
   EXPECT_EQ(scene.scans().size(), 1u);
 
+  // A reset: the old simulation's last status says so, then the new
+  // model comes.
+  status_t reset{};
+  reset.simulation_id = 7;
+  reset.run_state = status_t::RUN_RESET;
+  scene.OfferStatus(reset);
   model_t second = TwoBodyModel(8);
   second.bodies[1].initial_position[0] = -3;
   ASSERT_TRUE(scene.OfferModel(second).accepted);

@@ -17,6 +17,7 @@
 #include "simpartner/viewer/bus.h"
 #include "simpartner/viewer/scene.h"
 #include "simpartner/viewer/soil_ruts.h"
+#include "simpartner/status_t.hpp"
 #include "viewer_messages.h"
 
 namespace simpartner::viewer {
@@ -73,7 +74,12 @@ TEST(SoilRutsTest, SnapshotsReplaceTheRutsAndChangesDeepenThem) {
   ASSERT_TRUE(scene.OfferSoilRuts(Ruts(7, true, {{9, 9, 0.05f}})).accepted);
   EXPECT_EQ(scene.ruts().cells(), 1u);
   EXPECT_EQ(DepthAt(scene, 9, 9), 0.05f);
-  // A new simulation has no ruts until it sends them.
+  // A new simulation (the sim was reset: its status said so) has no ruts
+  // until it sends them.
+  status_t reset{};
+  reset.simulation_id = 7;
+  reset.run_state = status_t::RUN_RESET;
+  scene.OfferStatus(reset);
   ASSERT_TRUE(scene.OfferModel(TwoBodyModel(8)).accepted);
   EXPECT_EQ(scene.ruts().cells(), 0u);
   EXPECT_EQ(scene.rejected_total(), 0);
