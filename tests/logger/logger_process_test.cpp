@@ -215,6 +215,11 @@ TEST_F(LoggerProcessTest, ServerAwayFor30SecondsMidRunLosesNothing) {
   ASSERT_TRUE(WaitForReady(0));
   SimProcess& sim = StartSim({"--duration=40"});
   ASSERT_TRUE(UntilSimPasses(2000)) << ReadText(LoggerLog(0));
+  // Mid-run: simulation 1 and some of its steps are in. Beside a busy
+  // loop per core the logger had written nothing by step 2000 once; the
+  // server then went away under its first insert, and the run became
+  // simulation 2 (MariaDB keeps the auto-increment it handed out).
+  ASSERT_TRUE(WaitFor([&] { return Steps(1) > 0; }, 60)) << ReadText(LoggerLog(0));
   server_->Stop();
   const auto away = Clock::now();
   std::this_thread::sleep_for(std::chrono::seconds(30));
