@@ -15,6 +15,7 @@
 #include <filesystem>
 
 #include "simpartner/bounded_file.h"
+#include "simpartner/random_token.h"
 #include "simpartner/sender.h"
 
 namespace simpartner {
@@ -114,18 +115,8 @@ void MakeKeyDirectories(const std::filesystem::path& dir) {
     throw CannotMakeKey(dir.string() + ": cannot make the bus key's directory", errno);
 }
 
-// 32 random bytes as 64 hex digits and a newline (a key a person can
-// copy as text), in the new file `fd`.
-bool WriteNewKey(int fd) {
-  BusSigning::Key key{};
-  if (RAND_bytes(key.data(), static_cast<int>(key.size())) != 1) return false;
-  std::string text;
-  for (const uint8_t byte : key) {
-    static constexpr char kHex[] = "0123456789abcdef";
-    text += kHex[byte >> 4];
-    text += kHex[byte & 0xf];
-  }
-  text += '\n';
+// `text` in the new file `fd`, on the disk.
+bool WriteNewKey(int fd, const std::string& text) {
   return ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size()) &&
          ::fsync(fd) == 0;
 }
@@ -136,10 +127,18 @@ bool MakeBusKeyIfMissing(const std::string& path) {
   struct stat info {};
   if (::lstat(path.c_str(), &info) == 0) return false;
   MakeKeyDirectories(std::filesystem::path(path).parent_path());
+  // 32 random bytes as 64 hex digits and a newline: a key a person can
+  // copy as text.
+  std::string text;
+  try {
+    text = RandomToken(BusSigning::Key().size()) + "\n";
+  } catch (const std::runtime_error& e) {
+    throw BusKeyError(path + ": " + e.what());
+  }
   std::string aside = path + ".XXXXXX";
   const int fd = ::mkstemp(aside.data());  // mode 0600
   if (fd < 0) throw CannotMakeKey(path + ": cannot write a bus key beside it", errno);
-  const bool written = WriteNewKey(fd);
+  const bool written = WriteNewKey(fd, text);
   const int write_error = errno;
   ::close(fd);
   if (!written) {

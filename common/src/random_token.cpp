@@ -4,16 +4,17 @@
 #include <openssl/rand.h>
 
 #include <stdexcept>
+#include <vector>
 
 namespace simpartner {
 
-std::string RandomToken() {
-  unsigned char bytes[16];
-  if (RAND_bytes(bytes, sizeof bytes) != 1)
+std::string RandomToken(size_t bytes) {
+  std::vector<unsigned char> random(bytes);
+  if (RAND_bytes(random.data(), static_cast<int>(random.size())) != 1)
     throw std::runtime_error("no random bytes for a token (OpenSSL RAND_bytes failed)");
   static const char kHex[] = "0123456789abcdef";
   std::string token;
-  for (const unsigned char b : bytes) {
+  for (const unsigned char b : random) {
     token += kHex[b >> 4];
     token += kHex[b & 15];
   }
