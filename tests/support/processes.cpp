@@ -44,6 +44,12 @@ std::vector<std::string> OnDisplay(const std::string& display, const std::vector
   return wrapped;
 }
 
+std::vector<std::string> InDirectory(const std::string& dir, const std::vector<std::string>& argv) {
+  std::vector<std::string> wrapped = {"/usr/bin/env", "--chdir=" + dir};
+  wrapped.insert(wrapped.end(), argv.begin(), argv.end());
+  return wrapped;
+}
+
 std::string AsanOptions() {
   const char* given = std::getenv("ASAN_OPTIONS");
   return (given != nullptr && *given != '\0' ? std::string(given) + ":" : std::string()) +

@@ -43,6 +43,9 @@ std::vector<std::string> OnDisplay(const std::string& display, const std::vector
 // before ASan's runtime.
 std::string AsanOptions();
 
+// argv run in directory `dir` (where a program writes its own files).
+std::vector<std::string> InDirectory(const std::string& dir, const std::vector<std::string>& argv);
+
 // xdotool with `args` on display `display` (real key presses through XTEST).
 std::vector<std::string> XdotoolCommand(const std::string& display, const std::vector<std::string>& args);
 
