@@ -184,8 +184,11 @@ class ViewerProcessTest : public ::testing::Test {
                                      "--width", std::to_string(kWidth), "--height", std::to_string(kHeight),
                                      "--camera", kCamera};
     args.insert(args.end(), extra.begin(), extra.end());
+    // In the test's directory: a screenshot taken with the key (p) goes there.
     return std::make_unique<ChildProcess>(
-        OnDisplay(xvfb_->display(), test_support::BuiltCommand("simpartner-viewer", args)),
+        OnDisplay(xvfb_->display(),
+                  test_support::InDirectory(dir_.string(),
+                                            test_support::BuiltCommand("simpartner-viewer", args))),
         (dir_ / log).string());
   }
 
@@ -197,6 +200,21 @@ class ViewerProcessTest : public ::testing::Test {
                           : test_support::WaitForText(dir_ / log, text, seconds);
   }
   // Step of the state the screenshot shows, from the viewer's log line.
+  // Real key presses (XTEST): `args` for xdotool on the test's display.
+  void Xdotool(const std::vector<std::string>& args) const {
+    const test_support::ProgramRun run = test_support::RunToEnd(
+        XdotoolCommand(xvfb_->display(), args), (dir_ / "xdotool.log").string(), std::chrono::seconds(10));
+    EXPECT_EQ(run.status, 0) << run.output;
+  }
+  // The file the viewer's last screenshot went to (its log says).
+  std::string ScreenshotFile(const std::string& log) const {
+    const std::string text = Read(log);
+    const std::string head = "simpartner-viewer: screenshot ";
+    const size_t line = text.rfind(head);
+    if (line == std::string::npos) return {};
+    const size_t from = line + head.size();
+    return (dir_ / text.substr(from, text.find(" (", from) - from)).string();
+  }
   int64_t ScreenshotStep(const std::string& log) const {
     const std::string text = Read(log);
     const size_t line = text.find("simpartner-viewer: screenshot ");
@@ -414,9 +432,11 @@ TEST_F(ViewerProcessTest, BadStatesAreCountedAndIgnoredWithoutACrash) {
   Listener bus(url);
   auto sim = StartSim("shapes.xml", url, "sim.log");
   ASSERT_TRUE(bus.Until([&] { return bus.has_model && !bus.positions.empty(); }, 15)) << Read("sim.log");
-  const std::string shot = (dir_ / "after_bad.png").string();
-  auto viewer = StartViewer(url, "viewer.log", {"--hide", "hud,grid", "--screenshot", shot,
-                                                "--after", "5"});
+  // The screenshot is taken with the key (p) once the bad states are sent,
+  // and the viewer ends on SIGTERM after it: a screenshot timed from the
+  // start raced them under load (the viewer learned the model late and
+  // ended before the last of them).
+  auto viewer = StartViewer(url, "viewer.log", {"--hide", "hud,grid", "--quit-after", "120"});
   ASSERT_TRUE(WaitForText("viewer.log", "model of simulation", 20, &bus)) << Read("viewer.log");
 
   const model_t& m = bus.model;
@@ -449,9 +469,15 @@ TEST_F(ViewerProcessTest, BadStatesAreCountedAndIgnoredWithoutACrash) {
     bus.PublishBytes(channels::kState, garbage, sizeof garbage);
     bus.Pump(0.02);
   }
+  // No window manager: the keyboard's focus follows the pointer onto the
+  // viewer's window, which is centred on the screen.
+  Xdotool({"mousemove", "640", "360"});
+  Xdotool({"key", "p"});
   ASSERT_TRUE(WaitForText("viewer.log", "simpartner-viewer: screenshot", 30, &bus)) << Read("viewer.log");
-  bus.Pump(0.3);
-  ASSERT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
+  const std::string shot = ScreenshotFile("viewer.log");
+  // It counts, before it ends, what came before the signal.
+  viewer->Signal(SIGTERM);
+  ASSERT_EQ(viewer->Wait(std::chrono::seconds(30)).value_or(-1), 0) << Read("viewer.log");
   const std::string log = Read("viewer.log");
   // Each kind described once, with channel, field and value...
   EXPECT_NE(log.find("SIM_STATE: num_bodies = " + std::to_string(m.num_bodies + 2)),
@@ -558,21 +584,16 @@ TEST_F(ViewerProcessTest, KeysPauseStepResetAndResumeTheSim) {
   ASSERT_TRUE(bus.Until([&] { return bus.has_model && bus.last_step > 0; }, 15)) << Read("sim.log");
   auto viewer = StartViewer(url, "viewer.log", {"--quit-after", "60"});
   ASSERT_TRUE(WaitForText("viewer.log", "model of simulation", 20, &bus)) << Read("viewer.log");
-  auto xdotool = [&](const std::vector<std::string>& args) {
-    const test_support::ProgramRun run = test_support::RunToEnd(
-        XdotoolCommand(xvfb_->display(), args), (dir_ / "xdotool.log").string(), std::chrono::seconds(10));
-    EXPECT_EQ(run.status, 0) << run.output;
-  };
   // No window manager: keyboard focus follows the pointer onto the
   // viewer's window, which is centred on the screen.
-  xdotool({"mousemove", "640", "360"});
+  Xdotool({"mousemove", "640", "360"});
 
-  xdotool({"key", "space"});
+  Xdotool({"key", "space"});
   ASSERT_TRUE(bus.Until([&] { return bus.run_state == status_t::RUN_PAUSED; }, 10))
       << Read("viewer.log") << Read("sim.log");
   bus.Pump(0.3);
   const int64_t paused_at = bus.last_step;
-  xdotool({"key", "n"});
+  Xdotool({"key", "n"});
   ASSERT_TRUE(bus.Until([&] { return bus.last_step == paused_at + 1; }, 10))
       << "step after n: " << bus.last_step << ", paused at " << paused_at;
   bus.Pump(0.5);
@@ -581,7 +602,7 @@ TEST_F(ViewerProcessTest, KeysPauseStepResetAndResumeTheSim) {
   // A reset starts a new simulation (new id, step 0, still paused); the
   // viewer takes up its model.
   const int64_t before_reset = bus.model.simulation_id;
-  xdotool({"key", "r"});
+  Xdotool({"key", "r"});
   ASSERT_TRUE(bus.Until([&] { return bus.status_step == 0 && bus.model.simulation_id != before_reset; },
                         10))
       << "status step " << bus.status_step;
@@ -589,12 +610,12 @@ TEST_F(ViewerProcessTest, KeysPauseStepResetAndResumeTheSim) {
                           "model of simulation " + std::to_string(bus.model.simulation_id), 10,
                           &bus))
       << Read("viewer.log");
-  xdotool({"key", "space"});
+  Xdotool({"key", "space"});
   ASSERT_TRUE(bus.Until([&] { return bus.run_state == status_t::RUN_RUNNING && bus.last_step > 100; },
                         10))
       << "step " << bus.last_step;
 
-  xdotool({"key", "Escape"});
+  Xdotool({"key", "Escape"});
   EXPECT_EQ(viewer->Wait(std::chrono::seconds(10)).value_or(-1), 0) << Read("viewer.log");
   Quit(bus);
   EXPECT_EQ(sim->Wait(std::chrono::seconds(10)).value_or(-1), 0);

@@ -379,7 +379,11 @@ class Viewer {
     return true;
   }
 
+  // At the end: what has already arrived is still handled, so that the
+  // summary counts every message that came before the viewer was told to
+  // end (a quit key or signal is handled before the frame's messages).
   void PrintSummary(double cpu_at_start) {
+    bus_.Drain(Clock::now());
     const double seconds = Seconds(Clock::now() - start_);
     const double cpu = ProcessCpuSeconds() - cpu_at_start;
     out_ << "simpartner-viewer: " << frames_ << " frames in " << Fixed(seconds, 2) << " s ("
