@@ -31,6 +31,12 @@ constexpr double kReplyGrace = 2.0;
 constexpr double kReadEvery = 0.05;
 // Missing replies reported one by one; the rest are counted.
 constexpr size_t kReportedUnanswered = 10;
+// How far ahead of the sim's newest step a segment's first commands are
+// due [s wall]: they must reach the sim before it passes their step. On a
+// loaded machine a state reached the sequencer, and its commands the sim,
+// 131 ms after the sim was at the state's step (MultiHostTest, both cores
+// busy): with a lead of 0.1 s the sim refused them as late.
+constexpr double kLeadSeconds = 0.5;
 
 std::string Fixed(double v, int digits) {
   char text[64];
@@ -120,14 +126,14 @@ class Player {
   }
 
   // Steps the commands of a new segment need to reach the sim before the
-  // first is due: 0.1 s of wall time at the sim's pace.
+  // first is due: kLeadSeconds of wall time at the sim's pace.
   int64_t Lead(bool paused) {
     if (paused) return 1;
     double factor = 1.0;
     if (const std::optional<status_t> st = client_->LatestStatus())
       factor = st->target_speed <= 0 ? std::max(1.0, st->real_time_factor)
                                      : std::max({1.0, st->real_time_factor, st->target_speed});
-    return std::max<int64_t>(1, Steps(0.1 * factor));
+    return std::max<int64_t>(1, Steps(kLeadSeconds * factor));
   }
 
   std::optional<Stop> Loop() {
