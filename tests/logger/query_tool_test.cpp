@@ -899,9 +899,8 @@ TEST_F(QueryToolTest, PlotWindowShowsThePlotAndTheCommandEndsWhenItIsClosed) {
   auto query_said = [&] { return test_support::ReadText(query_log); };
   // `expected_status` < 0: any (a search that may find nothing yet).
   auto xdotool = [&](const std::vector<std::string>& args, int expected_status = 0) {
-    const test_support::ProgramRun run = test_support::RunToEnd(test_support::XdotoolCommand(xvfb.display(), args),
-                                                                (dir_ / "xdotool.log").string(),
-                                                                std::chrono::seconds(10));
+    const test_support::ProgramRun run =
+        test_support::RunXdotool(xvfb.display(), args, (dir_ / "xdotool.log").string());
     if (expected_status >= 0) {
       EXPECT_EQ(run.status, expected_status) << args[0];
     }

@@ -217,9 +217,8 @@ TEST_F(HostileProcessTest, EveryProcessSurvivesTheCorpusAndKeepsWorking) {
   // screen.
   for (const std::vector<std::string>& keys :
        {std::vector<std::string>{"mousemove", "320", "180"}, std::vector<std::string>{"key", "p"}}) {
-    const test_support::ProgramRun run = test_support::RunToEnd(
-        test_support::XdotoolCommand(xvfb.display(), keys), (dir_ / "xdotool.log").string(),
-        std::chrono::seconds(10));
+    const test_support::ProgramRun run =
+        test_support::RunXdotool(xvfb.display(), keys, (dir_ / "xdotool.log").string());
     ASSERT_EQ(run.status, 0) << run.output;
   }
   ASSERT_TRUE(bus.UntilFileHolds(dir_ / "viewer.log", "simpartner-viewer: screenshot", 30))

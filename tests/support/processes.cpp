@@ -62,4 +62,9 @@ std::vector<std::string> XdotoolCommand(const std::string& display, const std::v
   return argv;
 }
 
+ProgramRun RunXdotool(const std::string& display, const std::vector<std::string>& args,
+                      const std::string& log) {
+  return RunToEnd(XdotoolCommand(display, args), log, std::chrono::seconds(10));
+}
+
 }  // namespace simpartner::test_support

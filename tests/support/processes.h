@@ -48,5 +48,8 @@ std::vector<std::string> InDirectory(const std::string& dir, const std::vector<s
 
 // xdotool with `args` on display `display` (real key presses through XTEST).
 std::vector<std::string> XdotoolCommand(const std::string& display, const std::vector<std::string>& args);
+// XdotoolCommand run to its end (10 s at most), its output into `log`.
+ProgramRun RunXdotool(const std::string& display, const std::vector<std::string>& args,
+                      const std::string& log);
 
 }  // namespace simpartner::test_support

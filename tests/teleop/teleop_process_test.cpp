@@ -513,9 +513,8 @@ TEST_F(TeleopProcessTest, KeyboardWindowDrivesWithRealKeyPresses) {
   ASSERT_TRUE(LogHas("keyboard window open", 30)) << Log();  // 10 s was short under load
   ASSERT_TRUE(LogHas("(WorkPartner gen1), mapping", 15)) << Log();
   auto xdotool = [&](const std::vector<std::string>& args) {
-    const test_support::ProgramRun run = test_support::RunToEnd(test_support::XdotoolCommand(xvfb.display(), args),
-                                                                (dir_ / "xdotool.log").string(),
-                                                                std::chrono::seconds(10));
+    const test_support::ProgramRun run =
+        test_support::RunXdotool(xvfb.display(), args, (dir_ / "xdotool.log").string());
     EXPECT_EQ(run.status, 0) << run.output;
   };
   // No window manager: keyboard focus follows the pointer onto the window,

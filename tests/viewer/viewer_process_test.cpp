@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -45,6 +46,8 @@ constexpr int kWidth = 800;
 constexpr int kHeight = 450;
 // Looks along -x at (0, 1.2, 0) from 6 m, 8 degrees from above.
 constexpr const char* kCamera = "0,1.2,0,0,8,6";
+// How the viewer's log line for a screenshot begins; the file follows.
+constexpr const char* kScreenshotLine = "simpartner-viewer: screenshot ";
 
 std::string Transform(double x, double y, double z, double yaw_deg = 0) {
   const double c = std::cos(yaw_deg * M_PI / 180), s = std::sin(yaw_deg * M_PI / 180);
@@ -151,7 +154,6 @@ using test_support::BusUrl;
 using test_support::OnDisplay;
 using test_support::ReadText;
 using test_support::SimProcess;
-using test_support::XdotoolCommand;
 
 double ColorDistance(const RgbImage::Rgb& a, const RgbImage::Rgb& b) {
   return std::sqrt(static_cast<double>((a.r - b.r) * (a.r - b.r) + (a.g - b.g) * (a.g - b.g) +
@@ -199,25 +201,24 @@ class ViewerProcessTest : public ::testing::Test {
     return bus != nullptr ? bus->UntilFileHolds(dir_ / log, text, seconds)
                           : test_support::WaitForText(dir_ / log, text, seconds);
   }
-  // Step of the state the screenshot shows, from the viewer's log line.
   // Real key presses (XTEST): `args` for xdotool on the test's display.
   void Xdotool(const std::vector<std::string>& args) const {
-    const test_support::ProgramRun run = test_support::RunToEnd(
-        XdotoolCommand(xvfb_->display(), args), (dir_ / "xdotool.log").string(), std::chrono::seconds(10));
+    const test_support::ProgramRun run =
+        test_support::RunXdotool(xvfb_->display(), args, (dir_ / "xdotool.log").string());
     EXPECT_EQ(run.status, 0) << run.output;
   }
   // The file the viewer's last screenshot went to (its log says).
   std::string ScreenshotFile(const std::string& log) const {
     const std::string text = Read(log);
-    const std::string head = "simpartner-viewer: screenshot ";
-    const size_t line = text.rfind(head);
+    const size_t line = text.rfind(kScreenshotLine);
     if (line == std::string::npos) return {};
-    const size_t from = line + head.size();
+    const size_t from = line + std::strlen(kScreenshotLine);
     return (dir_ / text.substr(from, text.find(" (", from) - from)).string();
   }
+  // Step of the state the screenshot shows, from the viewer's log line.
   int64_t ScreenshotStep(const std::string& log) const {
     const std::string text = Read(log);
-    const size_t line = text.find("simpartner-viewer: screenshot ");
+    const size_t line = text.find(kScreenshotLine);
     const size_t step = text.find(", step ", line == std::string::npos ? text.size() : line);
     if (step == std::string::npos) return -1;
     return std::atoll(text.c_str() + step + 7);
