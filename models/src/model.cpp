@@ -186,6 +186,16 @@ const Material* World::FindMaterial(const std::string& name) const {
   return nullptr;
 }
 
+const SoilParameters* World::FindSoil(const std::string& material) const {
+  const Material* m = material.empty() ? nullptr : FindMaterial(material);
+  return m != nullptr && m->soil ? &*m->soil : nullptr;
+}
+
+bool World::HasSoilGround() const {
+  return (has_plane && FindSoil(plane_material) != nullptr) ||
+         (heightfield && FindSoil(heightfield->material) != nullptr);
+}
+
 Eigen::Matrix3d SolidInertia(const Geometry& geometry, double mass) {
   const Eigen::Vector3d& s = geometry.size;
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();

@@ -22,6 +22,7 @@ struct SoilField {
   bool lo_open;
   double hi;
   const char* measured;  // what measured soils have, for the message
+  bool optional = false;  // a file may leave it out (then 0)
 };
 
 constexpr SoilField kSoilFields[] = {
@@ -36,8 +37,10 @@ constexpr SoilField kSoilFields[] = {
      "Table 2.3: 13 to 34"},
     {"shearModulus", &SoilParameters::shear_modulus, " m", 5e-4, false, 1.0,
      "Janosi and Hanamoto's K, a length; Wong's typical values 0.006 to 0.025 m"},
-    {"unloadingStiffness", &SoilParameters::unloading_stiffness, " kPa/m", 100.0, false, 1e6,
-     "Wong's k_u for LETE sand: 10,000 at 2 cm of sinkage, 25,000 at 5 cm"},
+    {"unloadingStiffness", &SoilParameters::unloading_stiffness, " kPa/m", 0.0, false, 1e6,
+     "Wong's k_0 in k_u = k_0 + A_u z_max; 0 for LETE sand"},
+    {"unloadingGrowth", &SoilParameters::unloading_growth, " kPa/m^2", 0.0, false, 1e8,
+     "Wong's A_u in k_u = k_0 + A_u z_max; about 503,000 for LETE sand", true},
     {"viscosity", &SoilParameters::viscosity, " kPa s/m", 0.0, false, 1e4,
      "1e4 is 1 MPa at 0.1 m/s"},
 };
@@ -136,14 +139,14 @@ std::optional<SoilParameters> ReadInlineSoil(Reader& reader, const xmlNode* node
   if (!ReadSoilFigures(reader, node, what, &soil, &given)) return std::nullopt;
   std::string missing;
   for (const SoilField& f : kSoilFields) {
-    if (xml::Child(node, f.element) == nullptr)
+    if (!f.optional && xml::Child(node, f.element) == nullptr)
       missing += std::string(missing.empty() ? "" : ", ") + f.element;
   }
   if (!missing.empty()) {
     reader.Error(node, what + ": lacks " + missing +
                            "; a soil without library= gives every figure (n, kc, kphi, "
                            "cohesion, frictionAngle, shearModulus, unloadingStiffness, "
-                           "viscosity)");
+                           "viscosity; unloadingGrowth may be left out)");
     return std::nullopt;
   }
   return soil;

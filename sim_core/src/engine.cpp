@@ -43,23 +43,9 @@ std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,
   return std::make_unique<OdeWorld>(model, params);
 }
 
-std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string& why) {
-  std::vector<Diagnostic> out;
-  auto check = [&](const char* ground, const std::string& material_name) {
-    const model::Material* m = material_name.empty() ? nullptr : world.FindMaterial(material_name);
-    if (m == nullptr || !m->soil) return;
-    out.push_back(Diagnostic{m->soil->where.file, m->soil->where.line, "soil",
-                             std::string(ground) + " material '" + m->name + "' is a soil: " +
-                                 why});
-  };
-  if (world.has_plane) check("surface", world.plane_material);
-  if (world.heightfield) check("heightfield", world.heightfield->material);
-  return out;
-}
-
 std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parameters& params) {
   if (params.engine == "mujoco") return MujocoLimits(model, params);
-  return {};  // ODE's wheel-soil contact (ode_soil.h) takes a plane or a heightfield of soil
+  return {};
 }
 
 std::vector<std::string> ParametersTheEngineIgnores(const Parameters& params) {

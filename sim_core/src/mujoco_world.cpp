@@ -59,28 +59,21 @@ std::vector<Diagnostic> LoopsOf(const model::FlatModel& model, const model::Body
   return out;
 }
 
-// Loops of bodies and grounds of soil.
-std::vector<Diagnostic> LimitsOf(const model::FlatModel& model, const model::BodyTree& tree) {
-  std::vector<Diagnostic> out = LoopsOf(model, tree);
-  for (Diagnostic& d : SoilGrounds(*model.world, "the MuJoCo engine does not model soil"))
-    out.push_back(std::move(d));
-  return out;
-}
-
 }  // namespace
 
 std::vector<Diagnostic> MujocoLimits(const model::FlatModel& model, const Parameters&) {
-  return LimitsOf(model, model::BuildBodyTree(model));
+  return LoopsOf(model, model::BuildBodyTree(model));
 }
 
 MujocoWorld::MujocoWorld(const model::FlatModel& model, const Parameters& params)
     : model_(model), params_(params) {
   InstallMujocoHandlers();
   const model::BodyTree tree = model::BuildBodyTree(model);
-  const std::vector<Diagnostic> limits = LimitsOf(model, tree);
+  const std::vector<Diagnostic> limits = LoopsOf(model, tree);
   if (!limits.empty()) throw EngineError("MuJoCo", limits.front().Format(), "building", {});
   Load(EngineMjcf(model, tree, params));
   MapElements(tree);
+  MapSoil();
   gravity_ = model.world->gravity.norm();
   SetStopsOfTheFiles(model, this);
   SetInitialVelocities();
@@ -260,6 +253,7 @@ void MujocoWorld::Prepare() {
   mj_fwdActuation(m_, d_);
   mj_fwdAcceleration(m_, d_);
   mj_collision(m_, d_);
+  DropSoilContacts();
   SetUpContacts();
   mj_makeConstraint(m_, d_);
   mj_projectConstraint(m_, d_);
@@ -466,17 +460,19 @@ void MujocoWorld::Step() {
   try {
     // mj_step, with our motors set before the inertia is computed (a
     // holding servo adds to it), our contact set-up between collision and
-    // constraints, and the sliding contacts' friction applied between the
-    // smooth forces and the constraint solve.
+    // constraints, and the soil's forces and the sliding contacts'
+    // friction applied between the smooth forces and the constraint solve.
     SetUpMotors();
     Prepare();
     CheckWarnings();
+    ApplySoil();
     ApplyFriction();
     mj_fwdConstraint(m_, d_);
     mj_checkAcc(m_, d_);
     mj_Euler(m_, d_);
     CheckWarnings();
     CollectForces();
+    CollectSoilForces();
     mju_zero(d_->xfrc_applied, 6 * m_->nbody);
     mju_zero(d_->qfrc_applied, m_->nv);
     UpdateReadouts();
@@ -553,6 +549,11 @@ JointReadout MujocoWorld::ReadJoint(int index) const {
     out.anchor = V(d_->xipos + 3 * body_id_[static_cast<size_t>(flat.body1)]);
   }
   return out;
+}
+
+void MujocoWorld::ZeroVelocities() {
+  mju_zero(d_->qvel, m_->nv);
+  UpdateReadouts();
 }
 
 void MujocoWorld::AddForce(int body, const Eigen::Vector3d& force) {

@@ -29,6 +29,7 @@
 #include "simpartner/model/body_tree.h"
 #include "simpartner/model/surface.h"
 #include "simpartner/sim/engine.h"
+#include "soil_contact.h"
 
 struct mjModel_;
 struct mjData_;
@@ -57,6 +58,8 @@ class MujocoWorld : public PhysicsEngine {
   double JointPosition(int joint, int axis) const override;
   double JointRate(int joint, int axis) const override;
   std::vector<ContactReadout> ReadContacts() const override;
+  std::vector<WheelSoilReadout> ReadWheelSoil() const override;
+  void ZeroVelocities() override;
   void AddForce(int body, const Eigen::Vector3d& force) override;
   void SetMotor(int joint, int axis, double velocity, double max_force) override;
   void SetStops(int joint, int axis, double lo, double hi) override;
@@ -171,6 +174,38 @@ class MujocoWorld : public PhysicsEngine {
                double solimp[5]) const;
   Eigen::Vector3d Up(const double* v) const;
 
+  // Soil (mujoco_soil.cpp): a wheel (a cylinder) on a ground of soil meets
+  // the rows of soil_contact.h instead of MuJoCo's contact, solved with
+  // the step (backward in time, as ODE solves them) and applied before
+  // MuJoCo's constraint solve.
+  struct SoilBody {
+    int geom = -1;   // the wheel's (or plate's) MuJoCo geom
+    SoilContactRows rows;
+    Eigen::Vector3d row_force = Eigen::Vector3d::Zero();  // the rows' solved force, at rows.point
+    // All the soil's force on the body, and its torque about the body's
+    // centre of mass: what the step applied.
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+  };
+  void MapSoil();
+  bool IsWheel(int geom) const;
+  // A box, sphere or capsule of a moving body: it meets soil as a plate.
+  bool IsPlate(int geom) const;
+  // After mj_collision: drops MuJoCo's contacts of wheels and plates with
+  // a ground of soil (the soil answers them).
+  void DropSoilContacts();
+  WheelState WheelStateOf(int geom) const;
+  PlateState PlateOf(int geom) const;
+  // Whether `geom` is over the heightfield's extent.
+  bool OverHeightfield(int geom) const;
+  // The rows of `geom` on each ground of soil it presses, into on_soil_.
+  void CollectSoilContacts(int geom);
+  // The soil's forces of this step onto the bodies (xfrc_applied).
+  void ApplySoil();
+  // The rows' forces of on_soil_ (SoilBody::row_force), from the plain
+  // forces' acceleration `plain_qacc`.
+  void SolveSoilRows(const Eigen::VectorXd& plain_qacc);
+  void CollectSoilForces();
+
   const model::FlatModel& model_;
   const Parameters& params_;
   mjModel_* m_ = nullptr;
@@ -205,10 +240,14 @@ class MujocoWorld : public PhysicsEngine {
     std::vector<int> points;  // per contact: points of its pair of geoms
   };
   mutable Scratch scratch_;
+  std::unique_ptr<SoilContacts> soil_;
+  std::vector<int> soil_ground_;        // per MuJoCo geom: its ground in soil_; -1: none
+  std::vector<SoilBody> on_soil_;      // this step's wheels on soil
+  Eigen::VectorXd soil_qfrc_;           // the soil's plain forces, generalized (scratch)
 };
 
 // What of model MuJoCo cannot represent, each naming the element with its
-// file and line: joints that close a loop of bodies, and a ground of soil.
+// file and line: joints that close a loop of bodies.
 std::vector<Diagnostic> MujocoLimits(const model::FlatModel& model, const Parameters& params);
 
 }  // namespace simpartner::sim

@@ -23,4 +23,12 @@ inline void ToOde(const Eigen::Matrix3d& r, dMatrix3 out) {
   }
 }
 
+// ODE's 3 x 4 row-major dMatrix3 as a rotation.
+inline Eigen::Matrix3d FromOdeRotation(const dReal* r) {
+  Eigen::Matrix3d out;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out(i, j) = r[i * 4 + j];
+  return out;
+}
+
 }  // namespace simpartner::sim

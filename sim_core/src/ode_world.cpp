@@ -185,7 +185,6 @@ void OdeWorld::Build() {
     if (material != nullptr && material->soil) {
       soil_ = std::make_unique<OdeSoil>(params_);
       soil_->AddGround(plane, *material->soil);
-      rigid_on_soil_said_.assign(model_.bodies.size(), false);
     }
   }
   if (world.heightfield) {
@@ -206,7 +205,6 @@ void OdeWorld::Build() {
     if (material != nullptr && material->soil) {
       if (!soil_) soil_ = std::make_unique<OdeSoil>(params_);
       soil_->AddHeightfield(field, *material->soil, h, heightfield_pose_);
-      rigid_on_soil_said_.assign(model_.bodies.size(), false);
     }
   }
 
@@ -515,21 +513,10 @@ void OdeWorld::Collide(dGeomID o1, dGeomID o2) {
 
 bool OdeWorld::CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2) {
   const GeomInfo& g1 = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(o1)) - 1];
-  OdeSoil::WheelContact wheel;
-  if (!soil_->Contact(o1, b1, o2, &wheel)) {
-    // Only wheels sink: anything else meets the soil as rigid ground, and
-    // the run says so once per body.
-    const auto body = static_cast<size_t>(g1.body);
-    if (g1.body >= 0 && !rigid_on_soil_said_[body]) {
-      rigid_on_soil_said_[body] = true;
-      messages_.push_back("body '" + model::QualifiedBodyName(model_, g1.body) +
-                          "' touches soil but is not a cylinder (a wheel): it meets the soil as "
-                          "rigid ground (docs/soil.md)");
-    }
-    return false;
-  }
-  if (!wheel.contact) return true;  // above the soil
-  dContact& contact = *wheel.contact;
+  OdeSoil::BodyContact soil;
+  if (!soil_->Contact(o1, b1, g1.body, o2, &soil)) return false;  // rigid ground
+  if (!soil.contact) return true;  // above the soil
+  dContact& contact = *soil.contact;
   const dJointID joint = dJointCreateContact(world_, contacts_, &contact);
   dJointAttach(joint, b1, nullptr);
   dJointFeedback* feedback = NextFeedback();
@@ -538,14 +525,13 @@ bool OdeWorld::CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2) {
                                            FromOde(contact.geom.pos), FromOde(contact.geom.normal),
                                            Eigen::Vector3d::Zero()});
   ++contact_count_;
-  // The soil's plain forces act at the wheel's centre (the geom's position).
-  const Eigen::Vector3d centre = FromOde(dGeomGetPosition(o1));
-  dBodyAddForceAtPos(b1, wheel.force.x(), wheel.force.y(), wheel.force.z(), centre.x(), centre.y(),
-                     centre.z());
-  dBodyAddTorque(b1, wheel.torque.x(), wheel.torque.y(), wheel.torque.z());
+  // The soil's plain forces act where the rows say (a wheel's centre, a
+  // plate's centroid of pressure).
+  const Eigen::Vector3d& at = soil.at;
+  dBodyAddForceAtPos(b1, soil.force.x(), soil.force.y(), soil.force.z(), at.x(), at.y(), at.z());
+  dBodyAddTorque(b1, soil.torque.x(), soil.torque.y(), soil.torque.z());
   const Eigen::Vector3d com = FromOde(dBodyGetPosition(b1));
-  soil_pushes_.push_back(
-      SoilPush{g1.body, wheel.force, wheel.torque + (centre - com).cross(wheel.force)});
+  soil_pushes_.push_back(SoilPush{g1.body, soil.force, soil.torque + (at - com).cross(soil.force)});
   return true;
 }
 
@@ -743,29 +729,8 @@ void OdeWorld::TrackContinuousAngles(bool first) {
 }
 
 std::vector<WheelSoilReadout> OdeWorld::ReadWheelSoil() const {
-  std::vector<WheelSoilReadout> out;
-  if (!soil_) return out;
-  for (const OdeSoil::Pressed& pressed : soil_->LastStep()) {
-    const WheelSoilForces& forces = pressed.forces;
-    WheelSoilReadout wheel;
-    wheel.body = geom_info_[reinterpret_cast<uintptr_t>(dGeomGetData(pressed.wheel)) - 1].body;
-    wheel.ground = pressed.ground;
-    wheel.sinkage = forces.sinkage;
-    wheel.slip = forces.slip;
-    wheel.normal_force = forces.normal_force;
-    wheel.shear_force = forces.shear_force;
-    wheel.forward = pressed.forward;
-    wheel.axle = pressed.axle;
-    wheel.lowest_point = pressed.lowest;
-    wheel.width = pressed.width;
-    wheel.surface_origin = pressed.surface.origin;
-    wheel.up = pressed.surface.up;
-    wheel.surface_u_axis = pressed.surface.u_axis;
-    wheel.axle_torque = forces.shear_torque;
-    wheel.stuck = forces.stuck;
-    out.push_back(wheel);
-  }
-  return out;
+  if (!soil_) return {};
+  return soil_->LastStep();
 }
 
 BodyReadout OdeWorld::ReadBody(int index) const {
@@ -883,6 +848,14 @@ void OdeWorld::SetJointParam(int joint, int parameter, double value) {
     case model::JointKind::kUniversal: dJointSetUniversalParam(id, parameter, value); break;
     case model::JointKind::kHinge2: dJointSetHinge2Param(id, parameter, value); break;
     default: SP_CHECK_MSG(false, "joint kind has no motor or stops");
+  }
+}
+
+void OdeWorld::ZeroVelocities() {
+  for (const Body& body : bodies_) {
+    if (body.body == nullptr) continue;
+    dBodySetLinearVel(body.body, 0, 0, 0);
+    dBodySetAngularVel(body.body, 0, 0, 0);
   }
 }
 

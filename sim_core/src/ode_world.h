@@ -77,6 +77,7 @@ class OdeWorld : public PhysicsEngine {
 
   // Adds a force [N] at the centre of mass for the coming step (ODE clears
   // accumulated forces after each step).
+  void ZeroVelocities() override;
   void AddForce(int body, const Eigen::Vector3d& force) override;
 
   // Velocity motor of one joint axis (ODE's built-in joint motor).
@@ -193,7 +194,6 @@ class OdeWorld : public PhysicsEngine {
     Eigen::Vector3d force, torque;  // torque about the centre of mass
   };
   std::vector<SoilPush> soil_pushes_;
-  std::vector<bool> rigid_on_soil_said_;  // per flat body: told it meets soil as rigid
   // The soil's contact of wheel o1 (body b1) with ground o2; false when o1
   // is no wheel (collided as rigid ground, said once per body).
   bool CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2);

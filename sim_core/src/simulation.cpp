@@ -102,6 +102,7 @@ void Simulation::Build() {
   pending_.Clear();
   step_ = 0;
   faulted_ = false;
+  SettleOnSoil();
   RememberImuVelocities();
 }
 
@@ -376,35 +377,12 @@ bool Simulation::Step() {
   bodies_read_ = false;
   // Commands due in this step, in the order they were sent.
   pending_.TakeDue(step_, [this](const PendingCommand& p) { ApplyPending(p); });
-
-  for (size_t a = 0; a < controllers_.size(); ++a) {
-    const int joint = flat_.actuators[a].joint;
-    const int axes = flat_.joints[static_cast<size_t>(joint)].num_axes;
-    double position[2] = {0, 0}, rate[2] = {0, 0};
-    for (int k = 0; k < axes; ++k) {
-      position[k] = engine_->JointPosition(joint, k);
-      rate[k] = engine_->JointRate(joint, k);
-    }
-    const MotorOutput out = controllers_[a].Update(position, rate, params_.stepsize);
-    for (int k = 0; k < axes; ++k) engine_->SetMotor(joint, k, out.velocity[k], out.max_force[k]);
-  }
-
+  UpdateControllers();
   RememberImuVelocities();
-  try {
-    engine_->Step();
-  } catch (const EngineError& e) {
-    // The engine gave up inside the step (its state is lost): pause as for
-    // an exploding state, naming its message and the bodies; a reset builds
-    // a new world.
-    faulted_ = true;
-    AddWarning(warning_t::SEVERITY_ERROR, engine_->name(),
-               std::string(e.what()) + "; the sim is paused: reset to go on", e.bodies());
-    return false;
-  }
+  if (!StepEngine("; the sim is paused: reset to go on")) return false;
   ++step_;
   WalkImuBiases();
-  for (const std::string& message : engine_->last_messages())
-    AddWarning(warning_t::SEVERITY_WARNING, engine_->name(), message);
+  SayEngineMessages();
   ReadBodies();
   CheckHealth();
   if (faulted_) return false;
@@ -421,6 +399,40 @@ bool Simulation::Step() {
     readings_.erase(readings_.begin(),
                     readings_.end() - static_cast<std::ptrdiff_t>(kMaxUntakenReadings / 2));
   return true;
+}
+
+bool Simulation::StepEngine(const std::string& then) {
+  try {
+    engine_->Step();
+    return true;
+  } catch (const EngineError& e) {
+    // The engine gave up inside the step (its state is lost): pause as for
+    // an exploding state, naming its message and the bodies; a reset builds
+    // a new world.
+    faulted_ = true;
+    AddWarning(warning_t::SEVERITY_ERROR, engine_->name(), std::string(e.what()) + then,
+               e.bodies());
+    return false;
+  }
+}
+
+void Simulation::SayEngineMessages() {
+  for (const std::string& message : engine_->last_messages())
+    AddWarning(warning_t::SEVERITY_WARNING, engine_->name(), message);
+}
+
+void Simulation::UpdateControllers() {
+  for (size_t a = 0; a < controllers_.size(); ++a) {
+    const int joint = flat_.actuators[a].joint;
+    const int axes = flat_.joints[static_cast<size_t>(joint)].num_axes;
+    double position[2] = {0, 0}, rate[2] = {0, 0};
+    for (int k = 0; k < axes; ++k) {
+      position[k] = engine_->JointPosition(joint, k);
+      rate[k] = engine_->JointRate(joint, k);
+    }
+    const MotorOutput out = controllers_[a].Update(position, rate, params_.stepsize);
+    for (int k = 0; k < axes; ++k) engine_->SetMotor(joint, k, out.velocity[k], out.max_force[k]);
+  }
 }
 
 void Simulation::ReadBodies() {

@@ -187,12 +187,18 @@ Soil Soil::From(const model::SoilParameters& p) {
   soil.tan_phi = std::tan(p.friction_angle * kPi / 180.0);
   soil.shear_modulus = p.shear_modulus;
   soil.unloading_stiffness = p.unloading_stiffness * 1e3;
+  soil.unloading_growth = p.unloading_growth * 1e3;  // kPa/m^2 -> Pa/m^2
   soil.viscosity = p.viscosity * 1e3;
   return soil;
 }
 
 double Soil::Pressure(double z, double b) const {
   return z > 0.0 ? (k_c / b + k_phi) * std::pow(z, n) : 0.0;
+}
+
+double Soil::UnloadingSlope(double z_max, double p_max) const {
+  const double wong = unloading_stiffness + unloading_growth * z_max;
+  return z_max > 0.0 ? std::max(wong, std::max(1.0, n) * p_max / z_max) : wong;
 }
 
 double Soil::Shear(double sigma, double j) const {
@@ -241,6 +247,14 @@ void SoilMemory::PathPress::Deepen(double z, double z_n) {
   if (z > deepest_->z) *deepest_ = Depth{z, z_n};
 }
 
+double HeightAboveSoil(const SoilSurface& surface, const Eigen::Vector3d& point) {
+  return HeightAbove(surface, point);
+}
+
+Eigen::Vector2d SoilCoordinates(const SoilSurface& surface, const Eigen::Vector3d& point) {
+  return GroundCoordinates(surface, point);
+}
+
 double PressureWithMemory(const Soil& soil, double z, double z_max, double b) {
   return PressureWithMemory(soil, z, {z_max, std::pow(z_max, soil.n)}, b);
 }
@@ -248,7 +262,7 @@ double PressureWithMemory(const Soil& soil, double z, double z_max, double b) {
 double PressureWithMemory(const Soil& soil, double z, const SoilMemory::Depth& before, double b) {
   if (z >= before.z) return soil.Pressure(z, b);
   const double p_max = (soil.k_c / b + soil.k_phi) * before.z_n;
-  return std::max(0.0, p_max - soil.unloading_stiffness * (before.z - z));
+  return std::max(0.0, p_max - soil.UnloadingSlope(before.z, p_max) * (before.z - z));
 }
 
 namespace {
@@ -306,7 +320,7 @@ void NormalStress(const Soil& soil, const WheelState& wheel, const SoilSurface& 
     ds = soil.n * s / z;
   } else if (z > 0.0) {
     s = PressureWithMemory(soil, z, before, wheel.width);
-    ds = soil.unloading_stiffness;
+    ds = soil.UnloadingSlope(before.z, (soil.k_c / wheel.width + soil.k_phi) * before.z_n);
   }
   // The soil's damping: on any loaded point, sinking or rising.
   if (s > 0.0) s = std::max(0.0, s + soil.viscosity * sinking);

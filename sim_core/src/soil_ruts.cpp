@@ -23,15 +23,10 @@ void Append(soil_ruts_t* message, uint64_t key, float depth) {
   message->num_cells = static_cast<int32_t>(message->depth.size());
 }
 
-bool IsSoil(const model::World& world, const std::string& material) {
-  const model::Material* m = material.empty() ? nullptr : world.FindMaterial(material);
-  return m != nullptr && m->soil;
-}
-
 }  // namespace
 
 SoilRuts::SoilRuts(const model::World& world) {
-  if (world.heightfield && IsSoil(world, world.heightfield->material)) {
+  if (world.heightfield && world.FindSoil(world.heightfield->material) != nullptr) {
     const Eigen::Isometry3d pose = world.HeightfieldPose();
     Grid& grid = grids_[soil_ruts_t::GROUND_HEIGHTFIELD];
     grid.has_frame = true;

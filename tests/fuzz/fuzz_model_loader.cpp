@@ -45,7 +45,7 @@ void CheckSoils(const std::vector<simpartner::model::Material>& materials) {
     const simpartner::model::SoilParameters& s = *m.soil;
     if (!(s.n > 0 && s.k_c >= 0 && s.k_phi >= 0 && s.k_c + s.k_phi > 0 && s.cohesion >= 0 &&
           s.friction_angle >= 0 && s.friction_angle < 90 && s.shear_modulus > 0 &&
-          s.unloading_stiffness > 0 && s.viscosity >= 0))
+          s.unloading_stiffness >= 0 && s.unloading_growth >= 0 && s.viscosity >= 0))
       __builtin_trap();
   }
 }

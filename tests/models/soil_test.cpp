@@ -104,7 +104,8 @@ TEST(SoilLibrary, TheShippedLibraryHasTheTablesFigures) {
     EXPECT_EQ(s->cohesion, row.c);
     EXPECT_EQ(s->friction_angle, row.phi);
     EXPECT_EQ(s->shear_modulus, row.K);
-    EXPECT_EQ(s->unloading_stiffness, 10000.0);
+    EXPECT_EQ(s->unloading_stiffness, 0.0);  // LETE sand's k_0 and A_u, assumed
+    EXPECT_EQ(s->unloading_growth, 503000.0);
     EXPECT_EQ(s->viscosity, 0.0);
     const bool lunar = std::string(row.name) == "lunar_nominal";
     EXPECT_NE(s->source.find(lunar ? "Lunar Sourcebook" : "Table 2.3"), std::string::npos)
@@ -176,6 +177,7 @@ TEST(SoilLibrary, ASoilWrittenOutIsNamedAfterItsMaterial) {
   EXPECT_EQ(s.friction_angle, 28.0);
   EXPECT_EQ(s.shear_modulus, 0.025);
   EXPECT_EQ(s.unloading_stiffness, 10000.0);
+  EXPECT_EQ(s.unloading_growth, 0.0);  // left out
   EXPECT_EQ(s.viscosity, 2.5);
   EXPECT_EQ(s.where.line, 4);
 }
@@ -210,8 +212,11 @@ TEST(SoilRefusal, EachFigureOutOfItsRange) {
       {"<shearModulus>0.025</shearModulus>", "<shearModulus>2</shearModulus>",
        {"shearModulus 2 m"}},
       {"<unloadingStiffness>10000</unloadingStiffness>",
-       "<unloadingStiffness>0</unloadingStiffness>",
-       {"unloadingStiffness 0 kPa/m is out of range [100, 1000000] kPa/m"}},
+       "<unloadingStiffness>-1</unloadingStiffness>",
+       {"unloadingStiffness -1 kPa/m is out of range [0, 1000000] kPa/m"}},
+      {"<unloadingStiffness>10000</unloadingStiffness>",
+       "<unloadingStiffness>10000</unloadingStiffness><unloadingGrowth>-5</unloadingGrowth>",
+       {"unloadingGrowth -5 kPa/m^2 is out of range [0, 100000000] kPa/m^2"}},
       {"<unloadingStiffness>10000</unloadingStiffness>",
        "<unloadingStiffness>1e9</unloadingStiffness>", {"unloadingStiffness 1000000000 kPa/m"}},
       {"<viscosity>0</viscosity>", "<viscosity>-1</viscosity>", {"viscosity -1 kPa s/m"}},

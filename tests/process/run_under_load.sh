@@ -6,7 +6,7 @@
 # usage: tests/process/run_under_load.sh BUILD_DIR N [REGEX]
 set -u
 dir=$1; n=$2
-regex=${3:-"BusExposureTest|HostileFilesTest|HostileProcessTest|HostileSimTest|InstalledLoggingTest|InstalledSimTest|LockStepEngineTest|LockStepProcessTest|MultiHostTest|SignedBusTest|SimProcess|SupervisedRunTest|BatchProcessTest|CameraProcess|ClientProcessTest|LoggerProcessTest|CheckProcess|SequencerProcessTest|TeleopProcessTest|ViewerProcessTest"}
+regex=${3:-"BusExposureTest|HostileFilesTest|HostileProcessTest|HostileSimTest|InstalledLoggingTest|InstalledSimTest|LockStepEngineTest|LockStepProcessTest|MultiHostTest|SignedBusTest|SimProcess|SoilProcessTest|SupervisedRunTest|BatchProcessTest|CameraProcess|ClientProcessTest|LoggerProcessTest|CheckProcess|SequencerProcessTest|TeleopProcessTest|ViewerProcessTest"}
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 busy=()
 for _ in $(seq "$(nproc)"); do ( while :; do :; done ) & busy+=($!); done

@@ -1,12 +1,15 @@
-// A wheel on soft soil inside ODE's step: a 50 kg cylinder
+// A wheel on soft soil inside each engine's step: a 50 kg cylinder
 // lowered slowly onto Wong's dry sand comes to rest at the sinkage where
 // Bekker's pressure over its arc carries its weight, computed here apart
-// from the sim (Simpson's rule and bisection), at 0.5, 1 and 2 ms steps.
+// from the sim (Simpson's rule and bisection), at 0.5, 1 and 2 ms steps;
+// driven on a single-wheel rig, its pull and sinkage are Wong's. Every
+// test runs on ODE and on MuJoCo with the same tolerances.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
+#include "../support/engines.h"
 #include "soil_closed_forms.h"
 #include "test_worlds.h"
 
@@ -49,11 +52,12 @@ std::string HeightfieldWorld(const std::string& samples, double y) {
 </world>)";
 }
 
-std::unique_ptr<Simulation> MakeWheelOnSand(double stepsize,
+std::unique_ptr<Simulation> MakeWheelOnSand(const std::string& engine, double stepsize,
                                             const std::string& world_xml = WheelWorld()) {
   model::World world = LoadInline(world_xml);
   world.materials.at(0).soil = DrySand();
   Parameters params;
+  params.engine = engine;
   params.stepsize = stepsize;
   return std::make_unique<Simulation>(std::move(world), params, 1);
 }
@@ -66,9 +70,9 @@ double BekkerSinkage() {
 
 // Lowered over 2 s (a support force falling from m g to 0: the soil is
 // loaded, never overshot and unloaded), then left 1 s; null on a failed step.
-std::unique_ptr<Simulation> SettledWheel(double stepsize,
+std::unique_ptr<Simulation> SettledWheel(const std::string& engine, double stepsize,
                                          const std::string& world_xml = WheelWorld()) {
-  auto sim = MakeWheelOnSand(stepsize, world_xml);
+  auto sim = MakeWheelOnSand(engine, stepsize, world_xml);
   const int wheel = sim->flat().FindBody("", "Wheel");
   const int ramp = static_cast<int>(std::lround(2.0 / stepsize));
   const int rest = static_cast<int>(std::lround(1.0 / stepsize));
@@ -81,20 +85,22 @@ std::unique_ptr<Simulation> SettledWheel(double stepsize,
   return sim;
 }
 
-double SettledSinkage(double stepsize, Eigen::Vector3d* drift) {
-  auto sim = SettledWheel(stepsize);
+double SettledSinkage(const std::string& engine, double stepsize, Eigen::Vector3d* drift) {
+  auto sim = SettledWheel(engine, stepsize);
   if (!sim) return NAN;
   const BodyReadout b = sim->engine().ReadBody(sim->flat().FindBody("", "Wheel"));
   *drift = Eigen::Vector3d(b.position.x(), 0, b.position.z());
   return kRadius - b.position.y();
 }
 
-TEST(SoilContact, AWheelRestsAtBekkersSinkageAtAnyStep) {
+class SoilContact : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SoilContact, AWheelRestsAtBekkersSinkageAtAnyStep) {
   const double expected = BekkerSinkage();
   EXPECT_GT(expected, 0.01);  // a few centimetres: the case Bekker's law is for
   for (const double h : {0.0005, 0.001, 0.002}) {
     Eigen::Vector3d drift = Eigen::Vector3d::Zero();
-    const double sinkage = SettledSinkage(h, &drift);
+    const double sinkage = SettledSinkage(GetParam(), h, &drift);
     // The sim sums 64 points of the arc (0.3 % of the load at most, so
     // 0.2 % of the sinkage at n + 1/2 = 1.6).
     EXPECT_NEAR(sinkage, expected, 0.005 * expected) << "step " << h;
@@ -104,8 +110,8 @@ TEST(SoilContact, AWheelRestsAtBekkersSinkageAtAnyStep) {
 
 // A heightfield of soil is the same soil: on a level field 0.5 m up the
 // wheel rests at Bekker's sinkage below it, without drifting.
-TEST(SoilContact, AWheelRestsAtBekkersSinkageOnAHeightfieldOfSoil) {
-  auto sim = SettledWheel(0.001, HeightfieldWorld("0.5 0.5 0.5 0.5", 0.5 + kRadius));
+TEST_P(SoilContact, AWheelRestsAtBekkersSinkageOnAHeightfieldOfSoil) {
+  auto sim = SettledWheel(GetParam(), 0.001, HeightfieldWorld("0.5 0.5 0.5 0.5", 0.5 + kRadius));
   ASSERT_TRUE(sim);
   const BodyReadout b = sim->engine().ReadBody(sim->flat().FindBody("", "Wheel"));
   const double expected = BekkerSinkage();
@@ -115,8 +121,8 @@ TEST(SoilContact, AWheelRestsAtBekkersSinkageOnAHeightfieldOfSoil) {
 
 // On a sloping field the wheel meets the tangent plane under it: slope
 // 0.1 along x, so the soil's normal is (-0.1, 1, 0) normalized.
-TEST(SoilContact, OnASlopingHeightfieldTheSoilsNormalIsTheSlopes) {
-  auto sim = MakeWheelOnSand(0.001, HeightfieldWorld("-0.2 0.2 -0.2 0.2", kRadius - 0.005));
+TEST_P(SoilContact, OnASlopingHeightfieldTheSoilsNormalIsTheSlopes) {
+  auto sim = MakeWheelOnSand(GetParam(), 0.001, HeightfieldWorld("-0.2 0.2 -0.2 0.2", kRadius - 0.005));
   ASSERT_TRUE(sim->Step());
   const std::vector<WheelSoilReadout> wheels = sim->engine().ReadWheelSoil();
   ASSERT_EQ(wheels.size(), 1u);
@@ -127,8 +133,8 @@ TEST(SoilContact, OnASlopingHeightfieldTheSoilsNormalIsTheSlopes) {
 
 // SIM_STATE's wheel_soil of the resting wheel: its sinkage is Bekker's
 // (as above), the soil carries its weight, and nothing drives it.
-TEST(SoilContact, TheStateCarriesTheRestingWheelsSoilFigures) {
-  auto sim = SettledWheel(0.001);
+TEST_P(SoilContact, TheStateCarriesTheRestingWheelsSoilFigures) {
+  auto sim = SettledWheel(GetParam(), 0.001);
   ASSERT_TRUE(sim);
   const std::vector<WheelSoilReadout> wheels = sim->engine().ReadWheelSoil();
   ASSERT_EQ(wheels.size(), 1u);
@@ -164,8 +170,10 @@ TEST(SoilContact, TheStateCarriesTheRestingWheelsSoilFigures) {
 }
 
 // On rigid ground the same wheel has no soil figures.
-TEST(SoilContact, TheStateHasNoWheelSoilOnRigidGround) {
-  Simulation sim(LoadInline(WheelWorld()), Parameters(), 1);
+TEST_P(SoilContact, TheStateHasNoWheelSoilOnRigidGround) {
+  Parameters params;
+  params.engine = GetParam();
+  Simulation sim(LoadInline(WheelWorld()), params, 1);
   for (int k = 0; k < 50; ++k) ASSERT_TRUE(sim.Step());
   state_t state;
   sim.FillState(&state);
@@ -173,12 +181,6 @@ TEST(SoilContact, TheStateHasNoWheelSoilOnRigidGround) {
   EXPECT_EQ(state.num_wheel_soil, 0);
   EXPECT_TRUE(state.wheel_soil.empty());
 }
-
-}  // namespace
-}  // namespace simpartner::sim
-
-namespace simpartner::sim {
-namespace {
 
 // The single-wheel rig of terramechanics: a sled on a rail along x (its
 // speed v held by the rail's motor), a carrier hung from it on a vertical
@@ -228,11 +230,12 @@ void AddWheelSoil(const Simulation& sim, RigResult* out) {
 
 // Lowered onto the sand over 1 s, then driven at slip i for 3 s; the last
 // second's mean.
-RigResult RunRig(const model::SoilParameters& soil, double slip, double omega,
-                 double stepsize = 0.001, bool with_state = false) {
+RigResult RunRig(const std::string& engine, const model::SoilParameters& soil, double slip,
+                 double omega, double stepsize = 0.001, bool with_state = false) {
   model::World world = LoadInline(RigWorld());
   world.materials.at(0).soil = soil;
   Parameters params;
+  params.engine = engine;
   params.stepsize = stepsize;
   Simulation sim(std::move(world), params, 1);
   const int second = static_cast<int>(std::lround(1.0 / stepsize));
@@ -267,37 +270,38 @@ RigResult RunRig(const model::SoilParameters& soil, double slip, double omega,
 // (soil_closed_forms.h), and the same figures at 0.5 and 2 ms steps.
 // The sim sums 64 points of the arc and remembers the ruts in 2 mm cells:
 // within 0.5 % of the load for the pull, 0.5 % for the sinkage.
-TEST(SoilContact, DrawbarPullAgainstSlipIsJanosiHanamotosIntegral) {
+TEST_P(SoilContact, DrawbarPullAgainstSlipIsJanosiHanamotosIntegral) {
   model::SoilParameters soil = DrySand();
   soil.viscosity = 0;  // Wong's integrals have none
   constexpr double kLoad = 50 * kG;
   for (const double slip : {0.05, 0.1, 0.3, 0.6}) {
-    const RigResult rig = RunRig(soil, slip, 1.0);
+    const RigResult rig = RunRig(GetParam(), soil, slip, 1.0);
     const double z = testing::RollingSinkage(soil, kRadius, kWidth, slip, kLoad);
     const double pull = testing::RollingWheel(soil, kRadius, kWidth, z, slip).pull;
     // The rail holds the sled back: its force on the sled is minus the pull.
     EXPECT_NEAR(-rig.pull, pull, 0.005 * kLoad) << "slip " << slip;
     EXPECT_NEAR(rig.sinkage, z, 0.005 * z) << "slip " << slip;
-    std::printf("slip %.2f: sinkage %.5f m (Wong %.5f), pull %.2f N (Wong %.2f)\n", slip,
+    std::printf("%s, slip %.2f: sinkage %.5f m (Wong %.5f), pull %.2f N (Wong %.2f)\n", GetParam().c_str(), slip,
                 rig.sinkage, z, -rig.pull, pull);
   }
-  const RigResult at_1ms = RunRig(soil, 0.3, 1.0, 0.001);
+  const RigResult at_1ms = RunRig(GetParam(), soil, 0.3, 1.0, 0.001);
   for (const double h : {0.0005, 0.002}) {
-    const RigResult rig = RunRig(soil, 0.3, 1.0, h);
+    const RigResult rig = RunRig(GetParam(), soil, 0.3, 1.0, h);
     EXPECT_NEAR(rig.pull, at_1ms.pull, 0.005 * kLoad) << "step " << h;
     EXPECT_NEAR(rig.sinkage, at_1ms.sinkage, 0.005 * at_1ms.sinkage) << "step " << h;
-    std::printf("step %.4f s, slip 0.3: sinkage %.5f m, pull %.2f N\n", h, rig.sinkage, -rig.pull);
+    std::printf("%s, step %.4f s, slip 0.3: sinkage %.5f m, pull %.2f N\n", GetParam().c_str(), h,
+                rig.sinkage, -rig.pull);
   }
 }
 
 // SIM_STATE's wheel_soil of the rig's wheel driven at slip 0.3: its slip
 // is the rig's, its sinkage and drawbar pull Wong's (the tolerances of the
 // test above), and the pull is the thrust less the compaction resistance.
-TEST(SoilContact, TheStateCarriesTheDrivenWheelsSlipAndPull) {
+TEST_P(SoilContact, TheStateCarriesTheDrivenWheelsSlipAndPull) {
   model::SoilParameters soil = DrySand();
   soil.viscosity = 0;
   constexpr double kLoad = 50 * kG, kSlip = 0.3;
-  const RigResult rig = RunRig(soil, kSlip, 1.0, 0.001, true);
+  const RigResult rig = RunRig(GetParam(), soil, kSlip, 1.0, 0.001, true);
   const double z = testing::RollingSinkage(soil, kRadius, kWidth, kSlip, kLoad);
   const double pull = testing::RollingWheel(soil, kRadius, kWidth, z, kSlip).pull;
   // The motors hold the rig near slip 0.3 (within their compliance); the
@@ -311,6 +315,9 @@ TEST(SoilContact, TheStateCarriesTheDrivenWheelsSlipAndPull) {
               "%.2f), thrust %.2f N\n",
               kSlip, rig.state_slip, rig.body_slip, rig.state_sinkage, z, rig.state_pull, pull, rig.state_thrust);
 }
+
+INSTANTIATE_TEST_SUITE_P(Engines, SoilContact, test_support::AllEngines(),
+                         test_support::EngineTestName);
 
 }  // namespace
 }  // namespace simpartner::sim

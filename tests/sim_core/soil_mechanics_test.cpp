@@ -106,6 +106,37 @@ TEST(SoilMemory, UnloadingFollowsItsLineAndReloadingReturnsToBekker) {
   EXPECT_EQ(memory.cells(), 1u);
 }
 
+// Wong's unloading slope grows with the deepest sinkage, k_u = k_0 + A_u
+// z_max (LETE sand: k_0 = 0, A_u = 503,000 kN/m^4).
+TEST(SoilMemory, TheUnloadingSlopeGrowsWithTheDeepestSinkage) {
+  model::SoilParameters p = kDrySand;
+  p.unloading_stiffness = 0;
+  p.unloading_growth = 503000;
+  const Soil soil = Soil::From(p);
+  for (const double z_max : {0.02, 0.05}) {
+    const double rebound = 1e-4;
+    const double lost = Bekker(p, z_max) - PressureWithMemory(soil, z_max - rebound, z_max, kWidth);
+    EXPECT_NEAR(lost / rebound, 503000e3 * z_max, 1e-6 * 503000e3 * z_max) << z_max;
+  }
+}
+
+// Unloading and loading never cross: heavy clay (n = 0.13) rises so
+// steeply at first that a 10,000 kPa/m line from 2 cm would pass above
+// Bekker's curve near the surface; the sim takes the curve's chord
+// instead, so that the soil never pushes harder unloaded than loaded.
+TEST(SoilMemory, UnloadingNeverCrossesLoading) {
+  const model::SoilParameters p = testing::WongEntry(0.13, 12.70, 1555.95, 68.95, 34);
+  model::SoilParameters line = p;
+  line.unloading_stiffness = 10000;
+  const Soil soil = Soil::From(line);
+  const double z_max = 0.02;
+  EXPECT_GT(Bekker(p, z_max) - 10000e3 * (z_max - 0.001), Bekker(p, 0.001));  // the plain line
+  for (int k = 1; k < 200; ++k) {
+    const double z = z_max * k / 200.0;
+    EXPECT_LE(PressureWithMemory(soil, z, z_max, kWidth), Bekker(p, z) * (1 + 1e-12)) << z;
+  }
+}
+
 // A wheel that has rolled at sinkage z0 up to here: the soil behind its
 // lowest point was pressed to z0 and rebounds under the rear of the arc.
 SoilMemory RolledTo(const Soil& soil, double z0, double cell) {
@@ -186,7 +217,7 @@ TEST(RollingWheel, ASecondPassInTheRutSinksLess) {
     // The track's floor under the second wheel, from what the soil remembers.
     const double pressed = rolled.Deepest(-0.2, 0.0);
     EXPECT_NEAR(pressed, z0, 2e-6);  // the arc's samples miss its lowest point by half a step
-    const double floor = pressed - Bekker(p, pressed) / (p.unloading_stiffness * 1e3);
+    const double floor = pressed - Bekker(p, pressed) / validate::UnloadingSlope(p, kWidth, pressed);
     const double into_track = hi - floor;
     EXPECT_GT(into_track, 0.0) << "n " << p.n;
     EXPECT_LT(into_track, 0.25 * z0) << "n " << p.n << ": the second pass sinks " << into_track

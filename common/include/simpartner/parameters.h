@@ -56,6 +56,7 @@ struct Parameters {
   double contactMaxCorrectingVel = 0.2;
   double contactSurfaceLayer = 0.0;
   bool autoDisableFlag = false;
+  bool soilSettle = true;
   int maxContacts = 8;
 
   // Default contact material (used where the world names none).
@@ -155,6 +156,9 @@ struct Parameters {
            "let ODE disable bodies at rest (off keeps runs comparable)");
     v.Int("maxContacts", maxContacts, 1, 256,
           "most contact points generated per touching pair of geoms");
+    v.Bool("soilSettle", soilSettle,
+           "set a robot on soil down before step 0, so that it starts at rest at its "
+           "sinkage (docs/soil.md); 0 drops it from where the file puts it");
 
     v.Section(parameter_sections::kContact);
     v.Double("contactMu", contactMu, 0.0, kInf, "Coulomb friction coefficient");

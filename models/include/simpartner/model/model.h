@@ -61,10 +61,13 @@ struct SoilParameters {
   double cohesion = 0.0;        // c [kPa], >= 0
   double friction_angle = 0.0;  // phi [deg], 0 <= phi < 90
   double shear_modulus = 0.0;   // K, shear deformation modulus [m], > 0
-  // Pressure lost per metre the soil rebounds when a load comes off it:
-  // unloading and reloading above the deepest sinkage so far follow this
-  // line, not Bekker's curve [kPa/m], > 0.
+  // Unloading and reloading above the deepest sinkage z_max so far follow
+  // a line, not Bekker's curve, losing k_u of pressure per metre of
+  // rebound; Wong: k_u = k_0 + A_u z_max. k_0 [kPa/m], >= 0, and A_u
+  // [kPa/m^2], >= 0 (0 when a file does not give it). The sim never takes
+  // k_u shallower than Bekker's curve below z_max (the two never cross).
   double unloading_stiffness = 0.0;
+  double unloading_growth = 0.0;
   // Pressure per unit sinkage rate where the soil is loaded [kPa s/m], >= 0.
   double viscosity = 0.0;
   SourceLocation where;  // the <soil> element (or the library entry) it came from
@@ -273,6 +276,10 @@ struct World {
   // (the shortest turn), at its position. Identity without a heightfield.
   Eigen::Isometry3d HeightfieldPose() const;
   const Material* FindMaterial(const std::string& name) const;
+  // The soil of material `name`; null when it is no soil or "" or absent.
+  const SoilParameters* FindSoil(const std::string& material) const;
+  // Whether the surface or the heightfield is of soil.
+  bool HasSoilGround() const;
 };
 
 // What ODE can integrate in double precision with the sim's steppers: the

@@ -132,6 +132,8 @@ class PhysicsEngine {
   // with them; a debugging view could draw them).
   virtual std::vector<ContactReadout> ReadContacts() const = 0;
 
+  // Stops every body where it is: all velocities 0 (after a settle).
+  virtual void ZeroVelocities() = 0;
   // Adds a force [N] at the centre of mass for the coming step only.
   virtual void AddForce(int body, const Eigen::Vector3d& force) = 0;
   // Velocity motor of one joint axis: drives the axis to `velocity` with
@@ -162,15 +164,9 @@ std::unique_ptr<PhysicsEngine> MakeEngine(const model::FlatModel& model,
 
 // What of model params.engine cannot represent, one line each naming the
 // element, its file and line, and why (empty when all of it can). ODE
-// represents everything the loader accepts but a heightfield of soil, for
-// now.
+// represents everything the loader accepts; MuJoCo all but a loop of
+// bodies.
 std::vector<Diagnostic> EngineLimits(const model::FlatModel& model, const Parameters& params);
-
-// One line per ground (the surface unless `surface` is false, the
-// heightfield) whose material is a soil, at the material's <soil>:
-// "<ground> material '<name>' is a soil: <why>", for an engine that
-// refuses soil there.
-std::vector<Diagnostic> SoilGrounds(const model::World& world, const std::string& why);
 
 // The parameters params.engine does not read that differ from their
 // defaults, as "key=value" (ODE's stepper settings under MuJoCo), so that

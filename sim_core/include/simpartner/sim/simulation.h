@@ -94,6 +94,16 @@ class Simulation {
   };
 
   void Build();
+  // A robot on soil set down before step 0 (simulation_settle.cpp): it
+  // starts at rest at the sinkage its weight gives, not at the surface.
+  void SettleOnSoil();
+  // The joint controllers' motor settings for the coming step.
+  void UpdateControllers();
+  // One engine step; false when the engine gave up, which pauses the sim
+  // (faulted_) with an error naming its message, then `then`.
+  bool StepEngine(const std::string& then);
+  // The engine's messages of its last step, as warnings.
+  void SayEngineMessages();
   command_reply_t Reply(const command_t& command, bool accepted, const std::string& reason) const;
   void ApplyPending(const PendingCommand& pending);
   // Why robot's scanners and lidars at their present rates cast more rays

@@ -7,7 +7,8 @@
 //   - a normal stress sigma, Bekker's p = (k_c / b + k_phi) z^n where the
 //     soil there is pressed deeper than ever before (loading), or on its
 //     unloading line p_max - k_u (z_max - z) where it was pressed deeper
-//     before (a rut: the wheel's rear, a second pass), never below 0,
+//     before (a rut: the wheel's rear, a second pass), never below 0, k_u
+//     growing with z_max (Soil::UnloadingSlope),
 //     plus the soil's viscosity times the rate the point sinks (or minus,
 //     rising) where it is loaded;
 //   - a shear stress tau, Janosi and Hanamoto's (c + sigma tan phi)
@@ -47,12 +48,18 @@ struct Soil {
   double cohesion = 0.0;             // [Pa]
   double tan_phi = 0.0;              // [-]
   double shear_modulus = 0.01;       // K [m]
-  double unloading_stiffness = 0.0;  // [Pa / m]
+  double unloading_stiffness = 0.0;  // k_0 [Pa / m]
+  double unloading_growth = 0.0;     // A_u [Pa / m^2]
   double viscosity = 0.0;            // [Pa s / m]
 
   static Soil From(const model::SoilParameters& parameters);
   // Bekker's pressure [Pa] at sinkage z [m] under a plate of width b [m].
   double Pressure(double z, double b) const;
+  // The slope [Pa/m] of the unloading line below a deepest sinkage z_max
+  // [m] that was pressed to p_max [Pa]: Wong's k_u = k_0 + A_u z_max, and
+  // never shallower than Bekker's curve's steepest chord below z_max,
+  // max(1, n) p_max / z_max, so that unloading and loading never cross.
+  double UnloadingSlope(double z_max, double p_max) const;
   // Janosi and Hanamoto's shear stress [Pa], its sign j's, at normal stress
   // sigma [Pa] after shear displacement j [m].
   double Shear(double sigma, double j) const;
@@ -138,6 +145,11 @@ struct SoilSurface {
   Eigen::Vector3d key_u = Eigen::Vector3d::UnitX();
   Eigen::Vector3d key_w = Eigen::Vector3d::UnitZ();
 };
+
+// How far `point` is above the untouched surface [m] (negative: below),
+// and where it is in the memory's grid (u, w) [m].
+double HeightAboveSoil(const SoilSurface& surface, const Eigen::Vector3d& point);
+Eigen::Vector2d SoilCoordinates(const SoilSurface& surface, const Eigen::Vector3d& point);
 
 // The soil's answer to a wheel, this step.
 struct WheelSoilForces {

@@ -72,19 +72,30 @@ struct RollingArc {
   std::function<double(double)> sigma, tau;
 };
 
+// The unloading line's slope [Pa/m] below a deepest sinkage z_max under
+// a plate of width b: Wong's k_u = k_0 + A_u z_max, and never shallower
+// than Bekker's curve's steepest chord below z_max, max(1, n) p(z_max) /
+// z_max, so that unloading and loading never cross.
+inline double UnloadingSlope(const model::SoilParameters& p, double b, double z_max) {
+  const double wong = (p.unloading_stiffness + p.unloading_growth * z_max) * 1e3;
+  return z_max > 0 ? std::max(wong, std::max(1.0, p.n) * Bekker(p, b, z_max) / z_max) : wong;
+}
+
 inline RollingArc RollingStresses(const model::SoilParameters& p, double r, double b, double z0,
                                   double slip, double rut) {
-  const double k_u = p.unloading_stiffness * 1e3, tan_phi = std::tan(p.friction_angle * M_PI / 180);
+  const double tan_phi = std::tan(p.friction_angle * M_PI / 180);
   // Where the soil starts to push ahead (the rut's rebounded floor) and
   // how deep it was ever pressed behind the lowest point.
-  const double rut_floor = rut > 0 ? std::max(0.0, rut - Bekker(p, b, rut) / k_u) : 0.0;
+  const double rut_floor =
+      rut > 0 ? std::max(0.0, rut - Bekker(p, b, rut) / UnloadingSlope(p, b, rut)) : 0.0;
   const double deepest = std::max(z0, rut);
   RollingArc arc;
   arc.front = std::acos(std::clamp(1.0 - (z0 - rut_floor) / r, -1.0, 1.0));
-  arc.rear =
-      -std::acos(std::clamp(1.0 - (z0 - (deepest - Bekker(p, b, deepest) / k_u)) / r, -1.0, 1.0));
-  auto unloaded = [&p, b, k_u](double z, double z_max) {
-    return std::max(0.0, Bekker(p, b, z_max) - k_u * (z_max - z));
+  arc.rear = -std::acos(std::clamp(
+      1.0 - (z0 - (deepest - Bekker(p, b, deepest) / UnloadingSlope(p, b, deepest))) / r, -1.0,
+      1.0));
+  auto unloaded = [&p, b](double z, double z_max) {
+    return std::max(0.0, Bekker(p, b, z_max) - UnloadingSlope(p, b, z_max) * (z_max - z));
   };
   arc.sigma = [=, &p](double t) {
     const double z = z0 - r * (1.0 - std::cos(t));
@@ -168,7 +179,7 @@ inline SideSlipForces RollingWheelSideSlip(const model::SoilParameters& p, doubl
 // The sinkage at which that wheel carries `load` (bisection).
 inline double RollingSinkage(const model::SoilParameters& p, double r, double b, double slip,
                              double load, double rut = 0.0, int intervals = kSimpsonIntervals) {
-  double lo = rut > 0 ? rut - Bekker(p, b, rut) / (p.unloading_stiffness * 1e3) : 0.0, hi = r;
+  double lo = rut > 0 ? rut - Bekker(p, b, rut) / UnloadingSlope(p, b, rut) : 0.0, hi = r;
   for (int k = 0; k < 50; ++k)
     (RollingLoad(p, r, b, 0.5 * (lo + hi), slip, rut, intervals) < load ? lo : hi) =
         0.5 * (lo + hi);
@@ -188,7 +199,7 @@ inline double BekkerCompaction(const model::SoilParameters& p, double b, double 
 // closed form: with z = z0 - r (1 - cos theta), r sin(theta) dtheta = -dz.
 inline double CompactionWithRebound(const model::SoilParameters& p, double b, double z0) {
   const double p0 = Bekker(p, b, z0);
-  return BekkerCompaction(p, b, z0) - b * p0 * p0 / (2 * p.unloading_stiffness * 1e3);
+  return BekkerCompaction(p, b, z0) - b * p0 * p0 / (2 * UnloadingSlope(p, b, z0));
 }
 
 }  // namespace simpartner::validate
