@@ -100,9 +100,12 @@ heightfield_t Field() {
   return f;
 }
 
+// A heightfield's colours: dark in the hollows, light on the tops.
+const Eigen::Vector3f kLow(0.2f, 0.2f, 0.2f), kHigh(0.8f, 0.8f, 0.8f);
+
 TEST(MeshTest, HeightfieldSamplesSitWhereTheSimPutsThem) {
   const heightfield_t f = Field();
-  const Mesh m = HeightfieldMesh(f, Eigen::Vector3d::UnitY());
+  const Mesh m = HeightfieldMesh(f, Eigen::Vector3d::UnitY(), kLow, kHigh);
   EXPECT_EQ(m.triangles(), 2u * 2 * 3);
   EXPECT_EQ(m.colors.size(), m.positions.size());
   // Sample (row 1, column 1): x = -3 + 6 * 1/3 = -1, z = -1 + 2 * 1/2 = 0,
@@ -135,7 +138,7 @@ TEST(MeshTest, HeightfieldSamplesSitWhereTheSimPutsThem) {
 TEST(MeshTest, HeightfieldTurnsWithUp) {
   heightfield_t f = Field();
   f.position[0] = f.position[1] = 0;
-  const Mesh m = HeightfieldMesh(f, Eigen::Vector3d::UnitZ());
+  const Mesh m = HeightfieldMesh(f, Eigen::Vector3d::UnitZ(), kLow, kHigh);
   // Heights now run along z.
   float top = -1e9f;
   for (const Eigen::Vector3f& p : m.positions) top = std::max(top, p.z());

@@ -212,7 +212,8 @@ Eigen::Vector3d FieldPoint(const heightfield_t& f, int row, int column) {
 
 }  // namespace
 
-Mesh HeightfieldMesh(const heightfield_t& f, const Eigen::Vector3d& up) {
+Mesh HeightfieldMesh(const heightfield_t& f, const Eigen::Vector3d& up, const Eigen::Vector3f& low,
+                     const Eigen::Vector3f& high) {
   Mesh m;
   if (!f.present || f.rows < 2 || f.columns < 2) return m;
   const Eigen::Matrix3d turn = UpRotation(up);
@@ -231,10 +232,9 @@ Mesh HeightfieldMesh(const heightfield_t& f, const Eigen::Vector3d& up) {
     const Eigen::Vector3d dz = FieldPoint(f, r1, c) - FieldPoint(f, r0, c);
     return dz.cross(dx).normalized();  // +y for a flat field
   };
-  // Snow: bluish grey in the hollows to white on the tops.
   auto color = [&](double height) {
     const float t = hi > lo ? static_cast<float>((height - lo) / (hi - lo)) : 1.0f;
-    return V3(0.60f + 0.26f * t, 0.66f + 0.23f * t, 0.75f + 0.18f * t);
+    return Eigen::Vector3f(low + t * (high - low));
   };
   const size_t count = static_cast<size_t>(f.rows) * f.columns;
   m.positions.reserve(count);

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "simpartner/bitmap_font.h"
+#include "simpartner/viewer/ground_look.h"
 #include "simpartner/viewer/mesh.h"
 
 namespace simpartner::viewer {
@@ -15,7 +16,6 @@ namespace {
 
 using Color = Color3;
 
-constexpr Color kPlaneColor{0.50f, 0.55f, 0.50f};
 constexpr Color kGridColor{0.30f, 0.34f, 0.32f};
 constexpr Color kFieldGridColor{0.45f, 0.52f, 0.62f};
 constexpr Color kContactForceColor{0.95f, 0.15f, 0.15f};
@@ -226,8 +226,14 @@ void Renderer::RebuildModel(const Scene& scene) {
   if (!scene.has_model()) return;
   const model_t& m = scene.model();
   for (const body_t& b : m.bodies) body_lists_.push_back(CompileMesh(GeometryMesh(b.geometry)));
+  // Each ground in its material's colour: rigid, or the soil it is.
+  plane_color_ = GroundColor(GroundKindOf(m, m.plane_material));
+  field_kind_ = GroundKindOf(m, m.heightfield.material);
   if (m.heightfield.present) {
-    heightfield_ = std::make_unique<BufferMesh>(HeightfieldMesh(m.heightfield, scene.Up()));
+    const Color low = FieldLowColor(field_kind_), high = FieldHighColor(field_kind_);
+    heightfield_ = std::make_unique<BufferMesh>(
+        HeightfieldMesh(m.heightfield, scene.Up(), Eigen::Vector3f(low[0], low[1], low[2]),
+                        Eigen::Vector3f(high[0], high[1], high[2])));
     // Lines cost llvmpipe per segment: straight stretches become one
     // segment, lifted above the surface by more than they may cut into it.
     heightfield_grid_ = HeightfieldGrid(m.heightfield, scene.Up(), 1.0, 0.012, 0.006);
@@ -333,7 +339,7 @@ void Renderer::DrawGround(const Scene& scene, const Viewpoint& viewpoint, const 
     glEnable(GL_LIGHTING);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1, 1);  // grid lines and bodies resting on it win the depth test
-    SetColor(kPlaneColor);
+    SetColor(plane_color_);
     DrawMesh(PlaneMesh(m.plane, viewpoint.looked_at, half));
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
@@ -346,7 +352,7 @@ void Renderer::DrawGround(const Scene& scene, const Viewpoint& viewpoint, const 
     const Eigen::Vector3d n = Eigen::Vector3d(m.plane[0], m.plane[1], m.plane[2]).normalized();
     GLfloat lit[4] = {0, 0, 0, 1};
     for (int k = 0; k < 3; ++k)
-      lit[k] = std::min(1.0f, kPlaneColor[static_cast<size_t>(k)] *
+      lit[k] = std::min(1.0f, plane_color_[static_cast<size_t>(k)] *
                                   (kAmbient[k] + kSunDiffuse[k] * std::max(0.0f, static_cast<float>(n.dot(sun_))) +
                                    kFillDiffuse[k] * std::max(0.0f, static_cast<float>(n.dot(fill_)))));
     glEnable(GL_FOG);
@@ -386,9 +392,11 @@ bool Renderer::RebuildRuts(const Scene& scene) {
       // Ruts on the heightfield come only with a model that has one.
       const heightfield_t* field =
           ground == soil_ruts_t::GROUND_HEIGHTFIELD ? &scene.model().heightfield : nullptr;
+      // A rut is its ground's colour, darkened (RutMesh).
+      const Color ground = field != nullptr ? GroundColor(field_kind_) : plane_color_;
       if (ruts.cells() > 0) {
         layer.floor = std::make_unique<BufferMesh>(
-            RutMesh(ruts, Eigen::Vector3f(kPlaneColor[0], kPlaneColor[1], kPlaneColor[2]), field));
+            RutMesh(ruts, Eigen::Vector3f(ground[0], ground[1], ground[2]), field));
         layer.opening = std::make_unique<BufferMesh>(RutOpeningMesh(ruts, field));
       }
     }

@@ -51,8 +51,10 @@ Mesh GeometryMesh(const geometry_t& geometry);
 // The world-frame surface of a heightfield (as the sim builds it: columns
 // along x over [-width/2, width/2], rows along z over [-depth/2, depth/2],
 // height = scale * sample + offset, turned so that its y follows `up`, then
-// moved to `position`), with smooth normals and colours by height.
-Mesh HeightfieldMesh(const heightfield_t& field, const Eigen::Vector3d& up);
+// moved to `position`), with smooth normals and colours by height, from
+// `low` in its hollows to `high` on its tops (RGB 0..1).
+Mesh HeightfieldMesh(const heightfield_t& field, const Eigen::Vector3d& up,
+                     const Eigen::Vector3f& low, const Eigen::Vector3f& high);
 // Height (along up, before the position offset) of sample (row, column).
 double HeightfieldSample(const heightfield_t& field, int row, int column);
 // The field's frame in the world: its y along `up`, its origin at its

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "simpartner/viewer/camera.h"
+#include "simpartner/viewer/ground_look.h"
 #include "simpartner/viewer/mesh.h"
 #include "simpartner/viewer/toggles.h"
 #include "simpartner/png_image.h"
@@ -96,6 +97,9 @@ class Renderer {
   std::vector<unsigned> body_lists_;  // one display list per body (0: nothing to draw)
   std::unique_ptr<BufferMesh> heightfield_;
   Lines heightfield_grid_;
+  // The grounds' looks, from their materials (ground_look.h).
+  Color3 plane_color_{0.50f, 0.55f, 0.50f};
+  GroundKind field_kind_ = GroundKind::kRigid;
   // The meshes of the scene's ruts of one ground (RutMesh, RutOpeningMesh),
   // of generation `generation`.
   struct RutLayer {
