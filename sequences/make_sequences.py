@@ -78,6 +78,12 @@ def angle(w, t, motor, a, max_force, p, i, d):
     w.set(t, motor, [max_force, a, p, i, d])
 
 
+def all_wheels(w, t, v):
+    """gen3/gen4: its four wheels (Axle1Motor .. Axle4Motor) at v rad/s from t."""
+    for k in range(1, 5):
+        velocity(w, t, "Axle%dMotor" % k, v)
+
+
 def circle(name, alpha, v_left, v_right, settle, duration, description):
     """experiments_gen1.cpp RunCircle (the full run, not --fast)."""
     w = Writer(name, "models/worlds/gen1_flat.xml", description)
@@ -98,22 +104,33 @@ def skid():
     w = Writer("gen1_light_skid.xml", "models/worlds/slippery_ground.xml",
                "gen1 18 kg on ice (mu 0.025): all four wheels at 1 rad/s from t = 1 s")
     start = 1.0
-    for k in range(1, 5):
-        velocity(w, start, "Axle%dMotor" % k, 1.0)
+    all_wheels(w, start, 1.0)
     w.end(start + 15.0)
+    w.write()
+
+
+def straight_drive(name, world, description, seconds):
+    """gen3's four wheels at 1.5 rad/s from t = 2 s for `seconds`."""
+    w = Writer(name, world, description)
+    start = 2.0
+    all_wheels(w, start, 1.5)
+    w.end(start + seconds)
     w.write()
 
 
 def soil_drive():
     """experiments_soil_robot.cpp: gen3 on soil (and on hard ground)."""
-    w = Writer("gen3_soil_drive.xml", "models/worlds/sand_field.xml",
-               "gen3 drives straight: all four wheels at 1.5 rad/s from t = 2 s (also played "
-               "on snow_field.xml and flat_ground.xml by simpartner-validate)")
-    start = 2.0
-    for k in range(1, 5):
-        velocity(w, start, "Axle%dMotor" % k, 1.5)
-    w.end(start + 8.0)
-    w.write()
+    straight_drive("gen3_soil_drive.xml", "models/worlds/sand_field.xml",
+                   "gen3 drives straight: all four wheels at 1.5 rad/s from t = 2 s (also played "
+                   "on snow_field.xml and flat_ground.xml by simpartner-validate)", 8.0)
+
+
+def snow_drive():
+    """experiments_soil_robot.cpp: gen3 driven on snow, where it bogs down."""
+    straight_drive("gen3_snow_drive.xml", "models/worlds/snow_field.xml",
+                   "gen3 drives straight on snow: all four wheels at 1.5 rad/s from t = 2 s for "
+                   "10 s; its wheels dig in until its calves press the snow, and it bogs down",
+                   10.0)
 
 
 def hills_drive():
@@ -123,8 +140,7 @@ def hills_drive():
                "t = 2 s for 18 s (about 6 m, short of the field's edge 8 m ahead)",
                validated=False)
     start = 2.0
-    for k in range(1, 5):
-        velocity(w, start, "Axle%dMotor" % k, 1.5)
+    all_wheels(w, start, 1.5)
     w.end(start + 18.0)
     w.write()
 
@@ -143,8 +159,7 @@ def test_track():
     w = Writer("gen4_test_track.xml", "models/worlds/test_track.xml",
                "gen4 on the test track: all four wheels at 1.5 rad/s from t = 1 s for 104.75 s")
     start, duration = 1.0, 104.75
-    for k in range(1, 5):
-        velocity(w, start, "Axle%dMotor" % k, 1.5)
+    all_wheels(w, start, 1.5)
     w.end(start + duration)
     w.write()
 
@@ -352,6 +367,7 @@ def main():
            "rolls without slip on a cot(alpha/2) (contactMu 1)" % matched)
     skid()
     soil_drive()
+    snow_drive()
     hills_drive()
     sensor_rig()
     test_track()

@@ -337,6 +337,7 @@ TEST(SequenceShipped, EveryFileChecksAgainstItsWorld) {
       {"gen1_light_caterpillar.xml", "slippery_ground.xml"},
       {"gen1_light_rolking.xml", "slippery_ground.xml"},
       {"gen3_soil_drive.xml", "sand_field.xml"},
+      {"gen3_snow_drive.xml", "snow_field.xml"},
       {"gen3_hills_drive.xml", "sand_hills.xml"},
       {"sensor_rig_spin.xml", "sensor_rig.xml"},
   };
