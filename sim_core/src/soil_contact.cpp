@@ -182,7 +182,8 @@ void SoilContacts::HoldAtRest(int ground, int body, const WheelState& wheel,
   // Each row: the spring strength / K of the displacement at the end of
   // the step, j + h v+, and a damper of strength / kRestSpeed.
   const double spring = rows->shear_strength / K;
-  const double slope = -(spring * stepsize_ + rows->shear_strength / kRestSpeed);
+  const double slope =
+      std::min(-kLeastShearSlope, -(spring * stepsize_ + rows->shear_strength / kRestSpeed));
   rows->slip_velocity = rim_velocity.dot(rows->forward);
   rows->thrust = -spring * j.dot(rows->forward) + slope * rows->slip_velocity;
   rows->thrust_slope = slope;

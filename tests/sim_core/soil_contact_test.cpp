@@ -108,6 +108,29 @@ TEST_P(SoilContact, AWheelRestsAtBekkersSinkageAtAnyStep) {
   }
 }
 
+// A soil without shear (c = 0, phi = 0: a lunar soil of the validation's
+// compaction check) holds a wheel at rest by nothing along the ground; the
+// wheel still rests at Bekker's sinkage, on either engine, and its friction
+// rows stay finite (MuJoCo's step faulted with a non-finite acceleration
+// when a resting wheel's rows had a slope of 0).
+TEST_P(SoilContact, AWheelRestsOnASoilWithoutShear) {
+  model::World world = LoadInline(WheelWorld());
+  world.materials.at(0).soil = DrySand();
+  world.materials.at(0).soil->cohesion = 0.0;
+  world.materials.at(0).soil->friction_angle = 0.0;
+  Parameters params;
+  params.engine = GetParam();
+  Simulation sim(std::move(world), params, 1);
+  const int wheel = sim.flat().FindBody("", "Wheel");
+  for (int k = 0; k < 3000; ++k) {
+    const double support = k < 2000 ? kMass * kG * (1.0 - k / 2000.0) : 0.0;
+    sim.engine().AddForce(wheel, Eigen::Vector3d(0, support, 0));
+    ASSERT_TRUE(sim.Step()) << "step " << k;
+  }
+  const double expected = BekkerSinkage();  // Bekker's law has no shear in it
+  EXPECT_NEAR(kRadius - sim.engine().ReadBody(wheel).position.y(), expected, 0.005 * expected);
+}
+
 // A heightfield of soil is the same soil: on a level field 0.5 m up the
 // wheel rests at Bekker's sinkage below it, without drifting.
 TEST_P(SoilContact, AWheelRestsAtBekkersSinkageOnAHeightfieldOfSoil) {
