@@ -18,6 +18,7 @@
 #include <cmath>
 
 #include "simpartner/sim/simulation.h"
+#include "simpartner/text.h"
 
 namespace simpartner::sim {
 namespace {
@@ -69,8 +70,8 @@ void Simulation::SettleOnSoil() {
   ruts_.Stamp(wheel_soil_);
   AddWarning(warning_t::SEVERITY_INFO, "soil",
              "settled on soil in " + std::to_string(k) + " steps before step 0" +
-                 (still < still_needed ? " (still moving after " +
-                                             std::to_string(kLongestSeconds) + " s: it starts so)"
+                 (still < still_needed ? " (still moving after " + FormatFixed(kLongestSeconds, 0) +
+                                             " s: it starts so)"
                                        : ""));
 }
 
