@@ -72,7 +72,14 @@ void MujocoWorld::MapSoil() {
       soil_ground_[static_cast<size_t>(mj_name2id(m_, mjOBJ_GEOM, kMjcfField))] =
           soil_->AddHeightfield(*soil, *world.heightfield, world.HeightfieldPose());
     }
+  if (!soil_) return;
   soil_qfrc_ = Eigen::VectorXd::Zero(m_->nv);
+  // Each step meets every wheel and plate with every ground of soil: both
+  // lists are the model's, found once.
+  for (int g = 0; g < m_->ngeom; ++g) {
+    if (soil_ground_[static_cast<size_t>(g)] >= 0) soil_ground_geoms_.push_back(g);
+    if (IsWheel(g) || IsPlate(g)) soil_pressers_.push_back(g);
+  }
 }
 
 bool MujocoWorld::IsWheel(int geom) const {
@@ -150,8 +157,7 @@ void MujocoWorld::ApplySoil() {
   if (!soil_) return;
   on_soil_.clear();
   soil_qfrc_.setZero();
-  for (int g = 0; g < m_->ngeom; ++g)
-    if (IsWheel(g) || IsPlate(g)) CollectSoilContacts(g);
+  for (int g : soil_pressers_) CollectSoilContacts(g);
   if (on_soil_.empty()) return;
   // The plain forces, then the rows solved with the acceleration they give.
   for (const SoilBody& wheel : on_soil_) {
@@ -182,9 +188,8 @@ void MujocoWorld::ApplySoil() {
 
 void MujocoWorld::CollectSoilContacts(int geom) {
   const int body = geoms_[static_cast<size_t>(geom)].body;
-  for (int ground_geom = 0; ground_geom < m_->ngeom; ++ground_geom) {
+  for (int ground_geom : soil_ground_geoms_) {
     const int ground = soil_ground_[static_cast<size_t>(ground_geom)];
-    if (ground < 0) continue;
     if (m_->geom_type[ground_geom] == mjGEOM_HFIELD && !OverHeightfield(geom)) continue;
     const std::optional<SoilContactRows> rows =
         IsWheel(geom) ? soil_->Contact(ground, body, WheelStateOf(geom))

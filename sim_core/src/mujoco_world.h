@@ -174,10 +174,10 @@ class MujocoWorld : public PhysicsEngine {
                double solimp[5]) const;
   Eigen::Vector3d Up(const double* v) const;
 
-  // Soil (mujoco_soil.cpp): a wheel (a cylinder) on a ground of soil meets
-  // the rows of soil_contact.h instead of MuJoCo's contact, solved with
-  // the step (backward in time, as ODE solves them) and applied before
-  // MuJoCo's constraint solve.
+  // Soil (mujoco_soil.cpp): a wheel (a cylinder) or a plate on a ground of
+  // soil meets the rows of soil_contact.h instead of MuJoCo's contact,
+  // solved with the step (backward in time, as ODE solves them) and
+  // applied before MuJoCo's constraint solve.
   struct SoilBody {
     int geom = -1;   // the wheel's (or plate's) MuJoCo geom
     SoilContactRows rows;
@@ -242,6 +242,8 @@ class MujocoWorld : public PhysicsEngine {
   mutable Scratch scratch_;
   std::unique_ptr<SoilContacts> soil_;
   std::vector<int> soil_ground_;        // per MuJoCo geom: its ground in soil_; -1: none
+  std::vector<int> soil_ground_geoms_;  // the geoms that are grounds of soil
+  std::vector<int> soil_pressers_;      // the wheels and plates: the geoms that meet soil
   std::vector<SoilBody> on_soil_;      // this step's wheels on soil
   Eigen::VectorXd soil_qfrc_;           // the soil's plain forces, generalized (scratch)
 };

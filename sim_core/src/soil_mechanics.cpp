@@ -39,8 +39,9 @@ double HeightAbove(const SoilSurface& surface, const Eigen::Vector3d& point) {
   return (point - surface.origin).dot(surface.up);
 }
 
-// Where `point` is in the memory's grid.
-Eigen::Vector2d GroundCoordinates(const SoilSurface& surface, const Eigen::Vector3d& point) {
+}  // namespace
+
+Eigen::Vector2d SoilCoordinates(const SoilSurface& surface, const Eigen::Vector3d& point) {
   if (surface.keyed_apart) {
     const Eigen::Vector3d d = point - surface.key_origin;
     return {d.dot(surface.key_u), d.dot(surface.key_w)};
@@ -48,6 +49,8 @@ Eigen::Vector2d GroundCoordinates(const SoilSurface& surface, const Eigen::Vecto
   const Eigen::Vector3d d = point - surface.origin;
   return {d.dot(surface.u_axis), d.dot(surface.up.cross(surface.u_axis))};
 }
+
+namespace {
 
 // The rim point at the angle whose cosine and sine these are.
 Eigen::Vector3d RimPoint(const WheelState& wheel, const WheelFrame& frame, double cos_theta,
@@ -247,14 +250,6 @@ void SoilMemory::PathPress::Deepen(double z, double z_n) {
   if (z > deepest_->z) *deepest_ = Depth{z, z_n};
 }
 
-double HeightAboveSoil(const SoilSurface& surface, const Eigen::Vector3d& point) {
-  return HeightAbove(surface, point);
-}
-
-Eigen::Vector2d SoilCoordinates(const SoilSurface& surface, const Eigen::Vector3d& point) {
-  return GroundCoordinates(surface, point);
-}
-
 double PressureWithMemory(const Soil& soil, double z, double z_max, double b) {
   return PressureWithMemory(soil, z, {z_max, std::pow(z_max, soil.n)}, b);
 }
@@ -309,7 +304,7 @@ void NormalStress(const Soil& soil, const WheelState& wheel, const SoilSurface& 
                   const ArcMemory& memory, const Eigen::Vector3d& point, double sinking,
                   ArcSample* sample) {
   const double z = -HeightAbove(surface, point);
-  const Eigen::Vector2d at = GroundCoordinates(surface, point);
+  const Eigen::Vector2d at = SoilCoordinates(surface, point);
   const SoilMemory::Depth& before =
       memory.pressed ? memory.pressed->Cell(at.x(), at.y()) : memory.read.At(at.x(), at.y());
   double s = 0.0, ds = 0.0;
@@ -469,7 +464,7 @@ void PressWheel(const WheelState& wheel, const SoilSurface& surface, SoilMemory*
   SoilMemory::PathPress press(memory);
   for (ArcAngles angles(half, step); angles.k < samples; angles.Next()) {
     const Eigen::Vector3d point = RimPoint(wheel, frame, angles.cos_theta, angles.sin_theta);
-    const Eigen::Vector2d at = GroundCoordinates(surface, point);
+    const Eigen::Vector2d at = SoilCoordinates(surface, point);
     const double z = -HeightAbove(surface, point);
     if (z > press.Cell(at.x(), at.y()).z) press.Deepen(z, std::pow(z, memory->exponent()));
   }

@@ -146,9 +146,7 @@ struct SoilSurface {
   Eigen::Vector3d key_w = Eigen::Vector3d::UnitZ();
 };
 
-// How far `point` is above the untouched surface [m] (negative: below),
-// and where it is in the memory's grid (u, w) [m].
-double HeightAboveSoil(const SoilSurface& surface, const Eigen::Vector3d& point);
+// Where `point` is in the memory's grid (u, w) [m].
 Eigen::Vector2d SoilCoordinates(const SoilSurface& surface, const Eigen::Vector3d& point);
 
 // The soil's answer to a wheel, this step.
