@@ -34,7 +34,7 @@ void ForgetUnseen(Map* wheels) {
 
 int SoilContacts::AddPlane(const Eigen::Vector4d& plane, const model::SoilParameters& soil) {
   const double length = plane.head<3>().norm();
-  Ground ground{Soil::From(soil), SoilMemory{soil.n}, SoilSurface{}};
+  Ground ground{Soil::From(soil), SoilMemory{}, SoilSurface{}};
   ground.surface.up = plane.head<3>() / length;
   ground.surface.origin = ground.surface.up * (plane[3] / length);
   ground.surface.u_axis = AlongSurface(ground.surface.up);
@@ -44,7 +44,7 @@ int SoilContacts::AddPlane(const Eigen::Vector4d& plane, const model::SoilParame
 
 int SoilContacts::AddHeightfield(const model::SoilParameters& soil,
                                  const model::Heightfield& shape, const Eigen::Isometry3d& pose) {
-  grounds_.push_back(Ground{Soil::From(soil), SoilMemory{soil.n}, SoilSurface{}, &shape, pose});
+  grounds_.push_back(Ground{Soil::From(soil), SoilMemory{}, SoilSurface{}, &shape, pose});
   return grounds() - 1;
 }
 

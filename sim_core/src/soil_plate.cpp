@@ -198,15 +198,14 @@ PlateSoilForces PressPlateOnSoil(const Soil& soil, const PlateState& plate,
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
   for (int k = 0; k < count; ++k) {
     const PlatePoint& p = points[static_cast<size_t>(k)];
-    const SoilMemory::Depth& before = memory->At(p.key.x(), p.key.y());
+    const double z_max = memory->Deepest(p.key.x(), p.key.y());
     double s = 0.0, ds = 0.0;
-    if (p.z >= before.z) {
+    if (p.z >= z_max) {
       s = soil.Pressure(p.z, b);
       ds = soil.n * s / p.z;
     } else {
-      s = PressureWithMemory(soil, p.z, before, b);
-      const double p_max = (soil.k_c / b + soil.k_phi) * before.z_n;
-      ds = s > 0.0 ? soil.UnloadingSlope(before.z, p_max) : 0.0;
+      s = PressureWithMemory(soil, p.z, z_max, b);
+      ds = s > 0.0 ? soil.UnloadingSlope(z_max, soil.Pressure(z_max, b)) : 0.0;
     }
     const Eigen::Vector3d v =
         plate.velocity + plate.angular_velocity.cross(p.underside - plate.pose.translation());

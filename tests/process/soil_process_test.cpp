@@ -128,12 +128,15 @@ TEST_P(SoilProcessTest, Gen3OnASoilMadeHereStandsAtRestAtBekkersSinkageFromStepZ
   const Listener::Sample& last = bus.samples.back();
   ASSERT_EQ(last.load.size(), 4u);
   for (const Listener::Sample& s : bus.samples) {
-    if (s.time >= 0.5)
+    if (s.time >= 0.5) {
       for (const auto& [wheel, load] : last.load) {
         ASSERT_EQ(s.load.count(wheel), 1u) << "wheel " << wheel << " off the soil at " << s.time << " s";
         ASSERT_NEAR(s.load.at(wheel), load, 0.02 * load) << "wheel " << wheel << " at " << s.time << " s";
       }
-    if (s.time >= 1.0) ASSERT_LT(s.chassis_speed, 1e-3) << "at " << s.time << " s";
+    }
+    if (s.time >= 1.0) {
+      ASSERT_LT(s.chassis_speed, 1e-3) << "at " << s.time << " s";
+    }
   }
   for (const auto& [wheel, load] : last.load) {
     const geometry_t& g = bus.model.bodies[static_cast<size_t>(wheel)].geometry;

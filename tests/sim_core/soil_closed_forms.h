@@ -10,7 +10,9 @@
 namespace simpartner::sim::testing {
 
 using validate::Bekker;
+using validate::RollingArc;
 using validate::RollingSinkage;
+using validate::RollingStresses;
 using validate::RollingWheel;
 using validate::RollingWheelForces;
 using validate::Simpson;

@@ -59,7 +59,7 @@ TEST(SoilPlate, WhereAVerticalLineEntersEachShape) {
 // at Bekker's p(1 cm) for a 0.2 m wide plate.
 TEST(SoilPlate, AFlatBoxPressesItsWholeFootprintAtBekkersPressure) {
   const Soil soil = Soil::From(kDrySand);
-  SoilMemory memory(soil.n);
+  SoilMemory memory;
   const PlateSoilForces f =
       PressPlateOnSoil(soil, Box(0.2, 0.1, 0.4, 0.04), SoilSurface{}, &memory);
   ASSERT_TRUE(f.touching);
@@ -83,7 +83,7 @@ TEST(SoilPlate, AFlatBoxPressesItsWholeFootprintAtBekkersPressure) {
 // sqrt(2 R z - z^2); the grid finds its area within a few per cent.
 TEST(SoilPlate, ASpheresFootprintIsItsCapsCircle) {
   const Soil soil = Soil::From(kDrySand);
-  SoilMemory memory(soil.n);
+  SoilMemory memory;
   PlateState sphere;
   sphere.kind = model::GeometryKind::kSphere;
   sphere.size.x() = 0.1;
@@ -100,7 +100,7 @@ TEST(SoilPlate, ASpheresFootprintIsItsCapsCircle) {
 // 1 - (K / L)(1 - e^(-L / K)).
 TEST(SoilPlate, ASlidingPlateIsHeldByBekkersShear) {
   const Soil soil = Soil::From(kDrySand);
-  SoilMemory memory(soil.n);
+  SoilMemory memory;
   const PlateSoilForces f =
       PressPlateOnSoil(soil, Box(0.2, 0.1, 0.4, 0.04), SoilSurface{}, &memory);
   const double K = kDrySand.shear_modulus, L = 0.4;
@@ -110,7 +110,7 @@ TEST(SoilPlate, ASlidingPlateIsHeldByBekkersShear) {
 
 TEST(SoilPlate, ABodyAboveTheSoilDoesNotTouchIt) {
   const Soil soil = Soil::From(kDrySand);
-  SoilMemory memory(soil.n);
+  SoilMemory memory;
   EXPECT_FALSE(PressPlateOnSoil(soil, Box(0.2, 0.1, 0.4, 0.06), SoilSurface{}, &memory).touching);
   EXPECT_EQ(memory.cells(), 0u);
 }
