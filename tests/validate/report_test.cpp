@@ -343,7 +343,8 @@ TEST(ValidateCommandLine, ListsEveryExperimentOfSpec8AndOurs) {
        {"free_fall", "free_fall_thrown", "sliding_cube", "two_spheres", "circle_equal",
         "circle_differential", "scanner", "pole_task", "skid", "caterpillar", "rolking",
         "gen4_loads", "test_track", "rolling_sphere", "pendulum_energy", "soil_sinkage",
-        "soil_compaction", "soil_traction", "soil_step_size", "soil_multipass", "soil_robot", "sensors"})
+        "soil_compaction", "soil_traction", "soil_step_size", "soil_multipass", "soil_robot",
+        "soil_measured", "sensors"})
     EXPECT_NE(out.find(std::string(name) + (std::string(name) == "skid" ? " (slow)" : "")),
               std::string::npos)
         << name;

@@ -61,6 +61,8 @@ const std::vector<Experiment>& Experiments() {
        SoilMultiPass},
       {"soil_robot", "On soil: gen3 driven on dry sand and snow vs hard ground", false,
        SoilRobot},
+      {"soil_measured", "On soil: a small wheel on sand against measured single-wheel tests",
+       false, SoilMeasured},
       {"sensors", "Field sensors: IMU, encoder, lidar and GNSS on a turntable rig", false, Sensors},
   };
   return kExperiments;

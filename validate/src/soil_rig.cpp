@@ -33,28 +33,29 @@ std::string Ground(const RigSoil& soil) {
          "</soil></material>\n";
 }
 
-std::string Wheel(const std::string& name, double mass, double x) {
+std::string Wheel(const std::string& name, double mass, double x, double radius = kRigRadius,
+                  double width = kRigWidth) {
   return "<object type=\"Cylinder\" name=\"" + name + "\"><mass>" + Number(mass) +
-         "</mass><radius>" + Number(kRigRadius) + "</radius><length>" + Number(kRigWidth) +
-         "</length>" + At(x, kRigRadius) + "</object>\n";
+         "</mass><radius>" + Number(radius) + "</radius><length>" + Number(width) + "</length>" +
+         At(x, radius) + "</object>\n";
 }
 
 std::string StandingWorld(const RigSoil& soil, double mass) {
   return "<world name=\"SoilStandingWheel\">" + Ground(soil) + Wheel("Wheel", mass, 0) + "</world>";
 }
 
-constexpr double kWheelMass = 10.0;  // the rig's wheel [kg]; its carrier takes the rest
-
 // Carrier and wheel number k, x metres along the rail, hung from the sled.
-std::string RigWheel(int k, double x, double load) {
+std::string RigWheel(int k, double x, const RigSetup& setup) {
   const std::string n = std::to_string(k);
+  const double r = setup.radius;
   return "<object type=\"Box\" name=\"Carrier" + n + "\"><mass>" +
-         Number(load / kRigGravity - kWheelMass) + "</mass>" + Vector("size", 0.05, 0.05, 0.05) +
-         At(x, kRigRadius) + "</object>\n" + Wheel("Wheel" + n, kWheelMass, x) +
+         Number(setup.load / kRigGravity - setup.wheel_mass) + "</mass>" +
+         Vector("size", 0.05, 0.05, 0.05) + At(x, r) + "</object>\n" +
+         Wheel("Wheel" + n, setup.wheel_mass, x, r, setup.width) +
          "<joint type=\"Slider\" name=\"Hanger" + n + "\"><body1>Carrier" + n +
          "</body1><body2>Sled</body2>" + Vector("axis1", 0, 1, 0) + "</joint>\n" +
          "<joint type=\"Hinge\" name=\"Axle" + n + "\"><body1>Carrier" + n +
-         "</body1><body2>Wheel" + n + "</body2>" + Vector("anchor", x, kRigRadius, 0) +
+         "</body1><body2>Wheel" + n + "</body2>" + Vector("anchor", x, r, 0) +
          Vector("axis1", 0, 0, 1) + "</joint>\n";
 }
 
@@ -63,8 +64,8 @@ std::string RigWorld(const RigSetup& setup) {
                     "<object type=\"Box\" name=\"Sled\"><mass>5</mass>" +
                     Vector("size", 0.2, 0.1, 0.2) + At(0, 1.5) + "</object>\n" +
                     "<joint type=\"Slider\" name=\"Rail\"><body1>Sled</body1><body2>world</body2>" +
-                    Vector("axis1", 1, 0, 0) + "</joint>\n" + RigWheel(1, 0, setup.load);
-  if (setup.tandem) xml += RigWheel(2, -setup.spacing, setup.load);
+                    Vector("axis1", 1, 0, 0) + "</joint>\n" + RigWheel(1, 0, setup);
+  if (setup.tandem) xml += RigWheel(2, -setup.spacing, setup);
   return xml + "</world>";
 }
 
@@ -119,7 +120,8 @@ RigRun RunRig(const Context& context, const RigSetup& setup, std::string* not_ap
   }
   const int64_t lowered = run->StepAt(1.0);
   const int64_t averaged_from = run->StepAt(setup.drive_seconds);  // the last second
-  const double omega = setup.speed / ((1 - setup.slip) * kRigRadius);
+  const double omega = setup.slip >= 0 ? setup.speed / ((1 - setup.slip) * setup.radius)
+                                       : (1 + setup.slip) * setup.speed / setup.radius;
   int64_t counted = 0;
   // The commands of the coming step: lowering (a support falling from the
   // weight to 0 over the first second), then the drive. robot.dtd: a
@@ -139,7 +141,7 @@ RigRun RunRig(const Context& context, const RigSetup& setup, std::string* not_ap
   command();
   run->RunUntil(1.0 + setup.drive_seconds, [&] {
     if (run->sim().step() > averaged_from) {
-      for (int k = 0; k < wheels; ++k) out.sinkage[k] += kRigRadius - run->Position(wheel[k]).y();
+      for (int k = 0; k < wheels; ++k) out.sinkage[k] += setup.radius - run->Position(wheel[k]).y();
       // The rail holds the sled back: its force on the sled is minus the pull.
       out.pull -= run->sim().engine().ReadJoint(rail).force1.x();
       ++counted;

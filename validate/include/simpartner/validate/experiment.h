@@ -109,6 +109,7 @@ ExperimentResult SoilCompaction(const Context& context);
 ExperimentResult SoilTraction(const Context& context);
 ExperimentResult SoilStepSize(const Context& context);
 ExperimentResult SoilMultiPass(const Context& context);
+ExperimentResult SoilMeasured(const Context& context);
 // gen3 on the shipped soil worlds (experiments_soil_robot.cpp).
 ExperimentResult SoilRobot(const Context& context);
 // The field sensors on the sensor rig (experiments_sensors.cpp).

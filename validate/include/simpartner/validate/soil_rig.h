@@ -46,9 +46,11 @@ struct RigSetup {
   double spacing = 0.8;  // [m]
   double speed = 0.3;    // the sled's [m/s]
   bool driven = true;    // axles spun at speed / ((1 - slip) r); false: free (towed)
-  double slip = 0.0;
+  double slip = 0.0;  // i: 1 - v / (r omega) driving (>= 0), r omega / v - 1 braking (< 0)
   double stepsize = 0.001;
   double drive_seconds = 3.0;  // after 1 s of lowering at rest
+  double radius = kRigRadius, width = kRigWidth;  // the wheel's [m]
+  double wheel_mass = 10.0;  // [kg]; its carrier takes the rest of the load
 };
 
 struct RigRun {
