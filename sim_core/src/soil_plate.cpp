@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "simpartner/line_entry.h"
+
 namespace simpartner::sim {
 namespace {
 
@@ -13,27 +15,9 @@ constexpr double kParallel = 1e-12;
 // Where the line p + t d (d unit) enters the sphere of radius r about c.
 std::optional<double> SphereEntry(const Eigen::Vector3d& p, const Eigen::Vector3d& d,
                                   const Eigen::Vector3d& c, double r) {
-  const Eigen::Vector3d m = p - c;
-  const double b = m.dot(d), disc = b * b - (m.squaredNorm() - r * r);
-  if (disc < 0.0) return std::nullopt;
-  return -b - std::sqrt(disc);
-}
-
-std::optional<double> BoxEntry(const Eigen::Vector3d& p, const Eigen::Vector3d& d,
-                               const Eigen::Vector3d& half) {
-  double enter = -std::numeric_limits<double>::infinity();
-  double leave = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k) {
-    if (std::abs(d[k]) < kParallel) {
-      if (std::abs(p[k]) > half[k]) return std::nullopt;
-      continue;
-    }
-    const double t1 = (-half[k] - p[k]) / d[k], t2 = (half[k] - p[k]) / d[k];
-    enter = std::max(enter, std::min(t1, t2));
-    leave = std::min(leave, std::max(t1, t2));
-  }
-  if (enter > leave) return std::nullopt;
-  return enter;
+  const std::optional<LineSpan> span = LineThroughSphere(p, d, c, r);
+  if (!span) return std::nullopt;
+  return span->enter;
 }
 
 // A capsule of radius r about the segment z in [-half, half].
@@ -157,7 +141,10 @@ std::optional<double> PlateEntry(const PlateState& plate, const Eigen::Vector3d&
   const Eigen::Vector3d p = plate.pose.inverse() * point;
   const Eigen::Vector3d d = plate.pose.linear().transpose() * up;
   switch (plate.kind) {
-    case model::GeometryKind::kBox: return BoxEntry(p, d, 0.5 * plate.size);
+    case model::GeometryKind::kBox: {
+      const std::optional<LineSpan> span = LineThroughBox(p, d, 0.5 * plate.size);
+      return span ? std::optional<double>(span->enter) : std::nullopt;
+    }
     case model::GeometryKind::kSphere:
       return SphereEntry(p, d, Eigen::Vector3d::Zero(), plate.size.x());
     case model::GeometryKind::kCapsule:

@@ -1,8 +1,8 @@
 #include "simpartner/viewer/line_of_sight.h"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
+
+#include "simpartner/line_entry.h"
 
 namespace simpartner::viewer {
 namespace {
@@ -19,37 +19,6 @@ std::optional<Eigen::Vector3d> BoxHalfExtents(const geometry_t& g) {
   }
 }
 
-// Entry distance of a ray (in the box's frame) into an axis-aligned box
-// centred at the origin (the slab method); 0 when it starts inside.
-std::optional<double> RayBox(const Eigen::Vector3d& from, const Eigen::Vector3d& dir,
-                             const Eigen::Vector3d& half) {
-  double enter = 0.0, leave = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(dir[a]) < 1e-12) {
-      if (std::abs(from[a]) > half[a]) return std::nullopt;
-      continue;
-    }
-    double t1 = (-half[a] - from[a]) / dir[a];
-    double t2 = (half[a] - from[a]) / dir[a];
-    if (t1 > t2) std::swap(t1, t2);
-    enter = std::max(enter, t1);
-    leave = std::min(leave, t2);
-    if (enter > leave) return std::nullopt;
-  }
-  return enter;
-}
-
-std::optional<double> RaySphere(const Eigen::Vector3d& from, const Eigen::Vector3d& dir,
-                                const Eigen::Vector3d& centre, double radius) {
-  const Eigen::Vector3d m = from - centre;
-  const double b = m.dot(dir);
-  const double c = m.squaredNorm() - radius * radius;
-  if (c <= 0) return 0.0;  // starts inside
-  const double disc = b * b - c;
-  if (b > 0 || disc < 0) return std::nullopt;
-  return -b - std::sqrt(disc);
-}
-
 }  // namespace
 
 std::optional<double> FirstWorldObjectHit(const Scene& scene, const Eigen::Vector3d& from,
@@ -63,10 +32,12 @@ std::optional<double> FirstWorldObjectHit(const Scene& scene, const Eigen::Vecto
     const Eigen::Isometry3d pose = scene.BodyPose(i);
     std::optional<double> hit;
     if (body.geometry.kind == geometry_t::KIND_SPHERE) {
-      hit = RaySphere(from, direction, pose.translation(), body.geometry.size[0]);
+      const auto span = LineThroughSphere(from, direction, pose.translation(), body.geometry.size[0]);
+      if (span) hit = span->RayHit();
     } else if (const auto half = BoxHalfExtents(body.geometry)) {
       const Eigen::Matrix3d to_body = pose.linear().transpose();
-      hit = RayBox(to_body * (from - pose.translation()), to_body * direction, *half);
+      const auto span = LineThroughBox(to_body * (from - pose.translation()), to_body * direction, *half);
+      if (span) hit = span->RayHit();
     }
     if (hit && *hit > 0 && *hit <= max_distance && (!nearest || *hit < *nearest)) nearest = hit;
   }
