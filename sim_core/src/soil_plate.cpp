@@ -185,14 +185,16 @@ PlateSoilForces PressPlateOnSoil(const Soil& soil, const PlateState& plate,
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
   for (int k = 0; k < count; ++k) {
     const PlatePoint& p = points[static_cast<size_t>(k)];
-    const double z_max = memory->Deepest(p.key.x(), p.key.y());
+    const SoilMemory::Depth before = memory->At(p.key.x(), p.key.y());
     double s = 0.0, ds = 0.0;
-    if (p.z >= z_max) {
+    if (p.z >= before.z) {
       s = soil.Pressure(p.z, b);
       ds = soil.n * s / p.z;
     } else {
-      s = PressureWithMemory(soil, p.z, z_max, b);
-      ds = s > 0.0 ? soil.UnloadingSlope(z_max, soil.Pressure(z_max, b)) : 0.0;
+      const double p_max = (soil.k_c / b + soil.k_phi) * before.z_n;
+      ds = soil.UnloadingSlope(before.z, p_max);
+      s = std::max(0.0, p_max - ds * (before.z - p.z));
+      if (s == 0.0) ds = 0.0;
     }
     const Eigen::Vector3d v =
         plate.velocity + plate.angular_velocity.cross(p.underside - plate.pose.translation());
@@ -206,7 +208,7 @@ PlateSoilForces PressPlateOnSoil(const Soil& soil, const PlateState& plate,
   }
   for (int k = 0; k < count; ++k) {
     const PlatePoint& p = points[static_cast<size_t>(k)];
-    memory->Press(p.key.x(), p.key.y(), p.z);
+    memory->Press(p.key.x(), p.key.y(), p.z, std::pow(p.z, soil.n));
   }
   out.touching = out.area > 0.0;
   out.centroid = out.normal_force > 0.0 ? Eigen::Vector3d(moment / out.normal_force)

@@ -99,8 +99,8 @@ TEST(SoilMemory, UnloadingFollowsItsLineAndReloadingReturnsToBekker) {
   EXPECT_NEAR(PressureWithMemory(soil, 0.04, z_max, kWidth), Bekker(kDrySand, 0.04), 1e-6);
 
   SoilMemory memory(0.002);
-  memory.Press(0.0101, 0.0, 0.02);
-  memory.Press(0.0119, 0.0, 0.01);  // the same 2 mm cell: the deeper stays
+  memory.Press(0.0101, 0.0, 0.02, std::pow(0.02, soil.n));
+  memory.Press(0.0119, 0.0, 0.01, std::pow(0.01, soil.n));  // the same 2 mm cell: the deeper stays
   EXPECT_EQ(memory.Deepest(0.0105, 0.0015), 0.02);
   EXPECT_EQ(memory.Deepest(0.0125, 0.0), 0.0);  // the next cell
   EXPECT_EQ(memory.cells(), 1u);
@@ -139,12 +139,12 @@ TEST(SoilMemory, UnloadingNeverCrossesLoading) {
 
 // A wheel that has rolled at sinkage z0 up to here: the soil behind its
 // lowest point was pressed to z0 and rebounds under the rear of the arc.
-SoilMemory RolledTo(double z0, double cell) {
+SoilMemory RolledTo(const Soil& soil, double z0, double cell) {
   SoilMemory memory(cell);
   for (double x = -0.4; x <= 1e-12; x += cell / 4) {
     WheelState wheel = WheelSunk(z0);
     wheel.centre.x() = x;
-    PressWheel(wheel, SoilSurface{}, &memory, 256);
+    PressWheel(soil, wheel, SoilSurface{}, &memory, 256);
   }
   return memory;
 }
@@ -157,7 +157,7 @@ TEST(RollingWheel, DrawbarPullAgainstSlipIsWongsIntegral) {
   const model::SoilParameters& p = kDrySand;
   const Soil soil = Soil::From(p);
   const double z0 = 0.03, k_u = 20000e3;
-  const SoilMemory memory = RolledTo(z0, 0.0005);
+  const SoilMemory memory = RolledTo(soil, z0, 0.0005);
   const double front = std::acos(1.0 - z0 / kRadius);
   const double rear = -std::acos(1.0 - Bekker(p, z0) / (k_u * kRadius));
   const double tan_phi = std::tan(p.friction_angle * kPi / 180);
@@ -247,7 +247,7 @@ TEST(RollingWheel, ASecondPassInTheRutSinksLess) {
     WheelState first = WheelSunk(z0);
     first.velocity = Eigen::Vector3d(0.3, 0, 0);
     first.angular_velocity = Eigen::Vector3d(0, 0, -1.0);
-    const SoilMemory rolled = RolledTo(z0, 0.0005);
+    const SoilMemory rolled = RolledTo(soil, z0, 0.0005);
     const double load = WheelOnSoil(soil, first, SoilSurface{}, rolled, 256).Force().y();
     // The second wheel rolls the track the first left behind.
     auto second_load = [&](double z) {
@@ -293,7 +293,7 @@ TEST(SoilSlopes, ThrustSlopeIsThePullsSlopeAgainstSlipVelocity) {
   const model::SoilParameters& p = kDrySand;
   const Soil soil = Soil::From(p);
   const double z0 = 0.03, v = 0.4;
-  const SoilMemory memory = RolledTo(z0, 0.0005);
+  const SoilMemory memory = RolledTo(soil, z0, 0.0005);
   for (const double omega : {1.5, 2.0, 3.0}) {
     // Only the shear depends on the spin: the pull's slope is the thrust's.
     // The slip velocity v - r omega falls by r d omega.
@@ -317,11 +317,11 @@ TEST(SoilSlopes, ThrustSlopeIsThePullsSlopeAgainstSlipVelocity) {
 TEST(SoilMemory, PressingWhileAnsweringChangesNeitherForcesNorRuts) {
   const Soil soil = Soil::From(kDrySand);
   for (const double z0 : {0.001, 0.03}) {
-    SoilMemory answered_first = RolledTo(0.5 * z0, 0.002), pressed_while = answered_first;
+    SoilMemory answered_first = RolledTo(soil, 0.5 * z0, 0.002), pressed_while = answered_first;
     WheelState wheel = WheelRolling(z0, 0.3, 1.5);
     wheel.velocity.y() = -0.01;  // sinking too
     const WheelSoilForces expected = WheelOnSoil(soil, wheel, SoilSurface{}, answered_first);
-    PressWheel(wheel, SoilSurface{}, &answered_first);
+    PressWheel(soil, wheel, SoilSurface{}, &answered_first);
     const WheelSoilForces got = PressWheelOnSoil(soil, wheel, SoilSurface{}, &pressed_while);
     EXPECT_EQ(got.Force(), expected.Force()) << "z " << z0;
     EXPECT_EQ(got.shear_torque, expected.shear_torque) << "z " << z0;
@@ -360,7 +360,7 @@ TEST(RollingWheel, SideSlipGivesWongsSideForceAndTakesFromThePull) {
   const model::SoilParameters& p = kDrySand;
   const Soil soil = Soil::From(p);
   const double z0 = 0.03, slip = 0.2, omega = 2.0, v = (1.0 - slip) * kRadius * omega;
-  const SoilMemory rolled = RolledTo(z0, 0.0005);  // its own track behind it, as Wong's wheel
+  const SoilMemory rolled = RolledTo(soil, z0, 0.0005);  // its own track behind it, as Wong's wheel
   double last_side = 0;
   for (const double alpha_deg : {2.0, 5.0, 15.0}) {
     const double tan_alpha = std::tan(alpha_deg * kPi / 180);
@@ -394,7 +394,7 @@ TEST(SoilSlopes, SideSlopeIsTheSideForcesSlopeAgainstSideSpeed) {
   const model::SoilParameters& p = kDrySand;
   const Soil soil = Soil::From(p);
   const double z0 = 0.03, slip = 0.2, omega = 2.0, v = (1.0 - slip) * kRadius * omega;
-  const SoilMemory rolled = RolledTo(z0, 0.0005);
+  const SoilMemory rolled = RolledTo(soil, z0, 0.0005);
   for (const double side_speed : {0.0, 0.02, 0.1}) {
     const double d = 1e-4;
     auto side = [&](double v_y) {

@@ -68,7 +68,9 @@ struct Soil {
 
 // How deep one soil has been pressed, on a square grid of the ground
 // (coordinates along the surface): per cell, the deepest sinkage below the
-// untouched surface so far. Cells nothing has touched are not stored.
+// untouched surface so far and its power n (Bekker's exponent, given by
+// whoever presses), so that a point on the unloading line needs no pow.
+// Cells nothing has touched are not stored.
 //
 // A cell holds one depth, so a rim point reads the depth its neighbour in
 // the cell pressed, off by the rim's slope times the cell: 2 mm cells made
@@ -80,17 +82,20 @@ class SoilMemory {
  public:
   // A cell's deepest press.
   struct Depth {
-    double z = 0.0;     // [m]
-    uint64_t path = 0;  // the PathPress that set it last
+    double z = 0.0, z_n = 0.0;  // [m], z^n
+    uint64_t path = 0;          // the PathPress that set it last
   };
   // The most cells one PathPress deepens.
   static constexpr int kMaxPathCells = 1024;
   explicit SoilMemory(double cell_size = 0.0005);
   double cell_size() const { return cell_size_; }
-  // The deepest sinkage [m] at (u, w) so far; 0 where untouched.
-  double Deepest(double u, double w) const;
-  // Records sinkage z at (u, w) when it is deeper than the deepest so far.
-  void Press(double u, double w, double z);
+  // The deepest sinkage [m] at (u, w) so far, and its z^n; 0 where
+  // untouched.
+  Depth At(double u, double w) const;
+  double Deepest(double u, double w) const { return At(u, w).z; }
+  // Records sinkage z (z_n = z^n) at (u, w) when it is deeper than the
+  // deepest so far.
+  void Press(double u, double w, double z, double z_n);
   size_t cells() const { return deepest_.size(); }
 
   // Pressing along a path (a rim's points, in order): each point reads
@@ -100,28 +105,28 @@ class SoilMemory {
   class PathPress {
    public:
     explicit PathPress(SoilMemory* memory) : memory_(memory), path_(++memory->paths_) {}
-    // The deepest sinkage at (u, w) before the path.
-    double Deepest(double u, double w);
-    // Records sinkage z in the cell last read, when deeper. std::length_error
-    // past kMaxPathCells cells.
-    void Deepen(double z);
+    // The deepest sinkage at (u, w) before the path, and its z^n.
+    const Depth& Cell(double u, double w);
+    // Records sinkage z (z_n = z^n) in the cell last read, when deeper.
+    // std::length_error past kMaxPathCells cells.
+    void Deepen(double z, double z_n);
 
    private:
     // What the cell of `key` (held at `entry`, or not stored) was before
     // the path.
-    double Before(uint64_t key, const Depth* entry) const;
+    Depth Before(uint64_t key, const Depth* entry) const;
 
     SoilMemory* memory_;
     uint64_t path_;
     bool in_cell_ = false;
     uint64_t key_ = 0;
-    double before_ = 0.0;
+    Depth before_;
     Depth* deepest_ = nullptr;  // the cell's entry, once it has one
     // The cells the path deepened, as they were before it (left
     // uninitialised: a path begins at every wheel's step).
     struct Deepened {
       uint64_t key;
-      double z;
+      double z, z_n;
     };
     std::array<Deepened, kMaxPathCells> deepened_;
     int deepened_count_ = 0;
@@ -233,9 +238,9 @@ WheelSoilForces PressWheelOnSoil(const Soil& soil, const WheelState& wheel,
                                  const SoilSurface& surface, SoilMemory* memory, int samples = 64,
                                  WheelSoilSlopes* slopes = nullptr);
 
-// Records in `memory` how deep `wheel` presses the soil now (the arc's
+// Records in `memory` how deep `wheel` presses `soil` now (the arc's
 // points below the untouched surface), so that later steps see the rut.
-void PressWheel(const WheelState& wheel, const SoilSurface& surface, SoilMemory* memory,
-                int samples = 64);
+void PressWheel(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
+                SoilMemory* memory, int samples = 64);
 
 }  // namespace simpartner::sim
