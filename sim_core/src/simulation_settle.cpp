@@ -27,7 +27,7 @@ constexpr double kRampSeconds = 0.5;
 constexpr double kDampingSeconds = 0.02;
 constexpr double kSettledSpeed = 1e-4;  // [m/s]
 constexpr double kSettledSeconds = 0.1;
-constexpr double kLongestSeconds = 5.0;
+constexpr double kLongestSeconds = 10.0;
 
 // Whether the file sets anything moving: then its start is the user's.
 bool AnythingMoves(const model::FlatModel& flat) {

@@ -163,8 +163,12 @@ void SoilContacts::HoldAtRest(int ground, int body, const WheelState& wheel,
   const double K = grounds_.at(static_cast<size_t>(ground)).soil.shear_modulus;
   const Eigen::Vector3d rim_velocity =
       wheel.velocity + wheel.angular_velocity.cross(rows->point - wheel.centre);
-  const bool still = wheel.velocity.norm() < kRestSpeed && rim_velocity.norm() < kRestSpeed;
   const auto key = std::make_pair(ground, body);
+  LastMotion& last =
+      last_motion_.try_emplace(key, LastMotion{wheel.velocity, rim_velocity, true}).first->second;
+  const bool still = (wheel.velocity + last.velocity).norm() < 2 * kRestSpeed &&
+                     (rim_velocity + last.rim_velocity).norm() < 2 * kRestSpeed;
+  last = LastMotion{wheel.velocity, rim_velocity, true};
   auto it = anchors_.find(key);
   if (!still && it == anchors_.end()) return;
   if (it == anchors_.end()) it = anchors_.emplace(key, Anchor{rows->point, false}).first;
@@ -230,6 +234,7 @@ void SoilContacts::AfterStep() {
   pressing_.clear();
   ForgetUnseen(&slipping_);
   ForgetUnseen(&anchors_);
+  ForgetUnseen(&last_motion_);
 }
 
 }  // namespace simpartner::sim

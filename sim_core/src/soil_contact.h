@@ -152,6 +152,15 @@ class SoilContacts {
     bool seen = false;                             // this step
   };
   std::map<std::pair<int, int>, Anchor> anchors_;  // per (ground, wheel body) at rest
+  // A wheel's velocities the step before: rest is judged on the mean of
+  // two steps, so that a wheel rocking at the step's period (each step
+  // the opposite of the last, as the slip law's shear flips sign at speeds
+  // near 0) counts as still, and its anchor stops the rocking.
+  struct LastMotion {
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero(), rim_velocity = Eigen::Vector3d::Zero();
+    bool seen = false;  // this step
+  };
+  std::map<std::pair<int, int>, LastMotion> last_motion_;  // per (ground, wheel body)
 };
 
 }  // namespace simpartner::sim
