@@ -255,7 +255,7 @@ void MujocoWorld::SolveSoilRows(const Eigen::VectorXd& plain_qacc) {
 
 void MujocoWorld::CollectSoilForces() {
   if (!soil_) return;
-  soil_->AfterStep();
+  soil_->AfterStep(&messages_);
   contact_count_ += static_cast<int>(on_soil_.size());
   for (const SoilBody& wheel : on_soil_) {
     const int mj_body = m_->geom_bodyid[wheel.geom];

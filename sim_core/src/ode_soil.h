@@ -17,6 +17,7 @@
 #include <ode/ode.h>
 
 #include <optional>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -51,8 +52,8 @@ class OdeSoil {
   };
   bool Contact(dGeomID geom, dBodyID body, int flat_body, dGeomID ground, BodyContact* out);
 
-  // Ends a step: the wheels that touched soil in it become LastStep().
-  void AfterStep() { contacts_.AfterStep(); }
+  // Ends a step (SoilContacts::AfterStep).
+  void AfterStep(std::vector<std::string>* messages) { contacts_.AfterStep(messages); }
   const std::vector<WheelSoilReadout>& LastStep() const { return contacts_.LastStep(); }
 
  private:

@@ -624,7 +624,7 @@ void OdeWorld::Step() {
       throw Fail(e, "step");
     }
   }
-  if (soil_) soil_->AfterStep();
+  if (soil_) soil_->AfterStep(&messages_);
   for (size_t i = 0; i < bodies_.size(); ++i) {
     contact_force_[i].setZero();
     contact_torque_[i].setZero();

@@ -229,7 +229,14 @@ std::optional<SoilContactRows> SoilContacts::PlateContact(int index, const Plate
   return rows;
 }
 
-void SoilContacts::AfterStep() {
+void SoilContacts::AfterStep(std::vector<std::string>* messages) {
+  for (size_t g = 0; g < grounds_.size(); ++g)
+    if (const size_t forgotten = grounds_[g].memory.ForgetOldest(kMaxSoilCells))
+      messages->push_back("soil: the ruts of soil ground " + std::to_string(g) + " filled " +
+                          std::to_string(kMaxSoilCells) + " cells of its memory; the " +
+                          std::to_string(forgotten) +
+                          " pressed longest ago are forgotten (a wheel on them meets untouched "
+                          "soil)");
   last_step_.swap(pressing_);
   pressing_.clear();
   ForgetUnseen(&slipping_);

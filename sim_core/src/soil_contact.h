@@ -24,8 +24,10 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cstddef>
 #include <map>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -81,6 +83,10 @@ inline constexpr double kRestSpeed = 1e-3;
 // A wheel is stuck when sunk to its axle (soil_mechanics.h), or when it
 // has been driven with slip kStuckSlip or more for kStuckSeconds.
 inline constexpr double kStuckSlip = 0.95;
+// The most cells a ground's memory keeps (about 120 MB; at 0.5 mm cells
+// 1 km of one wheel's track, 250 m of gen3's four); past it the cells
+// pressed longest ago go, and a wheel back on them meets untouched soil.
+inline constexpr size_t kMaxSoilCells = 2000000;
 inline constexpr double kStuckSeconds = 1.0;
 
 // The soil grounds of a world and what the wheels on them did.
@@ -107,8 +113,10 @@ class SoilContacts {
   // shear (creeping below kPlateCreepSpeed); none when it is above.
   std::optional<SoilContactRows> PlateContact(int ground, const PlateState& plate);
 
-  // Ends a step: the wheels that touched soil in it become LastStep().
-  void AfterStep();
+  // Ends a step: the wheels that touched soil in it become LastStep(),
+  // and each ground's memory is kept within kMaxSoilCells, saying so in
+  // `messages` when it forgets.
+  void AfterStep(std::vector<std::string>* messages);
   // The wheels that pressed soil in the last step (a wheel near a plane
   // and a field of soil is evaluated on each: only the one it presses
   // counts).

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace simpartner::sim {
 namespace {
@@ -231,6 +232,26 @@ SoilMemory::Depth SoilMemory::At(double u, double w) const {
 void SoilMemory::Press(double u, double w, double z, double z_n) {
   PathPress press(this);
   if (z > press.Cell(u, w).z) press.Deepen(z, z_n);
+}
+
+size_t SoilMemory::ForgetOldest(size_t most) {
+  if (deepest_.size() <= most) return 0;
+  const size_t keep = most - most / 4, forget = deepest_.size() - keep;
+  std::vector<uint64_t> paths;
+  paths.reserve(deepest_.size());
+  for (const auto& [key, depth] : deepest_) paths.push_back(depth.path);
+  std::nth_element(paths.begin(), paths.begin() + static_cast<std::ptrdiff_t>(forget - 1), paths.end());
+  const uint64_t newest_forgotten = paths[forget - 1];
+  size_t forgotten = 0;
+  for (auto it = deepest_.begin(); it != deepest_.end() && forgotten < forget;) {
+    if (it->second.path <= newest_forgotten) {
+      it = deepest_.erase(it);
+      ++forgotten;
+    } else {
+      ++it;
+    }
+  }
+  return forgotten;
 }
 
 SoilMemory::Depth SoilMemory::PathPress::Before(uint64_t key, const Depth* entry) const {

@@ -97,6 +97,10 @@ class SoilMemory {
   // deepest so far.
   void Press(double u, double w, double z, double z_n);
   size_t cells() const { return deepest_.size(); }
+  // Bounds the memory: past `most` cells it forgets those pressed longest
+  // ago, down to three quarters of `most`, and returns how many it forgot.
+  // Call it between evaluations (a PathPress holds pointers into it).
+  size_t ForgetOldest(size_t most);
 
   // Pressing along a path (a rim's points, in order): each point reads
   // what its cell held before the path, however many of the path's points
