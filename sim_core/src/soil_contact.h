@@ -73,8 +73,8 @@ inline constexpr double kLeastShearSlope = 1.0;
 // A plate (soil_plate.h) held by the soil's shear creeps at most this
 // fast [m/s] below its strength: its rows' slope is the strength over it.
 inline constexpr double kPlateCreepSpeed = 1e-3;
-// A wheel whose rim and centre both move slower than this [m/s] is at
-// rest: the soil holds it by its shear displacement from where it came to
+// A wheel whose rim and centre both move slower than this [m/s] (the
+// mean of this step and the last: LastMotion) is at rest: the soil holds it by its shear displacement from where it came to
 // rest (an anchor), Janosi and Hanamoto's tau_max (1 - e^(-j / K)) for a
 // small j, a spring of strength / K, not by the slip law, which has no
 // rest (at any speed it would let the wheel creep). Past K from the
@@ -83,11 +83,11 @@ inline constexpr double kRestSpeed = 1e-3;
 // A wheel is stuck when sunk to its axle (soil_mechanics.h), or when it
 // has been driven with slip kStuckSlip or more for kStuckSeconds.
 inline constexpr double kStuckSlip = 0.95;
+inline constexpr double kStuckSeconds = 1.0;
 // The most cells a ground's memory keeps (about 120 MB; at 0.5 mm cells
 // 1 km of one wheel's track, 250 m of gen3's four); past it the cells
 // pressed longest ago go, and a wheel back on them meets untouched soil.
 inline constexpr size_t kMaxSoilCells = 2000000;
-inline constexpr double kStuckSeconds = 1.0;
 
 // The soil grounds of a world and what the wheels on them did.
 class SoilContacts {

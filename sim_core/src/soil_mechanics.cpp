@@ -472,7 +472,7 @@ double LoadedEnd(const ArcPoints& points, const ArcMemory& memory, double loaded
 // not by the point alone. Where the loaded arc ends inside a part, that
 // errs by up to a part's load: behind a rolling wheel the soil's rebound
 // ends in a sliver narrower than a part (about 1.8 deg on snow against
-// 1.95 at 64 points), and its sum was 15 % too large. Each end between two
+// 1.95 at 64 points), which the points alone cannot place. Each end between two
 // points is found, and the loaded piece of the part it cuts stands in for
 // that part, at the piece's midpoint. A part without its point loaded may
 // gain a piece from each side: those pieces are added after the `samples`
