@@ -290,10 +290,27 @@ void SoilMemory::PathPress::Deepen(double z, double z_n) {
   *deepest_ = Depth{z, z_n, path_};
 }
 
+PressureOnSoil PressureWithMemory(const Soil& soil, double z, const SoilMemory::Depth& before,
+                                  double b) {
+  const double k = soil.k_c / b + soil.k_phi;
+  PressureOnSoil out;
+  if (z >= before.z) {  // on Bekker's curve: the one pow of the point
+    out.loading = true;
+    if (z <= 0.0) return out;
+    out.z_n = std::pow(z, soil.n);
+    out.pressure = k * out.z_n;
+    out.slope = soil.n * out.pressure / z;
+    return out;
+  }
+  const double p_max = k * before.z_n, k_u = soil.UnloadingSlope(before.z, p_max);
+  out.pressure = std::max(0.0, p_max - k_u * (before.z - z));
+  if (out.pressure > 0.0) out.slope = k_u;
+  return out;
+}
+
 double PressureWithMemory(const Soil& soil, double z, double z_max, double b) {
-  if (z >= z_max) return soil.Pressure(z, b);
-  const double p_max = soil.Pressure(z_max, b);
-  return std::max(0.0, p_max - soil.UnloadingSlope(z_max, p_max) * (z_max - z));
+  const double z_n = z_max > 0.0 ? std::pow(z_max, soil.n) : 0.0;
+  return PressureWithMemory(soil, z, SoilMemory::Depth{z_max, z_n, 0}, b).pressure;
 }
 
 namespace {
@@ -347,17 +364,12 @@ void NormalStress(const Soil& soil, const WheelState& wheel, const SoilSurface& 
   const Eigen::Vector2d at = SoilCoordinates(surface, point);
   const SoilMemory::Depth before =
       memory.pressed ? memory.pressed->Cell(at.x(), at.y()) : memory.read.At(at.x(), at.y());
-  const double k = soil.k_c / wheel.width + soil.k_phi;
   double s = 0.0, ds = 0.0;
-  if (z > 0.0 && z >= before.z) {  // on Bekker's curve: the one pow of the point
-    const double z_n = std::pow(z, soil.n);
-    if (memory.pressed && memory.press) memory.pressed->Deepen(z, z_n);
-    s = k * z_n;
-    ds = soil.n * s / z;
-  } else if (z > 0.0) {  // on the unloading line below the deepest
-    const double p_max = k * before.z_n;
-    ds = soil.UnloadingSlope(before.z, p_max);
-    s = std::max(0.0, p_max - ds * (before.z - z));
+  if (z > 0.0) {
+    const PressureOnSoil p = PressureWithMemory(soil, z, before, wheel.width);
+    if (p.loading && memory.pressed && memory.press) memory.pressed->Deepen(z, p.z_n);
+    s = p.pressure;
+    ds = p.slope;
   }
   // The soil's damping: on any loaded point, sinking or rising.
   sample->bearing = s > 0.0;
@@ -506,10 +518,16 @@ int CutAtLoadedEnds(const ArcPoints& points, const ArcMemory& memory, ArcSample*
 // keep r (1 - cos(step / 2)) less than the sinkage (0.044 mm on snow at 64
 // points), and the rebound behind the wheel would start that much
 // higher and reach 14 % further back.
+void PressPoint(const SoilSurface& surface, const Eigen::Vector3d& point, double exponent,
+                SoilMemory::PathPress* press) {
+  const Eigen::Vector2d at = SoilCoordinates(surface, point);
+  const double z = -HeightAbove(surface, point);
+  if (z > press->Cell(at.x(), at.y()).z) press->Deepen(z, std::pow(z, exponent));
+}
+
 void PressLowest(const WheelState& wheel, const WheelFrame& frame, const SoilSurface& surface,
-                 double sinkage, double exponent, SoilMemory::PathPress* press) {
-  const Eigen::Vector2d at = SoilCoordinates(surface, wheel.centre - wheel.radius * frame.up);
-  if (sinkage > press->Cell(at.x(), at.y()).z) press->Deepen(sinkage, std::pow(sinkage, exponent));
+                 double exponent, SoilMemory::PathPress* press) {
+  PressPoint(surface, wheel.centre - wheel.radius * frame.up, exponent, press);
 }
 
 void CheckSamples(int samples) {
@@ -543,7 +561,7 @@ WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSu
   for (ArcAngles angles(half, step); angles.k < samples; angles.Next())
     arc[static_cast<size_t>(angles.k)] =
         points.At(memory, angles.theta, angles.cos_theta, angles.sin_theta, step);
-  if (memory.pressed) PressLowest(wheel, frame, surface, out.sinkage, soil.n, memory.pressed);
+  if (memory.pressed) PressLowest(wheel, frame, surface, soil.n, memory.pressed);
   const int count = CutAtLoadedEnds(points, memory, arc.data(), samples);
   out.theta_front = -half;
   out.theta_rear = half;
@@ -580,7 +598,6 @@ WheelSoilForces PressWheelOnSoil(const Soil& soil, const WheelState& wheel,
 
 void PressWheel(const Soil& soil, const WheelState& wheel, const SoilSurface& surface,
                 SoilMemory* memory, int samples) {
-  const double exponent = soil.n;
   CheckSamples(samples);
   const WheelFrame frame = FrameOf(wheel, surface);
   if (!frame.valid) return;
@@ -590,13 +607,9 @@ void PressWheel(const Soil& soil, const WheelState& wheel, const SoilSurface& su
   const double half = ArcHalfAngle(sinkage, wheel.radius, &stuck);
   const double step = 2.0 * half / samples;
   SoilMemory::PathPress press(memory);
-  for (ArcAngles angles(half, step); angles.k < samples; angles.Next()) {
-    const Eigen::Vector3d point = RimPoint(wheel, frame, angles.cos_theta, angles.sin_theta);
-    const Eigen::Vector2d at = SoilCoordinates(surface, point);
-    const double z = -HeightAbove(surface, point);
-    if (z > press.Cell(at.x(), at.y()).z) press.Deepen(z, std::pow(z, exponent));
-  }
-  PressLowest(wheel, frame, surface, sinkage, exponent, &press);
+  for (ArcAngles angles(half, step); angles.k < samples; angles.Next())
+    PressPoint(surface, RimPoint(wheel, frame, angles.cos_theta, angles.sin_theta), soil.n, &press);
+  PressLowest(wheel, frame, surface, soil.n, &press);
 }
 
 }  // namespace simpartner::sim

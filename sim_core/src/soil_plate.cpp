@@ -185,17 +185,10 @@ PlateSoilForces PressPlateOnSoil(const Soil& soil, const PlateState& plate,
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
   for (int k = 0; k < count; ++k) {
     const PlatePoint& p = points[static_cast<size_t>(k)];
-    const SoilMemory::Depth before = memory->At(p.key.x(), p.key.y());
-    double s = 0.0, ds = 0.0;
-    if (p.z >= before.z) {
-      s = soil.Pressure(p.z, b);
-      ds = soil.n * s / p.z;
-    } else {
-      const double p_max = (soil.k_c / b + soil.k_phi) * before.z_n;
-      ds = soil.UnloadingSlope(before.z, p_max);
-      s = std::max(0.0, p_max - ds * (before.z - p.z));
-      if (s == 0.0) ds = 0.0;
-    }
+    const PressureOnSoil pressed =
+        PressureWithMemory(soil, p.z, memory->At(p.key.x(), p.key.y()), b);
+    double s = pressed.pressure;
+    const double ds = pressed.slope;
     const Eigen::Vector3d v =
         plate.velocity + plate.angular_velocity.cross(p.underside - plate.pose.translation());
     if (s > 0.0) s = std::max(0.0, s - soil.viscosity * v.dot(surface.up));

@@ -143,9 +143,20 @@ class SoilMemory {
   std::unordered_map<uint64_t, Depth> deepest_;
 };
 
-// The pressure [Pa] of soil pressed to z where it was pressed to z_max
-// before, under a plate of width b: Bekker's curve when z >= z_max, its
-// unloading line below, never negative.
+// The pressure of soil pressed to z where it was pressed before as
+// `before` says, under a plate of width b: Bekker's curve when z >=
+// before.z (then `loading`, and z_n = z^n for the memory; 0 where z <= 0),
+// its unloading line below, never negative; and its slope against sinking
+// further (0 where the pressure is 0). The one rule of wheels and plates.
+struct PressureOnSoil {
+  double pressure = 0.0;  // [Pa]
+  double slope = 0.0;     // [Pa/m]
+  bool loading = false;
+  double z_n = 0.0;       // z^n when loading
+};
+PressureOnSoil PressureWithMemory(const Soil& soil, double z, const SoilMemory::Depth& before,
+                                  double b);
+// Its pressure [Pa] where the soil was pressed to z_max before.
 double PressureWithMemory(const Soil& soil, double z, double z_max, double b);
 
 // A rigid wheel and its motion, in world coordinates.
