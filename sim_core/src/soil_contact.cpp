@@ -152,23 +152,30 @@ std::optional<SoilContactRows> SoilContacts::Contact(int index, int body,
   readout.up = surface.up;
   readout.surface_u_axis = surface.u_axis;
   readout.axle_torque = now.shear_torque;
-  readout.stuck = SlippingLong(index, body, now.slip) || now.stuck;
+  WheelHistory& history = history_[{index, body}];
+  history.seen = true;
+  readout.stuck = SlippingLong(now.slip, &history) || now.stuck;
   pressing_.push_back(readout);
-  HoldAtRest(index, body, wheel, now.normal_force, &rows);
+  HoldAtRest(index, body, wheel, now.normal_force, &history, &rows);
   return rows;
 }
 
 void SoilContacts::HoldAtRest(int ground, int body, const WheelState& wheel,
-                              const Eigen::Vector3d& normal_force, SoilContactRows* rows) {
+                              const Eigen::Vector3d& normal_force, WheelHistory* history,
+                              SoilContactRows* rows) {
   const double K = grounds_.at(static_cast<size_t>(ground)).soil.shear_modulus;
   const Eigen::Vector3d rim_velocity =
       wheel.velocity + wheel.angular_velocity.cross(rows->point - wheel.centre);
   const auto key = std::make_pair(ground, body);
-  LastMotion& last =
-      last_motion_.try_emplace(key, LastMotion{wheel.velocity, rim_velocity, true}).first->second;
-  const bool still = (wheel.velocity + last.velocity).norm() < 2 * kRestSpeed &&
-                     (rim_velocity + last.rim_velocity).norm() < 2 * kRestSpeed;
-  last = LastMotion{wheel.velocity, rim_velocity, true};
+  if (!history->has_velocity) {  // its first step on soil: the mean is this one
+    history->velocity = wheel.velocity;
+    history->rim_velocity = rim_velocity;
+    history->has_velocity = true;
+  }
+  const bool still = (wheel.velocity + history->velocity).norm() < 2 * kRestSpeed &&
+                     (rim_velocity + history->rim_velocity).norm() < 2 * kRestSpeed;
+  history->velocity = wheel.velocity;
+  history->rim_velocity = rim_velocity;
   auto it = anchors_.find(key);
   if (!still && it == anchors_.end()) return;
   if (it == anchors_.end()) it = anchors_.emplace(key, Anchor{rows->point, false}).first;
@@ -196,11 +203,9 @@ void SoilContacts::HoldAtRest(int ground, int body, const WheelState& wheel,
   rows->side_slope = slope;
 }
 
-bool SoilContacts::SlippingLong(int ground, int body, double slip) {
-  Slipping& s = slipping_[{ground, body}];
-  s.seconds = slip >= kStuckSlip ? s.seconds + stepsize_ : 0.0;
-  s.seen = true;
-  return s.seconds >= kStuckSeconds;
+bool SoilContacts::SlippingLong(double slip, WheelHistory* history) const {
+  history->slipping_seconds = slip >= kStuckSlip ? history->slipping_seconds + stepsize_ : 0.0;
+  return history->slipping_seconds >= kStuckSeconds;
 }
 
 std::optional<SoilContactRows> SoilContacts::PlateContact(int index, const PlateState& plate) {
@@ -239,9 +244,8 @@ void SoilContacts::AfterStep(std::vector<std::string>* messages) {
                           "soil)");
   last_step_.swap(pressing_);
   pressing_.clear();
-  ForgetUnseen(&slipping_);
+  ForgetUnseen(&history_);
   ForgetUnseen(&anchors_);
-  ForgetUnseen(&last_motion_);
 }
 
 }  // namespace simpartner::sim

@@ -74,7 +74,7 @@ inline constexpr double kLeastShearSlope = 1.0;
 // fast [m/s] below its strength: its rows' slope is the strength over it.
 inline constexpr double kPlateCreepSpeed = 1e-3;
 // A wheel whose rim and centre both move slower than this [m/s] (the
-// mean of this step and the last: LastMotion) is at rest: the soil holds it by its shear displacement from where it came to
+// mean of this step and the last: WheelHistory) is at rest: the soil holds it by its shear displacement from where it came to
 // rest (an anchor), Janosi and Hanamoto's tau_max (1 - e^(-j / K)) for a
 // small j, a spring of strength / K, not by the slip law, which has no
 // rest (at any speed it would let the wheel creep). Past K from the
@@ -137,9 +137,6 @@ class SoilContacts {
   static SoilSurface SurfaceBelow(const Ground& ground, const Eigen::Vector3d& point);
   // The heightfield's tangent plane at (x, z) of its own frame.
   static SoilSurface FieldPlane(const Ground& ground, double x, double z);
-  // Whether the wheel `body` on `ground` has been driven at slip
-  // kStuckSlip or more for kStuckSeconds, counting this step at `slip`.
-  bool SlippingLong(int ground, int body, double slip);
 
   double stepsize_;
   std::vector<Ground> grounds_;
@@ -147,28 +144,31 @@ class SoilContacts {
   // Holds a wheel at rest by its anchor (kRestSpeed): its friction rows
   // become the shear's spring from where it came to rest, and its plain
   // force the normal stresses' `normal_force` alone.
+  struct WheelHistory;
   void HoldAtRest(int ground, int body, const WheelState& wheel,
-                  const Eigen::Vector3d& normal_force, SoilContactRows* rows);
+                  const Eigen::Vector3d& normal_force, WheelHistory* history,
+                  SoilContactRows* rows);
+  // Whether the wheel has been driven at slip kStuckSlip or more for
+  // kStuckSeconds, counting this step at `slip`.
+  bool SlippingLong(double slip, WheelHistory* history) const;
 
-  struct Slipping {
-    double seconds = 0.0;
+  // What a wheel on soil did in the steps before this one.
+  struct WheelHistory {
+    double slipping_seconds = 0.0;  // driven at kStuckSlip or more
+    // Its velocities the step before (once it has one): rest is judged on
+    // the mean of two steps, so that a wheel rocking at the step's period
+    // (each step the opposite of the last, as the slip law's shear flips
+    // sign at speeds near 0) counts as still, and its anchor stops it.
+    bool has_velocity = false;
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero(), rim_velocity = Eigen::Vector3d::Zero();
     bool seen = false;  // this step
   };
-  std::map<std::pair<int, int>, Slipping> slipping_;  // per (ground, wheel body)
+  std::map<std::pair<int, int>, WheelHistory> history_;  // per (ground, wheel body)
   struct Anchor {
     Eigen::Vector3d at = Eigen::Vector3d::Zero();  // the lowest rim point when it came to rest
     bool seen = false;                             // this step
   };
   std::map<std::pair<int, int>, Anchor> anchors_;  // per (ground, wheel body) at rest
-  // A wheel's velocities the step before: rest is judged on the mean of
-  // two steps, so that a wheel rocking at the step's period (each step
-  // the opposite of the last, as the slip law's shear flips sign at speeds
-  // near 0) counts as still, and its anchor stops the rocking.
-  struct LastMotion {
-    Eigen::Vector3d velocity = Eigen::Vector3d::Zero(), rim_velocity = Eigen::Vector3d::Zero();
-    bool seen = false;  // this step
-  };
-  std::map<std::pair<int, int>, LastMotion> last_motion_;  // per (ground, wheel body)
 };
 
 }  // namespace simpartner::sim
