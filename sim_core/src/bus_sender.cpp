@@ -64,7 +64,10 @@ bool BusSender::WaitForWork(std::unique_lock<std::mutex>* lock, bool sent_before
   // After a round that sent something, more is likely: look again after
   // kPollPeriod. With nothing to send, sleep until woken.
   if (sent_before) queued_.wait_for(*lock, kPollPeriod, woken);
-  if (queue_.empty() && !stop_) {
+  // Woken with nothing queued (a Flush with nothing left to send): wait
+  // again; only a stop ends the thread.
+  while (queue_.empty() && !stop_) {
+    wake_ = false;
     sleeping_ = true;
     queued_.wait(*lock, woken);
     sleeping_ = false;

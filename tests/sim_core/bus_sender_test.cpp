@@ -127,6 +127,27 @@ TEST(BusSender, ASendToAnIdleSenderGoesOutWithoutFlushOrKick) {
   }
 }
 
+TEST(BusSender, KeepsSendingAfterAFlushWithNothingQueued) {
+  lcm::LCM lcm("memq://");
+  Heard heard(&lcm);
+  BusSender sender(&lcm, nullptr);
+  for (int round = 0; round < 3; ++round) {
+    // Flushes that find nothing to send wake the sending thread with
+    // nothing: it must go back to waiting, not end.
+    sender.Flush();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    sender.Flush();
+    status_t status{};
+    status.step = round;
+    sender.Send(channels::kStatus, std::move(status));
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (heard.messages.size() < static_cast<size_t>(round + 1) &&
+           std::chrono::steady_clock::now() < deadline)
+      lcm.handleTimeout(10);
+    ASSERT_EQ(heard.messages.size(), static_cast<size_t>(round + 1)) << "round " << round;
+  }
+}
+
 TEST(BusSender, SignsEachMessageInOrderForAReaderWithTheKey) {
   BusSigning::Key key{};
   key[0] = 7;
