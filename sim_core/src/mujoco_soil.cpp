@@ -17,8 +17,6 @@
 // joint stops are solved after them, with the soil's forces applied.
 #include <mujoco/mujoco.h>
 
-#include <Eigen/Cholesky>
-
 #include <algorithm>
 #include <cmath>
 
@@ -37,10 +35,12 @@ Eigen::Vector3d At(const mjtNum* v) { return Eigen::Vector3d(v[0], v[1], v[2]); 
 
 // Solves Q f = q for f within [lo, hi], Q symmetric positive definite:
 // the direct solution when it is inside, projected Gauss-Seidel from its
-// projection else.
+// projection else. `ldlt` is working space.
 void SolveBoxed(const Eigen::MatrixXd& Q, const Eigen::VectorXd& q, const Eigen::VectorXd& lo,
-                const Eigen::VectorXd& hi, Eigen::VectorXd* f) {
-  *f = Q.ldlt().solve(q);
+                const Eigen::VectorXd& hi, Eigen::LDLT<Eigen::MatrixXd>* ldlt,
+                Eigen::VectorXd* f) {
+  ldlt->compute(Q);
+  *f = ldlt->solve(q);
   if (((f->array() >= lo.array()) && (f->array() <= hi.array())).all()) return;
   *f = f->cwiseMax(lo).cwiseMin(hi);
   for (int sweep = 0; sweep < kMostSweeps; ++sweep) {
@@ -73,7 +73,10 @@ void MujocoWorld::MapSoil() {
           soil_->AddHeightfield(*soil, *world.heightfield, world.HeightfieldPose());
     }
   if (!soil_) return;
-  soil_qfrc_ = Eigen::VectorXd::Zero(m_->nv);
+  soil_scratch_.qfrc = Eigen::VectorXd::Zero(m_->nv);
+  soil_scratch_.qacc = Eigen::VectorXd::Zero(m_->nv);
+  soil_scratch_.vel = Eigen::VectorXd::Zero(m_->nv);
+  soil_scratch_.point_jac.resize(3, m_->nv);
   // Each step meets every wheel and plate with every ground of soil: both
   // lists are the model's, found once.
   for (int g = 0; g < m_->ngeom; ++g) {
@@ -156,18 +159,18 @@ bool MujocoWorld::OverHeightfield(int geom) const {
 void MujocoWorld::ApplySoil() {
   if (!soil_) return;
   on_soil_.clear();
-  soil_qfrc_.setZero();
+  SoilScratch& s = soil_scratch_;
+  s.qfrc.setZero();
   for (int g : soil_pressers_) CollectSoilContacts(g);
   if (on_soil_.empty()) return;
   // The plain forces, then the rows solved with the acceleration they give.
   for (const SoilBody& wheel : on_soil_) {
     mjtNum centre[3] = {wheel.rows.centre.x(), wheel.rows.centre.y(), wheel.rows.centre.z()};
     mj_applyFT(m_, d_, wheel.rows.force.data(), wheel.rows.torque.data(), centre,
-               m_->geom_bodyid[wheel.geom], soil_qfrc_.data());
+               m_->geom_bodyid[wheel.geom], s.qfrc.data());
   }
-  Eigen::VectorXd plain_qacc(m_->nv);
-  mj_solveM(m_, d_, plain_qacc.data(), soil_qfrc_.data(), 1);
-  SolveSoilRows(plain_qacc);
+  mj_solveM(m_, d_, s.qacc.data(), s.qfrc.data(), 1);
+  SolveSoilRows();
   // As Cartesian forces on the bodies (xfrc_applied, at their centres of
   // mass), not generalized ones: MuJoCo's joint reactions
   // (mj_rnePostConstraint, the joints' force readouts) count only these.
@@ -198,58 +201,61 @@ void MujocoWorld::CollectSoilContacts(int geom) {
   }
 }
 
-void MujocoWorld::SolveSoilRows(const Eigen::VectorXd& plain_qacc) {
+void MujocoWorld::SolveSoilRows() {
   const int nv = m_->nv;
   const auto rows = static_cast<Eigen::Index>(3 * on_soil_.size());
   const double h = params_.stepsize;
+  SoilScratch& s = soil_scratch_;
   // J: each wheel's rows (up, forward, across) at its lowest rim point.
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(rows, nv), MinvJT(rows, nv);
-  Jacobian point_jac(3, nv);
+  s.J.resize(rows, nv);
+  s.X.resize(rows, nv);
   for (size_t w = 0; w < on_soil_.size(); ++w) {
     const SoilContactRows& r = on_soil_[w].rows;
     mjtNum point[3] = {r.point.x(), r.point.y(), r.point.z()};
-    mj_jac(m_, d_, point_jac.data(), nullptr, point, m_->geom_bodyid[on_soil_[w].geom]);
+    mj_jac(m_, d_, s.point_jac.data(), nullptr, point, m_->geom_bodyid[on_soil_[w].geom]);
     const Eigen::Vector3d directions[3] = {r.up, r.forward, r.across};
     for (int k = 0; k < 3; ++k)
-      J.row(static_cast<Eigen::Index>(3 * w + k)) = directions[k].transpose() * point_jac;
+      s.J.row(static_cast<Eigen::Index>(3 * w + k)).noalias() =
+          directions[k].transpose() * s.point_jac;
   }
-  mj_solveM(m_, d_, MinvJT.data(), J.data(), static_cast<int>(rows));
-  const Eigen::MatrixXd A = J * MinvJT.transpose();
+  // A = J M^-1 J^T = X X^T with X = D^-1/2 L^-T J^T: half MuJoCo's solve.
+  mj_solveM2(m_, d_, s.X.data(), s.J.data(), static_cast<int>(rows));
   const Eigen::Map<const Eigen::VectorXd> qvel(d_->qvel, nv), qacc(d_->qacc_smooth, nv);
-  const Eigen::VectorXd v_free = J * (qvel + h * (qacc + plain_qacc));
+  s.vel.noalias() = qvel + h * (qacc + s.qacc);  // without the rows
+  s.v_free.noalias() = s.J * s.vel;
   // Each row's law f = c - d v+ (d > 0), bounds lo..hi; then
   // (D^-1 + h A) f = D^-1 c - v_free.
-  Eigen::VectorXd c(rows), d(rows), lo(rows), hi(rows);
+  for (Eigen::VectorXd* v : {&s.c, &s.d, &s.lo, &s.hi}) v->resize(rows);
   for (size_t w = 0; w < on_soil_.size(); ++w) {
     const SoilContactRows& r = on_soil_[w].rows;
     const auto i = static_cast<Eigen::Index>(3 * w);
-    c[i] = 0.0;
-    d[i] = r.stiffness * h;
+    s.c[i] = 0.0;
+    s.d[i] = r.stiffness * h;
     // The row adds to the plain force; their sum, not the row, is >= 0:
     // a rising wheel sheds load implicitly too (else the step would push
     // it up with the force of where it started, and pump the bounce).
-    lo[i] = -std::max(0.0, r.force.dot(r.up));
-    hi[i] = INFINITY;
+    s.lo[i] = -std::max(0.0, r.force.dot(r.up));
+    s.hi[i] = INFINITY;
     const double slopes[2] = {r.thrust_slope, r.side_slope};
     const double at[2] = {r.slip_velocity, r.side_velocity};
     const double force[2] = {r.thrust, r.side_force};
     for (int k = 0; k < 2; ++k) {
-      d[i + 1 + k] = -slopes[k];
-      c[i + 1 + k] = force[k] - slopes[k] * at[k];
-      lo[i + 1 + k] = -r.shear_strength;
-      hi[i + 1 + k] = r.shear_strength;
+      s.d[i + 1 + k] = -slopes[k];
+      s.c[i + 1 + k] = force[k] - slopes[k] * at[k];
+      s.lo[i + 1 + k] = -r.shear_strength;
+      s.hi[i + 1 + k] = r.shear_strength;
     }
   }
-  Eigen::MatrixXd Q = h * A;
-  Q.diagonal() += d.cwiseInverse();
-  const Eigen::VectorXd q = c.cwiseQuotient(d) - v_free;
-  Eigen::VectorXd f;
-  SolveBoxed(Q, q, lo, hi, &f);
+  s.Q.resize(rows, rows);
+  s.Q.noalias() = h * s.X.lazyProduct(s.X.transpose());
+  s.Q.diagonal() += s.d.cwiseInverse();
+  s.q.noalias() = s.c.cwiseQuotient(s.d) - s.v_free;
+  SolveBoxed(s.Q, s.q, s.lo, s.hi, &s.ldlt, &s.f);
   for (size_t w = 0; w < on_soil_.size(); ++w) {
     SoilBody& wheel = on_soil_[w];
     const auto i = static_cast<Eigen::Index>(3 * w);
-    wheel.row_force = f[i] * wheel.rows.up + f[i + 1] * wheel.rows.forward +
-                      f[i + 2] * wheel.rows.across;
+    wheel.row_force = s.f[i] * wheel.rows.up + s.f[i + 1] * wheel.rows.forward +
+                      s.f[i + 2] * wheel.rows.across;
   }
 }
 

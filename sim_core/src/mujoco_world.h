@@ -202,8 +202,8 @@ class MujocoWorld : public PhysicsEngine {
   // The soil's forces of this step onto the bodies (xfrc_applied).
   void ApplySoil();
   // The rows' forces of on_soil_ (SoilBody::row_force), from the plain
-  // forces' acceleration `plain_qacc`.
-  void SolveSoilRows(const Eigen::VectorXd& plain_qacc);
+  // forces' acceleration (soil_scratch_.qacc).
+  void SolveSoilRows();
   void CollectSoilForces();
 
   const model::FlatModel& model_;
@@ -245,7 +245,19 @@ class MujocoWorld : public PhysicsEngine {
   std::vector<int> soil_ground_geoms_;  // the geoms that are grounds of soil
   std::vector<int> soil_pressers_;      // the wheels and plates: the geoms that meet soil
   std::vector<SoilBody> on_soil_;      // this step's wheels on soil
-  Eigen::VectorXd soil_qfrc_;           // the soil's plain forces, generalized (scratch)
+  // Working space of the soil's rows, resized only when their number
+  // changes: a step on soil allocates nothing.
+  struct SoilScratch {
+    Eigen::VectorXd qfrc, qacc;  // the plain forces, generalized, and their acceleration
+    Eigen::VectorXd vel;         // the velocities the step would give without the rows
+    Jacobian point_jac;
+    // J, then D^-1/2 L^-T J^T (rows x nv), for M = L^T D L.
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J, X;
+    Eigen::MatrixXd Q;
+    Eigen::VectorXd v_free, c, d, lo, hi, q, f;
+    Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  };
+  SoilScratch soil_scratch_;
 };
 
 // What of model MuJoCo cannot represent, each naming the element with its
