@@ -116,16 +116,24 @@ Displacement ShearDisplacement(const Soil& soil, double radius, double v, double
   return {radius * turned - (v / omega) * (sin_entry - sin_theta), -side_speed * turned / omega};
 }
 
-// The shear stress [Pa] along and across the rim at normal stress sigma
-// after displacement d: Janosi and Hanamoto's law of the whole
-// displacement |d|, in its direction (Wong's combined slip), so a side
-// slip takes from the strength left for traction.
-Displacement ShearStress(const Soil& soil, double sigma, const Displacement& d) {
+// The shear stress along and across the rim per unit of strength
+// c + sigma tan phi, after displacement d: Janosi and Hanamoto's law of
+// the whole displacement |d|, in its direction (Wong's combined slip), so
+// a side slip takes from the strength left for traction. The same at
+// every point of a wheel that does not turn.
+Displacement ShearPerStrength(const Soil& soil, const Displacement& d) {
   // Not std::hypot: its care for overflow costs a sixth of the soil's time.
   const double j = std::sqrt(d.along * d.along + d.across * d.across);
   if (j == 0.0) return {};
-  const double tau = soil.Shear(sigma, j);
-  return {tau * d.along / j, tau * d.across / j};
+  const double per_j = (1.0 - std::exp(-j / soil.shear_modulus)) / j;
+  return {per_j * d.along, per_j * d.across};
+}
+
+// The shear stress [Pa] at normal stress sigma after displacement d.
+Displacement ShearStress(const Soil& soil, double sigma, const Displacement& d) {
+  const double strength = soil.cohesion + sigma * soil.tan_phi;
+  const Displacement unit = ShearPerStrength(soil, d);
+  return {strength * unit.along, strength * unit.across};
 }
 
 // The shear stress at a rim point with its derivatives against the spin
@@ -205,23 +213,43 @@ double Soil::UnloadingSlope(double z_max, double p_max) const {
   return z_max > 0.0 ? std::max(wong, std::max(1.0, n) * p_max / z_max) : wong;
 }
 
-double Soil::Shear(double sigma, double j) const {
-  const double strength = cohesion + sigma * tan_phi;
-  return std::copysign(strength * (1.0 - std::exp(-std::abs(j) / shear_modulus)), j);
-}
-
-SoilMemory::SoilMemory(double cell_size) : cell_size_(cell_size) {
+SoilMemory::SoilMemory(double cell_size) : cell_size_(cell_size), per_cell_(1.0 / cell_size) {
   if (!(cell_size > 0.0) || !std::isfinite(cell_size))
     throw std::invalid_argument("soil memory: a cell of " + std::to_string(cell_size) +
                                 " m, not a positive size");
 }
 
+namespace {
+
+// floor(x) as an integer, inline (std::floor is a library call here).
+int64_t FloorToInt(double x) {
+  const auto i = static_cast<int64_t>(x);
+  return static_cast<double>(i) > x ? i - 1 : i;
+}
+
+}  // namespace
+
 uint64_t SoilMemory::Key(double u, double w) const {
   // Two's complement cell indices, 32 bits each (shifting a negative
   // signed value is undefined).
-  const auto iu = static_cast<uint64_t>(static_cast<int64_t>(std::floor(u / cell_size_)));
-  const auto iw = static_cast<uint64_t>(static_cast<int64_t>(std::floor(w / cell_size_)));
+  const auto iu = static_cast<uint64_t>(FloorToInt(u * per_cell_));
+  const auto iw = static_cast<uint64_t>(FloorToInt(w * per_cell_));
   return (iu << 32) ^ (iw & 0xffffffffULL);
+}
+
+SoilMemory::Depth* SoilMemory::Find(uint64_t key) {
+  if (Depth* cached = cache_.Find(key)) return cached;
+  const auto it = deepest_.find(key);
+  if (it == deepest_.end()) return nullptr;
+  cache_.Put(key, &it->second);
+  return &it->second;
+}
+
+SoilMemory::Depth& SoilMemory::Entry(uint64_t key) {
+  if (Depth* found = Find(key)) return *found;
+  Depth& made = deepest_[key];  // references into the map stay valid as it grows
+  cache_.Put(key, &made);
+  return made;
 }
 
 SoilMemory::Depth SoilMemory::At(double u, double w) const {
@@ -241,6 +269,7 @@ size_t SoilMemory::ForgetOldest(size_t most) {
   paths.reserve(deepest_.size());
   for (const auto& [key, depth] : deepest_) paths.push_back(depth.path);
   std::nth_element(paths.begin(), paths.begin() + static_cast<std::ptrdiff_t>(forget - 1), paths.end());
+  cache_.Clear();
   const uint64_t newest_forgotten = paths[forget - 1];
   size_t forgotten = 0;
   for (auto it = deepest_.begin(); it != deepest_.end() && forgotten < forget;) {
@@ -269,8 +298,7 @@ const SoilMemory::Depth& SoilMemory::PathPress::Cell(double u, double w) {
   if (!in_cell_ || key != key_) {
     in_cell_ = true;
     key_ = key;
-    const auto it = memory_->deepest_.find(key_);
-    deepest_ = it == memory_->deepest_.end() ? nullptr : &it->second;
+    deepest_ = memory_->Find(key_);
     before_ = Before(key_, deepest_);
   }
   return before_;
@@ -285,8 +313,7 @@ void SoilMemory::PathPress::Deepen(double z, double z_n) {
                               std::to_string(kMaxPathCells) + " cells");
     deepened_[static_cast<size_t>(deepened_count_++)] = {key_, before_.z, before_.z_n};
   }
-  // References into an unordered_map stay valid as it grows.
-  if (!deepest_) deepest_ = &memory_->deepest_[key_];
+  if (!deepest_) deepest_ = &memory_->Entry(key_);
   *deepest_ = Depth{z, z_n, path_};
 }
 
@@ -399,6 +426,11 @@ ArcSums SumOverArc(const Soil& soil, const WheelState& wheel, const WheelFrame& 
   const double entry = EntryAngle(*out, w), sin_entry = std::sin(entry);
   const double faster_entry = EntryAngle(*out, w + kSpinStep);
   const double sin_faster_entry = std::sin(faster_entry);
+  // Not turning: the shear at the wheel's speeds, and at a side speed
+  // kSideStep faster, per unit of strength.
+  const Displacement still = ShearPerStrength(soil, {SlidFar(soil, v), SlidFar(soil, v_y)});
+  const Displacement sideways_still =
+      ShearPerStrength(soil, {SlidFar(soil, v), SlidFar(soil, v_y + kSideStep)});
   ArcSums sums;
   for (const ArcSample* a_point = arc; a_point != arc + samples; ++a_point) {
     const ArcSample& a = *a_point;
@@ -413,15 +445,13 @@ ArcSums SumOverArc(const Soil& soil, const WheelState& wheel, const WheelFrame& 
                                               v_y * turned / (w * w)},
                            {0.0, -turned / w});
     } else {
-      at.tau = ShearStress(soil, a.sigma, d);
+      const double strength = soil.cohesion + a.sigma * soil.tan_phi;
+      at.tau = {strength * still.along, strength * still.across};
       const Displacement faster = ShearStress(
           soil, a.sigma, ShearDisplacement(soil, r, v, v_y, w + kSpinStep, faster_entry,
                                            sin_faster_entry, a.theta, a.sin_theta));
-      const Displacement sideways = ShearStress(
-          soil, a.sigma,
-          ShearDisplacement(soil, r, v, v_y + kSideStep, w, entry, sin_entry, a.theta, a.sin_theta));
       at.per_spin = {(faster.along - at.tau.along) / kSpinStep, 0.0};
-      at.per_side = {0.0, (sideways.across - at.tau.across) / kSideStep};
+      at.per_side = {0.0, (strength * sideways_still.across - at.tau.across) / kSideStep};
     }
     const Eigen::Vector3d inward = a.cos_theta * frame.up - a.sin_theta * frame.forward;
     const Eigen::Vector3d tangent = a.cos_theta * frame.forward + a.sin_theta * frame.up;
@@ -448,19 +478,24 @@ struct ArcPoints {
   const WheelFrame& frame;
   const SinkingRate& sinking;
 
-  ArcSample At(const ArcMemory& memory, double theta, double cos_theta, double sin_theta,
-               double width) const {
-    ArcSample a{theta, cos_theta, sin_theta, width, 0.0, 0.0, false};
+  // Into `a` (in place: a copy of the sample cost a tenth of the pass).
+  void At(const ArcMemory& memory, double theta, double cos_theta, double sin_theta,
+          double width, ArcSample* a) const {
+    a->theta = theta;
+    a->cos_theta = cos_theta;
+    a->sin_theta = sin_theta;
+    a->width = width;
     NormalStress(soil, wheel, surface, memory, RimPoint(wheel, frame, cos_theta, sin_theta),
-                 sinking.At(cos_theta, sin_theta), &a);
-    return a;
+                 sinking.At(cos_theta, sin_theta), a);
   }
   // The part [lo, hi] of the arc, read only: where the loaded arc ends
   // is sought after the pass, on the memory as it was before it.
   ArcSample At(const ArcMemory& memory, double lo, double hi) const {
     const double theta = 0.5 * (lo + hi);
-    return At(ArcMemory{memory.read, memory.pressed, false}, theta, std::cos(theta),
-              std::sin(theta), hi - lo);
+    ArcSample a;
+    At(ArcMemory{memory.read, memory.pressed, false}, theta, std::cos(theta), std::sin(theta),
+       hi - lo, &a);
+    return a;
   }
 };
 
@@ -559,8 +594,8 @@ WheelSoilForces Evaluate(const Soil& soil, const WheelState& wheel, const SoilSu
   const SinkingRate sinking(wheel, frame, surface.up);
   const ArcPoints points{soil, wheel, surface, frame, sinking};
   for (ArcAngles angles(half, step); angles.k < samples; angles.Next())
-    arc[static_cast<size_t>(angles.k)] =
-        points.At(memory, angles.theta, angles.cos_theta, angles.sin_theta, step);
+    points.At(memory, angles.theta, angles.cos_theta, angles.sin_theta, step,
+              &arc[static_cast<size_t>(angles.k)]);
   if (memory.pressed) PressLowest(wheel, frame, surface, soil.n, memory.pressed);
   const int count = CutAtLoadedEnds(points, memory, arc.data(), samples);
   out.theta_front = -half;

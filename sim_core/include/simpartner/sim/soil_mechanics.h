@@ -61,9 +61,6 @@ struct Soil {
   // never shallower than Bekker's curve's steepest chord below z_max,
   // max(1, n) p_max / z_max, so that unloading and loading never cross.
   double UnloadingSlope(double z_max, double p_max) const;
-  // Janosi and Hanamoto's shear stress [Pa], its sign j's, at normal stress
-  // sigma [Pa] after shear displacement j [m].
-  double Shear(double sigma, double j) const;
 };
 
 // How deep one soil has been pressed, on a square grid of the ground
@@ -137,10 +134,50 @@ class SoilMemory {
   };
 
  private:
+  // Where recently read cells are held in the map, direct-mapped by key:
+  // a wheel's arc reads much the same cells step after step, and the
+  // map's lookup (a division by its prime bucket count, then a chain)
+  // was a fifth of a wheel's evaluation. Only cells the map holds are
+  // cached, and the map's nodes stay put as it grows; forgetting clears
+  // the cache, and a copy or a move starts with it empty.
+  class CellCache {
+   public:
+    CellCache() { Clear(); }
+    CellCache(const CellCache&) : CellCache() {}
+    CellCache& operator=(const CellCache&) {
+      Clear();
+      return *this;
+    }
+    // The cached entry of `key`, or nullptr.
+    Depth* Find(uint64_t key) const {
+      const Line& line = lines_[Index(key)];
+      return line.entry && line.key == key ? line.entry : nullptr;
+    }
+    void Put(uint64_t key, Depth* entry) { lines_[Index(key)] = {key, entry}; }
+    void Clear() { lines_.fill(Line{}); }
+
+   private:
+    static constexpr int kBits = 11;  // 2048 lines, 32 kB
+    static size_t Index(uint64_t key) {
+      return static_cast<size_t>((key * 0x9E3779B97F4A7C15ULL) >> (64 - kBits));
+    }
+    struct Line {
+      uint64_t key = 0;
+      Depth* entry = nullptr;
+    };
+    std::array<Line, size_t{1} << kBits> lines_;
+  };
+
   uint64_t Key(double u, double w) const;
+  // The entry of `key`, or nullptr where the cell is untouched.
+  Depth* Find(uint64_t key);
+  // The entry of `key`, made (untouched) where there is none.
+  Depth& Entry(uint64_t key);
   double cell_size_;
+  double per_cell_;     // 1 / cell_size_
   uint64_t paths_ = 0;  // PathPresses begun
   std::unordered_map<uint64_t, Depth> deepest_;
+  CellCache cache_;
 };
 
 // The pressure of soil pressed to z where it was pressed before as
