@@ -24,15 +24,13 @@
 #include "simpartner/model/sensor_parameters.h"
 #include "simpartner/sim/simulation.h"
 
+#include "rounds.h"
+
 namespace {
 
 using namespace simpartner;
-
-double ThreadCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
-}
+using bench::Median;
+using bench::ThreadCpuSeconds;
 
 // The world with only the sensors `keep` accepts.
 template <class Keep>
@@ -77,11 +75,6 @@ void Round(Variant* v, int steps) {
     }
   }
   v->micros_per_step.push_back((ThreadCpuSeconds() - start) * 1e6 / steps);
-}
-
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
 }
 
 }  // namespace

@@ -40,57 +40,14 @@
 #include "simpartner/sim/engine.h"
 #include "simpartner/sim/simulation.h"
 
+#include "motor_settings.h"
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
 using namespace simpartner;
-
-// A velocity motor set before the first step (--set).
-struct MotorSetting {
-  std::string name;
-  double fmax = 0.0, velocity = 0.0;
-};
-
-// NAME=FMAX,VELOCITY[;NAME=FMAX,VELOCITY...]; nullopt (said on err) when
-// a part is not of that form.
-std::optional<std::vector<MotorSetting>> ReadMotorSettings(const std::string& text,
-                                                           std::ostream& err) {
-  std::vector<MotorSetting> out;
-  std::stringstream parts(text);
-  std::string part;
-  while (std::getline(parts, part, ';')) {
-    MotorSetting m;
-    char equals = 0, comma = 0;
-    std::stringstream in(part);
-    if (!std::getline(in, m.name, '=') || m.name.empty() || !(in >> m.fmax >> comma >> m.velocity) ||
-        comma != ',' || (in >> equals)) {
-      err << "sim_bench: --set: '" << part << "' is not NAME=FMAX,VELOCITY\n";
-      return std::nullopt;
-    }
-    out.push_back(m);
-  }
-  return out;
-}
-
-// A simulation of `world` with the motors set (refused ones said on err).
-std::unique_ptr<sim::Simulation> MakeSim(const model::World& world, const Parameters& params,
-                                         const std::vector<MotorSetting>& motors, bool* ok) {
-  auto sim = std::make_unique<sim::Simulation>(world, params, 1);
-  for (const MotorSetting& m : motors) {
-    command_t c{};
-    c.sender = "sim_bench";
-    c.target = m.name;
-    c.action = command_t::ACTION_SET;
-    c.apply_at_step = -1;
-    c.values = {m.fmax, m.velocity};
-    c.num_values = 2;
-    if (const auto reply = sim->Submit(c); reply && !reply->accepted) {
-      std::cerr << "sim_bench: --set " << m.name << ": " << reply->reason << "\n";
-      *ok = false;
-    }
-  }
-  return sim;
-}
+using bench::MakeSim;
+using bench::MotorSetting;
 
 // Peak resident set size of this process [MB] (VmHWM).
 double PeakRssMb() {
@@ -144,7 +101,7 @@ int main(int argc, char** argv) {
   const int steps = static_cast<int>(args.Integer("steps", 5000));
   const std::string url = args.Text("lcm-url", "udpm://239.255.76.67:7667?ttl=0");
   const std::string engines = args.Text("engine", "both");
-  const auto motors = ReadMotorSettings(args.Text("set", ""), std::cerr);
+  const auto motors = bench::ReadMotorSettings(args.Text("set", ""), "sim_bench", std::cerr);
   if (!motors) return 2;
   std::vector<std::string> worlds = args.positional();
   if (worlds.empty()) {
@@ -211,7 +168,7 @@ int main(int argc, char** argv) {
       bool faulted = false, motors_ok = true;
       size_t bodies = 0;
       {
-        auto made = MakeSim(*loaded.world, params, *motors, &motors_ok);
+        auto made = MakeSim(*loaded.world, params, *motors, "sim_bench", std::cerr, &motors_ok);
         sim::Simulation& sim = *made;
         bodies = sim.flat().bodies.size();
         const auto start = Clock::now();
@@ -221,7 +178,7 @@ int main(int argc, char** argv) {
       if (!motors_ok) return 2;  // a --set the sim refused: said
       double enc_us = 0;
       {
-        auto made = MakeSim(*loaded.world, params, *motors, &motors_ok);
+        auto made = MakeSim(*loaded.world, params, *motors, "sim_bench", std::cerr, &motors_ok);
         sim::Simulation& sim = *made;
         state_t state;
         std::vector<uint8_t> buffer;
@@ -236,7 +193,7 @@ int main(int argc, char** argv) {
       }
       double sync_us = 0;
       {
-        auto made = MakeSim(*loaded.world, params, *motors, &motors_ok);
+        auto made = MakeSim(*loaded.world, params, *motors, "sim_bench", std::cerr, &motors_ok);
         sim::Simulation& sim = *made;
         state_t state;
         const auto start = Clock::now();
@@ -251,7 +208,7 @@ int main(int argc, char** argv) {
       BusSigning signing(BusSigning::Key{});
       double signed_us = 0;
       for (BusSigning* signer : {static_cast<BusSigning*>(nullptr), &signing}) {
-        auto made = MakeSim(*loaded.world, params, *motors, &motors_ok);
+        auto made = MakeSim(*loaded.world, params, *motors, "sim_bench", std::cerr, &motors_ok);
         sim::Simulation& sim = *made;
         sim::BusSender sender(&bus, signer);
         state_t state;
