@@ -73,6 +73,7 @@ void MujocoWorld::MapSoil() {
           soil_->AddHeightfield(*soil, *world.heightfield, world.HeightfieldPose());
     }
   if (!soil_) return;
+  soil_met_.assign(static_cast<size_t>(m_->ngeom), 0u);
   soil_scratch_.qfrc = Eigen::VectorXd::Zero(m_->nv);
   soil_scratch_.qacc = Eigen::VectorXd::Zero(m_->nv);
   soil_scratch_.vel = Eigen::VectorXd::Zero(m_->nv);
@@ -97,15 +98,21 @@ bool MujocoWorld::IsPlate(int geom) const {
 
 void MujocoWorld::DropSoilContacts() {
   if (!soil_) return;
+  std::fill(soil_met_.begin(), soil_met_.end(), 0u);
   int kept = 0;
   for (int i = 0; i < d_->ncon; ++i) {
     const mjContact& contact = d_->contact[i];
     const int g1 = contact.geom1, g2 = contact.geom2;
-    const bool on_soil1 = soil_ground_[static_cast<size_t>(g2)] >= 0 && (IsWheel(g1) || IsPlate(g1));
-    const bool on_soil2 = soil_ground_[static_cast<size_t>(g1)] >= 0 && (IsWheel(g2) || IsPlate(g2));
-    if (on_soil1 || on_soil2) continue;  // the soil answers it
-    if (kept != i) d_->contact[kept] = contact;
-    ++kept;
+    const int ground1 = soil_ground_[static_cast<size_t>(g1)];
+    const int ground2 = soil_ground_[static_cast<size_t>(g2)];
+    if (ground2 >= 0 && (IsWheel(g1) || IsPlate(g1))) {  // the soil answers it
+      soil_met_[static_cast<size_t>(g1)] |= 1u << ground2;
+    } else if (ground1 >= 0 && (IsWheel(g2) || IsPlate(g2))) {
+      soil_met_[static_cast<size_t>(g2)] |= 1u << ground1;
+    } else {
+      if (kept != i) d_->contact[kept] = contact;
+      ++kept;
+    }
   }
   d_->ncon = kept;
 }
@@ -148,14 +155,6 @@ PlateState MujocoWorld::PlateOf(int geom) const {
   return plate;
 }
 
-bool MujocoWorld::OverHeightfield(int geom) const {
-  const model::Heightfield& h = *model_.world->heightfield;
-  const Eigen::Vector3d at =
-      model_.world->HeightfieldPose().inverse() * At(d_->geom_xpos + 3 * geom);
-  const double reach = m_->geom_rbound[geom];
-  return std::abs(at.x()) <= 0.5 * h.width + reach && std::abs(at.z()) <= 0.5 * h.depth + reach;
-}
-
 void MujocoWorld::ApplySoil() {
   if (!soil_) return;
   on_soil_.clear();
@@ -193,7 +192,9 @@ void MujocoWorld::CollectSoilContacts(int geom) {
   const int body = geoms_[static_cast<size_t>(geom)].body;
   for (int ground_geom : soil_ground_geoms_) {
     const int ground = soil_ground_[static_cast<size_t>(ground_geom)];
-    if (m_->geom_type[ground_geom] == mjGEOM_HFIELD && !OverHeightfield(geom)) continue;
+    // Only where MuJoCo's collision found the geom below the ground's
+    // surface: every geom above the soil is passed over at once.
+    if (!(soil_met_[static_cast<size_t>(geom)] & (1u << ground))) continue;
     const std::optional<SoilContactRows> rows =
         IsWheel(geom) ? soil_->Contact(ground, body, WheelStateOf(geom))
                       : soil_->PlateContact(ground, PlateOf(geom));

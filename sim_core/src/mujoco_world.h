@@ -195,8 +195,6 @@ class MujocoWorld : public PhysicsEngine {
   void DropSoilContacts();
   WheelState WheelStateOf(int geom) const;
   PlateState PlateOf(int geom) const;
-  // Whether `geom` is over the heightfield's extent.
-  bool OverHeightfield(int geom) const;
   // The rows of `geom` on each ground of soil it presses, into on_soil_.
   void CollectSoilContacts(int geom);
   // The soil's forces of this step onto the bodies (xfrc_applied).
@@ -244,6 +242,10 @@ class MujocoWorld : public PhysicsEngine {
   std::vector<int> soil_ground_;        // per MuJoCo geom: its ground in soil_; -1: none
   std::vector<int> soil_ground_geoms_;  // the geoms that are grounds of soil
   std::vector<int> soil_pressers_;      // the wheels and plates: the geoms that meet soil
+  // Per MuJoCo geom, this step: bit g set where MuJoCo's collision found
+  // it against ground g of soil_ (a world has two at most: its plane and
+  // its heightfield).
+  std::vector<uint32_t> soil_met_;
   std::vector<SoilBody> on_soil_;      // this step's wheels on soil
   // Working space of the soil's rows, resized only when their number
   // changes: a step on soil allocates nothing.
