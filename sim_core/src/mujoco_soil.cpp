@@ -262,6 +262,7 @@ void MujocoWorld::SolveSoilRows() {
 
 void MujocoWorld::CollectSoilForces() {
   if (!soil_) return;
+  for (const SoilBody& wheel : on_soil_) soil_->RowForce(wheel.rows, wheel.row_force);
   soil_->AfterStep(&messages_);
   contact_count_ += static_cast<int>(on_soil_.size());
   for (const SoilBody& wheel : on_soil_) {

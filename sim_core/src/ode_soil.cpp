@@ -104,6 +104,7 @@ bool OdeSoil::Contact(dGeomID geom, dBodyID body, int flat_body, dGeomID ground,
   out->force = rows->force;
   out->at = rows->centre;
   out->torque = rows->torque;
+  out->rows = *rows;
   return true;
 }
 

@@ -49,9 +49,14 @@ class OdeSoil {
     Eigen::Vector3d force = Eigen::Vector3d::Zero();   // add at `at`
     Eigen::Vector3d at = Eigen::Vector3d::Zero();
     Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // add to the body
+    SoilContactRows rows;  // for RowForce once the step has solved them
   };
   bool Contact(dGeomID geom, dBodyID body, int flat_body, dGeomID ground, BodyContact* out);
 
+  // What a contact's rows carried in the step (SoilContacts::RowForce).
+  void RowForce(const SoilContactRows& rows, const Eigen::Vector3d& force) {
+    contacts_.RowForce(rows, force);
+  }
   // Ends a step (SoilContacts::AfterStep).
   void AfterStep(std::vector<std::string>* messages) { contacts_.AfterStep(messages); }
   const std::vector<WheelSoilReadout>& LastStep() const { return contacts_.LastStep(); }

@@ -531,7 +531,8 @@ bool OdeWorld::CollideWithSoil(dGeomID o1, dBodyID b1, dGeomID o2) {
   dBodyAddForceAtPos(b1, soil.force.x(), soil.force.y(), soil.force.z(), at.x(), at.y(), at.z());
   dBodyAddTorque(b1, soil.torque.x(), soil.torque.y(), soil.torque.z());
   const Eigen::Vector3d com = FromOde(dBodyGetPosition(b1));
-  soil_pushes_.push_back(SoilPush{g1.body, soil.force, soil.torque + (at - com).cross(soil.force)});
+  soil_pushes_.push_back(SoilPush{g1.body, soil.force, soil.torque + (at - com).cross(soil.force),
+                                  soil.rows, feedback});
   return true;
 }
 
@@ -624,7 +625,10 @@ void OdeWorld::Step() {
       throw Fail(e, "step");
     }
   }
-  if (soil_) soil_->AfterStep(&messages_);
+  if (soil_) {
+    for (const SoilPush& push : soil_pushes_) soil_->RowForce(push.rows, FromOde(push.feedback->f1));
+    soil_->AfterStep(&messages_);
+  }
   for (size_t i = 0; i < bodies_.size(); ++i) {
     contact_force_[i].setZero();
     contact_torque_[i].setZero();

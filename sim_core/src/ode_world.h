@@ -192,6 +192,8 @@ class OdeWorld : public PhysicsEngine {
   struct SoilPush {
     int body;
     Eigen::Vector3d force, torque;  // torque about the centre of mass
+    SoilContactRows rows;           // and the contact joint's rows
+    dJointFeedback* feedback;       // what they carried
   };
   std::vector<SoilPush> soil_pushes_;
   // The soil's contact of wheel o1 (body b1) with ground o2; false when o1

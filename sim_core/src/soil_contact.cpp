@@ -151,13 +151,27 @@ std::optional<SoilContactRows> SoilContacts::Contact(int index, int body,
   readout.surface_origin = surface.origin;
   readout.up = surface.up;
   readout.surface_u_axis = surface.u_axis;
-  readout.axle_torque = now.shear_torque;
   WheelHistory& history = history_[{index, body}];
   history.seen = true;
   readout.stuck = SlippingLong(now.slip, &history) || now.stuck;
-  pressing_.push_back(readout);
   HoldAtRest(index, body, wheel, now.normal_force, &history, &rows);
+  // The plain part of what the step applies; RowForce adds the rows'.
+  readout.shear_force = rows.force - now.normal_force;
+  readout.axle_torque = rows.torque.dot(wheel.axle);
+  rows.readout = static_cast<int>(pressing_.size());
+  pressing_.push_back(readout);
   return rows;
+}
+
+void SoilContacts::RowForce(const SoilContactRows& rows, const Eigen::Vector3d& force) {
+  if (rows.readout < 0) return;
+  WheelSoilReadout& readout = pressing_.at(static_cast<size_t>(rows.readout));
+  const Eigen::Vector3d normal = force.dot(rows.up) * rows.up;
+  readout.normal_force += normal;
+  readout.shear_force += force - normal;
+  // The rows act at the lowest rim point: r T along the axle for a thrust
+  // T, the share rows.torque left out of the shear's torque.
+  readout.axle_torque += (rows.point - rows.centre).cross(force).dot(readout.axle);
 }
 
 void SoilContacts::HoldAtRest(int ground, int body, const WheelState& wheel,

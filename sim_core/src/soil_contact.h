@@ -58,6 +58,8 @@ struct SoilContactRows {
   // slope [N s/m].
   double side_velocity = 0.0, side_force = 0.0, side_slope = 0.0;
   double shear_strength = 0.0;  // [N] the bound of each friction row
+  // A wheel's readout of this step (SoilContacts::RowForce), -1 for a plate.
+  int readout = -1;
 
   // The row's force [N] along forward at slip velocity v.
   double ThrustAt(double v) const { return thrust + thrust_slope * (v - slip_velocity); }
@@ -112,6 +114,12 @@ class SoilContacts {
   // pressure's centroid, its friction rows holding it with the soil's
   // shear (creeping below kPlateCreepSpeed); none when it is above.
   std::optional<SoilContactRows> PlateContact(int ground, const PlateState& plate);
+
+  // The force [N] the rows of `rows.readout` carried in the step (at
+  // rows.point), as the engine solved it: the wheel's readout then tells
+  // the force the step applied, plain and rows, not the evaluation before
+  // the solve. Call it for every wheel's rows, before AfterStep.
+  void RowForce(const SoilContactRows& rows, const Eigen::Vector3d& force);
 
   // Ends a step: the wheels that touched soil in it become LastStep(),
   // and each ground's memory is kept within kMaxSoilCells, saying so in

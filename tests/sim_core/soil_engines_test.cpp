@@ -1,7 +1,7 @@
 // A ground of soil (docs/soil.md) and the engines: both take a surface
 // and a heightfield of soil, and one soil unit (soil_contact.h) answers
 // the wheels on either, so the same wheel in the same state meets the
-// same soil: the first step's soil figures are equal on ODE and MuJoCo.
+// same soil: the first step's soil figures agree on ODE and MuJoCo.
 // A box on soil sinks on either as Bekker's plate.
 #include <gtest/gtest.h>
 
@@ -69,9 +69,12 @@ TEST(SoilAndEngines, TheSameWheelMeetsTheSameSoilOnBothEngines) {
   EXPECT_GT(ode.shear_force.x(), 0.0);  // driving: the soil pushes it on
   EXPECT_NEAR(mujoco.sinkage, ode.sinkage, 1e-12);
   EXPECT_NEAR(mujoco.slip, ode.slip, 1e-12);
-  EXPECT_LT((mujoco.normal_force - ode.normal_force).norm(), 1e-9 * ode.normal_force.norm());
-  EXPECT_LT((mujoco.shear_force - ode.shear_force).norm(), 1e-9 * ode.normal_force.norm());
-  EXPECT_NEAR(mujoco.axle_torque, ode.axle_torque, 1e-9 * ode.normal_force.norm());
+  // The forces are what the step applied: the same evaluation plus the
+  // same rows, each engine solving them its own way (ODE with its other
+  // constraints, MuJoCo's soil directly): equal to 1e-3.
+  EXPECT_LT((mujoco.normal_force - ode.normal_force).norm(), 1e-3 * ode.normal_force.norm());
+  EXPECT_LT((mujoco.shear_force - ode.shear_force).norm(), 1e-3 * ode.normal_force.norm());
+  EXPECT_NEAR(mujoco.axle_torque, ode.axle_torque, 1e-3 * std::abs(ode.axle_torque));
 }
 
 // A 50 kg box (0.2 x 0.1 x 0.4 m) lowered onto the sand over 2 s sinks as
