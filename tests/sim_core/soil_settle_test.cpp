@@ -116,11 +116,8 @@ TEST_P(SoilSettle, Gen3StandsAtRestAtBekkersSinkageFromTheFirstStep) {
 // 0.5 s, the chassis below 1 mm/s from 1 s. Its sinkage is Bekker's at
 // its load within 2 % at the front wheels but not at the rear ones on
 // the soils it sinks deepest into (dry sand, snow, lunar: 4.5 to 7.7 %
-// deeper): as the weight comes on the robot pitches forward, and the
-// rear wheels, loaded up to 10 % over their final load early in the
-// settle (372 N against 338 N on dry sand), keep that sinkage on the
-// unloading line. Heavy clay sinks 0.03 to 0.07 mm, a tenth of a memory
-// cell: within 0.02 mm of Bekker's.
+// deeper; docs/soil.md says what is known of why). Heavy clay sinks 0.03
+// to 0.07 mm, a tenth of a memory cell: within 0.02 mm of Bekker's.
 //
 // Not ODE on snow_sweden: its settle does not end (the chassis still at
 // 10 mm/s after 10 s, the front wheels sliding and creeping deeper).
