@@ -25,6 +25,7 @@ cases=(
   "multi_host_bench|Needs root|--rte 5|--rate"
   "lockstep_bench|What lock-step costs|--tikcs 5|--ticks"
   "sensor_bench|without its field sensors|--rouns 5|--rounds"
+  "soil_bench|on rigid ground (the first world) and on soil|--rouns 5|--rounds"
   "gait_slip|Plays a gen1 gait on ice|--gati rolking|--gait"
 )
 listed=" "
@@ -58,6 +59,7 @@ expect_refusal() {  # expected text, then the command line
 }
 expect_refusal "--steps: value 'many' is not a whole number" sim_bench --steps many
 expect_refusal "--set: 'Axle1Motor=1000' is not NAME=FMAX,VELOCITY" sim_bench --set Axle1Motor=1000
+expect_refusal "--set: 'Axle1Motor=1000' is not NAME=FMAX,VELOCITY" soil_bench --set Axle1Motor=1000
 expect_refusal "--seconds: value 'x' is not a number" logger_bench --seconds x
 expect_refusal "--count needs a value (--count N)" latency_bench --count
 expect_refusal "unexpected argument 'world.xml' (it takes no arguments)" logger_bench world.xml
