@@ -11,6 +11,7 @@
 #include <set>
 
 #include "simpartner/bitmap_font.h"
+#include "simpartner/bus_url.h"
 #include "simpartner/viewer/keys.h"
 #include "simpartner/viewer/options.h"
 #include "simpartner/png_image.h"
@@ -156,7 +157,11 @@ TEST(OptionsTest, DefaultsAndScreenshotFlags) {
   const ViewerOptions d = Options({});
   EXPECT_EQ(d.width, 1280);
   EXPECT_EQ(d.height, 720);
-  EXPECT_EQ(d.lcm_url, kDefaultLcmUrl);
+  // Its socket asks for the large receive buffer: with the kernel's
+  // default LCM warned "the kernel UDP receive buffer is very small" and
+  // a viewer beside a fast sim missed states.
+  EXPECT_EQ(d.lcm_url, WithReceiveBuffer(kDefaultLcmUrl));
+  EXPECT_NE(d.lcm_url.find("recv_buf_size="), std::string::npos);
   EXPECT_TRUE(d.screenshot.empty());
   EXPECT_TRUE(d.toggles.follow);
   EXPECT_FALSE(d.toggles.wireframe);
@@ -166,7 +171,7 @@ TEST(OptionsTest, DefaultsAndScreenshotFlags) {
   EXPECT_EQ(s.screenshot, "a.png");
   EXPECT_DOUBLE_EQ(s.after_seconds, 1.5);
   EXPECT_EQ(s.width, 800);
-  EXPECT_EQ(s.lcm_url, "udpm://239.255.76.67:7700?ttl=0");
+  EXPECT_EQ(s.lcm_url, "udpm://239.255.76.67:7700?ttl=0&recv_buf_size=4194304");
   // A screenshot without a time is taken after 2 s.
   EXPECT_DOUBLE_EQ(Options({"--screenshot", "b.png"}).after_seconds, 2.0);
   EXPECT_EQ(Options({"--screenshot", "b.png", "--frames", "5"}).after_frames, 5);

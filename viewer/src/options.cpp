@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "simpartner/bus_url.h"
 #include "simpartner/viewer/keys.h"
 
 namespace simpartner::viewer {
@@ -100,7 +101,9 @@ CommandLineSpec ViewerCommandLine() {
 ViewerOptions MakeViewerOptions(const CommandLine& command_line, const Parameters& params) {
   DiagnosticList diagnostics;
   ViewerOptions o;
-  o.lcm_url = params.lcmUrl;
+  // With the large receive buffer (bus_url.h): a viewer busy drawing a
+  // frame misses no state of a sim running faster than real time.
+  o.lcm_url = WithReceiveBuffer(params.lcmUrl);
   o.width = static_cast<int>(command_line.Number("width", o.width));
   o.height = static_cast<int>(command_line.Number("height", o.height));
   o.max_fps = command_line.Number("fps", o.max_fps);
