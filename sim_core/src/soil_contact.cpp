@@ -141,9 +141,7 @@ std::optional<SoilContactRows> SoilContacts::Contact(int index, int body,
   readout.body = body;
   readout.ground = ground.shape != nullptr ? SoilGround::kHeightfield : SoilGround::kPlane;
   readout.sinkage = now.sinkage;
-  readout.slip = now.slip;
   readout.normal_force = now.normal_force;
-  readout.shear_force = now.shear_force;
   readout.forward = rows.forward;
   readout.axle = wheel.axle;
   readout.lowest_point = rows.point;
@@ -153,8 +151,11 @@ std::optional<SoilContactRows> SoilContacts::Contact(int index, int body,
   readout.surface_u_axis = surface.u_axis;
   WheelHistory& history = history_[{index, body}];
   history.seen = true;
-  readout.stuck = SlippingLong(now.slip, &history) || now.stuck;
-  HoldAtRest(index, body, wheel, now.normal_force, &history, &rows);
+  // Held by its anchor the wheel is at rest: its slip, a ratio of speeds
+  // below 1 mm/s, would be noise (+-0.1 on sand), and is 0.
+  const bool held = HoldAtRest(index, body, wheel, now.normal_force, &history, &rows);
+  readout.slip = held ? 0.0 : now.slip;
+  readout.stuck = SlippingLong(readout.slip, &history) || now.stuck;
   // The plain part of what the step applies; RowForce adds the rows'.
   readout.shear_force = rows.force - now.normal_force;
   readout.axle_torque = rows.torque.dot(wheel.axle);
@@ -174,7 +175,7 @@ void SoilContacts::RowForce(const SoilContactRows& rows, const Eigen::Vector3d& 
   readout.axle_torque += (rows.point - rows.centre).cross(force).dot(readout.axle);
 }
 
-void SoilContacts::HoldAtRest(int ground, int body, const WheelState& wheel,
+bool SoilContacts::HoldAtRest(int ground, int body, const WheelState& wheel,
                               const Eigen::Vector3d& normal_force, WheelHistory* history,
                               SoilContactRows* rows) {
   const double K = grounds_.at(static_cast<size_t>(ground)).soil.shear_modulus;
@@ -191,12 +192,12 @@ void SoilContacts::HoldAtRest(int ground, int body, const WheelState& wheel,
   history->velocity = wheel.velocity;
   history->rim_velocity = rim_velocity;
   auto it = anchors_.find(key);
-  if (!still && it == anchors_.end()) return;
+  if (!still && it == anchors_.end()) return false;
   if (it == anchors_.end()) it = anchors_.emplace(key, Anchor{rows->point, false}).first;
   const Eigen::Vector3d j = rows->point - it->second.at;
   if (j.norm() > K || !still) {  // slid past the elastic range, or moving: the slip law
     anchors_.erase(it);
-    return;
+    return false;
   }
   it->second.seen = true;
   // The anchor is the shear at rest: the slip law's shear (its part along
@@ -215,6 +216,7 @@ void SoilContacts::HoldAtRest(int ground, int body, const WheelState& wheel,
   rows->side_velocity = rim_velocity.dot(rows->across);
   rows->side_force = -spring * j.dot(rows->across) + slope * rows->side_velocity;
   rows->side_slope = slope;
+  return true;
 }
 
 bool SoilContacts::SlippingLong(double slip, WheelHistory* history) const {

@@ -151,9 +151,9 @@ class SoilContacts {
   std::vector<WheelSoilReadout> pressing_, last_step_;  // this step's, the last step's
   // Holds a wheel at rest by its anchor (kRestSpeed): its friction rows
   // become the shear's spring from where it came to rest, and its plain
-  // force the normal stresses' `normal_force` alone.
+  // force the normal stresses' `normal_force` alone. True when it holds it.
   struct WheelHistory;
-  void HoldAtRest(int ground, int body, const WheelState& wheel,
+  bool HoldAtRest(int ground, int body, const WheelState& wheel,
                   const Eigen::Vector3d& normal_force, WheelHistory* history,
                   SoilContactRows* rows);
   // Whether the wheel has been driven at slip kStuckSlip or more for

@@ -54,6 +54,7 @@ double Load(const WheelSoilReadout& w) { return (w.normal_force + w.shear_force)
 struct Standing {
   std::map<int, std::vector<double>> loads;  // per wheel body, per step
   std::vector<double> chassis_speed;         // the faster chassis, per step
+  double largest_slip = 0.0;                 // |slip| of any wheel from 0.5 s on
   std::vector<WheelSoilReadout> last;
   std::string settle_message;  // the sim's word on the settle
 };
@@ -74,7 +75,10 @@ Standing Stand(const std::string& engine, bool settle, double seconds,
     EXPECT_TRUE(sim.Step()) << engine << ", step " << k;
     if (::testing::Test::HasFailure()) return out;
     out.last = sim.engine().ReadWheelSoil();
-    for (const WheelSoilReadout& w : out.last) out.loads[w.body].push_back(Load(w));
+    for (const WheelSoilReadout& w : out.last) {
+      out.loads[w.body].push_back(Load(w));
+      if (k * params.stepsize >= 0.5) out.largest_slip = std::max(out.largest_slip, std::abs(w.slip));
+    }
     out.chassis_speed.push_back(std::max(sim.engine().ReadBody(front).linear_velocity.norm(),
                                          sim.engine().ReadBody(rear).linear_velocity.norm()));
   }
@@ -95,6 +99,8 @@ TEST_P(SoilSettle, Gen3StandsAtRestAtBekkersSinkageFromTheFirstStep) {
   }
   for (size_t k = static_cast<size_t>(std::lround(1.0 / h)); k < s.chassis_speed.size(); ++k)
     ASSERT_LT(s.chassis_speed[k], 1e-3) << "step " << k;
+  // Standing, no wheel slips: the ratio of speeds below 1 mm/s is not read.
+  EXPECT_EQ(s.largest_slip, 0.0);
   const model::World world = Gen3OnLeteSand();
   const model::FlatModel flat = model::Flatten(world);
   double total = 0.0;
