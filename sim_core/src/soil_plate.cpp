@@ -42,6 +42,22 @@ std::optional<double> CapsuleEntry(const Eigen::Vector3d& p, const Eigen::Vector
   return best;
 }
 
+// Where the line p + t d (the body's own frame) enters the body.
+std::optional<double> EntryInBodyFrame(const PlateState& plate, const Eigen::Vector3d& p,
+                                       const Eigen::Vector3d& d) {
+  switch (plate.kind) {
+    case model::GeometryKind::kBox: {
+      const std::optional<LineSpan> span = LineThroughBox(p, d, 0.5 * plate.size);
+      return span ? std::optional<double>(span->enter) : std::nullopt;
+    }
+    case model::GeometryKind::kSphere:
+      return SphereEntry(p, d, Eigen::Vector3d::Zero(), plate.size.x());
+    case model::GeometryKind::kCapsule:
+      return CapsuleEntry(p, d, plate.size.x(), 0.5 * plate.size.y());
+    default: return std::nullopt;
+  }
+}
+
 // The half extents of the shape's own bounding box.
 Eigen::Vector3d HalfExtents(const PlateState& plate) {
   switch (plate.kind) {
@@ -71,12 +87,16 @@ int Footprint(const PlateState& plate, const SoilSurface& surface, const Rectang
               int grid, std::array<PlatePoint, kPlateFine * kPlateFine>* points) {
   const Eigen::Vector3d w_axis = surface.up.cross(surface.u_axis);
   const double du = (area.u1 - area.u0) / grid, dw = (area.w1 - area.w0) / grid;
+  // Every line in the body's frame, which is found once (PlateEntry
+  // inverted the pose at each point: a tenth of a step on snow).
+  const Eigen::Isometry3d to_body = plate.pose.inverse();
+  const Eigen::Vector3d d = to_body.linear() * surface.up;
   int count = 0;
   for (int i = 0; i < grid; ++i)
     for (int j = 0; j < grid; ++j) {
       const Eigen::Vector3d q = surface.origin + (area.u0 + (i + 0.5) * du) * surface.u_axis +
                                 (area.w0 + (j + 0.5) * dw) * w_axis;
-      const std::optional<double> t = PlateEntry(plate, q, surface.up);
+      const std::optional<double> t = EntryInBodyFrame(plate, to_body * q, d);
       if (!t || *t >= 0.0) continue;
       PlatePoint& p = (*points)[static_cast<size_t>(count++)];
       p.underside = q + *t * surface.up;
@@ -138,19 +158,7 @@ bool WhereItPresses(const PlateState& plate, const SoilSurface& surface, const R
 
 std::optional<double> PlateEntry(const PlateState& plate, const Eigen::Vector3d& point,
                                  const Eigen::Vector3d& up) {
-  const Eigen::Vector3d p = plate.pose.inverse() * point;
-  const Eigen::Vector3d d = plate.pose.linear().transpose() * up;
-  switch (plate.kind) {
-    case model::GeometryKind::kBox: {
-      const std::optional<LineSpan> span = LineThroughBox(p, d, 0.5 * plate.size);
-      return span ? std::optional<double>(span->enter) : std::nullopt;
-    }
-    case model::GeometryKind::kSphere:
-      return SphereEntry(p, d, Eigen::Vector3d::Zero(), plate.size.x());
-    case model::GeometryKind::kCapsule:
-      return CapsuleEntry(p, d, plate.size.x(), 0.5 * plate.size.y());
-    default: return std::nullopt;
-  }
+  return EntryInBodyFrame(plate, plate.pose.inverse() * point, plate.pose.linear().transpose() * up);
 }
 
 PlateSoilForces PressPlateOnSoil(const Soil& soil, const PlateState& plate,
