@@ -78,8 +78,9 @@ void MujocoWorld::MapSoil() {
   soil_scratch_.qacc = Eigen::VectorXd::Zero(m_->nv);
   soil_scratch_.vel = Eigen::VectorXd::Zero(m_->nv);
   soil_scratch_.point_jac.resize(3, m_->nv);
-  // Each step meets every wheel and plate with every ground of soil: both
-  // lists are the model's, found once.
+  // The grounds of soil and the geoms that may press them: both lists are
+  // the model's, found once; a step evaluates the pairs MuJoCo's
+  // collision found (soil_met_).
   for (int g = 0; g < m_->ngeom; ++g) {
     if (soil_ground_[static_cast<size_t>(g)] >= 0) soil_ground_geoms_.push_back(g);
     if (IsWheel(g) || IsPlate(g)) soil_pressers_.push_back(g);

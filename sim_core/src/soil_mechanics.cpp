@@ -442,7 +442,7 @@ ArcSums SumOverArc(const Soil& soil, const WheelState& wheel, const WheelFrame& 
                    const Eigen::Vector3d& up, const ArcSample* arc, int samples,
                    WheelSoilForces* out) {
   const double r = wheel.radius, v = out->forward_speed, v_y = out->side_speed, w = out->spin;
-  const WheelMotion motion(soil, r, v, v_y, w), faster(soil, r, v, v_y, w + kSpinStep);
+  const WheelMotion motion(soil, r, v, v_y, w);
   const double per_k = 1.0 / soil.shear_modulus;
   // Turning: the displacement's slopes against the spin, over the
   // displacement's own factors (ShearWithSlopes).
@@ -451,11 +451,15 @@ ArcSums SumOverArc(const Soil& soil, const WheelState& wheel, const WheelFrame& 
   const double entry = EntryAngle(*out, w), sin_entry = std::sin(entry);
   const double faster_entry = EntryAngle(*out, w + kSpinStep);
   const double sin_faster_entry = std::sin(faster_entry);
-  // Not turning: the shear at the wheel's speeds, and at a side speed
-  // kSideStep faster, per unit of strength.
-  const Displacement still = ShearPerStrength(soil, motion.slid);
+  // Not turning: the motion spun kSpinStep faster, and the shear at the
+  // wheel's speeds and at a side speed kSideStep faster, per unit of
+  // strength (the shears found only for such a wheel: each costs an exp).
+  const bool still_wheel = !motion.turning;
+  const Displacement still = still_wheel ? ShearPerStrength(soil, motion.slid) : Displacement{};
   const Displacement sideways_still =
-      ShearPerStrength(soil, {SlidFar(soil, v), SlidFar(soil, v_y + kSideStep)});
+      still_wheel ? ShearPerStrength(soil, {SlidFar(soil, v), SlidFar(soil, v_y + kSideStep)})
+                  : Displacement{};
+  const WheelMotion faster(soil, r, v, v_y, w + kSpinStep);
   ArcSums sums;
   for (const ArcSample* a_point = arc; a_point != arc + samples; ++a_point) {
     const ArcSample& a = *a_point;
